@@ -1,0 +1,266 @@
+#include "mesh.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+void lam_mesh_init(lam_mesh *m)
+{
+    memset(m, 0, sizeof *m);
+}
+
+void lam_mesh_free(lam_mesh *m)
+{
+    if (!m) return;
+    free(m->xyz);
+    free(m->tris);
+    free(m->tri_face);
+    free(m->faces);
+    free(m->wires);
+    free(m->strings);
+    lam_mesh_init(m);
+}
+
+/* Grow *p (elements of size elem) so it holds at least need elements. */
+static int grow(void **p, size_t *cap, size_t need, size_t elem, lam_error *err)
+{
+    if (need <= *cap) return LAM_OK;
+    size_t ncap = *cap ? *cap : 16;
+    while (ncap < need) {
+        if (ncap > SIZE_MAX / 2 / elem)
+            return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "mesh too large");
+        ncap *= 2;
+    }
+    void *np = realloc(*p, ncap * elem);
+    if (!np) return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory");
+    *p = np;
+    *cap = ncap;
+    return LAM_OK;
+}
+
+/* Triangles and their face ids grow together so they never disagree. */
+static int grow_tris(lam_mesh *m, size_t need, lam_error *err)
+{
+    if (need <= m->cap_tris) return LAM_OK;
+    size_t cap = m->cap_tris;
+    int rc = grow((void **)&m->tris, &cap, need, 3 * sizeof *m->tris, err);
+    if (rc) return rc;
+    if (m->nfaces || m->tri_face) {
+        void *np = realloc(m->tri_face, cap * sizeof *m->tri_face);
+        if (!np) return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory");
+        m->tri_face = np;
+    }
+    m->cap_tris = cap;
+    return LAM_OK;
+}
+
+int lam_mesh_reserve(lam_mesh *m, size_t nverts, size_t ntris, lam_error *err)
+{
+    if (nverts > UINT32_MAX - m->nverts || ntris > UINT32_MAX - m->ntris)
+        return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "mesh too large (more than 2^32 elements)");
+    int rc = grow((void **)&m->xyz, &m->cap_verts, m->nverts + nverts, 3 * sizeof *m->xyz, err);
+    if (rc) return rc;
+    return grow_tris(m, m->ntris + ntris, err);
+}
+
+int lam_mesh_add_vertex(lam_mesh *m, double x, double y, double z,
+                        uint32_t *idx, lam_error *err)
+{
+    if (m->nverts >= UINT32_MAX - 1)
+        return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "too many vertices");
+    int rc = grow((void **)&m->xyz, &m->cap_verts, m->nverts + 1, 3 * sizeof *m->xyz, err);
+    if (rc) return rc;
+    double *p = m->xyz + 3 * m->nverts;
+    p[0] = x;
+    p[1] = y;
+    p[2] = z;
+    if (idx) *idx = (uint32_t)m->nverts;
+    m->nverts++;
+    return LAM_OK;
+}
+
+static int add_string(lam_mesh *m, const char *s, uint32_t *off, lam_error *err)
+{
+    if (!s) {
+        *off = LAM_NO_NAME;
+        return LAM_OK;
+    }
+    size_t n = strlen(s) + 1;
+    if (m->strings_len + n >= UINT32_MAX)
+        return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "too many names");
+    int rc = grow((void **)&m->strings, &m->strings_cap, m->strings_len + n, 1, err);
+    if (rc) return rc;
+    memcpy(m->strings + m->strings_len, s, n);
+    *off = (uint32_t)m->strings_len;
+    m->strings_len += n;
+    return LAM_OK;
+}
+
+int lam_mesh_add_face(lam_mesh *m, const char *name, const char *file,
+                      long line, long column, uint32_t *face, lam_error *err)
+{
+    if (m->nfaces == 0 && m->ntris > 0 && !m->tri_face)
+        return lam_error_set(err, LAM_EINVAL, NULL, 0, 0,
+                             "face records added to a mesh built without them");
+    if (m->nfaces >= UINT32_MAX - 1)
+        return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "too many faces");
+    int rc = grow((void **)&m->faces, &m->cap_faces, m->nfaces + 1, sizeof *m->faces, err);
+    if (rc) return rc;
+    if (!m->tri_face && m->cap_tris) {
+        m->tri_face = malloc(m->cap_tris * sizeof *m->tri_face);
+        if (!m->tri_face) return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory");
+    }
+    lam_face_src *f = &m->faces[m->nfaces];
+    /* The file name repeats for every face: share it with the previous face. */
+    if (file && m->nfaces > 0 && m->faces[m->nfaces - 1].file != LAM_NO_NAME &&
+        strcmp(m->strings + m->faces[m->nfaces - 1].file, file) == 0) {
+        f->file = m->faces[m->nfaces - 1].file;
+    } else if ((rc = add_string(m, file, &f->file, err))) {
+        return rc;
+    }
+    if ((rc = add_string(m, name, &f->name, err))) return rc;
+    f->line = line > 0 && line < (long)UINT32_MAX ? (uint32_t)line : 0;
+    f->column = column > 0 && column < (long)UINT32_MAX ? (uint32_t)column : 0;
+    if (face) *face = (uint32_t)m->nfaces;
+    m->nfaces++;
+    return LAM_OK;
+}
+
+int lam_mesh_add_tri(lam_mesh *m, uint32_t a, uint32_t b, uint32_t c,
+                     uint32_t face, lam_error *err)
+{
+    if (a >= m->nverts || b >= m->nverts || c >= m->nverts)
+        return lam_error_set(err, LAM_EINVAL, NULL, 0, 0, "triangle names a vertex that does not exist");
+    if (m->nfaces ? face >= m->nfaces : face != LAM_NO_NAME)
+        return lam_error_set(err, LAM_EINVAL, NULL, 0, 0, "triangle names a face that does not exist");
+    if (m->ntris >= UINT32_MAX - 1)
+        return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "too many triangles");
+    int rc = grow_tris(m, m->ntris + 1, err);
+    if (rc) return rc;
+    uint32_t *t = m->tris + 3 * m->ntris;
+    t[0] = a;
+    t[1] = b;
+    t[2] = c;
+    if (m->tri_face) m->tri_face[m->ntris] = face;
+    m->ntris++;
+    return LAM_OK;
+}
+
+int lam_mesh_add_wire_seg(lam_mesh *m, uint32_t a, uint32_t b, lam_error *err)
+{
+    if (a >= m->nverts || b >= m->nverts)
+        return lam_error_set(err, LAM_EINVAL, NULL, 0, 0, "wire names a vertex that does not exist");
+    int rc = grow((void **)&m->wires, &m->cap_wire_segs, m->nwire_segs + 1, 2 * sizeof *m->wires, err);
+    if (rc) return rc;
+    m->wires[2 * m->nwire_segs] = a;
+    m->wires[2 * m->nwire_segs + 1] = b;
+    m->nwire_segs++;
+    return LAM_OK;
+}
+
+/* ---- welding ---------------------------------------------------------- */
+
+static uint64_t bits_of(double d)
+{
+    uint64_t u;
+    d += 0.0; /* -0.0 + 0.0 == +0.0: both zeros weld */
+    memcpy(&u, &d, sizeof u);
+    return u;
+}
+
+static uint64_t hash_xyz(const double *p)
+{
+    uint64_t h = 0x9e3779b97f4a7c15ull;
+    for (int k = 0; k < 3; k++) {
+        h ^= bits_of(p[k]);
+        h *= 0xff51afd7ed558ccdull;
+        h ^= h >> 33;
+    }
+    return h;
+}
+
+static int same_xyz(const double *a, const double *b)
+{
+    return bits_of(a[0]) == bits_of(b[0]) && bits_of(a[1]) == bits_of(b[1]) &&
+           bits_of(a[2]) == bits_of(b[2]);
+}
+
+int lam_mesh_weld(lam_mesh *m, lam_error *err)
+{
+    size_t n = m->nverts;
+    if (n == 0) return LAM_OK;
+    /* used[v]: referenced by a triangle or wire; only those are kept. */
+    uint32_t *remap = malloc(n * sizeof *remap);
+    size_t cap = 16;
+    while (cap < 2 * n) cap *= 2;
+    uint32_t *table = malloc(cap * sizeof *table);
+    if (!remap || !table) {
+        free(remap);
+        free(table);
+        return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory welding vertices");
+    }
+    const uint32_t unused = UINT32_MAX;
+    for (size_t v = 0; v < n; v++) remap[v] = unused;
+    for (size_t i = 0; i < 3 * m->ntris; i++) remap[m->tris[i]] = 0;
+    for (size_t i = 0; i < 2 * m->nwire_segs; i++) remap[m->wires[i]] = 0;
+    memset(table, 0xff, cap * sizeof *table);
+
+    /* Compact in first-use order of the original numbering, so the result
+     * does not depend on hashing. */
+    size_t out = 0;
+    for (size_t v = 0; v < n; v++) {
+        if (remap[v] == unused) continue;
+        const double *p = m->xyz + 3 * v;
+        size_t h = (size_t)hash_xyz(p) & (cap - 1);
+        for (;;) {
+            uint32_t slot = table[h];
+            if (slot == unused) {
+                table[h] = (uint32_t)out;
+                double *q = m->xyz + 3 * out;
+                q[0] = p[0] + 0.0;
+                q[1] = p[1] + 0.0;
+                q[2] = p[2] + 0.0;
+                remap[v] = (uint32_t)out++;
+                break;
+            }
+            if (same_xyz(m->xyz + 3 * (size_t)slot, p)) {
+                remap[v] = slot;
+                break;
+            }
+            h = (h + 1) & (cap - 1);
+        }
+    }
+    for (size_t i = 0; i < 3 * m->ntris; i++) m->tris[i] = remap[m->tris[i]];
+    for (size_t i = 0; i < 2 * m->nwire_segs; i++) m->wires[i] = remap[m->wires[i]];
+    m->nverts = out;
+    free(remap);
+    free(table);
+    return LAM_OK;
+}
+
+const char *lam_mesh_string(const lam_mesh *m, uint32_t offset)
+{
+    if (offset == LAM_NO_NAME || offset >= m->strings_len) return NULL;
+    return m->strings + offset;
+}
+
+const char *lam_mesh_describe_tri(const lam_mesh *m, size_t t, char *buf, size_t size)
+{
+    if (!m->tri_face || t >= m->ntris || m->tri_face[t] >= m->nfaces) {
+        snprintf(buf, size, "facet %zu", t + 1);
+        return buf;
+    }
+    const lam_face_src *f = &m->faces[m->tri_face[t]];
+    const char *name = lam_mesh_string(m, f->name);
+    const char *file = lam_mesh_string(m, f->file);
+    char where[600] = "";
+    if (file && f->line)
+        snprintf(where, sizeof where, " (%s:%u:%u)", file, f->line, f->column ? f->column : 1);
+    else if (file)
+        snprintf(where, sizeof where, " (%s)", file);
+    if (name)
+        snprintf(buf, size, "face '%s'%s", name, where);
+    else
+        snprintf(buf, size, "face%s", where);
+    return buf;
+}

@@ -1,0 +1,92 @@
+/* lam_mesh: the indexed triangle mesh every importer fills.
+ *
+ * Positions are doubles; triangles index them (uint32). Every triangle
+ * remembers the source face it came from (a face record with the user's
+ * name and position), so that later errors can point at the user's face.
+ * Wires (Unigrafix `w`) are kept as vertex pairs and never sliced.
+ *
+ * Ownership: a lam_mesh owns all its arrays; lam_mesh_free releases them.
+ * Every function that can fail returns LAM_OK or LAM_ENOMEM/LAM_EINVAL and
+ * fills err. */
+#ifndef LAM_MESH_H
+#define LAM_MESH_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "error.h"
+
+#define LAM_NO_NAME UINT32_MAX
+
+/* Where a face came from. Strings are offsets into lam_mesh.strings. */
+typedef struct lam_face_src {
+    uint32_t name;    /* the user's face id, LAM_NO_NAME when anonymous */
+    uint32_t file;    /* source file, LAM_NO_NAME when unknown */
+    uint32_t line;    /* 1-based, 0 when unknown */
+    uint32_t column;
+} lam_face_src;
+
+typedef struct lam_mesh {
+    double *xyz;          /* 3 per vertex */
+    size_t nverts, cap_verts;
+    uint32_t *tris;       /* 3 per triangle, indices into xyz */
+    uint32_t *tri_face;   /* per triangle: index into faces; NULL when the mesh
+                             has no face records (triangle i is facet i+1) */
+    size_t ntris, cap_tris;
+    lam_face_src *faces;
+    size_t nfaces, cap_faces;
+    uint32_t *wires;      /* 2 per wire segment */
+    size_t nwire_segs, cap_wire_segs;
+    size_t nwires;        /* wire statements read */
+    char *strings;        /* NUL-terminated strings, referenced by offset */
+    size_t strings_len, strings_cap;
+} lam_mesh;
+
+/* Initialise an empty mesh (no allocation). */
+void lam_mesh_init(lam_mesh *m);
+
+/* Release everything the mesh owns and leave it empty. */
+void lam_mesh_free(lam_mesh *m);
+
+/* Reserve room for nverts more vertices and ntris more triangles. */
+int lam_mesh_reserve(lam_mesh *m, size_t nverts, size_t ntris, lam_error *err);
+
+/* Append a vertex; its index is stored in *idx. Coordinates must be finite
+ * (importers check and report with a position before calling). */
+int lam_mesh_add_vertex(lam_mesh *m, double x, double y, double z,
+                        uint32_t *idx, lam_error *err);
+
+/* Append a face record (name and file may be NULL). *face receives its id. */
+int lam_mesh_add_face(lam_mesh *m, const char *name, const char *file,
+                      long line, long column, uint32_t *face, lam_error *err);
+
+/* Append triangle (a, b, c) belonging to face (LAM_NO_NAME for none, only
+ * allowed while the mesh has no face records at all). */
+int lam_mesh_add_tri(lam_mesh *m, uint32_t a, uint32_t b, uint32_t c,
+                     uint32_t face, lam_error *err);
+
+/* Append a wire segment between two vertices. */
+int lam_mesh_add_wire_seg(lam_mesh *m, uint32_t a, uint32_t b, lam_error *err);
+
+/* Triangulate a planar polygon and append its triangles. idx holds the
+ * rings' vertex indices back to back; ring_len[r] is the length of ring r;
+ * ring 0 is the outer boundary, the others are holes. The triangles keep
+ * the outer ring's winding. Rings need 3 or more vertices. Fails with
+ * LAM_EGEOM when the polygon is degenerate beyond triangulation.
+ * (Implemented in triangulate.c.) */
+int lam_mesh_add_polygon(lam_mesh *m, const uint32_t *idx, const size_t *ring_len,
+                         size_t nrings, uint32_t face, lam_error *err);
+
+/* Identify vertices with bitwise-equal coordinates (-0.0 counts as 0.0),
+ * drop vertices no triangle or wire uses, and renumber. Triangle order and
+ * face records are kept. Linear expected time (hashing). */
+int lam_mesh_weld(lam_mesh *m, lam_error *err);
+
+/* A string stored in the mesh (NULL for LAM_NO_NAME). */
+const char *lam_mesh_string(const lam_mesh *m, uint32_t offset);
+
+/* Describe the source of triangle t for messages, e.g.
+ * "face 'base' (part.ug:31:1)" or "facet 12". Returns buf. */
+const char *lam_mesh_describe_tri(const lam_mesh *m, size_t t, char *buf, size_t size);
+
+#endif

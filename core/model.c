@@ -1,0 +1,438 @@
+/* Building a lam_model from a mesh: weld, edge table, shells, orientation,
+ * cavities, measures. See model.h for the rules. */
+#include "model.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define NONE UINT32_MAX
+#define PI 3.14159265358979323846
+
+static int oom(lam_error *err)
+{
+    return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory building the model");
+}
+
+/* Drop triangles that repeat a vertex: they have no area and no edges of
+ * their own, and would only confuse adjacency. Returns how many went. */
+static size_t drop_collapsed(lam_mesh *m)
+{
+    size_t out = 0;
+    for (size_t t = 0; t < m->ntris; t++) {
+        const uint32_t *v = m->tris + 3 * t;
+        if (v[0] == v[1] || v[1] == v[2] || v[2] == v[0]) continue;
+        if (out != t) {
+            memcpy(m->tris + 3 * out, v, 3 * sizeof *v);
+            if (m->tri_face) m->tri_face[out] = m->tri_face[t];
+        }
+        out++;
+    }
+    size_t dropped = m->ntris - out;
+    m->ntris = out;
+    return dropped;
+}
+
+static uint64_t mix64(uint64_t h)
+{
+    h ^= h >> 33;
+    h *= 0xff51afd7ed558ccdull;
+    h ^= h >> 33;
+    h *= 0xc4ceb9fe1a85ec53ull;
+    h ^= h >> 33;
+    return h;
+}
+
+/* Edge ids in order of first appearance, so the numbering depends only on
+ * the triangle order. */
+static int build_edges(const lam_mesh *m, lam_edges *e, lam_error *err)
+{
+    size_t nt = m->ntris;
+    size_t cap = 16;
+    while (cap < 3 * nt) cap *= 2;
+    uint32_t *table = malloc(cap * sizeof *table);
+    e->v = malloc(3 * nt * 2 * sizeof *e->v + 1);
+    e->tri_edge = malloc(3 * nt * sizeof *e->tri_edge + 1);
+    if (!table || !e->v || !e->tri_edge) {
+        free(table);
+        return oom(err);
+    }
+    memset(table, 0xff, cap * sizeof *table);
+    size_t n = 0;
+    for (size_t t = 0; t < nt; t++) {
+        for (int k = 0; k < 3; k++) {
+            uint32_t a = m->tris[3 * t + k], b = m->tris[3 * t + (k + 1) % 3];
+            if (a > b) { uint32_t tmp = a; a = b; b = tmp; }
+            size_t h = (size_t)mix64(((uint64_t)a << 32) | b) & (cap - 1);
+            for (;;) {
+                uint32_t id = table[h];
+                if (id == NONE) {
+                    table[h] = (uint32_t)n;
+                    e->v[2 * n] = a;
+                    e->v[2 * n + 1] = b;
+                    e->tri_edge[3 * t + k] = (uint32_t)n++;
+                    break;
+                }
+                if (e->v[2 * (size_t)id] == a && e->v[2 * (size_t)id + 1] == b) {
+                    e->tri_edge[3 * t + k] = id;
+                    break;
+                }
+                h = (h + 1) & (cap - 1);
+            }
+        }
+    }
+    free(table);
+    e->n = n;
+    e->first = calloc(n + 1, sizeof *e->first);
+    e->tris = malloc(3 * nt * sizeof *e->tris + 1);
+    if (!e->first || !e->tris) return oom(err);
+    for (size_t i = 0; i < 3 * nt; i++) e->first[e->tri_edge[i] + 1]++;
+    for (size_t i = 0; i < n; i++) e->first[i + 1] += e->first[i];
+    uint32_t *fill = malloc((n + 1) * sizeof *fill);
+    if (!fill) return oom(err);
+    memcpy(fill, e->first, (n + 1) * sizeof *fill);
+    for (size_t i = 0; i < 3 * nt; i++) e->tris[fill[e->tri_edge[i]]++] = (uint32_t)(i / 3);
+    free(fill);
+    return LAM_OK;
+}
+
+/* Does triangle t traverse edge (a -> b) in that direction? */
+static int tri_has_directed(const uint32_t *tv, uint32_t a, uint32_t b)
+{
+    return (tv[0] == a && tv[1] == b) || (tv[1] == a && tv[2] == b) || (tv[2] == a && tv[0] == b);
+}
+
+static void flip_tri(lam_mesh *m, size_t t)
+{
+    uint32_t tmp = m->tris[3 * t + 1];
+    m->tris[3 * t + 1] = m->tris[3 * t + 2];
+    m->tris[3 * t + 2] = tmp;
+    /* edges (t0,t1),(t1,t2),(t2,t0) become (t0,t2),(t2,t1),(t1,t0) */
+}
+
+/* Shells are the components through manifold edges (exactly two triangles):
+ * two solids that only touch along a non-manifold edge stay two shells, each
+ * with its own orientation. One breadth-first pass both labels the shell and
+ * makes its winding consistent. */
+static int build_shells(lam_model *md, lam_error *err)
+{
+    lam_mesh *m = &md->mesh;
+    lam_edges *e = &md->edges;
+    size_t nt = m->ntris;
+    md->tri_shell = malloc(nt * sizeof *md->tri_shell + 1);
+    uint32_t *queue = malloc(nt * sizeof *queue + 1);
+    if (!md->tri_shell || !queue) {
+        free(queue);
+        return oom(err);
+    }
+    for (size_t t = 0; t < nt; t++) md->tri_shell[t] = NONE;
+    size_t nshells = 0, conflicts = 0;
+    for (size_t seed = 0; seed < nt; seed++) {
+        if (md->tri_shell[seed] != NONE) continue;
+        size_t head = 0, tail = 0;
+        queue[tail++] = (uint32_t)seed;
+        md->tri_shell[seed] = (uint32_t)nshells;
+        while (head < tail) {
+            uint32_t t = queue[head++];
+            for (int k = 0; k < 3; k++) {
+                /* Recompute the directed edge from the current (possibly
+                 * flipped) vertex order. */
+                const uint32_t *tv = m->tris + 3 * (size_t)t;
+                uint32_t a = tv[k], b = tv[(k + 1) % 3];
+                uint32_t lo = a < b ? a : b, hi = a < b ? b : a;
+                /* find this edge's id: one of the triangle's three edges */
+                uint32_t eid = NONE;
+                for (int j = 0; j < 3; j++) {
+                    uint32_t c = md->edges.tri_edge[3 * (size_t)t + j];
+                    if (e->v[2 * (size_t)c] == lo && e->v[2 * (size_t)c + 1] == hi) eid = c;
+                }
+                if (eid == NONE || e->first[eid + 1] - e->first[eid] != 2) continue;
+                uint32_t u = e->tris[e->first[eid]];
+                if (u == t) u = e->tris[e->first[eid] + 1];
+                const uint32_t *uv = m->tris + 3 * (size_t)u;
+                int same_dir = tri_has_directed(uv, a, b);
+                if (md->tri_shell[u] == NONE) {
+                    if (same_dir) flip_tri(m, u);
+                    md->tri_shell[u] = (uint32_t)nshells;
+                    queue[tail++] = u;
+                } else if (same_dir && md->tri_shell[u] == md->tri_shell[t]) {
+                    conflicts++;
+                }
+            }
+        }
+        nshells++;
+    }
+    free(queue);
+    /* Each inconsistent edge was seen from both sides. */
+    md->stats.orientation_conflicts = conflicts / 2;
+    md->nshells = nshells;
+    md->shells = calloc(nshells ? nshells : 1, sizeof *md->shells);
+    if (!md->shells) return oom(err);
+    return LAM_OK;
+}
+
+/* The edge table stores tri_edge per (t0,t1),(t1,t2),(t2,t0); flipping
+ * triangles reorders that, so rebuild the per-triangle edge slots. */
+static void refresh_tri_edges(lam_model *md)
+{
+    lam_mesh *m = &md->mesh;
+    lam_edges *e = &md->edges;
+    for (size_t t = 0; t < m->ntris; t++) {
+        uint32_t old[3] = { e->tri_edge[3 * t], e->tri_edge[3 * t + 1], e->tri_edge[3 * t + 2] };
+        for (int k = 0; k < 3; k++) {
+            uint32_t a = m->tris[3 * t + k], b = m->tris[3 * t + (k + 1) % 3];
+            uint32_t lo = a < b ? a : b, hi = a < b ? b : a;
+            for (int j = 0; j < 3; j++)
+                if (e->v[2 * (size_t)old[j]] == lo && e->v[2 * (size_t)old[j] + 1] == hi)
+                    e->tri_edge[3 * t + k] = old[j];
+        }
+    }
+}
+
+static double tri_area(const double *a, const double *b, const double *c)
+{
+    double u[3] = { b[0] - a[0], b[1] - a[1], b[2] - a[2] };
+    double v[3] = { c[0] - a[0], c[1] - a[1], c[2] - a[2] };
+    double n[3] = { u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0] };
+    return 0.5 * sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+}
+
+static int is_degenerate(const double *a, const double *b, const double *c)
+{
+    double u[3] = { b[0] - a[0], b[1] - a[1], b[2] - a[2] };
+    double v[3] = { c[0] - a[0], c[1] - a[1], c[2] - a[2] };
+    return u[1] * v[2] - u[2] * v[1] == 0 && u[2] * v[0] - u[0] * v[2] == 0 &&
+           u[0] * v[1] - u[1] * v[0] == 0;
+}
+
+/* Per shell: bbox, area and signed volume measured from a point of the
+ * shell (keeps the sum well conditioned far from the origin). */
+static void measure_shells(lam_model *md, double *ref)
+{
+    lam_mesh *m = &md->mesh;
+    for (size_t s = 0; s < md->nshells; s++) {
+        lam_shell *sh = &md->shells[s];
+        for (int k = 0; k < 3; k++) {
+            sh->bbox[k] = INFINITY;
+            sh->bbox[k + 3] = -INFINITY;
+        }
+        ref[3 * s] = NAN;
+    }
+    for (size_t t = 0; t < m->ntris; t++) {
+        lam_shell *sh = &md->shells[md->tri_shell[t]];
+        double *r = ref + 3 * (size_t)md->tri_shell[t];
+        const double *p[3];
+        for (int k = 0; k < 3; k++) p[k] = m->xyz + 3 * (size_t)m->tris[3 * t + k];
+        if (isnan(r[0])) memcpy(r, p[0], 3 * sizeof *r);
+        for (int k = 0; k < 3; k++)
+            for (int j = 0; j < 3; j++) {
+                if (p[k][j] < sh->bbox[j]) sh->bbox[j] = p[k][j];
+                if (p[k][j] > sh->bbox[j + 3]) sh->bbox[j + 3] = p[k][j];
+            }
+        double a[3], b[3], c[3];
+        for (int j = 0; j < 3; j++) {
+            a[j] = p[0][j] - r[j];
+            b[j] = p[1][j] - r[j];
+            c[j] = p[2][j] - r[j];
+        }
+        sh->volume += (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
+                       a[2] * (b[0] * c[1] - b[1] * c[0])) / 6.0;
+        sh->area += tri_area(p[0], p[1], p[2]);
+        sh->ntris++;
+    }
+}
+
+static void flip_shell(lam_model *md, size_t s)
+{
+    for (uint32_t i = md->shell_first[s]; i < md->shell_first[s + 1]; i++)
+        flip_tri(&md->mesh, md->shell_tris[i]);
+    md->shells[s].volume = -md->shells[s].volume;
+}
+
+static int index_shells(lam_model *md, lam_error *err)
+{
+    md->shell_first = calloc(md->nshells + 1, sizeof *md->shell_first);
+    md->shell_tris = malloc(md->mesh.ntris * sizeof *md->shell_tris + 1);
+    if (!md->shell_first || !md->shell_tris) return oom(err);
+    for (size_t t = 0; t < md->mesh.ntris; t++) md->shell_first[md->tri_shell[t] + 1]++;
+    for (size_t s = 0; s < md->nshells; s++) md->shell_first[s + 1] += md->shell_first[s];
+    for (size_t t = 0; t < md->mesh.ntris; t++) {
+        /* triangles are visited in order and shells are numbered by their
+         * first triangle, so a running cursor per shell keeps them sorted */
+        md->shell_tris[md->shell_first[md->tri_shell[t]]++] = (uint32_t)t;
+    }
+    for (size_t s = md->nshells; s > 0; s--) md->shell_first[s] = md->shell_first[s - 1];
+    md->shell_first[0] = 0;
+    return LAM_OK;
+}
+
+double lam_model_shell_winding(const lam_model *md, size_t s, const double p[3])
+{
+    const lam_mesh *m = &md->mesh;
+    double sum = 0;
+    for (uint32_t i = md->shell_first[s]; i < md->shell_first[s + 1]; i++) {
+        size_t t = md->shell_tris[i];
+        double a[3], b[3], c[3];
+        const double *pa = m->xyz + 3 * (size_t)m->tris[3 * t];
+        const double *pb = m->xyz + 3 * (size_t)m->tris[3 * t + 1];
+        const double *pc = m->xyz + 3 * (size_t)m->tris[3 * t + 2];
+        for (int j = 0; j < 3; j++) {
+            a[j] = pa[j] - p[j];
+            b[j] = pb[j] - p[j];
+            c[j] = pc[j] - p[j];
+        }
+        double la = sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+        double lb = sqrt(b[0] * b[0] + b[1] * b[1] + b[2] * b[2]);
+        double lc = sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+        double det = a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
+                     a[2] * (b[0] * c[1] - b[1] * c[0]);
+        double ab = a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+        double bc = b[0] * c[0] + b[1] * c[1] + b[2] * c[2];
+        double ca = c[0] * a[0] + c[1] * a[1] + c[2] * a[2];
+        double den = la * lb * lc + ab * lc + bc * la + ca * lb;
+        /* Van Oosterom and Strackee's solid angle of a triangle. */
+        sum += 2.0 * atan2(det, den);
+    }
+    return sum / (4.0 * PI);
+}
+
+static int bbox_inside(const double *in, const double *out)
+{
+    for (int j = 0; j < 3; j++)
+        if (in[j] < out[j] || in[j + 3] > out[j + 3]) return 0;
+    return 1;
+}
+
+/* Does shell `outer` enclose shell `inner`? Sample centroids of some of the
+ * inner shell's triangles: a centroid lying on the outer shell's surface
+ * (coplanar faces, as in the thesis's cube with a through hole) has winding
+ * 1/2 and says nothing, so the decisive samples vote. */
+static int shell_encloses(const lam_model *md, size_t outer, size_t inner)
+{
+    const lam_mesh *m = &md->mesh;
+    size_t n = md->shells[inner].ntris, want = n < 9 ? n : 9, seen = 0, step = n / want;
+    int in = 0, out = 0;
+    for (uint32_t i = md->shell_first[inner]; i < md->shell_first[inner + 1] && seen < want; i += step) {
+        size_t t = md->shell_tris[i];
+        seen++;
+        double c[3];
+        for (int j = 0; j < 3; j++)
+            c[j] = (m->xyz[3 * (size_t)m->tris[3 * t] + j] + m->xyz[3 * (size_t)m->tris[3 * t + 1] + j] +
+                    m->xyz[3 * (size_t)m->tris[3 * t + 2] + j]) / 3.0;
+        double w = fabs(lam_model_shell_winding(md, outer, c));
+        if (w > 0.75) in++;
+        else if (w < 0.25) out++;
+    }
+    return in > out;
+}
+
+int lam_model_from_mesh(lam_mesh *mesh, const char *path, const char *format,
+                        lam_model **out, lam_error *err)
+{
+    *out = NULL;
+    lam_model *md = calloc(1, sizeof *md);
+    if (!md) {
+        lam_mesh_free(mesh);
+        return oom(err);
+    }
+    md->mesh = *mesh;
+    lam_mesh_init(mesh);
+    md->format = format ? format : "mesh";
+    md->path = strdup(path ? path : "");
+    int rc;
+    if (!md->path) {
+        rc = oom(err);
+        goto fail;
+    }
+    lam_mesh *m = &md->mesh;
+    size_t collapsed = drop_collapsed(m);
+    if (m->ntris == 0) {
+        rc = lam_error_set(err, LAM_EGEOM, path, 0, 0, "the model has no triangles (nothing to slice)");
+        goto fail;
+    }
+    if ((rc = lam_mesh_weld(m, err))) goto fail;
+    collapsed += drop_collapsed(m); /* welding can make triangles collapse */
+    if (m->ntris == 0) {
+        rc = lam_error_set(err, LAM_EGEOM, path, 0, 0, "the model has no triangles with area");
+        goto fail;
+    }
+    if ((rc = lam_mesh_weld(m, err))) goto fail; /* drop vertices only they used */
+    if ((rc = build_edges(m, &md->edges, err))) goto fail;
+    if ((rc = build_shells(md, err))) goto fail;
+    if ((rc = index_shells(md, err))) goto fail;
+
+    double *ref = malloc(3 * md->nshells * sizeof *ref);
+    if (!ref) {
+        rc = oom(err);
+        goto fail;
+    }
+    measure_shells(md, ref);
+    free(ref);
+    for (size_t s = 0; s < md->nshells; s++)
+        if (md->shells[s].volume < 0) flip_shell(md, s);
+    for (size_t s = 0; s < md->nshells; s++) {
+        for (size_t o = 0; o < md->nshells; o++) {
+            if (o == s || !bbox_inside(md->shells[s].bbox, md->shells[o].bbox)) continue;
+            if (shell_encloses(md, o, s)) md->shells[s].enclosing++;
+        }
+    }
+    lam_model_stats *st = &md->stats;
+    for (size_t s = 0; s < md->nshells; s++) {
+        lam_shell *sh = &md->shells[s];
+        sh->cavity = sh->enclosing % 2;
+        if (sh->cavity) {
+            flip_shell(md, s);
+            st->cavities++;
+        }
+        st->volume += sh->volume;
+        st->area += sh->area;
+    }
+    refresh_tri_edges(md);
+
+    st->triangles = m->ntris;
+    st->vertices = m->nverts;
+    st->edges = md->edges.n;
+    st->shells = md->nshells;
+    st->wires = m->nwires;
+    st->degenerate_tris = collapsed;
+    for (size_t t = 0; t < m->ntris; t++)
+        if (is_degenerate(m->xyz + 3 * (size_t)m->tris[3 * t], m->xyz + 3 * (size_t)m->tris[3 * t + 1],
+                          m->xyz + 3 * (size_t)m->tris[3 * t + 2]))
+            st->degenerate_tris++;
+    for (size_t i = 0; i < md->edges.n; i++) {
+        uint32_t k = md->edges.first[i + 1] - md->edges.first[i];
+        if (k == 1) st->boundary_edges++;
+        else if (k > 2) st->nonmanifold_edges++;
+    }
+    for (int j = 0; j < 3; j++) {
+        st->bbox[j] = INFINITY;
+        st->bbox[j + 3] = -INFINITY;
+    }
+    for (size_t v = 0; v < m->nverts; v++)
+        for (int j = 0; j < 3; j++) {
+            double x = m->xyz[3 * v + j];
+            if (x < st->bbox[j]) st->bbox[j] = x;
+            if (x > st->bbox[j + 3]) st->bbox[j + 3] = x;
+        }
+    *out = md;
+    return LAM_OK;
+fail:
+    lam_model_free(md);
+    return rc;
+}
+
+void lam_model_free(lam_model *md)
+{
+    if (!md) return;
+    lam_mesh_free(&md->mesh);
+    free(md->edges.v);
+    free(md->edges.first);
+    free(md->edges.tris);
+    free(md->edges.tri_edge);
+    free(md->tri_shell);
+    free(md->shell_first);
+    free(md->shell_tris);
+    free(md->shells);
+    free(md->path);
+    free(md);
+}

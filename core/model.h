@@ -1,0 +1,77 @@
+/* lam_model: a loaded solid ready for slicing.
+ *
+ * Built from a lam_mesh: vertices welded, an edge table, shells (connected
+ * components through shared edges), orientation made consistent inside each
+ * shell from adjacency (the file's winding is never trusted), each shell
+ * turned outward by its signed volume, and shells enclosed by an odd number
+ * of other shells turned inward (cavities). Volume is then the signed sum. */
+#ifndef LAM_MODEL_H
+#define LAM_MODEL_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "error.h"
+#include "mesh.h"
+
+/* Every undirected edge with its incident triangles (CSR layout). */
+typedef struct lam_edges {
+    size_t n;
+    uint32_t *v;         /* 2 per edge, v[2e] < v[2e+1] */
+    uint32_t *first;     /* n + 1 offsets into tris */
+    uint32_t *tris;      /* triangles of edge e: tris[first[e] .. first[e+1]) */
+    uint32_t *tri_edge;  /* 3 per triangle: edges (t0,t1), (t1,t2), (t2,t0) */
+} lam_edges;
+
+typedef struct lam_shell {
+    size_t ntris;
+    double bbox[6];      /* xmin ymin zmin xmax ymax zmax */
+    double volume;       /* signed: positive for a solid, negative for a cavity */
+    double area;
+    int enclosing;       /* how many other shells enclose this one */
+    int cavity;          /* enclosing is odd */
+} lam_shell;
+
+typedef struct lam_model_stats {
+    size_t triangles, vertices, edges, shells, cavities, wires;
+    size_t boundary_edges;     /* edges with one triangle */
+    size_t nonmanifold_edges;  /* edges with more than two triangles */
+    size_t degenerate_tris;    /* zero area: repeated or collinear vertices */
+    size_t orientation_conflicts; /* manifold edges whose triangles could not
+                                     be made consistent (non-orientable) */
+    double bbox[6];
+    double area, volume;
+} lam_model_stats;
+
+typedef struct lam_model {
+    char *path;            /* as given to lam_model_load, owned */
+    const char *format;    /* static: "unigrafix", "stl-ascii", "stl-binary", "obj", "mesh" */
+    lam_mesh mesh;         /* welded, oriented */
+    lam_edges edges;
+    uint32_t *tri_shell;   /* per triangle */
+    uint32_t *shell_first; /* nshells + 1 offsets into shell_tris */
+    uint32_t *shell_tris;  /* triangles of shell s: shell_tris[shell_first[s] .. shell_first[s+1]) */
+    lam_shell *shells;
+    size_t nshells;
+    lam_model_stats stats;
+} lam_model;
+
+/* Load a model file. The format is chosen by extension (.ug, .stl, .obj)
+ * and confirmed by content; an unknown extension is sniffed. On success
+ * *out is a new model the caller frees with lam_model_free. */
+int lam_model_load(const char *path, lam_model **out, lam_error *err);
+
+/* Build a model from a mesh the caller filled. The mesh's contents move
+ * into the model (mesh is left empty) whether or not this succeeds. */
+int lam_model_from_mesh(lam_mesh *mesh, const char *path, const char *format,
+                        lam_model **out, lam_error *err);
+
+/* Free a model (NULL is fine). */
+void lam_model_free(lam_model *model);
+
+/* The winding number of the closed shell s of the model around point p
+ * (generalised winding number: sum of solid angles / 4 pi). Near 1 inside a
+ * solid shell, 0 outside, 0.5 on its surface. O(triangles of s). */
+double lam_model_shell_winding(const lam_model *model, size_t s, const double p[3]);
+
+#endif

@@ -1,0 +1,28 @@
+/* Shared pieces of the `lamina` command line: exit codes, messages, JSON. */
+#ifndef LAM_CLI_H
+#define LAM_CLI_H
+
+#include <stdio.h>
+
+#include "error.h"
+
+enum { EXIT_OK = 0, EXIT_INPUT = 1, EXIT_USAGE = 2, EXIT_CHECK = 3 };
+
+/* Print "lamina: <formatted error>" to stderr and return EXIT_INPUT. */
+int cli_fail(const lam_error *err);
+
+/* Print "lamina <cmd>: <msg>" and a hint to stderr; return EXIT_USAGE. */
+int cli_usage(const char *cmd, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+
+/* Write s as a JSON string literal (with quotes). */
+void cli_json_string(FILE *f, const char *s);
+
+/* Write a double as JSON (shortest round-trip form; non-finite as null). */
+void cli_json_number(FILE *f, double x);
+
+/* Format a double for people: shortest form that reads back exactly. */
+const char *cli_num(char *buf, size_t size, double x);
+
+int cmd_info(int argc, char **argv);
+
+#endif
