@@ -24,5 +24,6 @@ void cli_json_number(FILE *f, double x);
 const char *cli_num(char *buf, size_t size, double x);
 
 int cmd_info(int argc, char **argv);
+int cmd_slice(int argc, char **argv);
 
 #endif

@@ -10,7 +10,9 @@ static int help(void)
     printf("lamina " LAMINA_VERSION " - process planning for layered manufacturing\n\n"
            "usage:\n"
            "  lamina info MODEL [--json]     model report: shells, cavities, volume, defects\n"
+           "  lamina slice MODEL [options]   slice; SLS contours to stdout or -o FILE, --svg preview\n"
            "  lamina --help | --version\n\n"
+           "'lamina COMMAND --help' describes a command's options.\n"
            "Models: Unigrafix (.ug), STL (ASCII or binary), Wavefront OBJ.\n"
            "Exit codes: 0 success, 1 input or processing error, 2 usage error,\n"
            "3 the model was read but a check failed.\n");
@@ -27,5 +29,6 @@ int main(int argc, char **argv)
         return EXIT_OK;
     }
     if (strcmp(cmd, "info") == 0) return cmd_info(argc - 1, argv + 1);
+    if (strcmp(cmd, "slice") == 0) return cmd_slice(argc - 1, argv + 1);
     return cli_usage(NULL, "unknown command '%s'", cmd);
 }

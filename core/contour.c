@@ -1,0 +1,344 @@
+#include "contour.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+double lam_loop_area(const double *uv, size_t n)
+{
+    if (n < 3) return 0;
+    /* measured from the first point: keeps the sum well conditioned */
+    double u0 = uv[0], v0 = uv[1], s = 0;
+    for (size_t i = 1; i + 1 < n; i++) {
+        double au = uv[2 * i] - u0, av = uv[2 * i + 1] - v0;
+        double bu = uv[2 * i + 2] - u0, bv = uv[2 * i + 3] - v0;
+        s += au * bv - av * bu;
+    }
+    return s / 2;
+}
+
+/* b lies on the straight run from a to c (exactly, and going forward). */
+static int straight(const double *a, const double *b, const double *c)
+{
+    double e1u = b[0] - a[0], e1v = b[1] - a[1], e2u = c[0] - b[0], e2v = c[1] - b[1];
+    return e1u * e2v - e1v * e2u == 0 && e1u * e2u + e1v * e2v > 0;
+}
+
+size_t lam_loop_simplify(double *uv, size_t n)
+{
+    size_t m = 0;
+    for (size_t i = 0; i < n; i++) {
+        const double *p = uv + 2 * i;
+        if (m && uv[2 * m - 2] == p[0] && uv[2 * m - 1] == p[1]) continue;
+        while (m >= 2 && straight(uv + 2 * (m - 2), uv + 2 * (m - 1), p)) m--;
+        uv[2 * m] = p[0];
+        uv[2 * m + 1] = p[1];
+        m++;
+    }
+    /* the closing edge: repeated first point, then straight runs through
+     * the seam in either direction */
+    for (int changed = 1; changed && m >= 3;) {
+        changed = 0;
+        if (uv[0] == uv[2 * m - 2] && uv[1] == uv[2 * m - 1]) {
+            m--;
+            changed = 1;
+        } else if (straight(uv + 2 * (m - 2), uv + 2 * (m - 1), uv)) {
+            m--;
+            changed = 1;
+        } else if (straight(uv + 2 * (m - 1), uv, uv + 2)) {
+            memmove(uv, uv + 2, 2 * (m - 1) * sizeof *uv);
+            m--;
+            changed = 1;
+        }
+    }
+    return m;
+}
+
+/* Lowest, then leftmost, point. */
+static size_t lowest_leftmost(const double *uv, size_t n)
+{
+    size_t best = 0;
+    for (size_t i = 1; i < n; i++) {
+        double v = uv[2 * i + 1], u = uv[2 * i];
+        if (v < uv[2 * best + 1] || (v == uv[2 * best + 1] && u < uv[2 * best])) best = i;
+    }
+    return best;
+}
+
+static double turn_at(const double *uv, size_t n, size_t a)
+{
+    size_t p = (a + n - 1) % n, q = (a + 1) % n;
+    double e1u = uv[2 * a] - uv[2 * p], e1v = uv[2 * a + 1] - uv[2 * p + 1];
+    double e2u = uv[2 * q] - uv[2 * a], e2v = uv[2 * q + 1] - uv[2 * a + 1];
+    return e1u * e2v - e1v * e2u;
+}
+
+double lam_contour_turn(const lam_layer *layer, const lam_contour *c)
+{
+    const double *uv = layer->uv + 2 * c->first;
+    return turn_at(uv, c->n, lowest_leftmost(uv, c->n));
+}
+
+int lam_contour_contains(const lam_layer *layer, const lam_contour *c, double u, double v)
+{
+    const double *p = layer->uv + 2 * c->first;
+    int in = 0;
+    for (size_t i = 0, j = c->n - 1; i < c->n; j = i++) {
+        double ui = p[2 * i], vi = p[2 * i + 1], uj = p[2 * j], vj = p[2 * j + 1];
+        if ((vi > v) != (vj > v)) {
+            double x = ui + (v - vi) * (uj - ui) / (vj - vi);
+            if (x > u) in = !in;
+        }
+    }
+    return in;
+}
+
+/* ---- nesting ------------------------------------------------------------ */
+
+typedef struct seg {
+    double vmin, vmax;
+    uint32_t loop, i; /* edge from point i to i+1 of its loop */
+} seg;
+
+typedef struct query {
+    double u, v;
+    uint32_t loop;
+} query;
+
+static int cmp_seg(const void *a, const void *b)
+{
+    const seg *p = a, *q = b;
+    if (p->vmin != q->vmin) return p->vmin < q->vmin ? -1 : 1;
+    if (p->loop != q->loop) return p->loop < q->loop ? -1 : 1;
+    return p->i < q->i ? -1 : p->i > q->i;
+}
+
+static int cmp_query(const void *a, const void *b)
+{
+    const query *p = a, *q = b;
+    if (p->v != q->v) return p->v < q->v ? -1 : 1;
+    return p->loop < q->loop ? -1 : p->loop > q->loop;
+}
+
+typedef struct loopinfo {
+    size_t first, n, start;   /* start: lowest-leftmost point */
+    double area;
+    int depth;
+    long parent;
+} loopinfo;
+
+/* For every loop: depth and smallest container, by a sweep over v with
+ * ray casting toward -u from the loop's lowest-leftmost point. */
+static int nest(const lam_loops *L, loopinfo *li, lam_error *err)
+{
+    size_t nl = L->nloops, ns = L->npoints;
+    seg *segs = malloc(ns * sizeof *segs + 1);
+    query *qs = malloc(nl * sizeof *qs + 1);
+    uint32_t *active = malloc(ns * sizeof *active + 1);
+    unsigned char *parity = calloc(nl, 1);
+    uint32_t *touched = malloc(nl * sizeof *touched + 1);
+    if (!segs || !qs || !active || !parity || !touched) {
+        free(segs); free(qs); free(active); free(parity); free(touched);
+        return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory classifying contours");
+    }
+    for (size_t l = 0; l < nl; l++) {
+        const double *uv = L->uv + 2 * li[l].first;
+        for (size_t i = 0; i < li[l].n; i++) {
+            size_t j = (i + 1) % li[l].n;
+            seg *s = &segs[li[l].first + i];
+            double a = uv[2 * i + 1], b = uv[2 * j + 1];
+            s->vmin = a < b ? a : b;
+            s->vmax = a < b ? b : a;
+            s->loop = (uint32_t)l;
+            s->i = (uint32_t)i;
+        }
+        qs[l].u = uv[2 * li[l].start];
+        qs[l].v = uv[2 * li[l].start + 1];
+        qs[l].loop = (uint32_t)l;
+    }
+    qsort(segs, ns, sizeof *segs, cmp_seg);
+    qsort(qs, nl, sizeof *qs, cmp_query);
+    size_t ins = 0, nact = 0;
+    for (size_t k = 0; k < nl; k++) {
+        const query *q = &qs[k];
+        /* half-open rule: an edge spans q.v when vmin <= v < vmax */
+        while (ins < ns && segs[ins].vmin <= q->v) active[nact++] = (uint32_t)ins++;
+        size_t keep = 0, ntouched = 0;
+        for (size_t a = 0; a < nact; a++) {
+            const seg *s = &segs[active[a]];
+            if (s->vmax <= q->v) continue; /* below every later query too */
+            active[keep++] = active[a];
+            if (s->loop == q->loop || s->vmin == s->vmax) continue;
+            const double *uv = L->uv + 2 * li[s->loop].first;
+            size_t i = s->i, j = (i + 1) % li[s->loop].n;
+            double ui = uv[2 * i], vi = uv[2 * i + 1], uj = uv[2 * j], vj = uv[2 * j + 1];
+            double x = ui + (q->v - vi) * (uj - ui) / (vj - vi);
+            if (x < q->u) {
+                if (!parity[s->loop]) touched[ntouched++] = s->loop;
+                parity[s->loop] ^= 1;
+            }
+        }
+        nact = keep;
+        loopinfo *me = &li[q->loop];
+        me->depth = 0;
+        me->parent = -1;
+        double best = INFINITY;
+        for (size_t t = 0; t < ntouched; t++) {
+            uint32_t o = touched[t];
+            if (parity[o]) {
+                me->depth++;
+                double a = fabs(li[o].area);
+                if (a < best || (a == best && (long)o < me->parent)) {
+                    best = a;
+                    me->parent = (long)o;
+                }
+            }
+            parity[o] = 0;
+        }
+    }
+    free(segs); free(qs); free(active); free(parity); free(touched);
+    return LAM_OK;
+}
+
+/* ---- assembly ----------------------------------------------------------- */
+
+typedef struct order_key {
+    long parent;
+    double v, u;
+    uint32_t loop;
+} order_key;
+
+static int cmp_order(const void *a, const void *b)
+{
+    const order_key *p = a, *q = b;
+    if (p->parent != q->parent) return p->parent < q->parent ? -1 : 1;
+    if (p->v != q->v) return p->v < q->v ? -1 : 1;
+    if (p->u != q->u) return p->u < q->u ? -1 : 1;
+    return p->loop < q->loop ? -1 : p->loop > q->loop;
+}
+
+int lam_contours_assign(lam_layer *layer, const lam_loops *L, lam_error *err)
+{
+    free(layer->uv);
+    free(layer->contours);
+    layer->uv = NULL;
+    layer->contours = NULL;
+    layer->npoints = layer->ncontours = 0;
+    size_t nl = L->nloops;
+    if (nl == 0) return LAM_OK;
+
+    loopinfo *li = malloc(nl * sizeof *li);
+    order_key *keys = malloc(nl * sizeof *keys);
+    size_t *order = malloc(nl * sizeof *order);
+    long *newidx = malloc(nl * sizeof *newidx);
+    size_t *stack = malloc(nl * sizeof *stack);
+    layer->uv = malloc(2 * L->npoints * sizeof *layer->uv);
+    layer->contours = calloc(nl, sizeof *layer->contours);
+    int rc = LAM_OK;
+    if (!li || !keys || !order || !newidx || !stack || !layer->uv || !layer->contours) {
+        rc = lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory assembling contours");
+        goto done;
+    }
+    size_t off = 0;
+    for (size_t l = 0; l < nl; l++) {
+        li[l].first = off;
+        li[l].n = L->len[l];
+        li[l].start = lowest_leftmost(L->uv + 2 * off, L->len[l]);
+        li[l].area = lam_loop_area(L->uv + 2 * off, L->len[l]);
+        off += L->len[l];
+    }
+    if ((rc = nest(L, li, err))) goto done;
+
+    /* Depth-first order: each parent followed by its children, siblings by
+     * their start point (lowest, then leftmost). */
+    for (size_t l = 0; l < nl; l++) {
+        keys[l].parent = li[l].parent;
+        keys[l].v = L->uv[2 * (li[l].first + li[l].start) + 1];
+        keys[l].u = L->uv[2 * (li[l].first + li[l].start)];
+        keys[l].loop = (uint32_t)l;
+    }
+    qsort(keys, nl, sizeof *keys, cmp_order);
+    /* children of p occupy a contiguous run of keys; find runs by parent */
+    size_t *run_first = calloc(nl + 1, sizeof *run_first), *run_len = calloc(nl + 1, sizeof *run_len);
+    if (!run_first || !run_len) {
+        free(run_first);
+        free(run_len);
+        rc = lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory assembling contours");
+        goto done;
+    }
+    for (size_t k = 0; k < nl; k++) {
+        size_t slot = (size_t)(keys[k].parent + 1); /* 0: roots */
+        if (run_len[slot]++ == 0) run_first[slot] = k;
+    }
+    size_t nout = 0, sp = 0;
+    for (size_t k = run_len[0]; k-- > 0;) stack[sp++] = keys[run_first[0] + k].loop;
+    while (sp) {
+        size_t l = stack[--sp];
+        order[nout++] = l;
+        size_t slot = l + 1;
+        for (size_t k = run_len[slot]; k-- > 0;) stack[sp++] = keys[run_first[slot] + k].loop;
+    }
+    free(run_first);
+    free(run_len);
+    /* nout < nl only if parent links formed a cycle, which containment by
+     * strictly smaller area rules out; keep any stragglers regardless */
+    for (size_t l = 0; l < nl && nout < nl; l++) {
+        int seen = 0;
+        for (size_t k = 0; k < nout && !seen; k++) seen = order[k] == l;
+        if (!seen) order[nout++] = l;
+    }
+    for (size_t k = 0; k < nl; k++) newidx[order[k]] = (long)k;
+
+    size_t pos = 0;
+    for (size_t k = 0; k < nl; k++) {
+        const loopinfo *in = &li[order[k]];
+        lam_contour *c = &layer->contours[k];
+        const double *src = L->uv + 2 * in->first;
+        size_t n = in->n;
+        c->first = pos;
+        c->n = n;
+        c->depth = in->depth;
+        c->kind = in->depth % 2 ? LAM_HOLE : LAM_SOLID;
+        c->parent = in->parent >= 0 ? newidx[in->parent] : -1;
+        /* the thesis's test at the lowest-leftmost vertex; the signed area
+         * decides only when that vertex is degenerate */
+        double turn = turn_at(src, n, in->start);
+        int ccw = turn > 0 || (turn == 0 && in->area > 0);
+        int want_ccw = c->kind == LAM_SOLID;
+        double *dst = layer->uv + 2 * pos;
+        for (size_t i = 0; i < n; i++) {
+            /* start at the lowest-leftmost point, walk forward or backward */
+            size_t j = ccw == want_ccw ? (in->start + i) % n : (in->start + n - i) % n;
+            dst[2 * i] = src[2 * j];
+            dst[2 * i + 1] = src[2 * j + 1];
+        }
+        c->area = lam_loop_area(dst, n);
+        c->perimeter = 0;
+        c->bbox[0] = c->bbox[2] = dst[0];
+        c->bbox[1] = c->bbox[3] = dst[1];
+        for (size_t i = 0; i < n; i++) {
+            size_t j = (i + 1) % n;
+            c->perimeter += hypot(dst[2 * j] - dst[2 * i], dst[2 * j + 1] - dst[2 * i + 1]);
+            if (dst[2 * i] < c->bbox[0]) c->bbox[0] = dst[2 * i];
+            if (dst[2 * i] > c->bbox[2]) c->bbox[2] = dst[2 * i];
+            if (dst[2 * i + 1] < c->bbox[1]) c->bbox[1] = dst[2 * i + 1];
+            if (dst[2 * i + 1] > c->bbox[3]) c->bbox[3] = dst[2 * i + 1];
+        }
+        pos += n;
+    }
+    layer->npoints = pos;
+    layer->ncontours = nl;
+done:
+    free(li);
+    free(keys);
+    free(order);
+    free(newidx);
+    free(stack);
+    if (rc) {
+        free(layer->uv);
+        free(layer->contours);
+        layer->uv = NULL;
+        layer->contours = NULL;
+    }
+    return rc;
+}

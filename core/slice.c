@@ -1,0 +1,728 @@
+/* The plane sweep; see slice.h for the rules it keeps. */
+#include "slice.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "contour.h"
+
+#define NONE UINT32_MAX
+
+static int nomem(lam_error *err)
+{
+    return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory while slicing");
+}
+
+/* ---- frames --------------------------------------------------------------- */
+
+static void set3(double *d, double x, double y, double z)
+{
+    d[0] = x;
+    d[1] = y;
+    d[2] = z;
+}
+
+int lam_frame_axis(char axis, lam_frame *f, lam_error *err)
+{
+    memset(f, 0, sizeof *f);
+    switch (axis) {
+    case 'x': case 'X':
+        set3(f->u, 0, 1, 0); set3(f->v, 0, 0, 1); set3(f->w, 1, 0, 0);
+        return LAM_OK;
+    case 'y': case 'Y':
+        set3(f->u, 0, 0, 1); set3(f->v, 1, 0, 0); set3(f->w, 0, 1, 0);
+        return LAM_OK;
+    case 'z': case 'Z':
+        set3(f->u, 1, 0, 0); set3(f->v, 0, 1, 0); set3(f->w, 0, 0, 1);
+        return LAM_OK;
+    }
+    return lam_error_set(err, LAM_EUSAGE, NULL, 0, 0, "unknown axis '%c' (x, y, z or a direction DX,DY,DZ)", axis);
+}
+
+int lam_frame_direction(const double d[3], lam_frame *f, lam_error *err)
+{
+    double len = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    if (!(len > 0) || !isfinite(len))
+        return lam_error_set(err, LAM_EUSAGE, NULL, 0, 0, "slice direction must be a finite non-zero vector");
+    /* exact positive axes keep their exact thesis frames */
+    if (d[1] == 0 && d[2] == 0 && d[0] > 0) return lam_frame_axis('x', f, err);
+    if (d[0] == 0 && d[2] == 0 && d[1] > 0) return lam_frame_axis('y', f, err);
+    if (d[0] == 0 && d[1] == 0 && d[2] > 0) return lam_frame_axis('z', f, err);
+    for (int k = 0; k < 3; k++) f->w[k] = d[k] / len;
+    int least = 0;
+    for (int k = 1; k < 3; k++)
+        if (fabs(f->w[k]) < fabs(f->w[least])) least = k;
+    double a[3] = { 0, 0, 0 };
+    a[least] = 1;
+    double dot = f->w[least];
+    for (int k = 0; k < 3; k++) f->u[k] = a[k] - dot * f->w[k];
+    double ul = sqrt(f->u[0] * f->u[0] + f->u[1] * f->u[1] + f->u[2] * f->u[2]);
+    for (int k = 0; k < 3; k++) f->u[k] /= ul;
+    f->v[0] = f->w[1] * f->u[2] - f->w[2] * f->u[1];
+    f->v[1] = f->w[2] * f->u[0] - f->w[0] * f->u[2];
+    f->v[2] = f->w[0] * f->u[1] - f->w[1] * f->u[0];
+    return LAM_OK;
+}
+
+void lam_frame_to_model(const lam_frame *f, double u, double v, double w, double xyz[3])
+{
+    for (int k = 0; k < 3; k++) {
+        /* skip zero terms so axis frames map coordinates exactly */
+        double s = 0;
+        if (f->u[k] != 0) s += u * f->u[k];
+        if (f->v[k] != 0) s += v * f->v[k];
+        if (f->w[k] != 0) s += w * f->w[k];
+        xyz[k] = s;
+    }
+}
+
+static double dot_exact(const double *p, const double *a)
+{
+    double s = 0;
+    for (int k = 0; k < 3; k++)
+        if (a[k] != 0) s += p[k] * a[k];
+    return s;
+}
+
+void lam_slice_opts_init(lam_slice_opts *o)
+{
+    memset(o, 0, sizeof *o);
+    lam_frame_axis('z', &o->frame, NULL);
+    o->cut = LAM_CUT_MIDDLE;
+    o->gap = LAM_DEFAULT_GAP;
+}
+
+double lam_default_width(double extent)
+{
+    if (!(extent > 0) || !isfinite(extent)) return 1;
+    double target = extent / 100;
+    double p = pow(10, floor(log10(target)));
+    static const double steps[] = { 5, 2.5, 2, 1 };
+    for (int i = 0; i < 4; i++)
+        if (steps[i] * p <= target * (1 + 1e-12)) return steps[i] * p;
+    return p;
+}
+
+/* ---- the slicer ------------------------------------------------------------- */
+
+struct lam_slicer {
+    const lam_model *m;
+    lam_slice_opts o;
+    double *planes;        /* S + 1 boundaries */
+    size_t nlayers, next;
+    double *vw, *vuv;      /* per vertex: height and layer-frame (u, v) */
+    uint32_t *order;       /* non-horizontal edges by lower end height */
+    size_t norder, ins;
+    uint32_t *active;
+    size_t nactive;
+    uint32_t *local;       /* per edge: slot in active (valid while active) */
+    /* per-layer scratch, grown as needed */
+    double *pts;           /* point of each active edge */
+    uint32_t *seg_in, *seg_out, *in_first, *in_seg, *indeg;
+    unsigned char *used;
+    size_t cap_active, cap_seg;
+};
+
+static int make_planes(lam_slicer *s, double wmin, double wmax, lam_error *err)
+{
+    const lam_slice_opts *o = &s->o;
+    size_t n;
+    if (o->planes) {
+        if (o->nplanes < 2)
+            return lam_error_set(err, LAM_EUSAGE, NULL, 0, 0, "at least two planes are needed (they bound the layers)");
+        for (size_t i = 0; i < o->nplanes; i++) {
+            if (!isfinite(o->planes[i]))
+                return lam_error_set(err, LAM_EUSAGE, NULL, 0, 0, "plane %zu is not a finite number", i + 1);
+            if (i && !(o->planes[i] > o->planes[i - 1]))
+                return lam_error_set(err, LAM_EUSAGE, NULL, 0, 0,
+                                     "planes must increase strictly (plane %zu is %g after %g)", i + 1,
+                                     o->planes[i], o->planes[i - 1]);
+        }
+        n = o->nplanes;
+        s->planes = malloc(n * sizeof *s->planes);
+        if (!s->planes) return nomem(err);
+        memcpy(s->planes, o->planes, n * sizeof *s->planes);
+    } else if (o->widths) {
+        if (o->nwidths == 0) return lam_error_set(err, LAM_EUSAGE, NULL, 0, 0, "empty list of widths");
+        n = o->nwidths + 1;
+        s->planes = malloc(n * sizeof *s->planes);
+        if (!s->planes) return nomem(err);
+        s->planes[0] = wmin;
+        for (size_t i = 0; i < o->nwidths; i++) {
+            if (!(o->widths[i] > 0) || !isfinite(o->widths[i]))
+                return lam_error_set(err, LAM_EUSAGE, NULL, 0, 0, "width %zu must be a positive number (got %g)",
+                                     i + 1, o->widths[i]);
+            s->planes[i + 1] = s->planes[i] + o->widths[i];
+        }
+        if (s->planes[n - 1] < wmax)
+            return lam_error_set(err, LAM_EUSAGE, NULL, 0, 0,
+                                 "the widths add up to %g but the model spans %g along the axis",
+                                 s->planes[n - 1] - wmin, wmax - wmin);
+    } else {
+        double w = o->width > 0 ? o->width : lam_default_width(wmax - wmin);
+        if (!(w > 0) || !isfinite(w))
+            return lam_error_set(err, LAM_EUSAGE, NULL, 0, 0, "layer width must be a positive number (got %g)", o->width);
+        double q = (wmax - wmin) / w;
+        if (q > 1e8)
+            return lam_error_set(err, LAM_EUSAGE, NULL, 0, 0, "width %g makes %.0f layers (more than 10^8)", w, q);
+        /* an extent that is a whole number of layers up to rounding gets
+         * exactly that many, not one more nearly empty layer */
+        double layers = floor(q);
+        if (q - layers > 1e-9) layers += 1;
+        if (layers < 1) layers = 1;
+        n = (size_t)layers + 1;
+        s->planes = malloc(n * sizeof *s->planes);
+        if (!s->planes) return nomem(err);
+        for (size_t i = 0; i < n; i++) s->planes[i] = wmin + (double)i * w; /* never accumulated */
+    }
+    s->nlayers = n - 1;
+    return LAM_OK;
+}
+
+static double edge_lo(const lam_slicer *s, uint32_t e)
+{
+    const uint32_t *v = s->m->edges.v + 2 * (size_t)e;
+    double a = s->vw[v[0]], b = s->vw[v[1]];
+    return a < b ? a : b;
+}
+
+static double edge_hi(const lam_slicer *s, uint32_t e)
+{
+    const uint32_t *v = s->m->edges.v + 2 * (size_t)e;
+    double a = s->vw[v[0]], b = s->vw[v[1]];
+    return a < b ? b : a;
+}
+
+typedef struct ekey {
+    double lo;
+    uint32_t e;
+} ekey;
+
+static int cmp_ekey(const void *a, const void *b)
+{
+    const ekey *p = a, *q = b;
+    if (p->lo != q->lo) return p->lo < q->lo ? -1 : 1;
+    return p->e < q->e ? -1 : p->e > q->e;
+}
+
+int lam_slicer_new(const lam_model *m, const lam_slice_opts *opts, lam_slicer **out, lam_error *err)
+{
+    *out = NULL;
+    lam_slicer *s = calloc(1, sizeof *s);
+    if (!s) return nomem(err);
+    s->m = m;
+    s->o = *opts;
+    s->o.planes = NULL; /* the copy must not point at the caller's arrays */
+    s->o.widths = NULL;
+    int rc = LAM_OK;
+    size_t nv = m->mesh.nverts, ne = m->edges.n;
+    s->vw = malloc(nv * sizeof *s->vw + 1);
+    s->vuv = malloc(2 * nv * sizeof *s->vuv + 1);
+    s->local = malloc(ne * sizeof *s->local + 1);
+    ekey *keys = malloc(ne * sizeof *keys + 1);
+    if (!s->vw || !s->vuv || !s->local || !keys) {
+        free(keys);
+        rc = nomem(err);
+        goto fail;
+    }
+    double wmin = INFINITY, wmax = -INFINITY;
+    for (size_t v = 0; v < nv; v++) {
+        const double *p = m->mesh.xyz + 3 * v;
+        s->vw[v] = dot_exact(p, opts->frame.w);
+        s->vuv[2 * v] = dot_exact(p, opts->frame.u);
+        s->vuv[2 * v + 1] = dot_exact(p, opts->frame.v);
+        if (s->vw[v] < wmin) wmin = s->vw[v];
+        if (s->vw[v] > wmax) wmax = s->vw[v];
+    }
+    s->o.planes = opts->planes;
+    s->o.widths = opts->widths;
+    rc = make_planes(s, wmin, wmax, err);
+    s->o.planes = NULL;
+    s->o.widths = NULL;
+    if (rc) {
+        free(keys);
+        goto fail;
+    }
+    /* horizontal edges never straddle a plane under the perturbation rule */
+    size_t k = 0;
+    for (size_t e = 0; e < ne; e++) {
+        double lo = edge_lo(s, (uint32_t)e), hi = edge_hi(s, (uint32_t)e);
+        if (lo == hi) continue;
+        keys[k].lo = lo;
+        keys[k].e = (uint32_t)e;
+        k++;
+    }
+    qsort(keys, k, sizeof *keys, cmp_ekey);
+    s->order = malloc(k * sizeof *s->order + 1);
+    if (!s->order) {
+        free(keys);
+        rc = nomem(err);
+        goto fail;
+    }
+    for (size_t i = 0; i < k; i++) s->order[i] = keys[i].e;
+    s->norder = k;
+    free(keys);
+    *out = s;
+    return LAM_OK;
+fail:
+    lam_slicer_free(s);
+    return rc;
+}
+
+size_t lam_slicer_count(const lam_slicer *s) { return s->nlayers; }
+const double *lam_slicer_planes(const lam_slicer *s) { return s->planes; }
+void lam_slicer_uv_bounds(const lam_slicer *s, double box[4])
+{
+    box[0] = box[1] = INFINITY;
+    box[2] = box[3] = -INFINITY;
+    for (size_t v = 0; v < s->m->mesh.nverts; v++) {
+        double u = s->vuv[2 * v], w = s->vuv[2 * v + 1];
+        if (u < box[0]) box[0] = u;
+        if (u > box[2]) box[2] = u;
+        if (w < box[1]) box[1] = w;
+        if (w > box[3]) box[3] = w;
+    }
+}
+
+const lam_frame *lam_slicer_frame(const lam_slicer *s) { return &s->o.frame; }
+
+void lam_slicer_free(lam_slicer *s)
+{
+    if (!s) return;
+    free(s->planes);
+    free(s->vw);
+    free(s->vuv);
+    free(s->order);
+    free(s->active);
+    free(s->local);
+    free(s->pts);
+    free(s->seg_in);
+    free(s->seg_out);
+    free(s->in_first);
+    free(s->in_seg);
+    free(s->indeg);
+    free(s->used);
+    free(s);
+}
+
+void lam_layer_free(lam_layer *l)
+{
+    if (!l) return;
+    free(l->uv);
+    free(l->contours);
+    free(l->open);
+    free(l);
+}
+
+static int grow_u32(uint32_t **p, size_t n, lam_error *err)
+{
+    uint32_t *np = realloc(*p, (n + 1) * sizeof **p);
+    if (!np) return nomem(err);
+    *p = np;
+    return LAM_OK;
+}
+
+static int reserve_active(lam_slicer *s, size_t n, lam_error *err)
+{
+    if (n <= s->cap_active) return LAM_OK;
+    size_t cap = s->cap_active ? s->cap_active : 64;
+    while (cap < n) cap *= 2;
+    if (grow_u32(&s->active, cap, err) || grow_u32(&s->in_first, cap + 1, err) ||
+        grow_u32(&s->indeg, cap, err))
+        return LAM_ENOMEM;
+    double *np = realloc(s->pts, 2 * cap * sizeof *np);
+    if (!np) return nomem(err);
+    s->pts = np;
+    s->cap_active = cap;
+    return LAM_OK;
+}
+
+static int reserve_segs(lam_slicer *s, size_t n, lam_error *err)
+{
+    if (n <= s->cap_seg) return LAM_OK;
+    size_t cap = s->cap_seg ? s->cap_seg : 64;
+    while (cap < n) cap *= 2;
+    if (grow_u32(&s->seg_in, cap, err) || grow_u32(&s->seg_out, cap, err) || grow_u32(&s->in_seg, cap, err))
+        return LAM_ENOMEM;
+    unsigned char *nu = realloc(s->used, cap);
+    if (!nu) return nomem(err);
+    s->used = nu;
+    s->cap_seg = cap;
+    return LAM_OK;
+}
+
+/* Growing list of polylines for one layer. */
+typedef struct chains {
+    double *uv;
+    size_t *len;
+    unsigned char *closed;
+    size_t n, npts, cap_pts, cap_n;
+} chains;
+
+static int chains_point(chains *c, double u, double v, lam_error *err)
+{
+    if (c->npts == c->cap_pts) {
+        size_t cap = c->cap_pts ? 2 * c->cap_pts : 256;
+        double *np = realloc(c->uv, 2 * cap * sizeof *np);
+        if (!np) return nomem(err);
+        c->uv = np;
+        c->cap_pts = cap;
+    }
+    /* consecutive equal points are one point: no zero-length segment */
+    size_t start = c->npts - c->len[c->n - 1];
+    if (c->len[c->n - 1] > 0 && c->npts > start && c->uv[2 * c->npts - 2] == u && c->uv[2 * c->npts - 1] == v)
+        return LAM_OK;
+    c->uv[2 * c->npts] = u;
+    c->uv[2 * c->npts + 1] = v;
+    c->npts++;
+    c->len[c->n - 1]++;
+    return LAM_OK;
+}
+
+static int chains_begin(chains *c, lam_error *err)
+{
+    if (c->n == c->cap_n) {
+        size_t cap = c->cap_n ? 2 * c->cap_n : 16;
+        size_t *nl = realloc(c->len, cap * sizeof *nl);
+        if (!nl) return nomem(err);
+        c->len = nl;
+        unsigned char *nc = realloc(c->closed, cap);
+        if (!nc) return nomem(err);
+        c->closed = nc;
+        c->cap_n = cap;
+    }
+    c->len[c->n] = 0;
+    c->closed[c->n] = 0;
+    c->n++;
+    return LAM_OK;
+}
+
+static void chains_free(chains *c)
+{
+    free(c->uv);
+    free(c->len);
+    free(c->closed);
+}
+
+/* Walk one chain starting with segment s0; closed when it returns to the
+ * segment's own entry edge. */
+static int walk(lam_slicer *s, chains *c, uint32_t s0, lam_error *err)
+{
+    int rc = chains_begin(c, err);
+    if (rc) return rc;
+    uint32_t seg = s0, start_edge = s->seg_in[s0];
+    for (;;) {
+        s->used[seg] = 1;
+        uint32_t k = s->seg_in[seg];
+        if ((rc = chains_point(c, s->pts[2 * k], s->pts[2 * k + 1], err))) return rc;
+        uint32_t next_edge = s->seg_out[seg], nxt = NONE;
+        for (uint32_t i = s->in_first[next_edge]; i < s->in_first[next_edge + 1]; i++)
+            if (!s->used[s->in_seg[i]]) {
+                nxt = s->in_seg[i];
+                break;
+            }
+        if (nxt == NONE) {
+            if (next_edge == start_edge) {
+                c->closed[c->n - 1] = 1;
+            } else {
+                rc = chains_point(c, s->pts[2 * next_edge], s->pts[2 * next_edge + 1], err);
+                if (rc) return rc;
+            }
+            /* drop a repeated closing point */
+            size_t len = c->len[c->n - 1], first = c->npts - len;
+            if (c->closed[c->n - 1] && len > 1 && c->uv[2 * first] == c->uv[2 * c->npts - 2] &&
+                c->uv[2 * first + 1] == c->uv[2 * c->npts - 1]) {
+                c->npts--;
+                c->len[c->n - 1]--;
+            }
+            return LAM_OK;
+        }
+        seg = nxt;
+    }
+}
+
+/* Cut at height c: the active edges' points and the directed segments of
+ * the triangles crossing the plane, chained into polylines by edge. */
+static int section(lam_slicer *s, double c, int up, chains *ch, lam_error *err)
+{
+    const lam_model *m = s->m;
+    const lam_edges *E = &m->edges;
+#define BELOW(h) (up ? (h) <= c : (h) < c)
+    while (s->ins < s->norder && BELOW(edge_lo(s, s->order[s->ins]))) {
+        if (reserve_active(s, s->nactive + 1, err)) return LAM_ENOMEM;
+        s->active[s->nactive++] = s->order[s->ins++];
+    }
+    size_t na = 0;
+    for (size_t i = 0; i < s->nactive; i++) {
+        uint32_t e = s->active[i];
+        if (BELOW(edge_hi(s, e))) continue; /* passed for good: heights only rise */
+        s->active[na] = e;
+        s->local[e] = (uint32_t)na;
+        /* the point, from the lower end to the upper end, exact at both */
+        const uint32_t *ev = E->v + 2 * (size_t)e;
+        uint32_t lo = ev[0], hi = ev[1];
+        if (s->vw[lo] > s->vw[hi]) { uint32_t t = lo; lo = hi; hi = t; }
+        double t = (c - s->vw[lo]) / (s->vw[hi] - s->vw[lo]);
+        s->pts[2 * na] = (1 - t) * s->vuv[2 * lo] + t * s->vuv[2 * hi];
+        s->pts[2 * na + 1] = (1 - t) * s->vuv[2 * lo + 1] + t * s->vuv[2 * hi + 1];
+        na++;
+    }
+    s->nactive = na;
+
+    /* Directed segments: with outward triangles (a, b, c) and a lone vertex
+     * above the plane, the section runs from edge (lone, next) to edge
+     * (prev, lone) with the material on its left; a lone vertex below
+     * reverses that. Each crossing triangle is emitted once, from its entry
+     * edge. */
+    size_t nseg = 0;
+    for (size_t k = 0; k < na; k++) {
+        uint32_t e = s->active[k];
+        for (uint32_t i = E->first[e]; i < E->first[e + 1]; i++) {
+            uint32_t t = E->tris[i];
+            const uint32_t *tv = m->mesh.tris + 3 * (size_t)t;
+            int above[3];
+            for (int j = 0; j < 3; j++) above[j] = !BELOW(s->vw[tv[j]]);
+            int lone = above[0] == above[1] ? 2 : above[0] == above[2] ? 1 : 0;
+            int entry = above[lone] ? lone : (lone + 2) % 3;
+            int exit = above[lone] ? (lone + 2) % 3 : lone;
+            if (E->tri_edge[3 * (size_t)t + entry] != e) continue;
+            if (reserve_segs(s, nseg + 1, err)) return LAM_ENOMEM;
+            s->seg_in[nseg] = (uint32_t)k;
+            s->seg_out[nseg] = s->local[E->tri_edge[3 * (size_t)t + exit]];
+            nseg++;
+        }
+    }
+#undef BELOW
+    /* segments grouped by entry edge (counting sort keeps triangle order) */
+    memset(s->in_first, 0, (na + 1) * sizeof *s->in_first);
+    memset(s->indeg, 0, na * sizeof *s->indeg);
+    for (size_t g = 0; g < nseg; g++) {
+        s->in_first[s->seg_in[g] + 1]++;
+        s->indeg[s->seg_out[g]]++;
+        s->used[g] = 0;
+    }
+    for (size_t k = 0; k < na; k++) s->in_first[k + 1] += s->in_first[k];
+    size_t *fill = malloc((na + 1) * sizeof *fill);
+    if (!fill) return nomem(err);
+    for (size_t k = 0; k <= na; k++) fill[k] = s->in_first[k];
+    for (size_t g = 0; g < nseg; g++) s->in_seg[fill[s->seg_in[g]]++] = (uint32_t)g;
+    free(fill);
+
+    /* Open chains first, from edges more segments leave than enter (open
+     * surfaces), then the closed loops. */
+    for (size_t g = 0; g < nseg; g++) {
+        uint32_t k = s->seg_in[g];
+        if (!s->used[g] && s->indeg[k] < s->in_first[k + 1] - s->in_first[k]) {
+            int rc = walk(s, ch, (uint32_t)g, err);
+            if (rc) return rc;
+        }
+    }
+    for (size_t g = 0; g < nseg; g++)
+        if (!s->used[g]) {
+            int rc = walk(s, ch, (uint32_t)g, err);
+            if (rc) return rc;
+        }
+    return LAM_OK;
+}
+
+/* ---- gap closing ------------------------------------------------------------ */
+
+typedef struct gpair {
+    double d;
+    uint32_t from, to; /* end of chain `from` joins start of chain `to` */
+} gpair;
+
+static int cmp_gpair(const void *a, const void *b)
+{
+    const gpair *p = a, *q = b;
+    if (p->d != q->d) return p->d < q->d ? -1 : 1;
+    if (p->from != q->from) return p->from < q->from ? -1 : 1;
+    return p->to < q->to ? -1 : p->to > q->to;
+}
+
+typedef struct skey {
+    double u;
+    uint32_t chain;
+} skey;
+
+static int cmp_skey(const void *a, const void *b)
+{
+    const skey *p = a, *q = b;
+    if (p->u != q->u) return p->u < q->u ? -1 : 1;
+    return p->chain < q->chain ? -1 : p->chain > q->chain;
+}
+
+static const double *chain_first(const chains *c, const size_t *off, size_t i) { return c->uv + 2 * off[i]; }
+static const double *chain_last(const chains *c, const size_t *off, size_t i)
+{
+    return c->uv + 2 * (off[i] + c->len[i] - 1);
+}
+
+/* Turn the layer's chains into closed loops: closed chains as they are,
+ * open ones joined end-to-start, nearest pairs first, when the gap is at
+ * most `gap`. What stays open is recorded in the layer. */
+static int close_gaps(const chains *c, double gap, lam_layer *L, lam_loops *out, lam_error *err)
+{
+    int rc = LAM_OK;
+    size_t n = c->n;
+    size_t *off = malloc((n + 1) * sizeof *off);
+    uint32_t *succ = malloc((n + 1) * sizeof *succ), *pred = malloc((n + 1) * sizeof *pred);
+    skey *starts = malloc((n + 1) * sizeof *starts);
+    unsigned char *done = calloc(n + 1, 1);
+    gpair *pairs = NULL;
+    size_t npairs = 0, cap_pairs = 0;
+    out->uv = malloc((2 * c->npts + 2) * sizeof *out->uv);
+    out->len = malloc((n + 1) * sizeof *out->len);
+    out->nloops = out->npoints = 0;
+    if (!off || !succ || !pred || !starts || !done || !out->uv || !out->len) {
+        rc = nomem(err);
+        goto done;
+    }
+    size_t nstarts = 0;
+    for (size_t i = 0, o = 0; i < n; i++) {
+        off[i] = o;
+        o += c->len[i];
+        succ[i] = pred[i] = NONE;
+        if (!c->closed[i] && c->len[i] > 0) {
+            starts[nstarts].u = chain_first(c, off, i)[0];
+            starts[nstarts].chain = (uint32_t)i;
+            nstarts++;
+        }
+    }
+    if (gap > 0 && nstarts) {
+        qsort(starts, nstarts, sizeof *starts, cmp_skey);
+        for (size_t i = 0; i < n; i++) {
+            if (c->closed[i] || c->len[i] == 0) continue;
+            const double *e = chain_last(c, off, i);
+            /* starts within gap along u, by binary search */
+            size_t lo = 0, hi = nstarts;
+            while (lo < hi) {
+                size_t mid = (lo + hi) / 2;
+                if (starts[mid].u < e[0] - gap) lo = mid + 1;
+                else hi = mid;
+            }
+            for (size_t k = lo; k < nstarts && starts[k].u <= e[0] + gap; k++) {
+                const double *f = chain_first(c, off, starts[k].chain);
+                double d = hypot(f[0] - e[0], f[1] - e[1]);
+                if (d > gap) continue;
+                if (npairs == cap_pairs) {
+                    cap_pairs = cap_pairs ? 2 * cap_pairs : 16;
+                    gpair *np = realloc(pairs, cap_pairs * sizeof *np);
+                    if (!np) {
+                        rc = nomem(err);
+                        goto done;
+                    }
+                    pairs = np;
+                }
+                pairs[npairs].d = d;
+                pairs[npairs].from = (uint32_t)i;
+                pairs[npairs].to = starts[k].chain;
+                npairs++;
+            }
+        }
+        qsort(pairs, npairs, sizeof *pairs, cmp_gpair);
+        for (size_t p = 0; p < npairs; p++) {
+            uint32_t a = pairs[p].from, b = pairs[p].to;
+            if (succ[a] != NONE || pred[b] != NONE) continue;
+            succ[a] = b;
+            pred[b] = a;
+            if (pairs[p].d > 0) {
+                L->gaps_closed++;
+                if (pairs[p].d > L->max_gap) L->max_gap = pairs[p].d;
+            }
+        }
+    }
+    /* emit: closed chains, then cycles of joined open chains; heads of
+     * groups that stayed open are reported */
+    for (size_t i = 0; i < n; i++) {
+        if (done[i] || c->len[i] == 0) continue;
+        if (!c->closed[i]) {
+            /* find whether i's group is a cycle: walk forward */
+            size_t j = i, steps = 0;
+            while (succ[j] != NONE && succ[j] != i && steps++ < n) j = succ[j];
+            if (succ[j] != i) continue; /* open group: handled below from its head */
+        }
+        size_t first = out->npoints;
+        size_t j = i;
+        do {
+            done[j] = 1;
+            for (size_t q = 0; q < c->len[j]; q++) {
+                const double *p = c->uv + 2 * (off[j] + q);
+                if (out->npoints > first && out->uv[2 * out->npoints - 2] == p[0] &&
+                    out->uv[2 * out->npoints - 1] == p[1])
+                    continue;
+                out->uv[2 * out->npoints] = p[0];
+                out->uv[2 * out->npoints + 1] = p[1];
+                out->npoints++;
+            }
+            j = c->closed[j] ? j : succ[j];
+        } while (!c->closed[i] && j != i);
+        size_t len = lam_loop_simplify(out->uv + 2 * first, out->npoints - first);
+        out->npoints = first + len;
+        if (len < 3 || lam_loop_area(out->uv + 2 * first, len) == 0) {
+            out->npoints = first; /* a point or a sliver: no area to build */
+            continue;
+        }
+        out->len[out->nloops++] = len;
+    }
+    for (size_t i = 0; i < n; i++) {
+        if (done[i] || c->closed[i] || pred[i] != NONE || c->len[i] == 0) continue;
+        size_t j = i;
+        while (succ[j] != NONE) {
+            done[j] = 1;
+            j = succ[j];
+        }
+        done[j] = 1;
+        lam_open_end *no = realloc(L->open, (L->nopen + 1) * sizeof *no);
+        if (!no) {
+            rc = nomem(err);
+            goto done;
+        }
+        L->open = no;
+        memcpy(L->open[L->nopen].start, chain_first(c, off, i), 2 * sizeof(double));
+        memcpy(L->open[L->nopen].end, chain_last(c, off, j), 2 * sizeof(double));
+        L->nopen++;
+    }
+done:
+    free(off);
+    free(succ);
+    free(pred);
+    free(starts);
+    free(done);
+    free(pairs);
+    return rc;
+}
+
+int lam_slicer_next(lam_slicer *s, lam_layer **out, lam_error *err)
+{
+    *out = NULL;
+    if (s->next >= s->nlayers) return LAM_OK;
+    size_t i = s->next++;
+    lam_layer *L = calloc(1, sizeof *L);
+    if (!L) return nomem(err);
+    L->index = i;
+    L->floor = s->planes[i];
+    L->ceiling = s->planes[i + 1];
+    L->width = L->ceiling - L->floor;
+    int up = 1;
+    switch (s->o.cut) {
+    case LAM_CUT_FLOOR: L->cut = L->floor; break;
+    case LAM_CUT_CEILING: L->cut = L->ceiling; up = 0; break;
+    default: L->cut = L->floor + (L->ceiling - L->floor) / 2; break;
+    }
+    chains ch = { 0 };
+    lam_loops loops = { 0 };
+    int rc = section(s, L->cut, up, &ch, err);
+    if (!rc) rc = close_gaps(&ch, s->o.gap, L, &loops, err);
+    if (!rc) rc = lam_contours_assign(L, &loops, err);
+    chains_free(&ch);
+    free(loops.uv);
+    free(loops.len);
+    if (rc) {
+        lam_layer_free(L);
+        return rc;
+    }
+    *out = L;
+    return LAM_OK;
+}

@@ -1,0 +1,130 @@
+/* The slicer: a plane sweep through a lam_model (thesis chapter 3).
+ *
+ * Layer i is the slab [a(i-1), a(i)] along the slice axis w; its contours
+ * are the model's cross section at the cut height (floor, middle or ceiling
+ * of the slab), in the layer frame (u, v, w), which is right-handed so
+ * "counter-clockwise" means seen from +w.
+ *
+ * Sweep: edges sorted by their lower end are inserted into an active set as
+ * the cut heights rise and dropped lazily once below the plane, so a run
+ * costs O(E log E + S + K) for E edges, S layers and K segments out — never
+ * a pass over all triangles per layer. Layers come out one at a time
+ * (lam_slicer_next), so memory is the model plus the layers in flight.
+ *
+ * Robustness (SPEC 3.2): a vertex exactly on a cutting plane is treated as
+ * an infinitesimal step below the plane for floor and middle cuts and above
+ * it for ceiling cuts (symbolic perturbation), so every intersection lies on
+ * an edge interior, each edge's point is computed once from its lower and
+ * upper ends as (1-t)*lo + t*hi (bitwise identical from both triangles and
+ * exact at the ends), and segments are chained by edge identity. */
+#ifndef LAM_SLICE_H
+#define LAM_SLICE_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "error.h"
+#include "model.h"
+
+typedef enum lam_cut { LAM_CUT_FLOOR, LAM_CUT_MIDDLE, LAM_CUT_CEILING } lam_cut;
+
+/* A right-handed layer frame: u x v = w, all unit length. */
+typedef struct lam_frame {
+    double u[3], v[3], w[3];
+} lam_frame;
+
+/* The thesis's frames: 'x' -> (y, z, x), 'y' -> (z, x, y), 'z' -> (x, y, z).
+ * Returns LAM_EUSAGE for any other letter. */
+int lam_frame_axis(char axis, lam_frame *f, lam_error *err);
+
+/* A frame for any non-zero direction: w = d/|d|, u from the world axis least
+ * aligned with w (ties: x, y, z), v = w x u. +x, +y, +z give the axis frames. */
+int lam_frame_direction(const double d[3], lam_frame *f, lam_error *err);
+
+/* Default gap-closing tolerance in model units (PrusaSlicer closes gaps of
+ * about 0.05 mm by default; lamina uses the same order of magnitude). */
+#define LAM_DEFAULT_GAP 0.05
+
+typedef struct lam_slice_opts {
+    lam_frame frame;
+    lam_cut cut;
+    double gap;              /* close open polylines whose ends are this close; 0 disables.
+                                Polylines still open are dropped from the layer and listed
+                                in lam_layer.open: the caller decides whether that fails. */
+    /* Layer boundaries, one of: */
+    double width;            /* > 0: uniform layers from the model's minimum */
+    const double *widths;    /* a(i) = a(i-1) + widths[i-1], from the minimum */
+    size_t nwidths;
+    const double *planes;    /* explicit increasing boundaries a(0) .. a(S) */
+    size_t nplanes;
+} lam_slice_opts;
+
+/* Fill opts with the defaults: axis z, middle cut, default gap, width 0
+ * (meaning: lam_default_width of the model). */
+void lam_slice_opts_init(lam_slice_opts *o);
+
+/* 1/100 of the extent, rounded down to 1, 2, 2.5 or 5 times a power of ten. */
+double lam_default_width(double extent);
+
+typedef enum lam_kind { LAM_SOLID = 0, LAM_HOLE = 1 } lam_kind;
+
+typedef struct lam_contour {
+    size_t first, n;         /* points uv[2*first .. 2*(first+n)) of the layer */
+    int depth;               /* nesting depth among the layer's contours */
+    long parent;             /* index of the contour directly around it, -1 if none */
+    lam_kind kind;           /* solid at even depth, hole at odd depth */
+    double area;             /* signed: > 0 counter-clockwise (solids), < 0 holes */
+    double perimeter;
+    double bbox[4];          /* umin vmin umax vmax */
+} lam_contour;
+
+/* An open polyline that gap closing could not close. */
+typedef struct lam_open_end {
+    double start[2], end[2];
+} lam_open_end;
+
+typedef struct lam_layer {
+    size_t index;            /* 0-based */
+    double floor, ceiling, width;
+    double cut;              /* height of the section along w */
+    double *uv;              /* 2 per point, owned */
+    size_t npoints;
+    lam_contour *contours;   /* parents before children; owned */
+    size_t ncontours;
+    size_t gaps_closed;      /* gaps bridged by the gap-closing pass */
+    double max_gap;          /* largest bridged gap */
+    lam_open_end *open;      /* polylines left open (dropped from contours) */
+    size_t nopen;
+} lam_layer;
+
+typedef struct lam_slicer lam_slicer;
+
+/* Prepare a sweep over model with opts (copied). The model must outlive the
+ * slicer. Errors: LAM_EUSAGE for a width <= 0, widths that do not cover the
+ * model, planes not strictly increasing or fewer than two. */
+int lam_slicer_new(const lam_model *model, const lam_slice_opts *opts, lam_slicer **out,
+                   lam_error *err);
+
+/* Number of layers the run will produce. */
+size_t lam_slicer_count(const lam_slicer *s);
+
+/* Layer boundaries a(0) .. a(S) (S + 1 values). */
+const double *lam_slicer_planes(const lam_slicer *s);
+
+/* The model's extent in the layer frame: umin vmin umax vmax. */
+void lam_slicer_uv_bounds(const lam_slicer *s, double box[4]);
+
+/* The slicer's frame. */
+const lam_frame *lam_slicer_frame(const lam_slicer *s);
+
+/* Next layer in increasing order: *out is a new layer the caller frees with
+ * lam_layer_free, or NULL when the run is over. */
+int lam_slicer_next(lam_slicer *s, lam_layer **out, lam_error *err);
+
+void lam_slicer_free(lam_slicer *s);
+void lam_layer_free(lam_layer *layer);
+
+/* Layer-frame point (u, v) at height w to model coordinates. */
+void lam_frame_to_model(const lam_frame *f, double u, double v, double w, double xyz[3]);
+
+#endif

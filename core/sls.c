@@ -1,0 +1,26 @@
+#include "sls.h"
+
+#include <math.h>
+
+/* Six decimals without "-0.000000". */
+static double tidy(double x)
+{
+    return fabs(x) < 5e-7 ? 0.0 : x;
+}
+
+int lam_sls_write_layer(lam_writer *w, const lam_layer *L, const lam_frame *f, size_t *blocks)
+{
+    int rc = LAM_OK;
+    for (size_t i = 0; i < L->ncontours && !rc; i++) {
+        const lam_contour *c = &L->contours[i];
+        if ((*blocks)++) lam_writer_write(w, "\n", 1);
+        lam_writer_printf(w, "contour %.6f\nloop %zu\n", tidy(L->cut), c->n);
+        for (size_t k = 0; k < c->n; k++) {
+            double p[3];
+            lam_frame_to_model(f, L->uv[2 * (c->first + k)], L->uv[2 * (c->first + k) + 1], L->cut, p);
+            lam_writer_printf(w, "%.6f %.6f %.6f\n", tidy(p[0]), tidy(p[1]), tidy(p[2]));
+        }
+        rc = lam_writer_printf(w, "endloop\nendcontour\n");
+    }
+    return rc;
+}

@@ -1,0 +1,222 @@
+/* Model core: welding, edge table, shells, orientation from adjacency,
+ * cavities, volume, defect counts — on meshes built by hand. */
+#include "model.h"
+#include "tap.h"
+
+#include <stdlib.h>
+
+/* Add an axis-aligned box as 12 triangles. flip_mask flips chosen
+ * triangles so orientation must be recovered from adjacency. */
+static void add_box(lam_mesh *m, double x0, double y0, double z0, double x1, double y1,
+                    double z1, unsigned flip_mask, int skip_face)
+{
+    lam_error err;
+    uint32_t v[8];
+    for (int i = 0; i < 8; i++)
+        lam_mesh_add_vertex(m, i & 1 ? x1 : x0, i & 2 ? y1 : y0, i & 4 ? z1 : z0, &v[i], &err);
+    /* outward quads */
+    static const int q[6][4] = { { 0, 2, 3, 1 }, { 4, 5, 7, 6 }, { 0, 1, 5, 4 },
+                                 { 2, 6, 7, 3 }, { 0, 4, 6, 2 }, { 1, 3, 7, 5 } };
+    int k = 0;
+    for (int f = 0; f < 6; f++) {
+        if (f == skip_face) { k += 2; continue; }
+        uint32_t a = v[q[f][0]], b = v[q[f][1]], c = v[q[f][2]], d = v[q[f][3]];
+        if (flip_mask >> k++ & 1) lam_mesh_add_tri(m, a, c, b, LAM_NO_NAME, &err);
+        else lam_mesh_add_tri(m, a, b, c, LAM_NO_NAME, &err);
+        if (flip_mask >> k++ & 1) lam_mesh_add_tri(m, a, d, c, LAM_NO_NAME, &err);
+        else lam_mesh_add_tri(m, a, c, d, LAM_NO_NAME, &err);
+    }
+}
+
+static lam_model *build(lam_mesh *m)
+{
+    lam_error err;
+    lam_error_clear(&err);
+    lam_model *md = NULL;
+    int rc = lam_model_from_mesh(m, "test", "mesh", &md, &err);
+    if (rc) diag("build failed: %s", err.msg);
+    return md;
+}
+
+/* Sum of signed volumes recomputed from the model's final triangles. */
+static double volume_of(const lam_model *md)
+{
+    double v = 0;
+    for (size_t t = 0; t < md->mesh.ntris; t++) {
+        const double *a = md->mesh.xyz + 3 * md->mesh.tris[3 * t];
+        const double *b = md->mesh.xyz + 3 * md->mesh.tris[3 * t + 1];
+        const double *c = md->mesh.xyz + 3 * md->mesh.tris[3 * t + 2];
+        v += a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
+             a[2] * (b[0] * c[1] - b[1] * c[0]);
+    }
+    return v / 6.0;
+}
+
+int main(void)
+{
+    lam_mesh m;
+    lam_model *md;
+
+    /* A unit cube, every other triangle flipped: orientation is rebuilt. */
+    lam_mesh_init(&m);
+    add_box(&m, 0, 0, 0, 2, 2, 2, 0x555, -1);
+    md = build(&m);
+    ok(md != NULL, "cube builds");
+    is_int(md->stats.vertices, 8, "8 welded vertices from 8 per box");
+    is_int(md->stats.triangles, 12, "12 triangles");
+    is_int(md->stats.edges, 18, "18 edges (12 box edges + 6 diagonals)");
+    is_int(md->stats.shells, 1, "one shell");
+    is_int(md->stats.cavities, 0, "no cavity");
+    is_num(md->stats.volume, 8, 0, "volume 8 exactly despite flipped input triangles");
+    is_num(volume_of(md), 8, 0, "triangles themselves now face outward");
+    is_num(md->stats.area, 24, 1e-12, "surface area 24");
+    is_int(md->stats.boundary_edges, 0, "closed");
+    is_int(md->stats.orientation_conflicts, 0, "orientable");
+    for (size_t e = 0; e < md->edges.n; e++) {
+        if (md->edges.first[e + 1] - md->edges.first[e] != 2) { ok(0, "edge %zu not manifold", e); break; }
+    }
+    /* every edge is used once in each direction after orientation */
+    int consistent = 1;
+    for (size_t e = 0; e < md->edges.n && consistent; e++) {
+        uint32_t a = md->edges.v[2 * e], b = md->edges.v[2 * e + 1];
+        int fwd = 0, back = 0;
+        for (uint32_t i = md->edges.first[e]; i < md->edges.first[e + 1]; i++) {
+            const uint32_t *t = md->mesh.tris + 3 * md->edges.tris[i];
+            for (int k = 0; k < 3; k++) {
+                if (t[k] == a && t[(k + 1) % 3] == b) fwd++;
+                if (t[k] == b && t[(k + 1) % 3] == a) back++;
+            }
+        }
+        consistent = fwd == 1 && back == 1;
+    }
+    ok(consistent, "each edge traversed once each way");
+    /* tri_edge matches the final vertex order */
+    int slots = 1;
+    for (size_t t = 0; t < md->mesh.ntris; t++)
+        for (int k = 0; k < 3; k++) {
+            uint32_t a = md->mesh.tris[3 * t + k], b = md->mesh.tris[3 * t + (k + 1) % 3];
+            uint32_t e = md->edges.tri_edge[3 * t + k];
+            uint32_t lo = a < b ? a : b, hi = a < b ? b : a;
+            if (md->edges.v[2 * e] != lo || md->edges.v[2 * e + 1] != hi) slots = 0;
+        }
+    ok(slots, "tri_edge slot k is the edge (t[k], t[k+1])");
+    lam_model_free(md);
+
+    /* The whole cube wound inward: turned outward by its volume. */
+    lam_mesh_init(&m);
+    add_box(&m, -1, -1, -1, 1, 1, 1, 0xfff, -1);
+    md = build(&m);
+    is_num(md->stats.volume, 8, 0, "inside-out cube is turned outward");
+    lam_model_free(md);
+
+    /* Box with a cavity: inner shell inside outer -> cavity, volume 64 - 8. */
+    lam_mesh_init(&m);
+    add_box(&m, 0, 0, 0, 4, 4, 4, 0, -1);
+    add_box(&m, 1, 1, 1, 3, 3, 3, 0x0f0, -1);
+    md = build(&m);
+    is_int(md->stats.shells, 2, "two shells");
+    is_int(md->stats.cavities, 1, "one cavity");
+    is_num(md->stats.volume, 56, 0, "volume 64 - 8");
+    is_num(volume_of(md), 56, 0, "cavity triangles face into the void");
+    ok(md->shells[1].cavity && md->shells[1].volume == -8, "the inner shell is the cavity, volume -8");
+    double inside[3] = { 2, 2, 2 }, outside[3] = { 10, 0, 0 };
+    is_num(lam_model_shell_winding(md, 0, inside), 1, 1e-9, "winding 1 inside the outer shell");
+    is_num(lam_model_shell_winding(md, 0, outside), 0, 1e-9, "winding 0 outside");
+    lam_model_free(md);
+
+    /* An island inside a cavity inside a solid: depths 0, 1, 2. */
+    lam_mesh_init(&m);
+    add_box(&m, 0, 0, 0, 10, 10, 10, 0, -1);
+    add_box(&m, 2, 2, 2, 8, 8, 8, 0, -1);
+    add_box(&m, 4, 4, 4, 6, 6, 6, 0xfff, -1);
+    md = build(&m);
+    is_int(md->stats.cavities, 1, "only the middle shell is a cavity");
+    is_int(md->shells[2].enclosing, 2, "the island is enclosed twice");
+    is_num(md->stats.volume, 1000 - 216 + 8, 0, "volume 1000 - 216 + 8");
+    lam_model_free(md);
+
+    /* Two disjoint cubes: two solids, volumes add. */
+    lam_mesh_init(&m);
+    add_box(&m, 0, 0, 0, 1, 1, 1, 0, -1);
+    add_box(&m, 5, 0, 0, 6, 1, 1, 0x3, -1);
+    md = build(&m);
+    is_int(md->stats.shells, 2, "two shells");
+    is_int(md->stats.cavities, 0, "side by side: no cavity");
+    is_num(md->stats.volume, 2, 0, "volume 1 + 1");
+    lam_model_free(md);
+
+    /* Two cubes sharing one edge: a non-manifold edge, still two shells. */
+    lam_mesh_init(&m);
+    add_box(&m, 0, 0, 0, 1, 1, 1, 0, -1);
+    add_box(&m, 1, 1, 0, 2, 2, 1, 0, -1);
+    md = build(&m);
+    is_int(md->stats.nonmanifold_edges, 1, "the shared edge has four triangles");
+    is_int(md->stats.shells, 2, "shells split at the non-manifold edge");
+    is_int(md->stats.vertices, 14, "two shared vertices welded");
+    is_num(md->stats.volume, 2, 0, "volume 2");
+    lam_model_free(md);
+
+    /* A cube without its top: open, boundary edges counted. */
+    lam_mesh_init(&m);
+    add_box(&m, 0, 0, 0, 1, 1, 1, 0, 1);
+    md = build(&m);
+    is_int(md->stats.boundary_edges, 4, "four boundary edges around the missing face");
+    is_int(md->stats.triangles, 10, "10 triangles");
+    lam_model_free(md);
+
+    /* Degenerate triangles: collinear is kept and counted, a repeated
+     * vertex is dropped and counted. */
+    lam_mesh_init(&m);
+    add_box(&m, 0, 0, 0, 1, 1, 1, 0, -1);
+    {
+        lam_error err;
+        uint32_t a, b, c;
+        lam_mesh_add_vertex(&m, 0, 0, 0, &a, &err);
+        lam_mesh_add_vertex(&m, 1, 0, 0, &b, &err);
+        lam_mesh_add_vertex(&m, 0.5, 0, 0, &c, &err);
+        lam_mesh_add_tri(&m, a, b, c, LAM_NO_NAME, &err);
+        lam_mesh_add_tri(&m, a, a, b, LAM_NO_NAME, &err);
+    }
+    md = build(&m);
+    is_int(md->stats.degenerate_tris, 2, "two degenerate triangles reported");
+    is_int(md->stats.triangles, 13, "the collapsed one is dropped, the collinear one kept");
+    lam_model_free(md);
+
+    /* Welding is bitwise: -0.0 and 0.0 weld, 1e-300 apart does not. */
+    lam_mesh_init(&m);
+    {
+        lam_error err;
+        uint32_t a, b, c, d, e, f;
+        lam_mesh_add_vertex(&m, 0.0, 0, 0, &a, &err);
+        lam_mesh_add_vertex(&m, 1, 0, 0, &b, &err);
+        lam_mesh_add_vertex(&m, 0, 1, 0, &c, &err);
+        lam_mesh_add_vertex(&m, -0.0, 0, 0, &d, &err);
+        lam_mesh_add_vertex(&m, 0, 1, 0, &e, &err);
+        lam_mesh_add_vertex(&m, 1e-300, 1, 1, &f, &err);
+        lam_mesh_add_tri(&m, a, b, c, LAM_NO_NAME, &err);
+        lam_mesh_add_tri(&m, d, e, f, LAM_NO_NAME, &err);
+        ok(lam_mesh_weld(&m, &err) == LAM_OK, "weld succeeds");
+        is_int(m.nverts, 4, "-0.0 welds with 0.0, duplicates merge");
+        is_int(m.tris[3], m.tris[0], "second triangle uses the first's vertex");
+        lam_mesh_free(&m);
+    }
+
+    /* An empty mesh is an error, not a crash. */
+    lam_mesh_init(&m);
+    {
+        lam_error err;
+        lam_error_clear(&err);
+        md = NULL;
+        int rc = lam_model_from_mesh(&m, "empty.stl", "mesh", &md, &err);
+        ok(rc != LAM_OK && md == NULL, "an empty mesh is refused");
+        ok(strstr(err.msg, "no triangles") != NULL, "with a message: %s", err.msg);
+    }
+
+    /* A translated cube far from the origin keeps an exact volume. */
+    lam_mesh_init(&m);
+    add_box(&m, 1e6, 1e6, 1e6, 1e6 + 2, 1e6 + 2, 1e6 + 2, 0, -1);
+    md = build(&m);
+    is_num(md->stats.volume, 8, 0, "volume exact far from the origin");
+    lam_model_free(md);
+    return done_testing();
+}
