@@ -207,7 +207,7 @@ static int is_degenerate(const double *a, const double *b, const double *c)
 
 /* Per shell: bbox, area and signed volume measured from a point of the
  * shell (keeps the sum well conditioned far from the origin). */
-static void measure_shells(lam_model *md, double *ref)
+static void measure_shells(lam_model *md, double *ref, double *comp)
 {
     lam_mesh *m = &md->mesh;
     for (size_t s = 0; s < md->nshells; s++) {
@@ -235,11 +235,18 @@ static void measure_shells(lam_model *md, double *ref)
             b[j] = p[1][j] - r[j];
             c[j] = p[2][j] - r[j];
         }
-        sh->volume += (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
-                       a[2] * (b[0] * c[1] - b[1] * c[0])) / 6.0;
+        /* six times the volume, summed with Neumaier's compensation and
+         * divided once at the end: exact for the usual grid coordinates */
+        double d = a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
+                   a[2] * (b[0] * c[1] - b[1] * c[0]);
+        double s6 = sh->volume + d;
+        comp[md->tri_shell[t]] += fabs(sh->volume) >= fabs(d) ? (sh->volume - s6) + d : (d - s6) + sh->volume;
+        sh->volume = s6;
         sh->area += tri_area(p[0], p[1], p[2]);
         sh->ntris++;
     }
+    for (size_t s = 0; s < md->nshells; s++)
+        md->shells[s].volume = (md->shells[s].volume + comp[s]) / 6.0;
 }
 
 static void flip_shell(lam_model *md, size_t s)
@@ -362,12 +369,16 @@ int lam_model_from_mesh(lam_mesh *mesh, const char *path, const char *format,
     if ((rc = index_shells(md, err))) goto fail;
 
     double *ref = malloc(3 * md->nshells * sizeof *ref);
-    if (!ref) {
+    double *comp = calloc(md->nshells, sizeof *comp);
+    if (!ref || !comp) {
+        free(ref);
+        free(comp);
         rc = oom(err);
         goto fail;
     }
-    measure_shells(md, ref);
+    measure_shells(md, ref, comp);
     free(ref);
+    free(comp);
     for (size_t s = 0; s < md->nshells; s++)
         if (md->shells[s].volume < 0) flip_shell(md, s);
     for (size_t s = 0; s < md->nshells; s++) {

@@ -1,0 +1,95 @@
+#!/usr/bin/env bash
+# lamina slice: the thesis's SLS sample, options, errors, atomic output,
+# determinism, and an SVG contact sheet checked by a real renderer.
+. "$(dirname "$0")/lib.sh"
+
+# The thesis's SLS sample (SPEC 9): two layers at z = 0 and z = 1, each an
+# outer CCW square of side 2 from (-1,-1) and an inner CW square of side 1
+# from (-0.5,-0.5). Blocks of a layer: solid first, then its hole.
+expected() {
+    for z in 0 1; do
+        [ "$z" = 1 ] && echo
+        printf 'contour %s.000000\nloop 4\n' "$z"
+        printf -- '-1.000000 -1.000000 %s.000000\n1.000000 -1.000000 %s.000000\n' "$z" "$z"
+        printf '1.000000 1.000000 %s.000000\n-1.000000 1.000000 %s.000000\nendloop\nendcontour\n\n' "$z" "$z"
+        printf 'contour %s.000000\nloop 4\n' "$z"
+        printf -- '-0.500000 -0.500000 %s.000000\n-0.500000 0.500000 %s.000000\n' "$z" "$z"
+        printf '0.500000 0.500000 %s.000000\n0.500000 -0.500000 %s.000000\nendloop\nendcontour\n' "$z" "$z"
+    done
+}
+run "$LAMINA" slice "$M/thesis_cube_hole.ug" -a z -w 1 --cut floor
+is "$RC" 0 "thesis sample: exit 0"
+is "$OUT" "$(expected)" "thesis sample reproduced exactly"
+
+run "$LAMINA" slice "$M/thesis_cube_hole.ug" -w 1 --cut floor -o "$TMP/a.sls"
+is "$RC" 0 "-o: exit 0"
+is "$(cat "$TMP/a.sls")" "$(expected)" "-o writes the same program"
+"$LAMINA" slice "$M/thesis_cube_hole.ug" -w 1 --cut floor -o "$TMP/b.sls"
+cmp -s "$TMP/a.sls" "$TMP/b.sls"; ok $? "two runs give byte-identical output"
+is "$(ls "$TMP" | grep -c tmp-)" 0 "no temporary files left behind"
+
+# The STL of the same part (one shell from openscad) slices the same.
+run "$LAMINA" slice "$M/cube_hole.stl" -w 1 --cut floor
+is "$(grep -c '^contour' <<<"$OUT")" 4 "cube_hole.stl: 4 contours in 2 layers"
+
+# Frame with an island: three contours per layer, solid, hole, solid.
+run "$LAMINA" slice "$M/frame_island.ug" -w 5
+is "$(grep -c '^contour' <<<"$OUT")" 12 "frame with island: 3 contours x 4 layers"
+
+# Along x the layer frame is (y, z, x): output is still model coordinates
+# with x the cut height.
+run "$LAMINA" slice "$M/thesis_cube_hole.ug" -a x -w 0.5 --cut floor
+is "$RC" 0 "axis x: exit 0"
+like "$OUT" $'contour -1\\.000000\nloop 4\n-1\\.000000 -1\\.000000 0\\.000000' "axis x: first contour at x=-1 starts at (y,z)=(-1,0)"
+is "$(grep -c '^contour' <<<"$OUT")" 6 "axis x: layers at -1, -0.5 (through the hole: 2 pieces), 0 (2 pieces), 0.5"
+
+# Defaults: axis z, width 1/100 of the extent (2 -> 0.02), middle cut.
+run "$LAMINA" slice "$M/thesis_cube.ug"
+is "$(grep -c '^contour' <<<"$OUT")" 100 "default width: 100 layers"
+like "$OUT" '^contour -0\.990000' "default cut: middle of the first layer"
+
+# Usage errors: exit 2, nothing written.
+usage() { run "$LAMINA" slice "$M/thesis_cube.ug" "$@" -o "$TMP/u.sls"; is "$RC" 2 "usage error: $*"; }
+usage -a w
+usage -a 0,0,0
+usage -w 0
+usage -w -1
+usage --widths 0.5,0.5
+usage --planes 0,1,0.5
+usage --cut top
+usage --bogus
+ok "$([ ! -e "$TMP/u.sls" ]; echo $?)" "usage errors write no output file"
+
+# An open mesh: a cube without its x=+1 side. Default gap fails (exit 1,
+# no output file); a larger gap closes it and says so; --allow-open drops it.
+awk 'BEGIN{skip=0} /facet normal 1 0 0/{skip=7} skip>0{skip--; next} {print}' "$M/thesis_cube_ascii.stl" >"$TMP/open.stl"
+run "$LAMINA" info --json "$TMP/open.stl"
+is "$(jq .boundary_edges <<<"$OUT")" 4 "the open cube has 4 boundary edges"
+run "$LAMINA" slice "$TMP/open.stl" -w 0.5 -o "$TMP/open.sls"
+is "$RC" 1 "open outlines: exit 1"
+like "$ERR" 'layer 0 .*open outline from \(1, 1\) to \(1, -1\)' "open outline reported with layer and position"
+ok "$([ ! -e "$TMP/open.sls" ]; echo $?)" "failed run leaves no output file"
+run "$LAMINA" slice "$TMP/open.stl" -w 0.5 --gap 2.5 -o "$TMP/open.sls"
+is "$RC" 0 "--gap 2.5 closes the gap"
+like "$ERR" 'layer 0 .*closed 1 gap, largest 2' "gap closing reported per layer"
+is "$(grep -c '^loop 4' "$TMP/open.sls")" 4 "closed outlines are 4-point squares"
+run "$LAMINA" slice "$TMP/open.stl" -w 0.5 --allow-open -o "$TMP/open2.sls"
+is "$RC" 0 "--allow-open: exit 0"
+like "$ERR" 'dropped' "--allow-open says what it dropped"
+
+# SVG contact sheet, rendered by rsvg-convert and checked pixel by pixel.
+run "$LAMINA" slice "$M/thesis_cube_hole.ug" -w 1 --cut floor --svg "$TMP/sheet.svg" -o "$TMP/s.sls"
+is "$RC" 0 "--svg: exit 0"
+like "$(cat "$TMP/sheet.svg")" '2 layers' "title says how many layers"
+rsvg-convert -f png -o "$TMP/sheet.png" "$TMP/sheet.svg"; ok $? "rsvg-convert renders the sheet"
+# Panel 0 sits at (10, 34), its drawing at +10 px with scale 180/2 per unit:
+# the hole centre (0,0) maps to (110, 134), material at (-0.75, 0) to
+# (42.5, 134), outside the part to (15, 38).
+px=$(python3 "$TESTS/cli/pixel.py" "$TMP/sheet.png" 110,134 42,134 15,38)
+is "$px" "background material background" "hole is background, material filled, outside background"
+
+# More than 100 layers: 100 panels, evenly chosen, said in the title.
+run "$LAMINA" slice "$M/thesis_cube.ug" -w 0.01 --svg "$TMP/many.svg" -o "$TMP/many.sls"
+like "$(cat "$TMP/many.svg")" '100 of 200 layers shown' "at most 100 panels"
+is "$(grep -c '<path' "$TMP/many.svg")" 100 "100 panels drawn"
+done_testing
