@@ -19,7 +19,8 @@ endif
 
 # Debian packages the build, the tests and `make run` need; `make deps`
 # installs only the missing ones.
-DEPS_PKGS := gcc make perl liblua5.4-dev libyaml-dev libembree-dev libgeos-dev jq
+DEPS_PKGS := gcc make perl liblua5.4-dev libyaml-dev libembree-dev libgeos-dev \
+             jq python3 librsvg2-bin
 
 CPPFLAGS += -Icore -D_POSIX_C_SOURCE=200809L
 CFLAGS   += -std=c11 -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes $(OPT) $(SANFLAGS)
@@ -69,11 +70,19 @@ deps:
 	  DEBIAN_FRONTEND=noninteractive $$sudo apt-get install -y -qq --no-install-recommends $$missing; \
 	fi
 
+RUN_PART := recipes/parts/thesis_cube_hole.ug
 run: deps
 	@$(MAKE) --no-print-directory all
 	@mkdir -p out
-	$(LAMINA) info recipes/parts/thesis_cube_hole.ug | tee out/thesis_cube_hole.info.txt
-	@echo "lamina: report written to out/thesis_cube_hole.info.txt"
+	$(LAMINA) info $(RUN_PART) > out/thesis_cube_hole.info.txt
+	$(LAMINA) slice $(RUN_PART) -w 0.25 --cut floor -o out/thesis_cube_hole.sls --svg out/thesis_cube_hole.svg
+	@echo
+	@cat out/thesis_cube_hole.info.txt
+	@echo
+	@echo "lamina: outputs in $(abspath out)/:"
+	@echo "  thesis_cube_hole.info.txt  model report"
+	@echo "  thesis_cube_hole.sls       SLS contour program (thesis dialect)"
+	@echo "  thesis_cube_hole.svg       contact sheet of the layers"
 
 # Tests: C unit tests are compiled to TAP programs; tests/cli/*.t are shell
 # scripts that drive the executable. prove runs both and prints the summary.
@@ -86,7 +95,7 @@ test: deps
 
 bench:
 	@$(MAKE) --no-print-directory OPT="-O3 -march=native -DNDEBUG" BUILD=build-bench all
-	@bash tests/bench/run.sh build-bench/lamina
+	@bash tests/bench/run.sh $(abspath build-bench/lamina)
 
 install: all
 	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/lib $(DESTDIR)$(PREFIX)/include/lamina

@@ -83,6 +83,8 @@ static int build_edges(const lam_mesh *m, lam_edges *e, lam_error *err)
     }
     free(table);
     e->n = n;
+    uint32_t *shrunk = realloc(e->v, 2 * n * sizeof *e->v + 1); /* ~1.5 edges per triangle, not 3 */
+    if (shrunk) e->v = shrunk;
     e->first = calloc(n + 1, sizeof *e->first);
     e->tris = malloc(3 * nt * sizeof *e->tris + 1);
     if (!e->first || !e->tris) return oom(err);
@@ -358,12 +360,13 @@ int lam_model_from_mesh(lam_mesh *mesh, const char *path, const char *format,
         goto fail;
     }
     if ((rc = lam_mesh_weld(m, err))) goto fail;
-    collapsed += drop_collapsed(m); /* welding can make triangles collapse */
+    size_t welded_away = drop_collapsed(m); /* welding can make triangles collapse */
+    collapsed += welded_away;
     if (m->ntris == 0) {
         rc = lam_error_set(err, LAM_EGEOM, path, 0, 0, "the model has no triangles with area");
         goto fail;
     }
-    if ((rc = lam_mesh_weld(m, err))) goto fail; /* drop vertices only they used */
+    if (welded_away && (rc = lam_mesh_weld(m, err))) goto fail; /* drop vertices only they used */
     if ((rc = build_edges(m, &md->edges, err))) goto fail;
     if ((rc = build_shells(md, err))) goto fail;
     if ((rc = index_shells(md, err))) goto fail;

@@ -112,7 +112,10 @@ struct lam_slicer {
     double *planes;        /* S + 1 boundaries */
     size_t nlayers, next;
     double *vw, *vuv;      /* per vertex: height and layer-frame (u, v) */
-    uint32_t *order;       /* non-horizontal edges by lower end height */
+    double *cuts;          /* cut height of each layer, nondecreasing */
+    int up;                /* vertices on a plane count as below it */
+    uint32_t *order;       /* edges that cross some cut, by first layer crossed */
+    size_t *layer_first;   /* order[layer_first[i] ..] enter at layer i */
     size_t norder, ins;
     uint32_t *active;
     size_t nactive;
@@ -194,18 +197,6 @@ static double edge_hi(const lam_slicer *s, uint32_t e)
     return a < b ? b : a;
 }
 
-typedef struct ekey {
-    double lo;
-    uint32_t e;
-} ekey;
-
-static int cmp_ekey(const void *a, const void *b)
-{
-    const ekey *p = a, *q = b;
-    if (p->lo != q->lo) return p->lo < q->lo ? -1 : 1;
-    return p->e < q->e ? -1 : p->e > q->e;
-}
-
 int lam_slicer_new(const lam_model *m, const lam_slice_opts *opts, lam_slicer **out, lam_error *err)
 {
     *out = NULL;
@@ -220,9 +211,7 @@ int lam_slicer_new(const lam_model *m, const lam_slice_opts *opts, lam_slicer **
     s->vw = malloc(nv * sizeof *s->vw + 1);
     s->vuv = malloc(2 * nv * sizeof *s->vuv + 1);
     s->local = malloc(ne * sizeof *s->local + 1);
-    ekey *keys = malloc(ne * sizeof *keys + 1);
-    if (!s->vw || !s->vuv || !s->local || !keys) {
-        free(keys);
+    if (!s->vw || !s->vuv || !s->local) {
         rc = nomem(err);
         goto fail;
     }
@@ -240,29 +229,52 @@ int lam_slicer_new(const lam_model *m, const lam_slice_opts *opts, lam_slicer **
     rc = make_planes(s, wmin, wmax, err);
     s->o.planes = NULL;
     s->o.widths = NULL;
-    if (rc) {
-        free(keys);
-        goto fail;
-    }
-    /* horizontal edges never straddle a plane under the perturbation rule */
-    size_t k = 0;
-    for (size_t e = 0; e < ne; e++) {
-        double lo = edge_lo(s, (uint32_t)e), hi = edge_hi(s, (uint32_t)e);
-        if (lo == hi) continue;
-        keys[k].lo = lo;
-        keys[k].e = (uint32_t)e;
-        k++;
-    }
-    qsort(keys, k, sizeof *keys, cmp_ekey);
-    s->order = malloc(k * sizeof *s->order + 1);
-    if (!s->order) {
-        free(keys);
+    if (rc) goto fail;
+    /* The schedule (Minetto et al.): each edge goes into the bucket of the
+     * first layer whose cut it crosses, found by binary search over the cut
+     * heights, so the run costs O(E log S) instead of a sort of all edges.
+     * Edges that cross no cut (horizontal ones, and short ones between two
+     * cuts) are left out entirely. */
+    size_t S = s->nlayers;
+    s->cuts = malloc(S * sizeof *s->cuts + 1);
+    s->layer_first = calloc(S + 2, sizeof *s->layer_first);
+    uint32_t *bucket = malloc(ne * sizeof *bucket + 1);
+    if (!s->cuts || !s->layer_first || !bucket) {
+        free(bucket);
         rc = nomem(err);
         goto fail;
     }
-    for (size_t i = 0; i < k; i++) s->order[i] = keys[i].e;
-    s->norder = k;
-    free(keys);
+    s->up = opts->cut != LAM_CUT_CEILING;
+    for (size_t i = 0; i < S; i++) {
+        double lo = s->planes[i], hi = s->planes[i + 1];
+        s->cuts[i] = opts->cut == LAM_CUT_FLOOR ? lo : opts->cut == LAM_CUT_CEILING ? hi : lo + (hi - lo) / 2;
+    }
+    for (size_t e = 0; e < ne; e++) {
+        double lo = edge_lo(s, (uint32_t)e), hi = edge_hi(s, (uint32_t)e);
+        /* first layer with lo below its cut: cut >= lo (up) or cut > lo */
+        size_t a = 0, z = S;
+        while (a < z) {
+            size_t mid = (a + z) / 2;
+            if (s->up ? s->cuts[mid] >= lo : s->cuts[mid] > lo) z = mid;
+            else a = mid + 1;
+        }
+        int crosses = a < S && (s->up ? hi > s->cuts[a] : hi >= s->cuts[a]);
+        bucket[e] = crosses ? (uint32_t)a : NONE;
+        if (crosses) s->layer_first[a + 1]++;
+    }
+    for (size_t i = 0; i < S; i++) s->layer_first[i + 1] += s->layer_first[i];
+    s->norder = s->layer_first[S];
+    s->order = malloc(s->norder * sizeof *s->order + 1);
+    if (!s->order) {
+        free(bucket);
+        rc = nomem(err);
+        goto fail;
+    }
+    for (size_t e = 0; e < ne; e++)
+        if (bucket[e] != NONE) s->order[s->layer_first[bucket[e]]++] = (uint32_t)e;
+    for (size_t i = S; i > 0; i--) s->layer_first[i] = s->layer_first[i - 1];
+    s->layer_first[0] = 0;
+    free(bucket);
     *out = s;
     return LAM_OK;
 fail:
@@ -294,6 +306,8 @@ void lam_slicer_free(lam_slicer *s)
     free(s->vw);
     free(s->vuv);
     free(s->order);
+    free(s->cuts);
+    free(s->layer_first);
     free(s->active);
     free(s->local);
     free(s->pts);
@@ -444,15 +458,15 @@ static int walk(lam_slicer *s, chains *c, uint32_t s0, lam_error *err)
 
 /* Cut at height c: the active edges' points and the directed segments of
  * the triangles crossing the plane, chained into polylines by edge. */
-static int section(lam_slicer *s, double c, int up, chains *ch, lam_error *err)
+static int section(lam_slicer *s, size_t layer, chains *ch, lam_error *err)
 {
+    double c = s->cuts[layer];
+    int up = s->up;
     const lam_model *m = s->m;
     const lam_edges *E = &m->edges;
 #define BELOW(h) (up ? (h) <= c : (h) < c)
-    while (s->ins < s->norder && BELOW(edge_lo(s, s->order[s->ins]))) {
-        if (reserve_active(s, s->nactive + 1, err)) return LAM_ENOMEM;
-        s->active[s->nactive++] = s->order[s->ins++];
-    }
+    if (reserve_active(s, s->nactive + (s->layer_first[layer + 1] - s->ins), err)) return LAM_ENOMEM;
+    while (s->ins < s->layer_first[layer + 1]) s->active[s->nactive++] = s->order[s->ins++];
     size_t na = 0;
     for (size_t i = 0; i < s->nactive; i++) {
         uint32_t e = s->active[i];
@@ -705,15 +719,10 @@ int lam_slicer_next(lam_slicer *s, lam_layer **out, lam_error *err)
     L->floor = s->planes[i];
     L->ceiling = s->planes[i + 1];
     L->width = L->ceiling - L->floor;
-    int up = 1;
-    switch (s->o.cut) {
-    case LAM_CUT_FLOOR: L->cut = L->floor; break;
-    case LAM_CUT_CEILING: L->cut = L->ceiling; up = 0; break;
-    default: L->cut = L->floor + (L->ceiling - L->floor) / 2; break;
-    }
+    L->cut = s->cuts[i];
     chains ch = { 0 };
     lam_loops loops = { 0 };
-    int rc = section(s, L->cut, up, &ch, err);
+    int rc = section(s, i, &ch, err);
     if (!rc) rc = close_gaps(&ch, s->o.gap, L, &loops, err);
     if (!rc) rc = lam_contours_assign(L, &loops, err);
     chains_free(&ch);

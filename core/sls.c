@@ -1,6 +1,9 @@
 #include "sls.h"
 
 #include <math.h>
+#include <string.h>
+
+#include "fmt.h"
 
 /* Six decimals without "-0.000000". */
 static double tidy(double x)
@@ -18,7 +21,13 @@ int lam_sls_write_layer(lam_writer *w, const lam_layer *L, const lam_frame *f, s
         for (size_t k = 0; k < c->n; k++) {
             double p[3];
             lam_frame_to_model(f, L->uv[2 * (c->first + k)], L->uv[2 * (c->first + k) + 1], L->cut, p);
-            lam_writer_printf(w, "%.6f %.6f %.6f\n", tidy(p[0]), tidy(p[1]), tidy(p[2]));
+            char line[3 * LAM_FMT_MAX + 4];
+            size_t len = 0;
+            for (int j = 0; j < 3; j++) {
+                len += lam_fmt_fixed(line + len, tidy(p[j]), 6);
+                line[len++] = j < 2 ? ' ' : '\n';
+            }
+            lam_writer_write(w, line, len);
         }
         rc = lam_writer_printf(w, "endloop\nendcontour\n");
     }
