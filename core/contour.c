@@ -129,9 +129,52 @@ typedef struct loopinfo {
 
 /* For every loop: depth and smallest container, by a sweep over v with
  * ray casting toward -u from the loop's lowest-leftmost point. */
+/* Parity of the crossings of loop o's edges with the ray from (u, v)
+ * toward -u (half-open rule on v, as in the sweep). */
+static int crossings_left(const lam_loops *L, const loopinfo *o, double u, double v)
+{
+    const double *uv = L->uv + 2 * o->first;
+    int par = 0;
+    for (size_t i = 0; i < o->n; i++) {
+        size_t j = (i + 1) % o->n;
+        double vi = uv[2 * i + 1], vj = uv[2 * j + 1];
+        double lo = vi < vj ? vi : vj, hi = vi < vj ? vj : vi;
+        if (!(lo <= v && v < hi)) continue;
+        double x = uv[2 * i] + (v - vi) * (uv[2 * j] - uv[2 * i]) / (vj - vi);
+        if (x < u) par ^= 1;
+    }
+    return par;
+}
+
+/* A few loops (the usual layer): test each against the others directly,
+ * with the same ray and crossing rule as the sweep. */
+static void nest_few(const lam_loops *L, loopinfo *li)
+{
+    size_t nl = L->nloops;
+    for (size_t l = 0; l < nl; l++) {
+        const double *q = L->uv + 2 * (li[l].first + li[l].start);
+        li[l].depth = 0;
+        li[l].parent = -1;
+        double best = INFINITY;
+        for (size_t o = 0; o < nl; o++) {
+            if (o == l || !crossings_left(L, &li[o], q[0], q[1])) continue;
+            li[l].depth++;
+            double a = fabs(li[o].area);
+            if (a < best) {
+                best = a;
+                li[l].parent = (long)o;
+            }
+        }
+    }
+}
+
 static int nest(const lam_loops *L, loopinfo *li, lam_error *err)
 {
     size_t nl = L->nloops, ns = L->npoints;
+    if (nl <= 8) {
+        nest_few(L, li);
+        return LAM_OK;
+    }
     seg *segs = malloc(ns * sizeof *segs + 1);
     query *qs = malloc(nl * sizeof *qs + 1);
     uint32_t *active = malloc(ns * sizeof *active + 1);

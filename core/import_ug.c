@@ -934,7 +934,7 @@ static int st_def(ug_parser *p, const ug_token *kw)
     if (p->def_depth >= UG_MAX_DEF_DEPTH)
         return perr(p, LAM_EINVAL, kw->line, kw->col, "definitions nested more than %d deep",
                     UG_MAX_DEF_DEPTH);
-    uint32_t si;
+    uint32_t si = 0;
     if ((rc = new_scope(imp, p->file, name.s, kw->line, kw->col, p->scope, &si))) return rc;
     if (map_put(&cur_scope(p)->dmap, name.s, name.len, si)) return nomem(imp);
     p->scope = si;

@@ -33,67 +33,96 @@ static size_t drop_collapsed(lam_mesh *m)
     return dropped;
 }
 
-static uint64_t mix64(uint64_t h)
+static uint32_t he_lo(const lam_mesh *m, size_t i)
 {
-    h ^= h >> 33;
-    h *= 0xff51afd7ed558ccdull;
-    h ^= h >> 33;
-    h *= 0xc4ceb9fe1a85ec53ull;
-    h ^= h >> 33;
-    return h;
+    uint32_t a = m->tris[i], b = m->tris[i - i % 3 + (i % 3 + 1) % 3];
+    return a < b ? a : b;
 }
 
-/* Edge ids in order of first appearance, so the numbering depends only on
- * the triangle order. */
+static uint32_t he_hi(const lam_mesh *m, size_t i)
+{
+    uint32_t a = m->tris[i], b = m->tris[i - i % 3 + (i % 3 + 1) % 3];
+    return a < b ? b : a;
+}
+
+static int cmp_u64(const void *x, const void *y)
+{
+    uint64_t a = *(const uint64_t *)x, b = *(const uint64_t *)y;
+    return a < b ? -1 : a > b;
+}
+
+/* The edge table. Half-edges are bucketed by their lower vertex (a
+ * counting sort), and each vertex's few half-edges are matched by their
+ * upper vertex: linear and cache-friendly, unlike a hash of all edges.
+ * Edge ids follow the lower vertex, then first appearance. */
 static int build_edges(const lam_mesh *m, lam_edges *e, lam_error *err)
 {
-    size_t nt = m->ntris;
-    size_t cap = 16;
-    while (cap < 3 * nt) cap *= 2;
-    uint32_t *table = malloc(cap * sizeof *table);
-    e->v = malloc(3 * nt * 2 * sizeof *e->v + 1);
-    e->tri_edge = malloc(3 * nt * sizeof *e->tri_edge + 1);
-    if (!table || !e->v || !e->tri_edge) {
-        free(table);
+    size_t nt = m->ntris, nv = m->nverts, nh = 3 * nt;
+    uint32_t *first = calloc(nv + 1, sizeof *first);
+    uint32_t *he = malloc(nh * sizeof *he + 1);
+    e->v = malloc(nh * 2 * sizeof *e->v + 1);
+    e->tri_edge = malloc(nh * sizeof *e->tri_edge + 1);
+    if (!first || !he || !e->v || !e->tri_edge) {
+        free(first);
+        free(he);
         return oom(err);
     }
-    memset(table, 0xff, cap * sizeof *table);
+    for (size_t i = 0; i < nh; i++) first[he_lo(m, i) + 1]++;
+    for (size_t v = 0; v < nv; v++) first[v + 1] += first[v];
+    for (size_t i = 0; i < nh; i++) he[first[he_lo(m, i)]++] = (uint32_t)i;
+    for (size_t v = nv; v > 0; v--) first[v] = first[v - 1];
+    first[0] = 0;
     size_t n = 0;
-    for (size_t t = 0; t < nt; t++) {
-        for (int k = 0; k < 3; k++) {
-            uint32_t a = m->tris[3 * t + k], b = m->tris[3 * t + (k + 1) % 3];
-            if (a > b) { uint32_t tmp = a; a = b; b = tmp; }
-            size_t h = (size_t)mix64(((uint64_t)a << 32) | b) & (cap - 1);
-            for (;;) {
-                uint32_t id = table[h];
-                if (id == NONE) {
-                    table[h] = (uint32_t)n;
-                    e->v[2 * n] = a;
-                    e->v[2 * n + 1] = b;
-                    e->tri_edge[3 * t + k] = (uint32_t)n++;
-                    break;
-                }
-                if (e->v[2 * (size_t)id] == a && e->v[2 * (size_t)id + 1] == b) {
-                    e->tri_edge[3 * t + k] = id;
-                    break;
-                }
-                h = (h + 1) & (cap - 1);
+    for (size_t v = 0; v < nv; v++) {
+        uint32_t s = first[v], z = first[v + 1];
+        if (z - s > 16) {
+            /* a vertex with many edges (a fan apex): sort instead of
+             * matching pairwise, so the work stays O(d log d) */
+            uint64_t *key = malloc((z - s) * sizeof *key);
+            if (!key) {
+                free(first);
+                free(he);
+                return oom(err);
             }
+            for (uint32_t j = s; j < z; j++) key[j - s] = (uint64_t)he_hi(m, he[j]) << 32 | he[j];
+            qsort(key, z - s, sizeof *key, cmp_u64);
+            for (uint32_t j = 0; j < z - s; j++) {
+                if (j == 0 || key[j] >> 32 != key[j - 1] >> 32) {
+                    e->v[2 * n] = (uint32_t)v;
+                    e->v[2 * n + 1] = (uint32_t)(key[j] >> 32);
+                    n++;
+                }
+                e->tri_edge[(uint32_t)key[j]] = (uint32_t)(n - 1);
+            }
+            free(key);
+            continue;
+        }
+        for (uint32_t j = s; j < z; j++) {
+            uint32_t hi = he_hi(m, he[j]), id = NONE;
+            for (uint32_t k = s; k < j && id == NONE; k++)
+                if (he_hi(m, he[k]) == hi) id = e->tri_edge[he[k]];
+            if (id == NONE) {
+                id = (uint32_t)n++;
+                e->v[2 * id] = (uint32_t)v;
+                e->v[2 * id + 1] = hi;
+            }
+            e->tri_edge[he[j]] = id;
         }
     }
-    free(table);
+    free(first);
+    free(he);
     e->n = n;
     uint32_t *shrunk = realloc(e->v, 2 * n * sizeof *e->v + 1); /* ~1.5 edges per triangle, not 3 */
     if (shrunk) e->v = shrunk;
     e->first = calloc(n + 1, sizeof *e->first);
-    e->tris = malloc(3 * nt * sizeof *e->tris + 1);
+    e->tris = malloc(nh * sizeof *e->tris + 1);
     if (!e->first || !e->tris) return oom(err);
-    for (size_t i = 0; i < 3 * nt; i++) e->first[e->tri_edge[i] + 1]++;
+    for (size_t i = 0; i < nh; i++) e->first[e->tri_edge[i] + 1]++;
     for (size_t i = 0; i < n; i++) e->first[i + 1] += e->first[i];
     uint32_t *fill = malloc((n + 1) * sizeof *fill);
     if (!fill) return oom(err);
     memcpy(fill, e->first, (n + 1) * sizeof *fill);
-    for (size_t i = 0; i < 3 * nt; i++) e->tris[fill[e->tri_edge[i]]++] = (uint32_t)(i / 3);
+    for (size_t i = 0; i < nh; i++) e->tris[fill[e->tri_edge[i]]++] = (uint32_t)(i / 3);
     free(fill);
     return LAM_OK;
 }
@@ -104,12 +133,17 @@ static int tri_has_directed(const uint32_t *tv, uint32_t a, uint32_t b)
     return (tv[0] == a && tv[1] == b) || (tv[1] == a && tv[2] == b) || (tv[2] == a && tv[0] == b);
 }
 
-static void flip_tri(lam_mesh *m, size_t t)
+/* Reverse triangle t, keeping slot k of tri_edge the edge (t[k], t[k+1]):
+ * (t0,t1,t2) -> (t0,t2,t1) turns the edges (01, 12, 20) into (02, 21, 10),
+ * that is slots 0 and 2 swap. */
+static void flip_tri(lam_mesh *m, lam_edges *e, size_t t)
 {
     uint32_t tmp = m->tris[3 * t + 1];
     m->tris[3 * t + 1] = m->tris[3 * t + 2];
     m->tris[3 * t + 2] = tmp;
-    /* edges (t0,t1),(t1,t2),(t2,t0) become (t0,t2),(t2,t1),(t1,t0) */
+    tmp = e->tri_edge[3 * t];
+    e->tri_edge[3 * t] = e->tri_edge[3 * t + 2];
+    e->tri_edge[3 * t + 2] = tmp;
 }
 
 /* Shells are the components through manifold edges (exactly two triangles):
@@ -141,20 +175,14 @@ static int build_shells(lam_model *md, lam_error *err)
                  * flipped) vertex order. */
                 const uint32_t *tv = m->tris + 3 * (size_t)t;
                 uint32_t a = tv[k], b = tv[(k + 1) % 3];
-                uint32_t lo = a < b ? a : b, hi = a < b ? b : a;
-                /* find this edge's id: one of the triangle's three edges */
-                uint32_t eid = NONE;
-                for (int j = 0; j < 3; j++) {
-                    uint32_t c = md->edges.tri_edge[3 * (size_t)t + j];
-                    if (e->v[2 * (size_t)c] == lo && e->v[2 * (size_t)c + 1] == hi) eid = c;
-                }
-                if (eid == NONE || e->first[eid + 1] - e->first[eid] != 2) continue;
+                uint32_t eid = e->tri_edge[3 * (size_t)t + k];
+                if (e->first[eid + 1] - e->first[eid] != 2) continue;
                 uint32_t u = e->tris[e->first[eid]];
                 if (u == t) u = e->tris[e->first[eid] + 1];
                 const uint32_t *uv = m->tris + 3 * (size_t)u;
                 int same_dir = tri_has_directed(uv, a, b);
                 if (md->tri_shell[u] == NONE) {
-                    if (same_dir) flip_tri(m, u);
+                    if (same_dir) flip_tri(m, e, u);
                     md->tri_shell[u] = (uint32_t)nshells;
                     queue[tail++] = u;
                 } else if (same_dir && md->tri_shell[u] == md->tri_shell[t]) {
@@ -171,24 +199,6 @@ static int build_shells(lam_model *md, lam_error *err)
     md->shells = calloc(nshells ? nshells : 1, sizeof *md->shells);
     if (!md->shells) return oom(err);
     return LAM_OK;
-}
-
-/* The edge table stores tri_edge per (t0,t1),(t1,t2),(t2,t0); flipping
- * triangles reorders that, so rebuild the per-triangle edge slots. */
-static void refresh_tri_edges(lam_model *md)
-{
-    lam_mesh *m = &md->mesh;
-    lam_edges *e = &md->edges;
-    for (size_t t = 0; t < m->ntris; t++) {
-        uint32_t old[3] = { e->tri_edge[3 * t], e->tri_edge[3 * t + 1], e->tri_edge[3 * t + 2] };
-        for (int k = 0; k < 3; k++) {
-            uint32_t a = m->tris[3 * t + k], b = m->tris[3 * t + (k + 1) % 3];
-            uint32_t lo = a < b ? a : b, hi = a < b ? b : a;
-            for (int j = 0; j < 3; j++)
-                if (e->v[2 * (size_t)old[j]] == lo && e->v[2 * (size_t)old[j] + 1] == hi)
-                    e->tri_edge[3 * t + k] = old[j];
-        }
-    }
 }
 
 static double tri_area(const double *a, const double *b, const double *c)
@@ -254,7 +264,7 @@ static void measure_shells(lam_model *md, double *ref, double *comp)
 static void flip_shell(lam_model *md, size_t s)
 {
     for (uint32_t i = md->shell_first[s]; i < md->shell_first[s + 1]; i++)
-        flip_tri(&md->mesh, md->shell_tris[i]);
+        flip_tri(&md->mesh, &md->edges, md->shell_tris[i]);
     md->shells[s].volume = -md->shells[s].volume;
 }
 
@@ -401,7 +411,6 @@ int lam_model_from_mesh(lam_mesh *mesh, const char *path, const char *format,
         st->volume += sh->volume;
         st->area += sh->area;
     }
-    refresh_tri_edges(md);
 
     st->triangles = m->ntris;
     st->vertices = m->nverts;

@@ -1,0 +1,56 @@
+#!/usr/bin/env bash
+# make bench: lamina slice against slic3r --export-svg on the same meshes.
+# usage: run.sh /path/to/lamina   (environment: RUNS=5 alternating runs each)
+set -euo pipefail
+LAMINA=${1:?usage: run.sh LAMINA}
+RUNS=${RUNS:-5}
+here=$(cd "$(dirname "$0")" && pwd)
+work=${BENCH_DIR:-$(dirname "$LAMINA")/bench}
+mkdir -p "$work"
+
+need=""
+for p in openscad slic3r admesh time; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || need="$need $p"
+done
+if [ -n "$need" ]; then
+    echo "bench: installing$need"
+    sudo=""; [ "$(id -u)" -eq 0 ] || sudo=sudo
+    $sudo apt-get update -qq
+    DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends $need >/dev/null
+fi
+
+# Meshes: openscad writes ASCII STL; admesh rewrites it as binary.
+make_mesh() { # name scad-source
+    local stl="$work/$1.stl"
+    [ -s "$stl" ] && return
+    printf '%s\n' "$2" >"$work/$1.scad"
+    openscad -q -o "$work/$1.ascii.stl" "$work/$1.scad"
+    admesh -b "$stl" "$work/$1.ascii.stl" >/dev/null
+    rm -f "$work/$1.ascii.stl"
+}
+make_mesh sphere 'sphere(r=20, $fn=400);'
+make_mesh torus 'rotate_extrude($fn=425) translate([20,0,0]) circle(r=8, $fn=425);'
+
+measure() { # prints "seconds kilobytes"
+    /usr/bin/time -f '%e %M' -o "$work/time.txt" "$@" >/dev/null 2>"$work/stderr.txt" || {
+        echo "bench: command failed: $*" >&2; cat "$work/stderr.txt" >&2; exit 1; }
+    cat "$work/time.txt"
+}
+median() { sort -g | awk '{a[NR]=$1} END {print (NR % 2) ? a[(NR+1)/2] : (a[NR/2] + a[NR/2+1]) / 2}'; }
+
+printf '%-8s %10s %10s %10s %10s %10s %10s %8s\n' mesh triangles lamina_s slic3r_s speedup lamina_MB slic3r_MB mem_ratio
+for mesh in sphere torus; do
+    stl="$work/$mesh.stl"
+    tris=$(( ($(stat -c %s "$stl") - 84) / 50 ))
+    : >"$work/l.txt"; : >"$work/s.txt"
+    for ((r = 0; r < RUNS; r++)); do
+        measure "$LAMINA" slice "$stl" -w 0.1 --cut middle -o "$work/$mesh.sls" >>"$work/l.txt"
+        measure slic3r --export-svg --layer-height 0.1 "$stl" -o "$work/$mesh.slic3r.svg" >>"$work/s.txt"
+    done
+    lt=$(cut -d' ' -f1 "$work/l.txt" | median); lm=$(cut -d' ' -f2 "$work/l.txt" | median)
+    st=$(cut -d' ' -f1 "$work/s.txt" | median); sm=$(cut -d' ' -f2 "$work/s.txt" | median)
+    awk -v m="$mesh" -v n="$tris" -v lt="$lt" -v st="$st" -v lm="$lm" -v sm="$sm" 'BEGIN {
+        printf "%-8s %10d %10.3f %10.3f %9.1fx %10.1f %10.1f %8.2f\n", m, n, lt, st, st / (lt > 0 ? lt : 0.001),
+               lm / 1024, sm / 1024, lm / sm }'
+done
+echo "(medians of $RUNS alternating runs; speedup = slic3r time / lamina time; mem_ratio = lamina peak RSS / slic3r peak RSS)"
