@@ -163,6 +163,8 @@ static int make_planes(lam_slicer *s, double wmin, double wmax, lam_error *err)
                                  "the widths add up to %g but the model spans %g along the axis",
                                  s->planes[n - 1] - wmin, wmax - wmin);
     } else {
+        if (o->width < 0 || isnan(o->width) || isinf(o->width))
+            return lam_error_set(err, LAM_EUSAGE, NULL, 0, 0, "layer width must be a positive number (got %g)", o->width);
         double w = o->width > 0 ? o->width : lam_default_width(wmax - wmin);
         if (!(w > 0) || !isfinite(w))
             return lam_error_set(err, LAM_EUSAGE, NULL, 0, 0, "layer width must be a positive number (got %g)", o->width);
@@ -456,6 +458,13 @@ static int walk(lam_slicer *s, chains *c, uint32_t s0, lam_error *err)
     }
 }
 
+/* (1-t)*a + t*b: exact at t = 0 and t = 1, and exactly a when a == b (an
+ * edge along which this coordinate does not change keeps it exactly). */
+static double lerp(double a, double b, double t)
+{
+    return a == b ? a : (1 - t) * a + t * b;
+}
+
 /* Cut at height c: the active edges' points and the directed segments of
  * the triangles crossing the plane, chained into polylines by edge. */
 static int section(lam_slicer *s, size_t layer, chains *ch, lam_error *err)
@@ -465,7 +474,7 @@ static int section(lam_slicer *s, size_t layer, chains *ch, lam_error *err)
     const lam_model *m = s->m;
     const lam_edges *E = &m->edges;
 #define BELOW(h) (up ? (h) <= c : (h) < c)
-    if (reserve_active(s, s->nactive + (s->layer_first[layer + 1] - s->ins), err)) return LAM_ENOMEM;
+    if (reserve_active(s, s->nactive + (s->layer_first[layer + 1] - s->ins) + 1, err)) return LAM_ENOMEM;
     while (s->ins < s->layer_first[layer + 1]) s->active[s->nactive++] = s->order[s->ins++];
     size_t na = 0;
     for (size_t i = 0; i < s->nactive; i++) {
@@ -478,8 +487,8 @@ static int section(lam_slicer *s, size_t layer, chains *ch, lam_error *err)
         uint32_t lo = ev[0], hi = ev[1];
         if (s->vw[lo] > s->vw[hi]) { uint32_t t = lo; lo = hi; hi = t; }
         double t = (c - s->vw[lo]) / (s->vw[hi] - s->vw[lo]);
-        s->pts[2 * na] = (1 - t) * s->vuv[2 * lo] + t * s->vuv[2 * hi];
-        s->pts[2 * na + 1] = (1 - t) * s->vuv[2 * lo + 1] + t * s->vuv[2 * hi + 1];
+        s->pts[2 * na] = lerp(s->vuv[2 * lo], s->vuv[2 * hi], t);
+        s->pts[2 * na + 1] = lerp(s->vuv[2 * lo + 1], s->vuv[2 * hi + 1], t);
         na++;
     }
     s->nactive = na;
@@ -635,7 +644,7 @@ static int close_gaps(const chains *c, double gap, lam_layer *L, lam_loops *out,
                 npairs++;
             }
         }
-        qsort(pairs, npairs, sizeof *pairs, cmp_gpair);
+        if (npairs) qsort(pairs, npairs, sizeof *pairs, cmp_gpair);
         for (size_t p = 0; p < npairs; p++) {
             uint32_t a = pairs[p].from, b = pairs[p].to;
             if (succ[a] != NONE || pred[b] != NONE) continue;

@@ -52,7 +52,8 @@ typedef struct lam_slice_opts {
                                 Polylines still open are dropped from the layer and listed
                                 in lam_layer.open: the caller decides whether that fails. */
     /* Layer boundaries, one of: */
-    double width;            /* > 0: uniform layers from the model's minimum */
+    double width;            /* > 0: uniform layers from the model's minimum;
+                                0: lam_default_width of the extent */
     const double *widths;    /* a(i) = a(i-1) + widths[i-1], from the minimum */
     size_t nwidths;
     const double *planes;    /* explicit increasing boundaries a(0) .. a(S) */
@@ -100,8 +101,9 @@ typedef struct lam_layer {
 typedef struct lam_slicer lam_slicer;
 
 /* Prepare a sweep over model with opts (copied). The model must outlive the
- * slicer. Errors: LAM_EUSAGE for a width <= 0, widths that do not cover the
- * model, planes not strictly increasing or fewer than two. */
+ * slicer. Errors: LAM_EUSAGE for a negative or non-finite width, a width
+ * in the list <= 0, widths that do not cover the model, planes not strictly
+ * increasing or fewer than two. */
 int lam_slicer_new(const lam_model *model, const lam_slice_opts *opts, lam_slicer **out,
                    lam_error *err);
 

@@ -41,7 +41,7 @@ is "$(grep -c '^contour' <<<"$OUT")" 12 "frame with island: 3 contours x 4 layer
 run "$LAMINA" slice "$M/thesis_cube_hole.ug" -a x -w 0.5 --cut floor
 is "$RC" 0 "axis x: exit 0"
 like "$OUT" $'contour -1\\.000000\nloop 4\n-1\\.000000 -1\\.000000 0\\.000000' "axis x: first contour at x=-1 starts at (y,z)=(-1,0)"
-is "$(grep -c '^contour' <<<"$OUT")" 6 "axis x: layers at -1, -0.5 (through the hole: 2 pieces), 0 (2 pieces), 0.5"
+is "$(grep -c '^contour' <<<"$OUT")" 6 "axis x: layers at -1 (1 contour), -0.5 and 0 (outer and hole), 0.5 (1)"
 
 # Defaults: axis z, width 1/100 of the extent (2 -> 0.02), middle cut.
 run "$LAMINA" slice "$M/thesis_cube.ug"

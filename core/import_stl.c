@@ -1,0 +1,511 @@
+/* STL importer: binary and ASCII, chosen by content (SPEC 2.2).
+ *
+ * Which format:
+ *   - binary iff len >= 84 and 84 + 50 * count == len (count = uint32 LE at
+ *     byte 80), even when the 80-byte header begins with "solid" (many
+ *     exporters write that);
+ *   - otherwise ASCII when the text, after leading whitespace (and a UTF-8
+ *     BOM), begins with "solid". If that ASCII parse fails on a file of 84 or
+ *     more bytes that contains a NUL byte, the file is a binary STL whose
+ *     header says "solid" but whose count disagrees with its size (a
+ *     truncated export): the count error below is reported instead of a
+ *     confusing syntax error in the middle of binary data;
+ *   - otherwise, 84 bytes or more: a binary STL whose count disagrees with
+ *     the size: error at byte 80, "binary STL declares N triangles (needs X
+ *     bytes) but the file has Y bytes" (covers truncated files);
+ *   - fewer than 84 bytes: "file too short for a binary STL (N bytes)".
+ *
+ * Binary: no face records (tri_face stays NULL: triangle i is "facet i+1"
+ * in messages), so lam_mesh_add_face is never called for a binary file and a
+ * binary STL cannot be appended to a mesh that already has face records.
+ * Room is reserved once and the vertices and triangles are written straight
+ * into the mesh arrays: three fresh vertices per facet, not welded (the model
+ * layer welds exactly). Values are read little-endian byte by byte (no
+ * alignment or host byte order assumption). A NaN/inf vertex coordinate is an
+ * error at that float's byte offset; normals and the attribute word are
+ * ignored, so a NaN normal (common for degenerate facets) is accepted.
+ *
+ * ASCII: the buffer is exactly len bytes; nothing past it is read and no NUL
+ * terminator is needed. Tokens are runs of non-whitespace, keywords are
+ * case-insensitive. `solid`'s name is the rest of its line, `endsolid`'s is
+ * ignored; several solids may follow each other. A file that ends right after
+ * a complete `endfacet` without `endsolid` is accepted. One face record per
+ * facet: name NULL, file = path, position of the `facet` keyword. Positions
+ * are 1-based lines (counted at '\n', so CRLF files work) and 1-based byte
+ * columns (a tab is one column); an error at end of file points just past the
+ * last byte.
+ *
+ * Numbers: [+-]digits[.digits][(e|E)[+-]digits] (".5" and "5." too). The
+ * words nan, inf, infinity and MSVC's 1.#QNAN / -1.#IND / 1.#INF are read as
+ * non-finite values, so a coordinate holding one is reported as "not a finite
+ * number" rather than as malformed (a normal may hold anything numeric).
+ * Conversion is exact: Clinger's fast path (mantissa <= 2^53, |exponent| <=
+ * 22) and otherwise strtod on the digits rewritten without a decimal point,
+ * which keeps the result independent of the C locale's decimal separator.
+ *
+ * Status codes: LAM_ESYNTAX for malformed text and a size that disagrees with
+ * the count, LAM_EINVAL for non-finite coordinates, LAM_EFORMAT for a file
+ * that is neither (too short for binary and not "solid"). Linear time. */
+#include "import.h"
+
+#include <float.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* ---- numbers (the same reader as import_obj.c) -------------------------- */
+
+enum { NUM_OK = 0, NUM_BAD = -1, NUM_NOMEM = -2 };
+
+static int is_digit(unsigned char c) { return c >= '0' && c <= '9'; }
+static int is_alnum(unsigned char c)
+{
+    return is_digit(c) || (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z');
+}
+static unsigned char lower(unsigned char c) { return c >= 'A' && c <= 'Z' ? (unsigned char)(c + 32) : c; }
+
+/* Case-insensitive: does s[0..n) spell the lower-case word kw? */
+static int word_eq(const unsigned char *s, size_t n, const char *kw)
+{
+    size_t k = strlen(kw);
+    if (n != k) return 0;
+    for (size_t i = 0; i < n; i++)
+        if (lower(s[i]) != (unsigned char)kw[i]) return 0;
+    return 1;
+}
+
+static const double pow10_exact[23] = {
+    1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11,
+    1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22,
+};
+
+/* Read the whole of s[0..n) as a number into *out (which may be NaN or
+ * infinite). NUM_BAD when s is not a number, NUM_NOMEM when a long number
+ * could not be copied for strtod. */
+static int parse_number(const unsigned char *s, size_t n, double *out)
+{
+    size_t i = 0;
+    int neg = 0;
+    if (i < n && (s[i] == '+' || s[i] == '-')) neg = s[i++] == '-';
+    if (i < n && !is_digit(s[i]) && s[i] != '.') {
+        if (word_eq(s + i, n - i, "nan")) {
+            *out = NAN;
+            return NUM_OK;
+        }
+        if (word_eq(s + i, n - i, "inf") || word_eq(s + i, n - i, "infinity")) {
+            *out = neg ? -INFINITY : INFINITY;
+            return NUM_OK;
+        }
+        return NUM_BAD;
+    }
+    size_t digits_from = i;
+    uint64_t mant = 0;
+    int nd = 0, digits = 0;
+    long long e10 = 0;
+    for (; i < n && is_digit(s[i]); i++) {
+        unsigned d = (unsigned)(s[i] - '0');
+        digits = 1;
+        if (nd < 19) {
+            if (mant || d) {
+                mant = mant * 10 + d;
+                nd++;
+            }
+        } else {
+            e10++;
+        }
+    }
+    if (i < n && s[i] == '.') {
+        i++;
+        for (; i < n && is_digit(s[i]); i++) {
+            unsigned d = (unsigned)(s[i] - '0');
+            digits = 1;
+            if (nd < 19) {
+                if (mant || d) {
+                    mant = mant * 10 + d;
+                    nd++;
+                }
+                e10--;
+            }
+        }
+        if (i < n && s[i] == '#' && digits) { /* MSVC: 1.#QNAN0, -1.#IND00, 1.#INF00 */
+            size_t j = i + 1;
+            while (j < n && is_alnum(s[j])) j++;
+            if (j != n || j == i + 1) return NUM_BAD;
+            if (n - i > 3 && lower(s[i + 1]) == 'i' && lower(s[i + 2]) == 'n' && lower(s[i + 3]) == 'f')
+                *out = neg ? -INFINITY : INFINITY;
+            else
+                *out = NAN;
+            return NUM_OK;
+        }
+    }
+    if (!digits) return NUM_BAD;
+    size_t digits_to = i;
+    long long ev = 0;
+    if (i < n && (s[i] == 'e' || s[i] == 'E')) {
+        i++;
+        int eneg = 0;
+        if (i < n && (s[i] == '+' || s[i] == '-')) eneg = s[i++] == '-';
+        if (i >= n || !is_digit(s[i])) return NUM_BAD;
+        for (; i < n && is_digit(s[i]); i++)
+            if (ev < 1000000000) ev = ev * 10 + (s[i] - '0');
+        if (eneg) ev = -ev;
+    }
+    if (i != n) return NUM_BAD;
+    if (mant == 0) {
+        *out = neg ? -0.0 : 0.0;
+        return NUM_OK;
+    }
+    e10 += ev;
+#if FLT_EVAL_METHOD == 0
+    if (mant <= (UINT64_C(1) << 53) && e10 >= -22 && e10 <= 22) {
+        double d = (double)mant;
+        d = e10 < 0 ? d / pow10_exact[-e10] : d * pow10_exact[e10];
+        *out = neg ? -d : d;
+        return NUM_OK;
+    }
+#endif
+    /* Slow path: sign, every digit without the point, and the exponent
+     * adjusted for the fraction digits, for strtod. */
+    char small[320], *buf = small;
+    size_t need = (digits_to - digits_from) + 32;
+    if (need > sizeof small && !(buf = malloc(need))) return NUM_NOMEM;
+    size_t k = 0;
+    long long frac = 0;
+    int in_frac = 0;
+    if (neg) buf[k++] = '-';
+    for (size_t j = digits_from; j < digits_to; j++) {
+        if (s[j] == '.') {
+            in_frac = 1;
+            continue;
+        }
+        buf[k++] = (char)s[j];
+        frac += in_frac;
+    }
+    snprintf(buf + k, need - k, "e%lld", ev - frac);
+    *out = strtod(buf, NULL);
+    if (buf != small) free(buf);
+    return NUM_OK;
+}
+
+/* 'text' for a message: at most 40 bytes shown, bytes outside printable
+ * ASCII as \xNN, "..." when cut. */
+static const char *quote(char *buf, size_t size, const unsigned char *s, size_t n)
+{
+    size_t k = 0, i;
+    buf[k++] = '\'';
+    for (i = 0; i < n && i < 40 && k + 10 < size; i++) {
+        if (s[i] >= 0x20 && s[i] < 0x7f) {
+            buf[k++] = (char)s[i];
+        } else {
+            snprintf(buf + k, size - k, "\\x%02x", s[i]);
+            k += 4;
+        }
+    }
+    if (i < n && k + 5 < size) {
+        memcpy(buf + k, "...", 3);
+        k += 3;
+    }
+    buf[k++] = '\'';
+    buf[k] = '\0';
+    return buf;
+}
+
+/* ---- binary ------------------------------------------------------------- */
+
+static uint32_t rd_u32(const unsigned char *p)
+{
+    return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
+}
+
+static int stl_binary(const char *path, const unsigned char *data, uint32_t count,
+                      lam_mesh *m, lam_error *err)
+{
+    if (m->nfaces || m->tri_face)
+        return lam_error_set(err, LAM_EINVAL, path, 0, 0,
+                             "a binary STL cannot be added to a mesh that has face records");
+    if ((uint64_t)count * 3 >= UINT32_MAX - 1 - (uint64_t)m->nverts)
+        return lam_error_at_offset(err, LAM_ENOMEM, path, 80,
+                                   "binary STL declares %lu triangles: too many for 32-bit vertex indices",
+                                   (unsigned long)count);
+    if (count == 0) return LAM_OK;
+    int rc = lam_mesh_reserve(m, 3 * (size_t)count, count, err);
+    if (rc) return lam_error_set(err, rc, path, 0, 0, "out of memory for %lu triangles", (unsigned long)count);
+
+    double *xyz = m->xyz + 3 * m->nverts;
+    uint32_t *t = m->tris + 3 * m->ntris;
+    uint32_t v = (uint32_t)m->nverts;
+    const unsigned char *p = data + 84 + 12; /* first vertex of facet 1 */
+    for (uint32_t i = 0; i < count; i++, p += 50) {
+        uint32_t bad = 0;
+        for (int k = 0; k < 9; k++) {
+            uint32_t u = rd_u32(p + 4 * k);
+            float f;
+            memcpy(&f, &u, sizeof f);
+            xyz[k] = f;
+            bad |= (u & 0x7f800000u) == 0x7f800000u;
+        }
+        if (bad) {
+            for (int k = 0; k < 9; k++) {
+                uint32_t u = rd_u32(p + 4 * k);
+                if ((u & 0x7f800000u) != 0x7f800000u) continue;
+                float f;
+                memcpy(&f, &u, sizeof f);
+                return lam_error_at_offset(err, LAM_EINVAL, path, (long long)(p + 4 * k - data),
+                                           "facet %lu, vertex %d: %c coordinate is not a finite number (%g)",
+                                           (unsigned long)i + 1, k / 3 + 1, "xyz"[k % 3], (double)f);
+            }
+        }
+        t[0] = v;
+        t[1] = v + 1;
+        t[2] = v + 2;
+        t += 3;
+        v += 3;
+        xyz += 9;
+    }
+    m->nverts += 3 * (size_t)count;
+    m->ntris += count;
+    return LAM_OK;
+}
+
+static int count_error(const char *path, size_t len, uint32_t count, lam_error *err)
+{
+    unsigned long long need = 84 + 50ull * count;
+    return lam_error_at_offset(err, LAM_ESYNTAX, path, 80,
+                               "binary STL declares %lu triangles (needs %llu bytes) but the file has %llu bytes",
+                               (unsigned long)count, need, (unsigned long long)len);
+}
+
+/* ---- ASCII -------------------------------------------------------------- */
+
+typedef struct stl_lex {
+    const unsigned char *p, *end, *line_start;
+    long line;
+    const unsigned char *tok; /* the token last read, n bytes (0 at end) */
+    size_t n;
+    long tline, tcol;
+    const char *path;
+    lam_error *err;
+} stl_lex;
+
+/* Whitespace: ' ', \t, \n, \v, \f, \r (a table: the lexer's inner loop). */
+static const unsigned char space_tab[256] = {
+    [' '] = 1, ['\t'] = 1, ['\n'] = 1, ['\v'] = 1, ['\f'] = 1, ['\r'] = 1,
+};
+
+static int is_space(unsigned char c) { return space_tab[c]; }
+
+/* Read the next token; 0 at end of input (position then at the end). */
+static int lex_next(stl_lex *lx)
+{
+    const unsigned char *p = lx->p, *end = lx->end;
+    while (p < end && is_space(*p)) {
+        if (*p == '\n') {
+            lx->line++;
+            lx->line_start = p + 1;
+        }
+        p++;
+    }
+    lx->tok = p;
+    lx->tline = lx->line;
+    lx->tcol = (long)(p - lx->line_start) + 1;
+    while (p < end && !is_space(*p)) p++;
+    lx->n = (size_t)(p - lx->tok);
+    lx->p = p;
+    return lx->n > 0;
+}
+
+static void lex_skip_line(stl_lex *lx)
+{
+    const unsigned char *nl = memchr(lx->p, '\n', (size_t)(lx->end - lx->p));
+    lx->p = nl ? nl : lx->end;
+}
+
+static int is_kw(const stl_lex *lx, const char *kw) { return word_eq(lx->tok, lx->n, kw); }
+
+/* "'token'" or "end of file", for messages. */
+static const char *found(const stl_lex *lx, char *buf, size_t size)
+{
+    if (!lx->n) {
+        snprintf(buf, size, "end of file");
+        return buf;
+    }
+    return quote(buf, size, lx->tok, lx->n);
+}
+
+static int lex_error(const stl_lex *lx, int code, const char *fmt, ...)
+    __attribute__((format(printf, 3, 4)));
+
+/* An error at the token last read. */
+static int lex_error(const stl_lex *lx, int code, const char *fmt, ...)
+{
+    char msg[768];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    return lam_error_set(lx->err, code, lx->path, lx->tline, lx->tcol, "%s", msg);
+}
+
+static int expect_kw(stl_lex *lx, const char *kw, const char *what)
+{
+    char q[96];
+    if (lex_next(lx) && is_kw(lx, kw)) return LAM_OK;
+    return lex_error(lx, LAM_ESYNTAX, "expected '%s'%s, found %s", kw, what, found(lx, q, sizeof q));
+}
+
+/* Three numbers; `finite` demands finite values (vertex coordinates). */
+static int read_xyz(stl_lex *lx, double out[3], int finite, const char *what)
+{
+    char q[96];
+    for (int k = 0; k < 3; k++) {
+        if (!lex_next(lx))
+            return lex_error(lx, LAM_ESYNTAX, "expected the %s %c coordinate, found end of file",
+                             what, "xyz"[k]);
+        int rc = parse_number(lx->tok, lx->n, &out[k]);
+        if (rc == NUM_NOMEM) return lex_error(lx, LAM_ENOMEM, "out of memory reading a number");
+        if (rc)
+            return lex_error(lx, LAM_ESYNTAX, "expected the %s %c coordinate (a number), found %s",
+                             what, "xyz"[k], found(lx, q, sizeof q));
+        if (finite && !isfinite(out[k]))
+            return lex_error(lx, LAM_EINVAL, "%s %c coordinate is not a finite number (%s)",
+                             what, "xyz"[k], found(lx, q, sizeof q));
+    }
+    return LAM_OK;
+}
+
+/* Relocate an error from the mesh (which knows no position) to the facet. */
+static int mesh_error(const stl_lex *lx, int rc, long line, long col)
+{
+    if (!lx->err) return rc;
+    char msg[sizeof lx->err->msg];
+    snprintf(msg, sizeof msg, "%s", lx->err->msg);
+    return lam_error_set(lx->err, rc, lx->path, line, col, "%s", msg);
+}
+
+/* After `facet`: normal, loop of exactly three vertices, endfacet. */
+static int stl_facet(stl_lex *lx, lam_mesh *m)
+{
+    long fline = lx->tline, fcol = lx->tcol;
+    char q[96];
+    double normal[3], v[9];
+    int rc;
+    if ((rc = expect_kw(lx, "normal", " after 'facet'"))) return rc;
+    if ((rc = read_xyz(lx, normal, 0, "normal"))) return rc;
+    if ((rc = expect_kw(lx, "outer", " (of 'outer loop')"))) return rc;
+    if ((rc = expect_kw(lx, "loop", " after 'outer'"))) return rc;
+    int nv = 0;
+    for (;;) {
+        if (!lex_next(lx))
+            return lex_error(lx, LAM_ESYNTAX, "expected %s, found end of file",
+                             nv < 3 ? "'vertex' or 'endloop'" : "'endloop'");
+        if (is_kw(lx, "vertex")) {
+            if (nv == 3) return lex_error(lx, LAM_ESYNTAX, "facet has more than 3 vertices");
+            if ((rc = read_xyz(lx, v + 3 * nv, 1, "vertex"))) return rc;
+            nv++;
+        } else if (is_kw(lx, "endloop")) {
+            if (nv != 3)
+                return lex_error(lx, LAM_ESYNTAX, "facet has %d %s, expected 3", nv,
+                                 nv == 1 ? "vertex" : "vertices");
+            break;
+        } else {
+            return lex_error(lx, LAM_ESYNTAX, "expected %s, found %s",
+                             nv < 3 ? "'vertex' or 'endloop'" : "'endloop'", found(lx, q, sizeof q));
+        }
+    }
+    if ((rc = expect_kw(lx, "endfacet", " after 'endloop'"))) return rc;
+
+    uint32_t face, a, b, c;
+    if ((rc = lam_mesh_add_face(m, NULL, lx->path, fline, fcol, &face, lx->err)) ||
+        (rc = lam_mesh_add_vertex(m, v[0], v[1], v[2], &a, lx->err)) ||
+        (rc = lam_mesh_add_vertex(m, v[3], v[4], v[5], &b, lx->err)) ||
+        (rc = lam_mesh_add_vertex(m, v[6], v[7], v[8], &c, lx->err)) ||
+        (rc = lam_mesh_add_tri(m, a, b, c, face, lx->err)))
+        return mesh_error(lx, rc, fline, fcol);
+    return LAM_OK;
+}
+
+static size_t skip_bom(const unsigned char *data, size_t len)
+{
+    return len >= 3 && data[0] == 0xef && data[1] == 0xbb && data[2] == 0xbf ? 3 : 0;
+}
+
+static int stl_ascii(const char *path, const unsigned char *data, size_t len,
+                     lam_mesh *m, lam_error *err)
+{
+    size_t bom = skip_bom(data, len);
+    stl_lex lx = {
+        .p = data + bom, .end = data + len, .line_start = data + bom, .line = 1,
+        .tok = data + bom, .n = 0, .tline = 1, .tcol = 1, .path = path, .err = err,
+    };
+    char q[96];
+    /* A facet takes 150-300 bytes of text: reserve for the short end. */
+    int rc = lam_mesh_reserve(m, 3 * (len / 150), len / 150, err);
+    if (rc) return rc;
+    int solids = 0;
+    for (;;) {
+        if (!lex_next(&lx)) {
+            if (solids) return LAM_OK;
+            return lex_error(&lx, LAM_ESYNTAX, "expected 'solid', found end of file");
+        }
+        if (!is_kw(&lx, "solid"))
+            return lex_error(&lx, LAM_ESYNTAX, "expected %s, found %s",
+                             solids ? "'solid' or end of file" : "'solid'", found(&lx, q, sizeof q));
+        lex_skip_line(&lx); /* the solid's name */
+        solids++;
+        size_t facets = 0;
+        for (;;) {
+            if (!lex_next(&lx)) {
+                if (facets) return LAM_OK; /* lenient: EOF after endfacet, no endsolid */
+                return lex_error(&lx, LAM_ESYNTAX, "expected 'facet' or 'endsolid', found end of file");
+            }
+            if (is_kw(&lx, "endsolid")) {
+                lex_skip_line(&lx);
+                break;
+            }
+            if (!is_kw(&lx, "facet"))
+                return lex_error(&lx, LAM_ESYNTAX, "expected 'facet' or 'endsolid', found %s",
+                                 found(&lx, q, sizeof q));
+            if ((rc = stl_facet(&lx, m))) return rc;
+            facets++;
+        }
+    }
+}
+
+/* Leading whitespace (and a UTF-8 BOM), then "solid", any case. */
+static int looks_ascii(const unsigned char *data, size_t len)
+{
+    size_t i = skip_bom(data, len);
+    while (i < len && is_space(data[i])) i++;
+    return len - i >= 5 && word_eq(data + i, 5, "solid");
+}
+
+/* ---- entry -------------------------------------------------------------- */
+
+int lam_import_stl_buf(const char *path, const unsigned char *data, size_t len,
+                       lam_mesh *mesh, int *binary, lam_error *err)
+{
+    if (binary) *binary = 0;
+    if (!data) len = 0;
+    uint32_t count = len >= 84 ? rd_u32(data + 80) : 0;
+    if (len >= 84 && 84 + 50ull * count == (unsigned long long)len) {
+        if (binary) *binary = 1;
+        return stl_binary(path, data, count, mesh, err);
+    }
+    if (len && looks_ascii(data, len)) {
+        int rc = stl_ascii(path, data, len, mesh, err);
+        if (rc && rc != LAM_ENOMEM && len >= 84 && memchr(data, 0, len)) {
+            if (binary) *binary = 1;
+            return count_error(path, len, count, err);
+        }
+        return rc;
+    }
+    if (len >= 84) {
+        if (binary) *binary = 1;
+        return count_error(path, len, count, err);
+    }
+    return lam_error_set(err, LAM_EFORMAT, path, 0, 0, "file too short for a binary STL (%zu bytes)%s",
+                         len, len ? " and not an ASCII STL (no leading 'solid')" : "");
+}
