@@ -18,9 +18,9 @@
  * Binary: no face records (tri_face stays NULL: triangle i is "facet i+1"
  * in messages), so lam_mesh_add_face is never called for a binary file and a
  * binary STL cannot be appended to a mesh that already has face records.
- * Room is reserved once and the vertices and triangles are written straight
- * into the mesh arrays: three fresh vertices per facet, not welded (the model
- * layer welds exactly). Values are read little-endian byte by byte (no
+ * Room is reserved once for the triangles; vertices are welded exactly as
+ * they are read (lam_mesh_add_vertex_welded), so a closed mesh stores about
+ * half as many vertices as triangles instead of three per facet. Values are read little-endian byte by byte (no
  * alignment or host byte order assumption). A NaN/inf vertex coordinate is an
  * error at that float's byte offset; normals and the attribute word are
  * ignored, so a NaN normal (common for degenerate facets) is accepted.
@@ -231,15 +231,17 @@ static int stl_binary(const char *path, const unsigned char *data, uint32_t coun
                                    "binary STL declares %lu triangles: too many for 32-bit vertex indices",
                                    (unsigned long)count);
     if (count == 0) return LAM_OK;
-    int rc = lam_mesh_reserve(m, 3 * (size_t)count, count, err);
+    /* a closed mesh has about half as many vertices as triangles */
+    int rc = lam_mesh_reserve(m, count / 2 + 16, count, err);
     if (rc) return lam_error_set(err, rc, path, 0, 0, "out of memory for %lu triangles", (unsigned long)count);
 
-    double *xyz = m->xyz + 3 * m->nverts;
+    lam_welder wd;
+    lam_welder_init(&wd);
     uint32_t *t = m->tris + 3 * m->ntris;
-    uint32_t v = (uint32_t)m->nverts;
     const unsigned char *p = data + 84 + 12; /* first vertex of facet 1 */
     for (uint32_t i = 0; i < count; i++, p += 50) {
         uint32_t bad = 0;
+        double xyz[9];
         for (int k = 0; k < 9; k++) {
             uint32_t u = rd_u32(p + 4 * k);
             float f;
@@ -253,20 +255,22 @@ static int stl_binary(const char *path, const unsigned char *data, uint32_t coun
                 if ((u & 0x7f800000u) != 0x7f800000u) continue;
                 float f;
                 memcpy(&f, &u, sizeof f);
+                lam_welder_free(&wd);
                 return lam_error_at_offset(err, LAM_EINVAL, path, (long long)(p + 4 * k - data),
                                            "facet %lu, vertex %d: %c coordinate is not a finite number (%g)",
                                            (unsigned long)i + 1, k / 3 + 1, "xyz"[k % 3], (double)f);
             }
         }
-        t[0] = v;
-        t[1] = v + 1;
-        t[2] = v + 2;
+        for (int k = 0; k < 3; k++) {
+            if ((rc = lam_mesh_add_vertex_welded(m, &wd, xyz[3 * k], xyz[3 * k + 1], xyz[3 * k + 2], &t[k], err))) {
+                lam_welder_free(&wd);
+                return lam_error_set(err, rc, path, 0, 0, "out of memory for %lu triangles", (unsigned long)count);
+            }
+        }
         t += 3;
-        v += 3;
-        xyz += 9;
+        m->ntris++;
     }
-    m->nverts += 3 * (size_t)count;
-    m->ntris += count;
+    lam_welder_free(&wd);
     return LAM_OK;
 }
 
@@ -288,6 +292,7 @@ typedef struct stl_lex {
     long tline, tcol;
     const char *path;
     lam_error *err;
+    lam_welder *weld;
 } stl_lex;
 
 /* Whitespace: ' ', \t, \n, \v, \f, \r (a table: the lexer's inner loop). */
@@ -419,9 +424,9 @@ static int stl_facet(stl_lex *lx, lam_mesh *m)
 
     uint32_t face, a, b, c;
     if ((rc = lam_mesh_add_face(m, NULL, lx->path, fline, fcol, &face, lx->err)) ||
-        (rc = lam_mesh_add_vertex(m, v[0], v[1], v[2], &a, lx->err)) ||
-        (rc = lam_mesh_add_vertex(m, v[3], v[4], v[5], &b, lx->err)) ||
-        (rc = lam_mesh_add_vertex(m, v[6], v[7], v[8], &c, lx->err)) ||
+        (rc = lam_mesh_add_vertex_welded(m, lx->weld, v[0], v[1], v[2], &a, lx->err)) ||
+        (rc = lam_mesh_add_vertex_welded(m, lx->weld, v[3], v[4], v[5], &b, lx->err)) ||
+        (rc = lam_mesh_add_vertex_welded(m, lx->weld, v[6], v[7], v[8], &c, lx->err)) ||
         (rc = lam_mesh_add_tri(m, a, b, c, face, lx->err)))
         return mesh_error(lx, rc, fline, fcol);
     return LAM_OK;
@@ -432,17 +437,17 @@ static size_t skip_bom(const unsigned char *data, size_t len)
     return len >= 3 && data[0] == 0xef && data[1] == 0xbb && data[2] == 0xbf ? 3 : 0;
 }
 
-static int stl_ascii(const char *path, const unsigned char *data, size_t len,
-                     lam_mesh *m, lam_error *err)
+static int stl_ascii_body(const char *path, const unsigned char *data, size_t len,
+                          lam_mesh *m, lam_welder *wd, lam_error *err)
 {
     size_t bom = skip_bom(data, len);
     stl_lex lx = {
         .p = data + bom, .end = data + len, .line_start = data + bom, .line = 1,
-        .tok = data + bom, .n = 0, .tline = 1, .tcol = 1, .path = path, .err = err,
+        .tok = data + bom, .n = 0, .tline = 1, .tcol = 1, .path = path, .err = err, .weld = wd,
     };
     char q[96];
     /* A facet takes 150-300 bytes of text: reserve for the short end. */
-    int rc = lam_mesh_reserve(m, 3 * (len / 150), len / 150, err);
+    int rc = lam_mesh_reserve(m, len / 300, len / 150, err);
     if (rc) return rc;
     int solids = 0;
     for (;;) {
@@ -483,6 +488,16 @@ static int looks_ascii(const unsigned char *data, size_t len)
 }
 
 /* ---- entry -------------------------------------------------------------- */
+
+static int stl_ascii(const char *path, const unsigned char *data, size_t len,
+                     lam_mesh *m, lam_error *err)
+{
+    lam_welder wd;
+    lam_welder_init(&wd);
+    int rc = stl_ascii_body(path, data, len, m, &wd, err);
+    lam_welder_free(&wd);
+    return rc;
+}
 
 int lam_import_stl_buf(const char *path, const unsigned char *data, size_t len,
                        lam_mesh *mesh, int *binary, lam_error *err)

@@ -238,6 +238,59 @@ int lam_mesh_weld(lam_mesh *m, lam_error *err)
     return LAM_OK;
 }
 
+void lam_welder_init(lam_welder *w)
+{
+    memset(w, 0, sizeof *w);
+}
+
+void lam_welder_free(lam_welder *w)
+{
+    free(w->table);
+    lam_welder_init(w);
+}
+
+static void welder_insert(lam_welder *w, const double *xyz, uint32_t v)
+{
+    size_t h = (size_t)hash_xyz(xyz + 3 * (size_t)v) & (w->cap - 1);
+    while (w->table[h] != UINT32_MAX) h = (h + 1) & (w->cap - 1);
+    w->table[h] = v;
+}
+
+int lam_mesh_add_vertex_welded(lam_mesh *m, lam_welder *w, double x, double y, double z,
+                               uint32_t *idx, lam_error *err)
+{
+    if (2 * (w->count + 1) > w->cap) {
+        /* keep the load at most one half; rebuild from the mesh's vertices */
+        size_t cap = w->cap ? 2 * w->cap : 1024;
+        uint32_t *nt = malloc(cap * sizeof *nt);
+        if (!nt) return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory welding vertices");
+        memset(nt, 0xff, cap * sizeof *nt);
+        uint32_t *old = w->table;
+        size_t oldcap = w->cap;
+        w->table = nt;
+        w->cap = cap;
+        for (size_t i = 0; i < oldcap; i++)
+            if (old[i] != UINT32_MAX) welder_insert(w, m->xyz, old[i]);
+        free(old);
+    }
+    double p[3] = { x + 0.0, y + 0.0, z + 0.0 };
+    size_t h = (size_t)hash_xyz(p) & (w->cap - 1);
+    for (;;) {
+        uint32_t v = w->table[h];
+        if (v == UINT32_MAX) break;
+        if (same_xyz(m->xyz + 3 * (size_t)v, p)) {
+            *idx = v;
+            return LAM_OK;
+        }
+        h = (h + 1) & (w->cap - 1);
+    }
+    int rc = lam_mesh_add_vertex(m, p[0], p[1], p[2], idx, err);
+    if (rc) return rc;
+    w->table[h] = *idx;
+    w->count++;
+    return LAM_OK;
+}
+
 const char *lam_mesh_string(const lam_mesh *m, uint32_t offset)
 {
     if (offset == LAM_NO_NAME || offset >= m->strings_len) return NULL;

@@ -77,6 +77,24 @@ int lam_mesh_add_wire_seg(lam_mesh *m, uint32_t a, uint32_t b, lam_error *err);
 int lam_mesh_add_polygon(lam_mesh *m, const uint32_t *idx, const size_t *ring_len,
                          size_t nrings, uint32_t face, lam_error *err);
 
+/* Welding while importing: formats that repeat every vertex per triangle
+ * (STL) look each one up by exact position instead of storing it again,
+ * which keeps the mesh small from the start. */
+typedef struct lam_welder {
+    uint32_t *table;      /* open addressing over vertex indices */
+    size_t cap, count;
+} lam_welder;
+
+/* An empty welder (no allocation until the first vertex). */
+void lam_welder_init(lam_welder *w);
+void lam_welder_free(lam_welder *w);
+
+/* Like lam_mesh_add_vertex, but returns the index of an earlier vertex
+ * added through the same welder at bitwise the same position (-0.0 counts
+ * as 0.0). */
+int lam_mesh_add_vertex_welded(lam_mesh *m, lam_welder *w, double x, double y, double z,
+                               uint32_t *idx, lam_error *err);
+
 /* Identify vertices with bitwise-equal coordinates (-0.0 counts as 0.0),
  * drop vertices no triangle or wire uses, and renumber. Triangle order and
  * face records are kept. Linear expected time (hashing). */
