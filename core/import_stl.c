@@ -235,8 +235,10 @@ static int stl_binary(const char *path, const unsigned char *data, uint32_t coun
     int rc = lam_mesh_reserve(m, count / 2 + 16, count, err);
     if (rc) return lam_error_set(err, rc, path, 0, 0, "out of memory for %lu triangles", (unsigned long)count);
 
+    int fresh = m->nverts == 0 && m->ntris == 0;
     lam_welder wd;
     lam_welder_init(&wd);
+    if ((rc = lam_welder_reserve(&wd, m, count / 2 + 16, err))) return rc;
     uint32_t *t = m->tris + 3 * m->ntris;
     const unsigned char *p = data + 84 + 12; /* first vertex of facet 1 */
     for (uint32_t i = 0; i < count; i++, p += 50) {
@@ -271,6 +273,9 @@ static int stl_binary(const char *path, const unsigned char *data, uint32_t coun
         m->ntris++;
     }
     lam_welder_free(&wd);
+    /* every vertex came through the welder and is used: unless the mesh
+     * held something before, welding again would change nothing */
+    m->welded = fresh;
     return LAM_OK;
 }
 

@@ -170,12 +170,16 @@ static uint64_t bits_of(double d)
 
 static uint64_t hash_xyz(const double *p)
 {
-    uint64_t h = 0x9e3779b97f4a7c15ull;
-    for (int k = 0; k < 3; k++) {
-        h ^= bits_of(p[k]);
-        h *= 0xff51afd7ed558ccdull;
-        h ^= h >> 33;
-    }
+    /* floats widened to double end in 29 zero bits: mix thoroughly
+     * (murmur3's finaliser) before the low bits pick a slot */
+    uint64_t h = bits_of(p[0]) * 0x9e3779b97f4a7c15ull;
+    h = (h ^ bits_of(p[1])) * 0xc2b2ae3d27d4eb4full;
+    h = (h ^ bits_of(p[2])) * 0x165667b19e3779f9ull;
+    h ^= h >> 33;
+    h *= 0xff51afd7ed558ccdull;
+    h ^= h >> 33;
+    h *= 0xc4ceb9fe1a85ec53ull;
+    h ^= h >> 33;
     return h;
 }
 
@@ -188,7 +192,7 @@ static int same_xyz(const double *a, const double *b)
 int lam_mesh_weld(lam_mesh *m, lam_error *err)
 {
     size_t n = m->nverts;
-    if (n == 0) return LAM_OK;
+    if (n == 0 || m->welded) return LAM_OK;
     /* used[v]: referenced by a triangle or wire; only those are kept. */
     uint32_t *remap = malloc(n * sizeof *remap);
     size_t cap = 16;
@@ -249,44 +253,60 @@ void lam_welder_free(lam_welder *w)
     lam_welder_init(w);
 }
 
-static void welder_insert(lam_welder *w, const double *xyz, uint32_t v)
+/* Slots hold the hash's high half beside the vertex index, so a probe
+ * touches the vertex's coordinates only when the hashes agree. */
+#define SLOT_EMPTY UINT64_MAX
+
+static void welder_put(lam_welder *w, uint64_t h, uint32_t v)
 {
-    size_t h = (size_t)hash_xyz(xyz + 3 * (size_t)v) & (w->cap - 1);
-    while (w->table[h] != UINT32_MAX) h = (h + 1) & (w->cap - 1);
-    w->table[h] = v;
+    size_t i = (size_t)h & (w->cap - 1);
+    while (w->table[i] != SLOT_EMPTY) i = (i + 1) & (w->cap - 1);
+    w->table[i] = (h & 0xffffffff00000000ull) | v;
+}
+
+int lam_welder_reserve(lam_welder *w, const lam_mesh *m, size_t n, lam_error *err)
+{
+    size_t cap = w->cap ? w->cap : 1024;
+    while (cap < 2 * n) cap *= 2;
+    if (cap == w->cap) return LAM_OK;
+    uint64_t *nt = malloc(cap * sizeof *nt);
+    if (!nt) return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory welding vertices");
+    memset(nt, 0xff, cap * sizeof *nt);
+    uint64_t *old = w->table;
+    size_t oldcap = w->cap;
+    w->table = nt;
+    w->cap = cap;
+    for (size_t i = 0; i < oldcap; i++)
+        if (old[i] != SLOT_EMPTY) {
+            uint32_t v = (uint32_t)old[i];
+            welder_put(w, hash_xyz(m->xyz + 3 * (size_t)v), v);
+        }
+    free(old);
+    return LAM_OK;
 }
 
 int lam_mesh_add_vertex_welded(lam_mesh *m, lam_welder *w, double x, double y, double z,
                                uint32_t *idx, lam_error *err)
 {
     if (2 * (w->count + 1) > w->cap) {
-        /* keep the load at most one half; rebuild from the mesh's vertices */
-        size_t cap = w->cap ? 2 * w->cap : 1024;
-        uint32_t *nt = malloc(cap * sizeof *nt);
-        if (!nt) return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory welding vertices");
-        memset(nt, 0xff, cap * sizeof *nt);
-        uint32_t *old = w->table;
-        size_t oldcap = w->cap;
-        w->table = nt;
-        w->cap = cap;
-        for (size_t i = 0; i < oldcap; i++)
-            if (old[i] != UINT32_MAX) welder_insert(w, m->xyz, old[i]);
-        free(old);
+        int rc = lam_welder_reserve(w, m, w->count + 1 > 512 ? 2 * w->count : 512, err);
+        if (rc) return rc;
     }
     double p[3] = { x + 0.0, y + 0.0, z + 0.0 };
-    size_t h = (size_t)hash_xyz(p) & (w->cap - 1);
+    uint64_t h = hash_xyz(p), tag = h & 0xffffffff00000000ull;
+    size_t i = (size_t)h & (w->cap - 1);
     for (;;) {
-        uint32_t v = w->table[h];
-        if (v == UINT32_MAX) break;
-        if (same_xyz(m->xyz + 3 * (size_t)v, p)) {
-            *idx = v;
+        uint64_t slot = w->table[i];
+        if (slot == SLOT_EMPTY) break;
+        if ((slot & 0xffffffff00000000ull) == tag && same_xyz(m->xyz + 3 * (size_t)(uint32_t)slot, p)) {
+            *idx = (uint32_t)slot;
             return LAM_OK;
         }
-        h = (h + 1) & (w->cap - 1);
+        i = (i + 1) & (w->cap - 1);
     }
     int rc = lam_mesh_add_vertex(m, p[0], p[1], p[2], idx, err);
     if (rc) return rc;
-    w->table[h] = *idx;
+    w->table[i] = tag | *idx;
     w->count++;
     return LAM_OK;
 }

@@ -38,6 +38,8 @@ typedef struct lam_mesh {
     uint32_t *wires;      /* 2 per wire segment */
     size_t nwire_segs, cap_wire_segs;
     size_t nwires;        /* wire statements read */
+    int welded;           /* set by an importer whose vertices are already
+                             distinct and all used: lam_mesh_weld has nothing to do */
     char *strings;        /* NUL-terminated strings, referenced by offset */
     size_t strings_len, strings_cap;
 } lam_mesh;
@@ -81,13 +83,17 @@ int lam_mesh_add_polygon(lam_mesh *m, const uint32_t *idx, const size_t *ring_le
  * (STL) look each one up by exact position instead of storing it again,
  * which keeps the mesh small from the start. */
 typedef struct lam_welder {
-    uint32_t *table;      /* open addressing over vertex indices */
+    uint64_t *table;      /* open addressing: hash tag << 32 | vertex index */
     size_t cap, count;
 } lam_welder;
 
 /* An empty welder (no allocation until the first vertex). */
 void lam_welder_init(lam_welder *w);
 void lam_welder_free(lam_welder *w);
+
+/* Make room for n distinct vertices without rehashing (m: the mesh whose
+ * vertices the welder indexes). */
+int lam_welder_reserve(lam_welder *w, const lam_mesh *m, size_t n, lam_error *err);
 
 /* Like lam_mesh_add_vertex, but returns the index of an earlier vertex
  * added through the same welder at bitwise the same position (-0.0 counts

@@ -365,6 +365,7 @@ int lam_model_from_mesh(lam_mesh *mesh, const char *path, const char *format,
     }
     lam_mesh *m = &md->mesh;
     size_t collapsed = drop_collapsed(m);
+    if (collapsed) m->welded = 0; /* their vertices may now be unused */
     if (m->ntris == 0) {
         rc = lam_error_set(err, LAM_EGEOM, path, 0, 0, "the model has no triangles (nothing to slice)");
         goto fail;
@@ -376,7 +377,10 @@ int lam_model_from_mesh(lam_mesh *mesh, const char *path, const char *format,
         rc = lam_error_set(err, LAM_EGEOM, path, 0, 0, "the model has no triangles with area");
         goto fail;
     }
-    if (welded_away && (rc = lam_mesh_weld(m, err))) goto fail; /* drop vertices only they used */
+    if (welded_away) {
+        m->welded = 0;
+        if ((rc = lam_mesh_weld(m, err))) goto fail; /* drop vertices only they used */
+    }
     if ((rc = build_edges(m, &md->edges, err))) goto fail;
     if ((rc = build_shells(md, err))) goto fail;
     if ((rc = index_shells(md, err))) goto fail;
