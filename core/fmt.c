@@ -1,6 +1,7 @@
 #include "fmt.h"
 
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -23,12 +24,32 @@ size_t lam_fmt_fixed(char *buf, double x, int d)
     unsigned long long q = (unsigned long long)fl;
     double r = t + e;                   /* its sign is the exact sum's sign */
     if (r > 0 || (r == 0 && (q & 1))) q++;
+    static const char pairs[] = "00010203040506070809101112131415161718192021222324252627282930313233343536373839"
+                                "40414243444546474849505152535455565758596061626364656667686970717273747576777879"
+                                "8081828384858687888990919293949596979899";
     char tmp[32];
     int n = 0;
-    do {
-        tmp[n++] = (char)('0' + q % 10);
-        q /= 10;
-    } while (q || n <= d);             /* at least one digit before the point */
+    while (q >= 100000000) { /* 64-bit divisions only for the high part */
+        unsigned lo2 = (unsigned)(q % 100);
+        q /= 100;
+        tmp[n++] = pairs[2 * lo2 + 1];
+        tmp[n++] = pairs[2 * lo2];
+    }
+    uint32_t q32 = (uint32_t)q;
+    while (q32 >= 10) {
+        unsigned lo2 = q32 % 100;
+        if (q32 < 100) {
+            tmp[n++] = pairs[2 * lo2 + 1];
+            tmp[n++] = pairs[2 * lo2];
+            q32 = 0;
+            break;
+        }
+        q32 /= 100;
+        tmp[n++] = pairs[2 * lo2 + 1];
+        tmp[n++] = pairs[2 * lo2];
+    }
+    if (q32 || n == 0) tmp[n++] = (char)('0' + q32);
+    while (n <= d) tmp[n++] = '0';    /* at least one digit before the point */
     size_t len = 0;
     if (signbit(x)) buf[len++] = '-';
     for (int i = n - 1; i >= 0; i--) {

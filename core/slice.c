@@ -251,15 +251,33 @@ int lam_slicer_new(const lam_model *m, const lam_slice_opts *opts, lam_slicer **
         double lo = s->planes[i], hi = s->planes[i + 1];
         s->cuts[i] = opts->cut == LAM_CUT_FLOOR ? lo : opts->cut == LAM_CUT_CEILING ? hi : lo + (hi - lo) / 2;
     }
+    /* uniform layers let the layer be guessed from the height; the guess is
+     * checked against the cuts themselves, and binary search takes over
+     * where it is off (adaptive widths) */
+    double c0 = s->cuts[0], step = S > 1 ? (s->cuts[S - 1] - c0) / (double)(S - 1) : 0;
+#define AT_OR_ABOVE(i) (s->up ? s->cuts[i] >= lo : s->cuts[i] > lo)
     for (size_t e = 0; e < ne; e++) {
         double lo = edge_lo(s, (uint32_t)e), hi = edge_hi(s, (uint32_t)e);
         /* first layer with lo below its cut: cut >= lo (up) or cut > lo */
-        size_t a = 0, z = S;
-        while (a < z) {
-            size_t mid = (a + z) / 2;
-            if (s->up ? s->cuts[mid] >= lo : s->cuts[mid] > lo) z = mid;
-            else a = mid + 1;
+        size_t a;
+        double g = step > 0 ? ceil((lo - c0) / step) : 0;
+        size_t guess = g <= 0 ? 0 : g >= (double)S ? S : (size_t)g;
+        if (guess < S && AT_OR_ABOVE(guess) && (guess == 0 || !AT_OR_ABOVE(guess - 1))) {
+            a = guess;
+        } else if (guess + 1 < S && AT_OR_ABOVE(guess + 1) && !AT_OR_ABOVE(guess)) {
+            a = guess + 1;
+        } else if (guess == S && !AT_OR_ABOVE(S - 1)) {
+            a = S;
+        } else {
+            size_t z = S;
+            a = 0;
+            while (a < z) {
+                size_t mid = (a + z) / 2;
+                if (AT_OR_ABOVE(mid)) z = mid;
+                else a = mid + 1;
+            }
         }
+#undef AT_OR_ABOVE
         int crosses = a < S && (s->up ? hi > s->cuts[a] : hi >= s->cuts[a]);
         bucket[e] = crosses ? (uint32_t)a : NONE;
         if (crosses) s->layer_first[a + 1]++;
