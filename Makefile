@@ -11,8 +11,11 @@ PREFIX  ?= /usr/local
 OPT     ?= -O2 -g
 BUILD   ?= build
 
+PLUGIN_OUT := plugins
+
 ifeq ($(SAN),1)
 BUILD    := build-san
+PLUGIN_OUT := build-san/plugins
 OPT      := -O1 -g
 SANFLAGS := -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all
 endif
@@ -25,7 +28,7 @@ DEPS_PKGS := gcc make perl liblua5.4-dev libyaml-dev libembree-dev libgeos-dev \
 CPPFLAGS += -Icore -D_POSIX_C_SOURCE=200809L
 CFLAGS   += -std=c11 -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes $(OPT) $(SANFLAGS)
 LDFLAGS  += $(SANFLAGS)
-LDLIBS   += -lgeos_c -lm
+LDLIBS   += -lyaml -lgeos_c -ldl -lm
 
 CORE_SRC  := $(sort $(wildcard core/*.c))
 CORE_OBJ  := $(CORE_SRC:%.c=$(BUILD)/%.o)
@@ -33,14 +36,26 @@ CLI_SRC   := $(sort $(wildcard lua/*.c))
 CLI_OBJ   := $(CLI_SRC:%.c=$(BUILD)/%.o)
 UNIT_SRC  := $(sort $(wildcard tests/unit/test_*.c))
 UNIT_BIN  := $(UNIT_SRC:tests/unit/%.c=$(BUILD)/tests/%.t)
+# Plugins that only tests load (bad ABI, missing symbol, ...).
+TEST_PLUGIN_SO := $(patsubst tests/plugins/%.c,$(BUILD)/tests/plugins/%.so,$(wildcard tests/plugins/*.c))
 
 LIB     := $(BUILD)/liblamina.a
 LAMINA  := $(BUILD)/lamina
 
+# Plugins: plugins/NAME/*.c -> plugins/NAME.so (build-san/plugins/NAME.so
+# under SAN=1, found first by a sanitized lamina).
+PLUGIN_NAMES := $(patsubst plugins/%/,%,$(sort $(dir $(wildcard plugins/*/*.c))))
+PLUGIN_SO    := $(PLUGIN_NAMES:%=$(PLUGIN_OUT)/%.so)
+
 .PHONY: all deps run test check clean install bench
 .DEFAULT_GOAL := all
+.SECONDEXPANSION:
 
-all: $(LAMINA) $(LIB)
+all: $(LAMINA) $(LIB) $(PLUGIN_SO)
+
+$(PLUGIN_OUT)/%.so: $$(wildcard plugins/%/*.c) core/lamina_plugin.h
+	@mkdir -p $(dir $@)
+	$(CC) $(CPPFLAGS) $(CFLAGS) -fPIC -shared -o $@ $(filter %.c,$^) $(LDFLAGS)
 
 $(BUILD)/%.o: %.c
 	@mkdir -p $(dir $@)
@@ -86,8 +101,12 @@ run: deps
 
 # Tests: C unit tests are compiled to TAP programs; tests/cli/*.t are shell
 # scripts that drive the executable. prove runs both and prints the summary.
-check: $(LAMINA) $(UNIT_BIN)
-	LAMINA=$(abspath $(LAMINA)) TESTS=$(abspath tests) \
+$(BUILD)/tests/plugins/%.so: tests/plugins/%.c core/lamina_plugin.h
+	@mkdir -p $(dir $@)
+	$(CC) $(CPPFLAGS) $(CFLAGS) -fPIC -shared -o $@ $< $(LDFLAGS)
+
+check: all $(UNIT_BIN) $(TEST_PLUGIN_SO)
+	LAMINA=$(abspath $(LAMINA)) TESTS=$(abspath tests) BUILD=$(abspath $(BUILD)) \
 	  prove --exec '' $(UNIT_BIN) $(sort $(wildcard tests/cli/*.t))
 
 test: deps
@@ -102,8 +121,11 @@ install: all
 	install -m 755 $(LAMINA) $(DESTDIR)$(PREFIX)/bin/lamina
 	install -m 644 $(LIB) $(DESTDIR)$(PREFIX)/lib/liblamina.a
 	install -m 644 core/*.h $(DESTDIR)$(PREFIX)/include/lamina/
+	install -d $(DESTDIR)$(PREFIX)/share/lamina/machines $(DESTDIR)$(PREFIX)/lib/lamina/plugins
+	install -m 644 machines/*.yaml $(DESTDIR)$(PREFIX)/share/lamina/machines/
+	$(if $(PLUGIN_SO),install -m 755 $(PLUGIN_SO) $(DESTDIR)$(PREFIX)/lib/lamina/plugins/)
 
 clean:
-	rm -rf build build-san build-bench out
+	rm -rf build build-san build-bench out $(PLUGIN_SO)
 
 -include $(CORE_OBJ:.o=.d) $(CLI_OBJ:.o=.d)

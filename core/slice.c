@@ -304,6 +304,11 @@ fail:
 
 size_t lam_slicer_count(const lam_slicer *s) { return s->nlayers; }
 const double *lam_slicer_planes(const lam_slicer *s) { return s->planes; }
+double lam_slicer_cut(const lam_slicer *s, size_t i)
+{
+    return i < s->nlayers ? s->cuts[i] : NAN;
+}
+
 void lam_slicer_uv_bounds(const lam_slicer *s, double box[4])
 {
     box[0] = box[1] = INFINITY;

@@ -113,6 +113,9 @@ size_t lam_slicer_count(const lam_slicer *s);
 /* Layer boundaries a(0) .. a(S) (S + 1 values). */
 const double *lam_slicer_planes(const lam_slicer *s);
 
+/* Cut height of layer i (0 <= i < count). */
+double lam_slicer_cut(const lam_slicer *s, size_t i);
+
 /* The model's extent in the layer frame: umin vmin umax vmax. */
 void lam_slicer_uv_bounds(const lam_slicer *s, double box[4]);
 

@@ -242,7 +242,10 @@ int lam_mesh_add_polygon(lam_mesh *m, const uint32_t *idx, const size_t *ring_le
     for (size_t i = 0; i < ring_len[0]; i++)
         area2 += px(m, p, idx[i]) * py(m, p, idx[(i + 1) % ring_len[0]]) -
                  px(m, p, idx[(i + 1) % ring_len[0]]) * py(m, p, idx[i]);
-    if (nrings == 1 && is_convex(m, p, idx, total)) {
+    /* Convex faces fan directly. So do faces without area (all points in
+     * a line): their triangles are degenerate, which the model reports and
+     * the slicer survives, where refusing them would stop the whole import. */
+    if (nrings == 1 && (area2 == 0 || is_convex(m, p, idx, total))) {
         for (size_t i = 1; i + 1 < total; i++) {
             int rc = lam_mesh_add_tri(m, idx[0], idx[i], idx[i + 1], face, err);
             if (rc) return rc;
@@ -250,6 +253,6 @@ int lam_mesh_add_polygon(lam_mesh *m, const uint32_t *idx, const size_t *ring_le
         return LAM_OK;
     }
     if (area2 == 0)
-        return lam_error_set(err, LAM_EGEOM, NULL, 0, 0, "face has zero area");
+        return lam_error_set(err, LAM_EGEOM, NULL, 0, 0, "face with holes has an outline of zero area");
     return geos_triangulate(m, p, idx, ring_len, nrings, total, area2, face, err);
 }

@@ -1,0 +1,78 @@
+/* Command templates of a machine dialect, and the sink that writes a plan
+ * through them.
+ *
+ * A template is literal text with fields: `{field}` or `{field:%.5f}`
+ * (a printf-style conversion, restricted to one of d i f F e E g G with
+ * optional flags "-+ 0#", width and precision up to 40; %s for text fields).
+ * `{{` and `}}` stand for literal braces. Each command has a fixed set of
+ * fields; naming any other is an error when the profile loads. A template
+ * may span several lines; each emitted command ends with a newline. An
+ * absent command emits nothing; an empty string emits an empty line.
+ *
+ * Fields by command:
+ *   preamble, postamble   name process units layers dimension bead rate travel_rate
+ *                         xmin ymin zmin xmax ymax zmax
+ *   layer, layer_end      index number z width floor ceiling
+ *   feed                  rate
+ *   laser_on, laser_off   rate
+ *   travel, deposit       dx dy dz x y z rate
+ *   contour_begin, contour_end, polyline
+ *                         index id dir kind depth n z points
+ *   loop_begin, loop_end  n z
+ *   vertex                x y z i
+ *   separator             (none: written between two contour blocks)
+ * `dir` is 1 for solids (counter-clockwise) and 0 for holes; `kind` is the
+ * text "solid" or "hole"; `number` is index + 1; `points` expands to
+ * x,y,x,y,... (layer-plane coordinates in the output frame, each number with
+ * the field's format, default %.6f), repeating the first point when the
+ * dialect says `close_polylines: true`; `n` counts the points written. */
+#ifndef LAM_DIALECT_H
+#define LAM_DIALECT_H
+
+#include <stddef.h>
+
+#include "error.h"
+#include "plan.h"
+#include "writer.h"
+
+typedef enum lam_cmd {
+    LAM_CMD_PREAMBLE, LAM_CMD_POSTAMBLE, LAM_CMD_LAYER, LAM_CMD_LAYER_END,
+    LAM_CMD_FEED, LAM_CMD_LASER_ON, LAM_CMD_LASER_OFF, LAM_CMD_TRAVEL, LAM_CMD_DEPOSIT,
+    LAM_CMD_CONTOUR_BEGIN, LAM_CMD_CONTOUR_END, LAM_CMD_LOOP_BEGIN, LAM_CMD_LOOP_END,
+    LAM_CMD_VERTEX, LAM_CMD_POLYLINE, LAM_CMD_SEPARATOR,
+    LAM_CMD_COUNT
+} lam_cmd;
+
+/* The YAML key of a command ("preamble", "laser_on", ...). */
+const char *lam_cmd_name(lam_cmd c);
+
+typedef struct lam_tseg lam_tseg; /* private */
+
+typedef struct lam_template {
+    int present;             /* 0: the command emits nothing */
+    char *source;            /* the template text as written (owned) */
+    lam_tseg *segs;          /* parsed form (owned) */
+    size_t nsegs;
+} lam_template;
+
+typedef struct lam_dialect {
+    lam_template cmd[LAM_CMD_COUNT];
+    int close_polylines;     /* `points` repeats the first point */
+} lam_dialect;
+
+/* Parse `text` as the template of command c into *t. On error returns
+ * LAM_EINVAL with err->msg saying what is wrong and *offset the byte offset
+ * in text where it is (the profile loader turns that into line:column). */
+int lam_template_parse(lam_cmd c, const char *text, lam_template *t, size_t *offset, lam_error *err);
+
+void lam_template_free(lam_template *t);
+void lam_dialect_free(lam_dialect *d);
+
+/* A sink that writes through the dialect's templates to w (not owned;
+ * the caller commits or aborts it). Relative moves (dx dy dz) are measured
+ * from the stage position, which starts at job->origin. The `rate` field of
+ * travel/deposit/laser commands is the job's travel_rate or rate. Errors go
+ * to err, which must outlive the sink. */
+int lam_dialect_sink(const lam_dialect *d, lam_writer *w, lam_error *err, lam_sink *out);
+
+#endif

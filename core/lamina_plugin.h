@@ -1,0 +1,70 @@
+/* lamina plugin ABI. A plugin is a shared object exporting
+ *
+ *     int lamina_plugin_init(const struct lamina_host *host);
+ *
+ * which registers what it provides through the host's function pointers and
+ * returns 0 (non-zero refuses to load, with host->set_error's message).
+ *
+ * Compatibility rules (as SQLite's sqlite3ext.h): every struct starts with
+ * its own size and only ever grows at its end; LAMINA_PLUGIN_ABI changes
+ * only when an existing member changes meaning. The host refuses a plugin
+ * built for another ABI (it checks lamina_plugin_abi, which
+ * LAMINA_PLUGIN_DECLARE defines), and reads a plugin's struct members only
+ * up to the size the plugin declared. This header is all a plugin needs. */
+#ifndef LAMINA_PLUGIN_H
+#define LAMINA_PLUGIN_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#define LAMINA_PLUGIN_ABI 1
+
+/* Every plugin says which ABI it was built for; put this line once in it. */
+#define LAMINA_PLUGIN_DECLARE \
+    const uint32_t lamina_plugin_abi = LAMINA_PLUGIN_ABI
+
+struct lamina_job {
+    size_t size;               /* sizeof(struct lamina_job) of the host */
+    const char *machine;       /* profile name */
+    const char *process;       /* "ladrp" or "sls" */
+    const char *units;
+    size_t layers;
+    double bbox[6];            /* min xyz, max xyz (output frame) */
+    double bead;               /* bead or spot width */
+};
+
+/* Output bytes go through the host: the host owns the file (atomic: it
+ * appears only if the whole job succeeds). */
+struct lamina_out;
+
+/* A writer for contour-based programs (one polyline per contour). */
+struct lamina_writer {
+    size_t size;               /* sizeof(struct lamina_writer) of the plugin */
+    const char *name;          /* what a profile names in `writer:` */
+    const char *description;
+    /* Start a job; return a state pointer, or NULL after host->set_error. */
+    void *(*begin)(struct lamina_out *out, const struct lamina_job *job);
+    int (*layer)(void *state, size_t index, double z);
+    /* One closed contour: n points (x, y pairs in the layer plane), solid 1
+     * for counter-clockwise solids, 0 for clockwise holes; id counts from 1. */
+    int (*polyline)(void *state, size_t id, int solid, const double *xy, size_t n);
+    /* Finish (write trailers) and free state; non-zero on failure. */
+    int (*end)(void *state);
+    /* Free state after a failure elsewhere; nothing more is written. */
+    void (*abort)(void *state);
+};
+
+struct lamina_host {
+    size_t size;               /* sizeof(struct lamina_host) of the host */
+    uint32_t abi;              /* LAMINA_PLUGIN_ABI of the host */
+    const char *version;       /* lamina's version text */
+    /* Register a writer; the struct must stay valid while the plugin is loaded. */
+    int (*register_writer)(const struct lamina_host *host, const struct lamina_writer *w);
+    /* Append bytes to the output; non-zero when writing failed. */
+    int (*write)(struct lamina_out *out, const void *data, size_t len);
+    /* Record why the plugin failed (printf-style). */
+    void (*set_error)(const struct lamina_host *host, const char *fmt, ...);
+    /* New members go here, at the end, only. */
+};
+
+#endif

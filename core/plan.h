@@ -1,0 +1,63 @@
+/* Planning: planners turn layers into machine operations and hand them to a
+ * sink, which writes them in some dialect (text templates from a machine
+ * profile, or a plugin writer such as binary CLI).
+ *
+ * Coordinates given to a sink are in the output frame: model coordinates
+ * (x, y, z) by default, or the layer frame (u, v, w) when the profile says
+ * `frame: machine`. Operations arrive in order: begin, then per layer
+ * `layer`, its operations, `layer_end`; finally end. A sink returns LAM_OK or
+ * an error code (and may fill the lam_error it was given at creation). */
+#ifndef LAM_PLAN_H
+#define LAM_PLAN_H
+
+#include <stddef.h>
+
+#include "error.h"
+
+/* What a whole job looks like, for preambles and headers. */
+typedef struct lam_job_info {
+    const char *name;        /* machine profile name */
+    const char *process;     /* "ladrp" or "sls" */
+    const char *units;       /* what one model unit is, e.g. "mm" */
+    size_t layers;           /* number of layers that will follow */
+    double bbox[6];          /* model bounding box in the output frame: min xyz, max xyz */
+    double bead;             /* bead (LADRP) or spot (SLS) width */
+    double rate;             /* deposit feed rate */
+    double travel_rate;      /* travel feed rate */
+    double origin[3];        /* where the stage starts: the model origin in the layer
+                                plane, at the first layer's build height (output frame) */
+} lam_job_info;
+
+typedef struct lam_layer_info {
+    size_t index;            /* 0-based */
+    double z;                /* build height of the section (the cut height) */
+    double width, floor, ceiling;
+} lam_layer_info;
+
+/* One closed contour for contour-based processes (SLS, CLI). */
+typedef struct lam_contour_info {
+    size_t id;               /* 1-based within the job */
+    int solid;               /* 1 solid (counter-clockwise), 0 hole (clockwise) */
+    int depth;
+    double z;                /* build height */
+    const double *xyz;       /* n points, 3 doubles each, output frame, no repeated closing point */
+    const double *uv;        /* the same points in the layer frame (2 doubles each) */
+    size_t n;
+} lam_contour_info;
+
+typedef struct lam_sink {
+    void *ctx;
+    int (*begin)(void *ctx, const lam_job_info *job);
+    int (*layer)(void *ctx, const lam_layer_info *layer);
+    int (*layer_end)(void *ctx, const lam_layer_info *layer);
+    int (*feed)(void *ctx, double rate);
+    int (*laser)(void *ctx, int on);
+    /* move the stage to xyz (absolute, output frame); deposit: laser on */
+    int (*move)(void *ctx, int deposit, const double xyz[3]);
+    int (*contour)(void *ctx, const lam_contour_info *c);
+    int (*end)(void *ctx);
+    /* release ctx; called exactly once, after end or instead of it */
+    void (*destroy)(void *ctx);
+} lam_sink;
+
+#endif

@@ -1,0 +1,182 @@
+/* The LADRP raster planner; see planner.h for the rules. */
+#include "planner.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+typedef struct xedge {
+    double vlo, vhi;       /* v of the lower and upper end (rotated frame) */
+    double ulo, uhi;       /* u of the same ends */
+} xedge;
+
+static int cmp_vhi_desc(const void *a, const void *b)
+{
+    const xedge *p = a, *q = b;
+    if (p->vhi != q->vhi) return p->vhi > q->vhi ? -1 : 1;
+    if (p->vlo != q->vlo) return p->vlo > q->vlo ? -1 : 1;
+    if (p->ulo != q->ulo) return p->ulo < q->ulo ? -1 : 1;
+    return (p->uhi > q->uhi) - (p->uhi < q->uhi);
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* Exact cosine and sine for multiples of 90 degrees. */
+static void rotation(double deg, double *c, double *s)
+{
+    double r = fmod(deg, 360.0);
+    if (r < 0) r += 360.0;
+    if (r == 0) { *c = 1; *s = 0; }
+    else if (r == 90) { *c = 0; *s = 1; }
+    else if (r == 180) { *c = -1; *s = 0; }
+    else if (r == 270) { *c = 0; *s = -1; }
+    else {
+        double a = r * 3.14159265358979323846 / 180.0;
+        *c = cos(a);
+        *s = sin(a);
+    }
+}
+
+typedef struct emitter {
+    const lam_sink *sink;
+    const lam_frame *f;
+    const lam_plan_opts *o;
+    double c, s, w;        /* rotation of the scan frame; layer height */
+    double *pos;           /* stage, output frame */
+    double ur, vr;         /* stage in the scan frame */
+    int *laser;
+    lam_ladrp_stats *st;
+} emitter;
+
+static void to_output(const emitter *e, double ur, double vr, double out[3])
+{
+    double u = e->s == 0 ? ur * e->c : ur * e->c - vr * e->s;
+    double v = e->s == 0 ? vr * e->c : ur * e->s + vr * e->c;
+    if (e->o->frame_machine) {
+        out[0] = u;
+        out[1] = v;
+        out[2] = e->w;
+    } else {
+        lam_frame_to_model(e->f, u, v, e->w, out);
+    }
+}
+
+static int laser(emitter *e, int on)
+{
+    if (*e->laser == on) return LAM_OK;
+    int rc = e->sink->laser ? e->sink->laser(e->sink->ctx, on) : LAM_OK;
+    if (!rc && on && e->sink->feed) rc = e->sink->feed(e->sink->ctx, e->o->rate);
+    *e->laser = on;
+    return rc;
+}
+
+static int move(emitter *e, int deposit, double ur, double vr)
+{
+    int rc = laser(e, deposit);
+    if (rc) return rc;
+    double p[3];
+    to_output(e, ur, vr, p);
+    double len = hypot(ur - e->ur, vr - e->vr);
+    if (deposit) e->st->deposit_length += len;
+    else e->st->travel_length += len;
+    e->ur = ur;
+    e->vr = vr;
+    memcpy(e->pos, p, sizeof p);
+    return e->sink->move ? e->sink->move(e->sink->ctx, deposit, p) : LAM_OK;
+}
+
+int lam_plan_ladrp_layer(const lam_layer *L, const lam_frame *f, const lam_plan_opts *o,
+                         const lam_sink *sink, double pos[3], int *laser_state, lam_ladrp_stats *st,
+                         lam_error *err)
+{
+    memset(st, 0, sizeof *st);
+    if (!(o->bead > 0) || !isfinite(o->bead))
+        return lam_error_set(err, LAM_EUSAGE, NULL, 0, 0, "bead width must be positive");
+    emitter e = { sink, f, o, 1, 0, L->cut, pos, 0, 0, laser_state, st };
+    rotation(o->angle + (double)L->index * o->angle_step, &e.c, &e.s);
+
+    /* the layer's edges in the scan frame (rotated by -angle) */
+    xedge *edges = malloc((L->npoints + 1) * sizeof *edges);
+    double *xs = malloc((L->npoints + 1) * sizeof *xs);
+    uint32_t *active = malloc((L->npoints + 1) * sizeof *active);
+    if (!edges || !xs || !active) {
+        free(edges);
+        free(xs);
+        free(active);
+        return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory planning a layer");
+    }
+    size_t ne = 0;
+    double vmin = INFINITY, vmax = -INFINITY;
+    for (size_t k = 0; k < L->ncontours; k++) {
+        const lam_contour *c = &L->contours[k];
+        for (size_t i = 0; i < c->n; i++) {
+            size_t j = (i + 1) % c->n;
+            const double *p = L->uv + 2 * (c->first + i), *q = L->uv + 2 * (c->first + j);
+            double pu = e.s == 0 ? p[0] * e.c : p[0] * e.c + p[1] * e.s;
+            double pv = e.s == 0 ? p[1] * e.c : -p[0] * e.s + p[1] * e.c;
+            double qu = e.s == 0 ? q[0] * e.c : q[0] * e.c + q[1] * e.s;
+            double qv = e.s == 0 ? q[1] * e.c : -q[0] * e.s + q[1] * e.c;
+            if (pv < vmin) vmin = pv;
+            if (pv > vmax) vmax = pv;
+            if (pv == qv) continue; /* along the scan direction: never crossed */
+            xedge *x = &edges[ne++];
+            if (pv < qv) { x->vlo = pv; x->ulo = pu; x->vhi = qv; x->uhi = qu; }
+            else { x->vlo = qv; x->ulo = qu; x->vhi = pv; x->uhi = pu; }
+        }
+    }
+    if (ne) qsort(edges, ne, sizeof *edges, cmp_vhi_desc);
+
+    int rc = LAM_OK;
+    double d = o->bead;
+    double y0 = o->first_center ? vmax - d / 2 : vmax;
+    size_t ins = 0, nact = 0, emitted = 0;
+    for (size_t k = 0; ne && rc == LAM_OK; k++) {
+        double y = y0 - (double)k * d; /* never accumulated */
+        if (!(y > vmin)) break;
+        /* the line is evaluated just below y: an edge counts when vlo < y <= vhi */
+        while (ins < ne && edges[ins].vhi >= y) active[nact++] = (uint32_t)ins++;
+        size_t keep = 0, nx = 0;
+        for (size_t a = 0; a < nact; a++) {
+            const xedge *x = &edges[active[a]];
+            if (!(x->vlo < y)) continue; /* passed: lines only go down */
+            active[keep++] = active[a];
+            double t = (y - x->vlo) / (x->vhi - x->vlo);
+            xs[nx++] = x->ulo == x->uhi ? x->ulo : (1 - t) * x->ulo + t * x->uhi;
+        }
+        nact = keep;
+        nx &= ~(size_t)1; /* an odd count only comes from a degenerate layer */
+        if (nx == 0) continue;
+        qsort(xs, nx, sizeof *xs, cmp_double);
+        int backward = o->alternate && emitted % 2 == 1;
+        size_t ndep = 0;
+        for (size_t i = 0; i < nx / 2 && !rc; i++) {
+            size_t pi = backward ? nx / 2 - 1 - i : i;
+            double a = xs[2 * pi], b = xs[2 * pi + 1];
+            if (b - a < o->min_deposit || !(b > a)) continue;
+            double from = backward ? b : a, to = backward ? a : b;
+            if (emitted == 0 && ndep == 0) {
+                /* the thesis's approach: one bead above the first line, then down */
+                rc = move(&e, 0, from, y + d);
+                if (!rc) rc = move(&e, 0, from, y);
+            } else if (e.ur != from || e.vr != y) {
+                rc = move(&e, 0, from, y);
+            }
+            if (!rc) rc = move(&e, 1, to, y);
+            ndep++;
+            st->deposits++;
+        }
+        if (ndep) {
+            emitted++;
+            st->lines++;
+        }
+    }
+    if (!rc) rc = laser(&e, 0);
+    free(edges);
+    free(xs);
+    free(active);
+    return rc;
+}

@@ -1,0 +1,81 @@
+/* lam_plan_run: one slicing run through a planner into a sink. */
+#include "planner.h"
+
+#include <math.h>
+#include <string.h>
+
+void lam_plan_opts_init(lam_plan_opts *o)
+{
+    memset(o, 0, sizeof *o);
+    o->kind = LAM_PLAN_SLS;
+    o->name = "lamina";
+    o->units = "mm";
+    o->bead = 1;
+    o->alternate = 1;
+}
+
+static void job_bbox(const lam_slicer *s, const lam_model *m, const lam_plan_opts *o, double bb[6])
+{
+    if (!o->frame_machine) {
+        memcpy(bb, m->stats.bbox, 6 * sizeof *bb);
+        return;
+    }
+    double box[4];
+    lam_slicer_uv_bounds(s, box);
+    const double *planes = lam_slicer_planes(s);
+    bb[0] = box[0];
+    bb[1] = box[1];
+    bb[3] = box[2];
+    bb[4] = box[3];
+    bb[2] = planes[0];
+    bb[5] = planes[lam_slicer_count(s)];
+}
+
+int lam_plan_run(lam_slicer *s, const lam_model *m, const lam_plan_opts *o, const lam_sink *sink,
+                 lam_layer_cb cb, void *cbctx, lam_error *err)
+{
+    const lam_frame *f = lam_slicer_frame(s);
+    lam_job_info job;
+    memset(&job, 0, sizeof job);
+    job.name = o->name;
+    job.process = o->kind == LAM_PLAN_LADRP ? "ladrp" : "sls";
+    job.units = o->units;
+    job.layers = lam_slicer_count(s);
+    job.bead = o->bead;
+    job.rate = o->rate;
+    job.travel_rate = o->travel_rate;
+    job_bbox(s, m, o, job.bbox);
+    /* the stage starts at the model origin of the first layer's plane */
+    double cut0 = job.layers ? lam_slicer_cut(s, 0) : 0;
+    if (o->frame_machine) {
+        job.origin[0] = job.origin[1] = 0;
+        job.origin[2] = cut0;
+    } else {
+        lam_frame_to_model(f, 0, 0, cut0, job.origin);
+    }
+    int rc = sink->begin ? sink->begin(sink->ctx, &job) : LAM_OK;
+    double pos[3] = { job.origin[0], job.origin[1], job.origin[2] };
+    int laser = -1;
+    size_t next_id = 1;
+    while (!rc) {
+        lam_layer *L;
+        if ((rc = lam_slicer_next(s, &L, err))) break;
+        if (!L) break;
+        if (cb) rc = cb(cbctx, L, err);
+        lam_layer_info li = { L->index, L->cut, L->width, L->floor, L->ceiling };
+        if (!rc && sink->layer) rc = sink->layer(sink->ctx, &li);
+        if (!rc) {
+            if (o->kind == LAM_PLAN_LADRP) {
+                lam_ladrp_stats st;
+                rc = lam_plan_ladrp_layer(L, f, o, sink, pos, &laser, &st, err);
+            } else {
+                rc = lam_plan_sls_layer(L, f, o, sink, &next_id, err);
+            }
+        }
+        if (!rc && sink->layer_end) rc = sink->layer_end(sink->ctx, &li);
+        lam_layer_free(L);
+    }
+    if (!rc && sink->end) rc = sink->end(sink->ctx);
+    if (rc && err->code == LAM_OK) lam_error_set(err, rc, NULL, 0, 0, "planning failed");
+    return rc;
+}

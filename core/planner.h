@@ -1,0 +1,64 @@
+/* Planners: from layers to machine operations on a lam_sink (plan.h).
+ *
+ * LADRP (thesis 4.1, SPEC 4.1): per layer, scan lines one bead width d
+ * apart from the top of the layer down, at y0 - k*d (never accumulated);
+ * a line through a vertex or along an edge is evaluated an infinitesimal
+ * step below (the sweep direction), so a first line on the top edge
+ * deposits the full width. Intersections sorted along the line pair up as
+ * deposit / move by even-odd parity (the labels' nesting). Lines alternate
+ * direction (boustrophedon) unless `alternate` is off. Each layer starts
+ * with a travel to one bead above its first line and a step down onto it,
+ * as in the thesis sample. A raster angle rotates the scan lines
+ * (angle + index * angle_step degrees, counter-clockwise in the layer).
+ *
+ * SLS (thesis 4.2, SPEC 4.2): every contour of the layer as one block,
+ * solids counter-clockwise, holes clockwise, in the layer's order. */
+#ifndef LAM_PLANNER_H
+#define LAM_PLANNER_H
+
+#include "plan.h"
+#include "slice.h"
+
+typedef enum lam_plan_kind { LAM_PLAN_LADRP, LAM_PLAN_SLS } lam_plan_kind;
+
+typedef struct lam_plan_opts {
+    lam_plan_kind kind;
+    const char *name, *units;    /* for the job header */
+    double bead;                 /* LADRP bead width / SLS spot width, > 0 */
+    double rate, travel_rate;    /* feed rates */
+    int frame_machine;           /* output in the layer frame (u, v, w) */
+    /* LADRP */
+    int first_center;            /* first line half a bead inside the top edge */
+    double angle, angle_step;    /* degrees */
+    int alternate;               /* boustrophedon */
+    double min_deposit;          /* skip deposits shorter than this */
+} lam_plan_opts;
+
+/* Defaults: SLS, bead 1, rates 0, model frame, edge, 0 degrees, alternate. */
+void lam_plan_opts_init(lam_plan_opts *o);
+
+/* Called with every layer before it is planned (reports, previews). A
+ * non-zero return stops the run with that code. */
+typedef int (*lam_layer_cb)(void *ctx, const lam_layer *layer, lam_error *err);
+
+/* Plan a whole slicing run into sink: begin, every layer, end. The sink is
+ * not destroyed. Returns LAM_OK or the first error (from the slicer, a
+ * planner, the sink or the callback). */
+int lam_plan_run(lam_slicer *s, const lam_model *m, const lam_plan_opts *o, const lam_sink *sink,
+                 lam_layer_cb cb, void *cbctx, lam_error *err);
+
+/* Statistics of the last LADRP layer planned, for tests and reports. */
+typedef struct lam_ladrp_stats {
+    size_t lines, deposits;
+    double deposit_length, travel_length;
+} lam_ladrp_stats;
+
+/* Plan one layer (exposed for tests and Lua). pos: the stage position in
+ * the output frame, updated; laser: the laser state (-1 unknown), updated. */
+int lam_plan_ladrp_layer(const lam_layer *L, const lam_frame *f, const lam_plan_opts *o,
+                         const lam_sink *sink, double pos[3], int *laser, lam_ladrp_stats *st,
+                         lam_error *err);
+int lam_plan_sls_layer(const lam_layer *L, const lam_frame *f, const lam_plan_opts *o,
+                       const lam_sink *sink, size_t *next_id, lam_error *err);
+
+#endif

@@ -1,0 +1,68 @@
+/* Machine profiles: YAML files (libyaml document API) describing a machine's
+ * process, widths, feed rates, raster options and command dialect.
+ * A profile is data only: nothing in it can run code. Every error names
+ * file:line:column of the offending node. See machines/README.md for the
+ * keys. */
+#ifndef LAM_PROFILE_H
+#define LAM_PROFILE_H
+
+#include <stddef.h>
+
+#include "dialect.h"
+#include "error.h"
+
+typedef enum lam_process { LAM_PROCESS_LADRP, LAM_PROCESS_SLS } lam_process;
+typedef enum lam_first_line { LAM_FIRST_EDGE, LAM_FIRST_CENTER } lam_first_line;
+
+typedef struct lam_profile {
+    char *name;              /* `name:` */
+    char *path;              /* the file it was loaded from */
+    char *description;       /* optional */
+    lam_process process;
+    char *units;             /* default "mm" */
+    double bead_width;       /* LADRP: required, > 0; SLS: copy of spot_width */
+    double spot_width;       /* SLS: required, > 0 */
+    double layer_width;      /* > 0; 0 when absent (the slicer's default applies) */
+    int cut;                 /* lam_cut (slice.h); default LAM_CUT_MIDDLE */
+    double feed_rate;        /* >= 0, deposit feed, default 0 */
+    double travel_rate;      /* >= 0, default feed_rate */
+    double gap;              /* gap-closing tolerance, >= 0, default LAM_DEFAULT_GAP */
+    int frame_machine;       /* `frame: machine` -> 1, `model` (default) -> 0 */
+    /* raster (LADRP) */
+    lam_first_line first_line;   /* default edge */
+    double angle, angle_step;    /* degrees, default 0 */
+    int alternate;               /* boustrophedon, default true */
+    double min_deposit;          /* >= 0, default 0 */
+    int perimeters;              /* passes around each contour offset by d/2, default 0 */
+    /* SLS */
+    int beam_offset;             /* contours inset by spot/2, default false */
+    /* design rules (optional) */
+    double max_overhang_deg;     /* 0 when absent */
+    char *writer;                /* "text" (default: the dialect) or a plugin writer name */
+    lam_dialect dialect;
+} lam_profile;
+
+/* Load a profile from a file, resolving `inherits:` (a shipped profile name
+ * or a path relative to the inheriting file; chains allowed, cycles are an
+ * error). On success *out is a new profile (lam_profile_free).
+ * Errors: LAM_EIO, LAM_ESYNTAX (malformed YAML), LAM_EINVAL (unknown key,
+ * missing key, wrong type, value out of range, bad template), with position. */
+int lam_profile_load(const char *path, lam_profile **out, lam_error *err);
+
+/* Find a profile by name or path: a string containing '/' or ending in
+ * .yaml/.yml is a path; otherwise NAME.yaml in the machine directories
+ * (lam_machine_dirs). */
+int lam_profile_find(const char *name_or_path, lam_profile **out, lam_error *err);
+
+void lam_profile_free(lam_profile *p);
+
+/* The directories searched for shipped profiles, in order: $LAMINA_MACHINES
+ * (colon-separated), then <dir of the executable>/../machines and
+ * <dir of the executable>/../share/lamina/machines. Returns the number of
+ * directories stored into dirs (each malloc'd; caller frees). */
+size_t lam_machine_dirs(char **dirs, size_t max);
+
+/* Write the resolved profile as YAML (what `lamina machines --show` prints). */
+int lam_profile_dump(const lam_profile *p, lam_writer *w);
+
+#endif
