@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "contour.h"
+#include "fill.h"
 
 #define NONE UINT32_MAX
 
@@ -756,6 +757,7 @@ int lam_slicer_next(lam_slicer *s, lam_layer **out, lam_error *err)
     lam_loops loops = { 0 };
     int rc = section(s, i, &ch, err);
     if (!rc) rc = close_gaps(&ch, s->o.gap, L, &loops, err);
+    if (!rc && s->o.fill_nonzero) rc = lam_fill_nonzero(&loops, err);
     if (!rc) rc = lam_contours_assign(L, &loops, err);
     chains_free(&ch);
     free(loops.uv);

@@ -51,6 +51,8 @@ typedef struct lam_slice_opts {
     double gap;              /* close open polylines whose ends are this close; 0 disables.
                                 Polylines still open are dropped from the layer and listed
                                 in lam_layer.open: the caller decides whether that fails. */
+    int fill_nonzero;        /* 0: even-odd (the thesis's nesting parity); 1: non-zero
+                                winding, overlapping shells merge (fill.h) */
     /* Layer boundaries, one of: */
     double width;            /* > 0: uniform layers from the model's minimum;
                                 0: lam_default_width of the extent */

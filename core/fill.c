@@ -1,0 +1,195 @@
+#include "fill.h"
+
+#include <geos_c.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+int lam_loops_winding(const lam_loops *L, double u, double v)
+{
+    int w = 0;
+    const double *p = L->uv;
+    for (size_t l = 0; l < L->nloops; l++) {
+        size_t n = L->len[l];
+        for (size_t i = 0; i < n; i++) {
+            const double *a = p + 2 * i, *b = p + 2 * ((i + 1) % n);
+            double cross = (b[0] - a[0]) * (v - a[1]) - (u - a[0]) * (b[1] - a[1]);
+            if (a[1] <= v) {
+                if (b[1] > v && cross > 0) w++;
+            } else if (b[1] <= v && cross < 0) {
+                w--;
+            }
+        }
+        p += 2 * n;
+    }
+    return w;
+}
+
+typedef struct ctx {
+    GEOSContextHandle_t h;
+    char msg[256];
+} ctx;
+
+static void on_error(const char *message, void *userdata)
+{
+    ctx *c = userdata;
+    snprintf(c->msg, sizeof c->msg, "%s", message);
+}
+
+/* Append a GEOS ring to out (dropping its repeated closing point). */
+static int add_ring(ctx *c, const GEOSGeometry *ring, lam_loops *out, size_t *cap_pts, size_t *cap_loops)
+{
+    const GEOSCoordSequence *cs = GEOSGeom_getCoordSeq_r(c->h, ring);
+    unsigned n = 0;
+    if (!cs || !GEOSCoordSeq_getSize_r(c->h, cs, &n)) return LAM_EGEOM;
+    if (n < 4) return LAM_OK; /* a closed ring needs 3 points + the closing one */
+    n--;
+    if (out->npoints + n > *cap_pts) {
+        size_t cap = *cap_pts ? *cap_pts : 64;
+        while (cap < out->npoints + n) cap *= 2;
+        double *nu = realloc(out->uv, 2 * cap * sizeof *nu);
+        if (!nu) return LAM_ENOMEM;
+        out->uv = nu;
+        *cap_pts = cap;
+    }
+    if (out->nloops + 1 > *cap_loops) {
+        size_t cap = *cap_loops ? 2 * *cap_loops : 8;
+        size_t *nl = realloc(out->len, cap * sizeof *nl);
+        if (!nl) return LAM_ENOMEM;
+        out->len = nl;
+        *cap_loops = cap;
+    }
+    for (unsigned i = 0; i < n; i++) {
+        double x, y;
+        GEOSCoordSeq_getXY_r(c->h, cs, i, &x, &y);
+        out->uv[2 * (out->npoints + i)] = x;
+        out->uv[2 * (out->npoints + i) + 1] = y;
+    }
+    /* GEOS keeps points of straight runs split at former crossings */
+    n = (unsigned)lam_loop_simplify(out->uv + 2 * out->npoints, n);
+    if (n < 3) return LAM_OK;
+    out->npoints += n;
+    out->len[out->nloops++] = n;
+    return LAM_OK;
+}
+
+int lam_fill_nonzero(lam_loops *loops, lam_error *err)
+{
+    if (loops->nloops == 0) return LAM_OK;
+    ctx c = { GEOS_init_r(), "" };
+    if (!c.h) return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory (GEOS)");
+    GEOSContext_setErrorMessageHandler_r(c.h, on_error, &c);
+    int rc = LAM_OK;
+    size_t nl = loops->nloops;
+    GEOSGeometry **lines = calloc(nl, sizeof *lines), *mls = NULL, *noded = NULL, *faces = NULL, *uni = NULL;
+    GEOSGeometry **kept = NULL;
+    lam_loops out = { 0 };
+    size_t cap_pts = 0, cap_loops = 0;
+    if (!lines) {
+        rc = LAM_ENOMEM;
+        goto done;
+    }
+    const double *p = loops->uv;
+    for (size_t l = 0; l < nl; l++) {
+        size_t n = loops->len[l];
+        GEOSCoordSequence *cs = GEOSCoordSeq_create_r(c.h, (unsigned)(n + 1), 2);
+        if (!cs) {
+            rc = LAM_EGEOM;
+            goto done;
+        }
+        for (size_t i = 0; i <= n; i++)
+            GEOSCoordSeq_setXY_r(c.h, cs, (unsigned)i, p[2 * (i % n)], p[2 * (i % n) + 1]);
+        if (!(lines[l] = GEOSGeom_createLineString_r(c.h, cs))) {
+            rc = LAM_EGEOM;
+            goto done;
+        }
+        p += 2 * n;
+    }
+    mls = GEOSGeom_createCollection_r(c.h, GEOS_MULTILINESTRING, lines, (unsigned)nl);
+    if (!mls) {
+        rc = LAM_EGEOM;
+        goto done;
+    }
+    free(lines); /* owned by mls now */
+    lines = NULL;
+    /* union of linework nodes it at every crossing */
+    if (!(noded = GEOSUnaryUnion_r(c.h, mls))) {
+        rc = LAM_EGEOM;
+        goto done;
+    }
+    const GEOSGeometry *in[1] = { noded };
+    if (!(faces = GEOSPolygonize_r(c.h, in, 1))) {
+        rc = LAM_EGEOM;
+        goto done;
+    }
+    int nf = GEOSGetNumGeometries_r(c.h, faces);
+    kept = calloc(nf > 0 ? (size_t)nf : 1, sizeof *kept);
+    if (!kept) {
+        rc = LAM_ENOMEM;
+        goto done;
+    }
+    unsigned nk = 0;
+    for (int i = 0; i < nf; i++) {
+        const GEOSGeometry *face = GEOSGetGeometryN_r(c.h, faces, i);
+        GEOSGeometry *pt = face ? GEOSPointOnSurface_r(c.h, face) : NULL;
+        double x, y;
+        if (!pt || !GEOSGeomGetX_r(c.h, pt, &x) || !GEOSGeomGetY_r(c.h, pt, &y)) {
+            if (pt) GEOSGeom_destroy_r(c.h, pt);
+            rc = LAM_EGEOM;
+            goto done;
+        }
+        GEOSGeom_destroy_r(c.h, pt);
+        if (lam_loops_winding(loops, x, y) != 0) kept[nk++] = GEOSGeom_clone_r(c.h, face);
+    }
+    if (nk) {
+        GEOSGeometry *coll = GEOSGeom_createCollection_r(c.h, GEOS_MULTIPOLYGON, kept, nk);
+        if (!coll) {
+            rc = LAM_EGEOM;
+            goto done;
+        }
+        free(kept);
+        kept = NULL;
+        uni = GEOSUnaryUnion_r(c.h, coll);
+        GEOSGeom_destroy_r(c.h, coll);
+        if (!uni) {
+            rc = LAM_EGEOM;
+            goto done;
+        }
+        int np = GEOSGetNumGeometries_r(c.h, uni);
+        for (int i = 0; i < np && !rc; i++) {
+            const GEOSGeometry *poly = GEOSGetGeometryN_r(c.h, uni, i);
+            if (GEOSGeomTypeId_r(c.h, poly) != GEOS_POLYGON) continue;
+            rc = add_ring(&c, GEOSGetExteriorRing_r(c.h, poly), &out, &cap_pts, &cap_loops);
+            int nh = GEOSGetNumInteriorRings_r(c.h, poly);
+            for (int k = 0; k < nh && !rc; k++)
+                rc = add_ring(&c, GEOSGetInteriorRingN_r(c.h, poly, k), &out, &cap_pts, &cap_loops);
+        }
+    }
+    if (!rc) {
+        free(loops->uv);
+        free(loops->len);
+        *loops = out;
+        memset(&out, 0, sizeof out);
+    }
+done:
+    if (lines) {
+        for (size_t l = 0; l < nl; l++)
+            if (lines[l]) GEOSGeom_destroy_r(c.h, lines[l]);
+        free(lines);
+    }
+    if (kept) {
+        for (int i = 0; i < nf; i++)
+            if (kept[i]) GEOSGeom_destroy_r(c.h, kept[i]);
+        free(kept);
+    }
+    if (mls) GEOSGeom_destroy_r(c.h, mls);
+    if (noded) GEOSGeom_destroy_r(c.h, noded);
+    if (faces) GEOSGeom_destroy_r(c.h, faces);
+    if (uni) GEOSGeom_destroy_r(c.h, uni);
+    free(out.uv);
+    free(out.len);
+    GEOS_finish_r(c.h);
+    if (rc == LAM_ENOMEM) return lam_error_set(err, rc, NULL, 0, 0, "out of memory merging overlapping outlines");
+    if (rc) return lam_error_set(err, rc, NULL, 0, 0, "merging overlapping outlines failed%s%s", c.msg[0] ? ": " : "", c.msg);
+    return LAM_OK;
+}
