@@ -28,7 +28,7 @@ DEPS_PKGS := gcc make perl liblua5.4-dev libyaml-dev libembree-dev libgeos-dev \
 CPPFLAGS += -Icore -D_POSIX_C_SOURCE=200809L
 CFLAGS   += -std=c11 -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes $(OPT) $(SANFLAGS)
 LDFLAGS  += $(SANFLAGS)
-LDLIBS   += -lyaml -lgeos_c -ldl -lm
+LDLIBS   += -lembree3 -lyaml -lgeos_c -ldl -lm
 
 CORE_SRC  := $(sort $(wildcard core/*.c))
 CORE_OBJ  := $(CORE_SRC:%.c=$(BUILD)/%.o)

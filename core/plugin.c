@@ -1,0 +1,557 @@
+#include "plugin.h"
+
+#include <dirent.h>
+#include <dlfcn.h>
+#include <errno.h>
+#include <stdarg.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "lamina_plugin.h"
+#include "paths.h"
+
+#ifndef LAMINA_VERSION
+#define LAMINA_VERSION "0.1.0"
+#endif
+
+#define MSG_MAX 1024
+#define MAX_DIRS 16
+
+/* One loaded plugin. The host struct handed to the plugin is the first
+ * member, so set_error and register_writer find their plugin from it; each
+ * plugin has its own (heap-allocated, stable) copy, which it may keep. */
+typedef struct plugin {
+    struct lamina_host host;
+    char *path;
+    dev_t dev;
+    ino_t ino;
+    void *handle;
+    char msg[MSG_MAX];       /* last host->set_error message, "" if none */
+    char reg_msg[MSG_MAX];   /* why a register_writer call was refused */
+    int reg_failed;
+} plugin;
+
+/* A registered writer: a host-side copy of the plugin's struct holding the
+ * members up to the size the plugin declared (the rest stay NULL). */
+typedef struct writer_entry {
+    struct lamina_writer w;
+    plugin *owner;
+} writer_entry;
+
+static plugin **plugins;
+static size_t nplugins, cap_plugins;
+static writer_entry **writers;
+static size_t nwriters, cap_writers;
+
+/* the smallest declared size that still holds member m */
+#define HOLDS(size, type, m) ((size) >= offsetof(type, m) + sizeof(((type *)0)->m))
+
+/* ---- the host functions a plugin calls ---- */
+
+static void host_set_error(const struct lamina_host *host, const char *fmt, ...)
+    __attribute__((format(printf, 2, 3)));
+
+static void host_set_error(const struct lamina_host *host, const char *fmt, ...)
+{
+    if (!host || !fmt) return;
+    plugin *p = (plugin *)(uintptr_t)host;
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(p->msg, sizeof p->msg, fmt, ap);
+    va_end(ap);
+}
+
+static writer_entry *find_writer(const char *name)
+{
+    for (size_t i = 0; i < nwriters; i++)
+        if (strcmp(writers[i]->w.name, name) == 0) return writers[i];
+    return NULL;
+}
+
+static int refuse(plugin *p, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+
+static int refuse(plugin *p, const char *fmt, ...)
+{
+    if (!p->reg_failed) {   /* keep the first reason */
+        va_list ap;
+        va_start(ap, fmt);
+        vsnprintf(p->reg_msg, sizeof p->reg_msg, fmt, ap);
+        va_end(ap);
+    }
+    p->reg_failed = 1;
+    return 1;
+}
+
+static int host_register_writer(const struct lamina_host *host, const struct lamina_writer *w)
+{
+    if (!host) return 1;
+    plugin *p = (plugin *)(uintptr_t)host;
+    if (!w) return refuse(p, "plugin %s registered a NULL writer", p->path);
+    size_t size = w->size;
+    /* name, begin, layer, polyline and end are required; description and
+     * abort are optional */
+    if (!HOLDS(size, struct lamina_writer, end))
+        return refuse(p, "plugin %s registered a writer whose struct is too small (%zu bytes; "
+                      "at least %zu needed)", p->path, size,
+                      offsetof(struct lamina_writer, end) + sizeof w->end);
+    struct lamina_writer copy;
+    memset(&copy, 0, sizeof copy);
+    memcpy(&copy, w, size < sizeof copy ? size : sizeof copy);
+    copy.size = sizeof copy;
+    if (!copy.name || !copy.name[0])
+        return refuse(p, "plugin %s registered a writer without a name", p->path);
+    if (!copy.begin || !copy.layer || !copy.polyline || !copy.end)
+        return refuse(p, "plugin %s: writer '%s' lacks one of begin, layer, polyline, end",
+                      p->path, copy.name);
+    writer_entry *dup = find_writer(copy.name);
+    if (dup)
+        return refuse(p, "plugin %s: writer '%s' is already registered (by plugin %s)", p->path,
+                      copy.name, dup->owner->path);
+    if (nwriters == cap_writers) {
+        size_t cap = cap_writers ? 2 * cap_writers : 8;
+        writer_entry **nw = realloc(writers, cap * sizeof *nw);
+        if (!nw) return refuse(p, "out of memory registering writer '%s'", copy.name);
+        writers = nw;
+        cap_writers = cap;
+    }
+    writer_entry *e = malloc(sizeof *e);
+    if (!e) return refuse(p, "out of memory registering writer '%s'", copy.name);
+    e->w = copy;
+    e->owner = p;
+    writers[nwriters++] = e;
+    return 0;
+}
+
+static int host_write(struct lamina_out *out, const void *data, size_t len);
+
+/* ---- loading ---- */
+
+/* Remove every writer p registered (after its init failed). */
+static void drop_writers_of(const plugin *p)
+{
+    size_t k = 0;
+    for (size_t i = 0; i < nwriters; i++) {
+        if (writers[i]->owner == p)
+            free(writers[i]);
+        else
+            writers[k++] = writers[i];
+    }
+    nwriters = k;
+}
+
+static void free_plugin(plugin *p)
+{
+    if (!p) return;
+    if (p->handle) dlclose(p->handle);
+    free(p->path);
+    free(p);
+}
+
+typedef int (*init_fn)(const struct lamina_host *);
+
+int lam_plugin_load(const char *path, lam_error *err)
+{
+    if (!path || !*path) return lam_error_set(err, LAM_EUSAGE, NULL, 0, 0, "no plugin path given");
+    struct stat st;
+    if (stat(path, &st) != 0)
+        return lam_error_set(err, LAM_EIO, NULL, 0, 0, "cannot load plugin %s: %s", path, strerror(errno));
+    for (size_t i = 0; i < nplugins; i++)
+        if (plugins[i]->dev == st.st_dev && plugins[i]->ino == st.st_ino) return LAM_OK;
+
+    if (nplugins == cap_plugins) {
+        size_t cap = cap_plugins ? 2 * cap_plugins : 8;
+        plugin **np = realloc(plugins, cap * sizeof *np);
+        if (!np) return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory");
+        plugins = np;
+        cap_plugins = cap;
+    }
+    plugin *p = calloc(1, sizeof *p);
+    /* "./x.so", not "x.so": dlopen must not search the library path */
+    size_t len = strlen(path);
+    if (p) p->path = malloc(len + 3);
+    if (!p || !p->path) {
+        free(p);
+        return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory");
+    }
+    snprintf(p->path, len + 3, "%s%s", strchr(path, '/') ? "" : "./", path);
+    p->dev = st.st_dev;
+    p->ino = st.st_ino;
+
+    dlerror();
+    p->handle = dlopen(p->path, RTLD_NOW | RTLD_LOCAL);
+    if (!p->handle) {
+        const char *why = dlerror();
+        int code = S_ISREG(st.st_mode) ? LAM_EFORMAT : LAM_EIO;
+        lam_error_set(err, code, NULL, 0, 0, "cannot load plugin %s: %s", path,
+                      why ? why : "unknown dlopen error");
+        free_plugin(p);
+        return code;
+    }
+
+    const uint32_t *abi = dlsym(p->handle, "lamina_plugin_abi");
+    if (!abi) {
+        lam_error_set(err, LAM_EFORMAT, NULL, 0, 0,
+                      "plugin %s does not export lamina_plugin_abi "
+                      "(not a lamina plugin? a plugin declares LAMINA_PLUGIN_DECLARE;)", path);
+        free_plugin(p);
+        return LAM_EFORMAT;
+    }
+    if (*abi != LAMINA_PLUGIN_ABI) {
+        lam_error_set(err, LAM_EFORMAT, NULL, 0, 0,
+                      "plugin %s was built for lamina plugin ABI %u, this lamina speaks %u "
+                      "(rebuild the plugin against this lamina's lamina_plugin.h)",
+                      path, (unsigned)*abi, (unsigned)LAMINA_PLUGIN_ABI);
+        free_plugin(p);
+        return LAM_EFORMAT;
+    }
+    void *sym = dlsym(p->handle, "lamina_plugin_init");
+    if (!sym) {
+        lam_error_set(err, LAM_EFORMAT, NULL, 0, 0,
+                      "plugin %s does not export lamina_plugin_init "
+                      "(int lamina_plugin_init(const struct lamina_host *host))", path);
+        free_plugin(p);
+        return LAM_EFORMAT;
+    }
+    init_fn init = (init_fn)sym;   /* POSIX: dlsym results convert to function pointers */
+
+    p->host.size = sizeof p->host;
+    p->host.abi = LAMINA_PLUGIN_ABI;
+    p->host.version = LAMINA_VERSION;
+    p->host.register_writer = host_register_writer;
+    p->host.write = host_write;
+    p->host.set_error = host_set_error;
+
+    int rc = init(&p->host);
+    if (rc != 0 || p->reg_failed) {
+        if (p->reg_failed)
+            lam_error_set(err, LAM_EINVAL, NULL, 0, 0, "%s", p->reg_msg);
+        else if (p->msg[0])
+            lam_error_set(err, LAM_EINVAL, NULL, 0, 0, "plugin %s failed to initialise: %s", path, p->msg);
+        else
+            lam_error_set(err, LAM_EINVAL, NULL, 0, 0,
+                          "plugin %s failed to initialise (lamina_plugin_init returned %d)", path, rc);
+        drop_writers_of(p);
+        free_plugin(p);
+        return LAM_EINVAL;
+    }
+    p->msg[0] = '\0';
+    plugins[nplugins++] = p;
+    return LAM_OK;
+}
+
+void lam_plugins_unload(void)
+{
+    for (size_t i = 0; i < nwriters; i++) free(writers[i]);
+    free(writers);
+    writers = NULL;
+    nwriters = cap_writers = 0;
+    /* last loaded first, in case one plugin's code refers to another's */
+    while (nplugins > 0) free_plugin(plugins[--nplugins]);
+    free(plugins);
+    plugins = NULL;
+    cap_plugins = 0;
+}
+
+static int cmp_str(const void *a, const void *b)
+{
+    return strcmp(*(const char *const *)a, *(const char *const *)b);
+}
+
+size_t lam_plugin_writers(const char **names, size_t max)
+{
+    if (!names) return nwriters;
+    size_t n = nwriters < max ? nwriters : max;
+    if (n == nwriters) {
+        for (size_t i = 0; i < n; i++) names[i] = writers[i]->w.name;
+        qsort(names, n, sizeof *names, cmp_str);
+        return nwriters;
+    }
+    /* only the first max of the sorted list: sort a full copy */
+    const char **all = malloc(nwriters * sizeof *all);
+    if (!all) {
+        for (size_t i = 0; i < n; i++) names[i] = writers[i]->w.name;
+        return nwriters;
+    }
+    for (size_t i = 0; i < nwriters; i++) all[i] = writers[i]->w.name;
+    qsort(all, nwriters, sizeof *all, cmp_str);
+    memcpy(names, all, n * sizeof *names);
+    free(all);
+    return nwriters;
+}
+
+/* ---- scanning the plugin directories ---- */
+
+/* A growable text, for messages that list things. */
+typedef struct text {
+    char buf[MSG_MAX];
+    size_t len;
+} text;
+
+static void text_add(text *t, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+
+static void text_add(text *t, const char *fmt, ...)
+{
+    if (t->len >= sizeof t->buf - 1) return;
+    va_list ap;
+    va_start(ap, fmt);
+    int k = vsnprintf(t->buf + t->len, sizeof t->buf - t->len, fmt, ap);
+    va_end(ap);
+    if (k > 0) t->len += (size_t)k;
+    if (t->len > sizeof t->buf - 1) t->len = sizeof t->buf - 1;
+}
+
+static int ends_with_so(const char *name)
+{
+    size_t n = strlen(name);
+    return n > 3 && strcmp(name + n - 3, ".so") == 0;
+}
+
+/* The *.so file names in dir, sorted (malloc'd; free each and the array).
+ * Returns how many, 0 when dir cannot be read. */
+static size_t list_plugins(const char *path, char ***out)
+{
+    *out = NULL;
+    DIR *dir = opendir(path);
+    if (!dir) return 0;
+    char **names = NULL;
+    size_t n = 0, cap = 0;
+    struct dirent *de;
+    while ((de = readdir(dir))) {
+        if (!ends_with_so(de->d_name)) continue;
+        if (n == cap) {
+            size_t nc = cap ? 2 * cap : 16;
+            char **nn = realloc(names, nc * sizeof *nn);
+            if (!nn) break;
+            names = nn;
+            cap = nc;
+        }
+        if (!(names[n] = strdup(de->d_name))) break;
+        n++;
+    }
+    closedir(dir);
+    if (n > 1) qsort(names, n, sizeof *names, cmp_str);
+    *out = names;
+    return n;
+}
+
+/* Load every plugin in the plugin directories (see plugin.h): per directory
+ * in sorted order, a file name already met in an earlier directory skipped.
+ * Failures are listed in `failures` and otherwise ignored. */
+static void load_all(char **dirs, size_t ndirs, text *failures)
+{
+    char **names[MAX_DIRS];
+    size_t counts[MAX_DIRS];
+    for (size_t d = 0; d < ndirs; d++) counts[d] = list_plugins(dirs[d], &names[d]);
+    for (size_t d = 0; d < ndirs; d++) {
+        for (size_t i = 0; i < counts[d]; i++) {
+            int shadowed = 0;
+            for (size_t e = 0; e < d && !shadowed; e++)
+                for (size_t k = 0; k < counts[e] && !shadowed; k++)
+                    shadowed = strcmp(names[e][k], names[d][i]) == 0;
+            if (shadowed) continue;
+            size_t need = strlen(dirs[d]) + strlen(names[d][i]) + 2;
+            char *full = malloc(need);
+            if (!full) continue;
+            snprintf(full, need, "%s/%s", dirs[d], names[d][i]);
+            lam_error e;
+            lam_error_clear(&e);
+            if (lam_plugin_load(full, &e) != LAM_OK) text_add(failures, "%s%s", failures->len ? "; " : "", e.msg);
+            free(full);
+        }
+    }
+    for (size_t d = 0; d < ndirs; d++) {
+        for (size_t i = 0; i < counts[d]; i++) free(names[d][i]);
+        free(names[d]);
+    }
+}
+
+/* ---- the sink adapter ---- */
+
+struct lamina_out {
+    lam_writer *w;
+    int failed;              /* a write failed (the lam_writer's error is sticky) */
+};
+
+static int host_write(struct lamina_out *out, const void *data, size_t len)
+{
+    if (!out || (!data && len)) return 1;
+    if (lam_writer_write(out->w, data, len) != LAM_OK) {
+        out->failed = 1;
+        return 1;
+    }
+    return 0;
+}
+
+typedef struct plugin_sink {
+    const writer_entry *we;
+    struct lamina_out out;
+    lam_error *err;
+    void *state;             /* the writer's, between begin and end */
+    int begun, ended;
+} plugin_sink;
+
+/* Turn a writer's failure (rc != 0) or a failed write into an error. */
+static int writer_result(plugin_sink *s, int rc, const char *what)
+{
+    const char *name = s->we->w.name;
+    plugin *p = s->we->owner;
+    if (s->out.failed)
+        return lam_error_set(s->err, LAM_EIO, NULL, 0, 0, "writer %s: cannot write output", name);
+    if (rc == 0) return LAM_OK;
+    if (p->msg[0]) {
+        /* "cli-binary: ..." from the plugin already says which writer */
+        size_t k = strlen(name);
+        int named = strncmp(p->msg, name, k) == 0 && p->msg[k] == ':';
+        if (named) return lam_error_set(s->err, LAM_EINVAL, NULL, 0, 0, "%s", p->msg);
+        return lam_error_set(s->err, LAM_EINVAL, NULL, 0, 0, "writer %s: %s", name, p->msg);
+    }
+    return lam_error_set(s->err, LAM_EINVAL, NULL, 0, 0, "writer %s: %s failed", name, what);
+}
+
+static int not_running(plugin_sink *s, const char *what)
+{
+    return lam_error_set(s->err, LAM_EUSAGE, NULL, 0, 0, "writer %s: %s %s", s->we->w.name, what,
+                         s->ended ? "after end" : "before begin");
+}
+
+static int ps_begin(void *ctx, const lam_job_info *job)
+{
+    plugin_sink *s = ctx;
+    if (s->begun)
+        return lam_error_set(s->err, LAM_EUSAGE, NULL, 0, 0, "writer %s: begin called twice", s->we->w.name);
+    struct lamina_job j;
+    memset(&j, 0, sizeof j);
+    j.size = sizeof j;
+    j.machine = job->name;
+    j.process = job->process;
+    j.units = job->units;
+    j.layers = job->layers;
+    memcpy(j.bbox, job->bbox, sizeof j.bbox);
+    j.bead = job->bead;
+    s->we->owner->msg[0] = '\0';
+    s->state = s->we->w.begin(&s->out, &j);
+    if (!s->state) return writer_result(s, 1, "begin");
+    s->begun = 1;
+    return writer_result(s, 0, "begin");
+}
+
+static int ps_layer(void *ctx, const lam_layer_info *layer)
+{
+    plugin_sink *s = ctx;
+    if (!s->state) return not_running(s, "layer");
+    s->we->owner->msg[0] = '\0';
+    return writer_result(s, s->we->w.layer(s->state, layer->index, layer->z), "layer");
+}
+
+static int ps_layer_end(void *ctx, const lam_layer_info *layer)
+{
+    plugin_sink *s = ctx;
+    (void)layer;
+    return s->state ? LAM_OK : not_running(s, "layer_end");
+}
+
+static int ps_contour(void *ctx, const lam_contour_info *c)
+{
+    plugin_sink *s = ctx;
+    if (!s->state) return not_running(s, "contour");
+    s->we->owner->msg[0] = '\0';
+    return writer_result(s, s->we->w.polyline(s->state, c->id, c->solid, c->uv, c->n), "polyline");
+}
+
+static int ps_end(void *ctx)
+{
+    plugin_sink *s = ctx;
+    if (!s->state) return not_running(s, "end");
+    s->we->owner->msg[0] = '\0';
+    void *state = s->state;
+    s->state = NULL;          /* end frees the state, whatever it returns */
+    s->ended = 1;
+    return writer_result(s, s->we->w.end(state), "end");
+}
+
+static int contour_only(plugin_sink *s)
+{
+    return lam_error_set(s->err, LAM_EUSAGE, NULL, 0, 0,
+                         "writer %s handles contour programs (SLS) only", s->we->w.name);
+}
+
+static int ps_feed(void *ctx, double rate)
+{
+    (void)rate;
+    return contour_only(ctx);
+}
+
+static int ps_laser(void *ctx, int on)
+{
+    (void)on;
+    return contour_only(ctx);
+}
+
+static int ps_move(void *ctx, int deposit, const double xyz[3])
+{
+    (void)deposit;
+    (void)xyz;
+    return contour_only(ctx);
+}
+
+static void ps_destroy(void *ctx)
+{
+    plugin_sink *s = ctx;
+    if (!s) return;
+    if (s->state && s->we->w.abort) s->we->w.abort(s->state);
+    free(s);
+}
+
+int lam_plugin_writer_sink(const char *name, lam_writer *w, lam_error *err, lam_sink *out)
+{
+    memset(out, 0, sizeof *out);
+    if (!name || !*name) return lam_error_set(err, LAM_EUSAGE, NULL, 0, 0, "no writer name given");
+    if (!w) return lam_error_set(err, LAM_EUSAGE, NULL, 0, 0, "writer %s: no output given", name);
+    const writer_entry *we = find_writer(name);
+    if (!we) {
+        static const char *const rel[] = {"plugins", "../plugins", "../lib/lamina/plugins", NULL};
+        char *dirs[MAX_DIRS];
+        size_t ndirs = lam_search_dirs("LAMINA_PLUGINS", rel, dirs, MAX_DIRS);
+        text failures = {.len = 0};
+        load_all(dirs, ndirs, &failures);
+        we = find_writer(name);
+        if (!we) {
+            text t = {.len = 0};
+            text_add(&t, "unknown writer '%s'", name);
+            const char *names[64];
+            size_t n = lam_plugin_writers(names, 64);
+            if (n == 0) {
+                text_add(&t, " (no plugin writers available; searched");
+                for (size_t i = 0; i < ndirs; i++) text_add(&t, " %s", dirs[i]);
+                text_add(&t, ")");
+            } else {
+                text_add(&t, " (available:");
+                for (size_t i = 0; i < n && i < 64; i++) text_add(&t, "%s %s", i ? "," : "", names[i]);
+                text_add(&t, ")");
+            }
+            if (failures.len) text_add(&t, "; plugins that failed to load: %s", failures.buf);
+            for (size_t i = 0; i < ndirs; i++) free(dirs[i]);
+            return lam_error_set(err, LAM_EINVAL, NULL, 0, 0, "%s", t.buf);
+        }
+        for (size_t i = 0; i < ndirs; i++) free(dirs[i]);
+    }
+    plugin_sink *s = calloc(1, sizeof *s);
+    if (!s) return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory");
+    s->we = we;
+    s->out.w = w;
+    s->err = err;
+    out->ctx = s;
+    out->begin = ps_begin;
+    out->layer = ps_layer;
+    out->layer_end = ps_layer_end;
+    out->feed = ps_feed;
+    out->laser = ps_laser;
+    out->move = ps_move;
+    out->contour = ps_contour;
+    out->end = ps_end;
+    out->destroy = ps_destroy;
+    return LAM_OK;
+}

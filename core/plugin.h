@@ -1,0 +1,63 @@
+/* Plugins, host side: load shared objects that speak the lamina plugin ABI
+ * (lamina_plugin.h), keep a registry of what they provide, and adapt a
+ * plugin writer to the lam_sink interface planners emit to.
+ *
+ * The registry is process-wide and not thread-safe: load plugins and create
+ * sinks from one thread (lamina does all of this on its main thread).
+ * Everything a plugin registered (writer names, the sinks built on them)
+ * stays valid until lam_plugins_unload. */
+#ifndef LAM_PLUGIN_HOST_H
+#define LAM_PLUGIN_HOST_H
+
+#include <stddef.h>
+
+#include "error.h"
+#include "plan.h"
+#include "writer.h"
+
+/* Load the plugin at `path` (dlopen RTLD_NOW | RTLD_LOCAL; a path without
+ * '/' is taken relative to the working directory, never looked up in the
+ * library path), check its ABI and run its lamina_plugin_init, which
+ * registers its writers. Loading a file that is already loaded (the same
+ * file, by device and inode, under any path) does nothing and succeeds.
+ * A plugin that fails is unloaded again and leaves nothing registered.
+ * Errors: LAM_EIO (no such file / unreadable, with the loader's message),
+ * LAM_EFORMAT (not a loadable shared object, no lamina_plugin_abi or
+ * lamina_plugin_init symbol, built for another ABI: refused before init
+ * runs), LAM_EINVAL (init failed, with the plugin's set_error message, or
+ * it registered a malformed writer or one whose name is already taken),
+ * LAM_ENOMEM. */
+int lam_plugin_load(const char *path, lam_error *err);
+
+/* A sink (plan.h) that writes through the plugin writer called `name`
+ * (a profile's `writer:`) into w. If no writer of that name is registered,
+ * every *.so in the plugin directories is loaded first (plugin files are
+ * loaded per directory in sorted order; a file name found in an earlier
+ * directory shadows the same name in later ones, so a sanitizer build's
+ * <exe dir>/plugins wins over an installed copy), and the name is looked up
+ * again; plugins that fail to load during that scan are skipped (their
+ * errors are reported only if the writer is still not found).
+ * Plugin directories: $LAMINA_PLUGINS (colon-separated), then
+ * <exe dir>/plugins, <exe dir>/../plugins, <exe dir>/../lib/lamina/plugins.
+ *
+ * The sink does not own w (the caller commits or aborts it afterwards) and
+ * keeps `err` to report errors of later sink calls, so both must outlive the
+ * sink; the caller calls out->destroy exactly once. The writer handles
+ * contour programs only: begin, layer, contour, end; layer_end is a no-op;
+ * feed, laser and move fail with LAM_EUSAGE.
+ * Errors: LAM_EINVAL (unknown writer: the message lists the available
+ * ones), LAM_ENOMEM. Sink calls return LAM_EUSAGE (misuse), LAM_EIO (the
+ * output could not be written) or LAM_EINVAL (the writer refused, with its
+ * message). */
+int lam_plugin_writer_sink(const char *name, lam_writer *w, lam_error *err, lam_sink *out);
+
+/* Unload every plugin (dlclose) and empty the registry. Any sink or writer
+ * name obtained before becomes invalid. For tests and leak checks. */
+void lam_plugins_unload(void);
+
+/* The names of the registered writers, sorted: stores up to max of them
+ * into names (valid until lam_plugins_unload) and returns how many there
+ * are in all (which may exceed max). names may be NULL when max is 0. */
+size_t lam_plugin_writers(const char **names, size_t max);
+
+#endif
