@@ -25,15 +25,24 @@ endif
 DEPS_PKGS := gcc make perl liblua5.4-dev libyaml-dev libembree-dev libgeos-dev \
              jq python3 librsvg2-bin
 
+LUA_CFLAGS := -I/usr/include/lua5.4
+LUA_LIBS   := -llua5.4
+
 CPPFLAGS += -Icore -D_POSIX_C_SOURCE=200809L
-CFLAGS   += -std=c11 -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes $(OPT) $(SANFLAGS)
+# -fPIC everywhere: the same objects also make the Lua C module lamina.so
+CFLAGS   += -std=c11 -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes -fPIC $(OPT) $(SANFLAGS)
 LDFLAGS  += $(SANFLAGS)
 LDLIBS   += -lembree3 -lyaml -lgeos_c -ldl -lm
 
 CORE_SRC  := $(sort $(wildcard core/*.c))
 CORE_OBJ  := $(CORE_SRC:%.c=$(BUILD)/%.o)
-CLI_SRC   := $(sort $(wildcard lua/*.c))
-CLI_OBJ   := $(CLI_SRC:%.c=$(BUILD)/%.o)
+# lua/: lamina.c and l_*.c are the binding (also built as the C module
+# lamina.so for a stock lua5.4); main.c, cli*.c and repl.c make the executable.
+BIND_SRC  := $(sort $(wildcard lua/lamina.c lua/l_*.c))
+BIND_OBJ  := $(BIND_SRC:%.c=$(BUILD)/%.o)
+CLI_SRC   := $(filter-out $(BIND_SRC),$(sort $(wildcard lua/*.c)))
+CLI_OBJ   := $(CLI_SRC:%.c=$(BUILD)/%.o) $(BIND_OBJ)
+LUAMOD    := $(BUILD)/lamina.so
 UNIT_SRC  := $(sort $(wildcard tests/unit/test_*.c))
 UNIT_BIN  := $(UNIT_SRC:tests/unit/%.c=$(BUILD)/tests/%.t)
 # Plugins that only tests load (bad ABI, missing symbol, ...).
@@ -51,7 +60,14 @@ PLUGIN_SO    := $(PLUGIN_NAMES:%=$(PLUGIN_OUT)/%.so)
 .DEFAULT_GOAL := all
 .SECONDEXPANSION:
 
-all: $(LAMINA) $(LIB) $(PLUGIN_SO)
+all: $(LAMINA) $(LIB) $(PLUGIN_SO) $(if $(BIND_SRC),$(LUAMOD))
+
+$(BUILD)/lua/%.o: lua/%.c
+	@mkdir -p $(dir $@)
+	$(CC) $(CPPFLAGS) $(LUA_CFLAGS) $(CFLAGS) -MMD -MP -c $< -o $@
+
+$(LUAMOD): $(BIND_OBJ) $(LIB)
+	$(CC) $(LDFLAGS) -shared -o $@ $(BIND_OBJ) $(LIB) $(filter-out -llua5.4,$(LDLIBS))
 
 $(PLUGIN_OUT)/%.so: $$(wildcard plugins/%/*.c) core/lamina_plugin.h
 	@mkdir -p $(dir $@)
@@ -67,7 +83,7 @@ $(LIB): $(CORE_OBJ)
 	ar rcs $@ $^
 
 $(LAMINA): $(CLI_OBJ) $(LIB)
-	$(CC) $(LDFLAGS) -o $@ $(CLI_OBJ) $(LIB) $(LDLIBS)
+	$(CC) $(LDFLAGS) -o $@ $(CLI_OBJ) $(LIB) $(LUA_LIBS) $(LDLIBS)
 
 $(BUILD)/tests/%.t: tests/unit/%.c tests/unit/tap.h $(LIB)
 	@mkdir -p $(dir $@)
