@@ -25,178 +25,21 @@
  * Positions are 1-based lines and 1-based byte columns (tab = 1 column); a
  * missing token is reported just after the last token of its line. The
  * buffer is exactly len bytes: nothing past it is read, no NUL is needed.
- * Numbers: the same exact reader as import_stl.c (see there); nan/inf are
- * recognised so they are reported as "not a finite number".
+ * Numbers: lam_parse_number (lexnum.h), as for STL; nan/inf are recognised
+ * so they are reported as "not a finite number".
  *
  * Status codes: LAM_ESYNTAX malformed numbers and references; LAM_EINVAL
  * index 0, index out of range, fewer than 3 vertices, non-finite
  * coordinates; LAM_EGEOM from the triangulation. Linear time. */
 #include "import.h"
+#include "lexnum.h"
 
-#include <float.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-/* ---- numbers (the same reader as import_stl.c) -------------------------- */
-
-enum { NUM_OK = 0, NUM_BAD = -1, NUM_NOMEM = -2 };
-
-static int is_digit(unsigned char c) { return c >= '0' && c <= '9'; }
-static int is_alnum(unsigned char c)
-{
-    return is_digit(c) || (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z');
-}
-static unsigned char lower(unsigned char c) { return c >= 'A' && c <= 'Z' ? (unsigned char)(c + 32) : c; }
-
-/* Case-insensitive: does s[0..n) spell the lower-case word kw? */
-static int word_eq(const unsigned char *s, size_t n, const char *kw)
-{
-    size_t k = strlen(kw);
-    if (n != k) return 0;
-    for (size_t i = 0; i < n; i++)
-        if (lower(s[i]) != (unsigned char)kw[i]) return 0;
-    return 1;
-}
-
-static const double pow10_exact[23] = {
-    1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11,
-    1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22,
-};
-
-/* Read the whole of s[0..n) as a number into *out (which may be NaN or
- * infinite). NUM_BAD when s is not a number, NUM_NOMEM when a long number
- * could not be copied for strtod. */
-static int parse_number(const unsigned char *s, size_t n, double *out)
-{
-    size_t i = 0;
-    int neg = 0;
-    if (i < n && (s[i] == '+' || s[i] == '-')) neg = s[i++] == '-';
-    if (i < n && !is_digit(s[i]) && s[i] != '.') {
-        if (word_eq(s + i, n - i, "nan")) {
-            *out = NAN;
-            return NUM_OK;
-        }
-        if (word_eq(s + i, n - i, "inf") || word_eq(s + i, n - i, "infinity")) {
-            *out = neg ? -INFINITY : INFINITY;
-            return NUM_OK;
-        }
-        return NUM_BAD;
-    }
-    size_t digits_from = i;
-    uint64_t mant = 0;
-    int nd = 0, digits = 0;
-    long long e10 = 0;
-    for (; i < n && is_digit(s[i]); i++) {
-        unsigned d = (unsigned)(s[i] - '0');
-        digits = 1;
-        if (nd < 19) {
-            if (mant || d) {
-                mant = mant * 10 + d;
-                nd++;
-            }
-        } else {
-            e10++;
-        }
-    }
-    if (i < n && s[i] == '.') {
-        i++;
-        for (; i < n && is_digit(s[i]); i++) {
-            unsigned d = (unsigned)(s[i] - '0');
-            digits = 1;
-            if (nd < 19) {
-                if (mant || d) {
-                    mant = mant * 10 + d;
-                    nd++;
-                }
-                e10--;
-            }
-        }
-        if (i < n && s[i] == '#' && digits) { /* MSVC: 1.#QNAN0, -1.#IND00, 1.#INF00 */
-            size_t j = i + 1;
-            while (j < n && is_alnum(s[j])) j++;
-            if (j != n || j == i + 1) return NUM_BAD;
-            if (n - i > 3 && lower(s[i + 1]) == 'i' && lower(s[i + 2]) == 'n' && lower(s[i + 3]) == 'f')
-                *out = neg ? -INFINITY : INFINITY;
-            else
-                *out = NAN;
-            return NUM_OK;
-        }
-    }
-    if (!digits) return NUM_BAD;
-    size_t digits_to = i;
-    long long ev = 0;
-    if (i < n && (s[i] == 'e' || s[i] == 'E')) {
-        i++;
-        int eneg = 0;
-        if (i < n && (s[i] == '+' || s[i] == '-')) eneg = s[i++] == '-';
-        if (i >= n || !is_digit(s[i])) return NUM_BAD;
-        for (; i < n && is_digit(s[i]); i++)
-            if (ev < 1000000000) ev = ev * 10 + (s[i] - '0');
-        if (eneg) ev = -ev;
-    }
-    if (i != n) return NUM_BAD;
-    if (mant == 0) {
-        *out = neg ? -0.0 : 0.0;
-        return NUM_OK;
-    }
-    e10 += ev;
-#if FLT_EVAL_METHOD == 0
-    if (mant <= (UINT64_C(1) << 53) && e10 >= -22 && e10 <= 22) {
-        double d = (double)mant;
-        d = e10 < 0 ? d / pow10_exact[-e10] : d * pow10_exact[e10];
-        *out = neg ? -d : d;
-        return NUM_OK;
-    }
-#endif
-    /* Slow path: sign, every digit without the point, and the exponent
-     * adjusted for the fraction digits, for strtod. */
-    char small[320], *buf = small;
-    size_t need = (digits_to - digits_from) + 32;
-    if (need > sizeof small && !(buf = malloc(need))) return NUM_NOMEM;
-    size_t k = 0;
-    long long frac = 0;
-    int in_frac = 0;
-    if (neg) buf[k++] = '-';
-    for (size_t j = digits_from; j < digits_to; j++) {
-        if (s[j] == '.') {
-            in_frac = 1;
-            continue;
-        }
-        buf[k++] = (char)s[j];
-        frac += in_frac;
-    }
-    snprintf(buf + k, need - k, "e%lld", ev - frac);
-    *out = strtod(buf, NULL);
-    if (buf != small) free(buf);
-    return NUM_OK;
-}
-
-/* 'text' for a message: at most 40 bytes shown, bytes outside printable
- * ASCII as \xNN, "..." when cut. */
-static const char *quote(char *buf, size_t size, const unsigned char *s, size_t n)
-{
-    size_t k = 0, i;
-    buf[k++] = '\'';
-    for (i = 0; i < n && i < 40 && k + 10 < size; i++) {
-        if (s[i] >= 0x20 && s[i] < 0x7f) {
-            buf[k++] = (char)s[i];
-        } else {
-            snprintf(buf + k, size - k, "\\x%02x", s[i]);
-            k += 4;
-        }
-    }
-    if (i < n && k + 5 < size) {
-        memcpy(buf + k, "...", 3);
-        k += 3;
-    }
-    buf[k++] = '\'';
-    buf[k] = '\0';
-    return buf;
-}
 
 /* ---- lexer: tokens of one logical line ---------------------------------- */
 
@@ -287,7 +130,7 @@ static const char *found(const obj_lex *lx, char *buf, size_t size)
         snprintf(buf, size, "end of line");
         return buf;
     }
-    return quote(buf, size, lx->tok, lx->n);
+    return lam_quote_bytes(buf, size, lx->tok, lx->n);
 }
 
 static int at_error(const obj_lex *lx, int code, long line, long col, const char *fmt, ...)
@@ -331,8 +174,8 @@ static int obj_vertex(obj_lex *lx, lam_mesh *m)
         if (!obj_next(lx))
             return at_error(lx, LAM_ESYNTAX, lx->tline, lx->tcol,
                             "expected the vertex %c coordinate, found end of line", "xyz"[k]);
-        int rc = parse_number(lx->tok, lx->n, &xyz[k]);
-        if (rc == NUM_NOMEM)
+        int rc = lam_parse_number(lx->tok, lx->n, &xyz[k]);
+        if (rc == LAM_ENOMEM)
             return at_error(lx, LAM_ENOMEM, lx->tline, lx->tcol, "out of memory reading a number");
         if (rc)
             return at_error(lx, LAM_ESYNTAX, lx->tline, lx->tcol,
@@ -347,6 +190,8 @@ static int obj_vertex(obj_lex *lx, lam_mesh *m)
     int rc = lam_mesh_add_vertex(m, xyz[0], xyz[1], xyz[2], NULL, lx->err);
     return rc ? mesh_error(lx, rc, line, col) : LAM_OK;
 }
+
+static int is_digit(unsigned char c) { return c >= '0' && c <= '9'; }
 
 /* [+-]digits at s[*i..n): 1 and the value (saturated) in *v, 0 if none. */
 static int read_int(const unsigned char *s, size_t n, size_t *i, long long *v)

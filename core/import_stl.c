@@ -35,183 +35,23 @@
  * columns (a tab is one column); an error at end of file points just past the
  * last byte.
  *
- * Numbers: [+-]digits[.digits][(e|E)[+-]digits] (".5" and "5." too). The
- * words nan, inf, infinity and MSVC's 1.#QNAN / -1.#IND / 1.#INF are read as
+ * Numbers: lam_parse_number (lexnum.h), exact and locale-independent. It
+ * reads nan, inf, infinity and MSVC's 1.#QNAN / -1.#IND / 1.#INF as
  * non-finite values, so a coordinate holding one is reported as "not a finite
  * number" rather than as malformed (a normal may hold anything numeric).
- * Conversion is exact: Clinger's fast path (mantissa <= 2^53, |exponent| <=
- * 22) and otherwise strtod on the digits rewritten without a decimal point,
- * which keeps the result independent of the C locale's decimal separator.
  *
  * Status codes: LAM_ESYNTAX for malformed text and a size that disagrees with
  * the count, LAM_EINVAL for non-finite coordinates, LAM_EFORMAT for a file
  * that is neither (too short for binary and not "solid"). Linear time. */
 #include "import.h"
+#include "lexnum.h"
 
-#include <float.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-/* ---- numbers (the same reader as import_obj.c) -------------------------- */
-
-enum { NUM_OK = 0, NUM_BAD = -1, NUM_NOMEM = -2 };
-
-static int is_digit(unsigned char c) { return c >= '0' && c <= '9'; }
-static int is_alnum(unsigned char c)
-{
-    return is_digit(c) || (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z');
-}
-static unsigned char lower(unsigned char c) { return c >= 'A' && c <= 'Z' ? (unsigned char)(c + 32) : c; }
-
-/* Case-insensitive: does s[0..n) spell the lower-case word kw? */
-static int word_eq(const unsigned char *s, size_t n, const char *kw)
-{
-    size_t k = strlen(kw);
-    if (n != k) return 0;
-    for (size_t i = 0; i < n; i++)
-        if (lower(s[i]) != (unsigned char)kw[i]) return 0;
-    return 1;
-}
-
-static const double pow10_exact[23] = {
-    1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11,
-    1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22,
-};
-
-/* Read the whole of s[0..n) as a number into *out (which may be NaN or
- * infinite). NUM_BAD when s is not a number, NUM_NOMEM when a long number
- * could not be copied for strtod. */
-static int parse_number(const unsigned char *s, size_t n, double *out)
-{
-    size_t i = 0;
-    int neg = 0;
-    if (i < n && (s[i] == '+' || s[i] == '-')) neg = s[i++] == '-';
-    if (i < n && !is_digit(s[i]) && s[i] != '.') {
-        if (word_eq(s + i, n - i, "nan")) {
-            *out = NAN;
-            return NUM_OK;
-        }
-        if (word_eq(s + i, n - i, "inf") || word_eq(s + i, n - i, "infinity")) {
-            *out = neg ? -INFINITY : INFINITY;
-            return NUM_OK;
-        }
-        return NUM_BAD;
-    }
-    size_t digits_from = i;
-    uint64_t mant = 0;
-    int nd = 0, digits = 0;
-    long long e10 = 0;
-    for (; i < n && is_digit(s[i]); i++) {
-        unsigned d = (unsigned)(s[i] - '0');
-        digits = 1;
-        if (nd < 19) {
-            if (mant || d) {
-                mant = mant * 10 + d;
-                nd++;
-            }
-        } else {
-            e10++;
-        }
-    }
-    if (i < n && s[i] == '.') {
-        i++;
-        for (; i < n && is_digit(s[i]); i++) {
-            unsigned d = (unsigned)(s[i] - '0');
-            digits = 1;
-            if (nd < 19) {
-                if (mant || d) {
-                    mant = mant * 10 + d;
-                    nd++;
-                }
-                e10--;
-            }
-        }
-        if (i < n && s[i] == '#' && digits) { /* MSVC: 1.#QNAN0, -1.#IND00, 1.#INF00 */
-            size_t j = i + 1;
-            while (j < n && is_alnum(s[j])) j++;
-            if (j != n || j == i + 1) return NUM_BAD;
-            if (n - i > 3 && lower(s[i + 1]) == 'i' && lower(s[i + 2]) == 'n' && lower(s[i + 3]) == 'f')
-                *out = neg ? -INFINITY : INFINITY;
-            else
-                *out = NAN;
-            return NUM_OK;
-        }
-    }
-    if (!digits) return NUM_BAD;
-    size_t digits_to = i;
-    long long ev = 0;
-    if (i < n && (s[i] == 'e' || s[i] == 'E')) {
-        i++;
-        int eneg = 0;
-        if (i < n && (s[i] == '+' || s[i] == '-')) eneg = s[i++] == '-';
-        if (i >= n || !is_digit(s[i])) return NUM_BAD;
-        for (; i < n && is_digit(s[i]); i++)
-            if (ev < 1000000000) ev = ev * 10 + (s[i] - '0');
-        if (eneg) ev = -ev;
-    }
-    if (i != n) return NUM_BAD;
-    if (mant == 0) {
-        *out = neg ? -0.0 : 0.0;
-        return NUM_OK;
-    }
-    e10 += ev;
-#if FLT_EVAL_METHOD == 0
-    if (mant <= (UINT64_C(1) << 53) && e10 >= -22 && e10 <= 22) {
-        double d = (double)mant;
-        d = e10 < 0 ? d / pow10_exact[-e10] : d * pow10_exact[e10];
-        *out = neg ? -d : d;
-        return NUM_OK;
-    }
-#endif
-    /* Slow path: sign, every digit without the point, and the exponent
-     * adjusted for the fraction digits, for strtod. */
-    char small[320], *buf = small;
-    size_t need = (digits_to - digits_from) + 32;
-    if (need > sizeof small && !(buf = malloc(need))) return NUM_NOMEM;
-    size_t k = 0;
-    long long frac = 0;
-    int in_frac = 0;
-    if (neg) buf[k++] = '-';
-    for (size_t j = digits_from; j < digits_to; j++) {
-        if (s[j] == '.') {
-            in_frac = 1;
-            continue;
-        }
-        buf[k++] = (char)s[j];
-        frac += in_frac;
-    }
-    snprintf(buf + k, need - k, "e%lld", ev - frac);
-    *out = strtod(buf, NULL);
-    if (buf != small) free(buf);
-    return NUM_OK;
-}
-
-/* 'text' for a message: at most 40 bytes shown, bytes outside printable
- * ASCII as \xNN, "..." when cut. */
-static const char *quote(char *buf, size_t size, const unsigned char *s, size_t n)
-{
-    size_t k = 0, i;
-    buf[k++] = '\'';
-    for (i = 0; i < n && i < 40 && k + 10 < size; i++) {
-        if (s[i] >= 0x20 && s[i] < 0x7f) {
-            buf[k++] = (char)s[i];
-        } else {
-            snprintf(buf + k, size - k, "\\x%02x", s[i]);
-            k += 4;
-        }
-    }
-    if (i < n && k + 5 < size) {
-        memcpy(buf + k, "...", 3);
-        k += 3;
-    }
-    buf[k++] = '\'';
-    buf[k] = '\0';
-    return buf;
-}
 
 /* ---- binary ------------------------------------------------------------- */
 
@@ -333,7 +173,7 @@ static void lex_skip_line(stl_lex *lx)
     lx->p = nl ? nl : lx->end;
 }
 
-static int is_kw(const stl_lex *lx, const char *kw) { return word_eq(lx->tok, lx->n, kw); }
+static int is_kw(const stl_lex *lx, const char *kw) { return lam_word_eq_nocase(lx->tok, lx->n, kw); }
 
 /* "'token'" or "end of file", for messages. */
 static const char *found(const stl_lex *lx, char *buf, size_t size)
@@ -342,7 +182,7 @@ static const char *found(const stl_lex *lx, char *buf, size_t size)
         snprintf(buf, size, "end of file");
         return buf;
     }
-    return quote(buf, size, lx->tok, lx->n);
+    return lam_quote_bytes(buf, size, lx->tok, lx->n);
 }
 
 static int lex_error(const stl_lex *lx, int code, const char *fmt, ...)
@@ -374,8 +214,8 @@ static int read_xyz(stl_lex *lx, double out[3], int finite, const char *what)
         if (!lex_next(lx))
             return lex_error(lx, LAM_ESYNTAX, "expected the %s %c coordinate, found end of file",
                              what, "xyz"[k]);
-        int rc = parse_number(lx->tok, lx->n, &out[k]);
-        if (rc == NUM_NOMEM) return lex_error(lx, LAM_ENOMEM, "out of memory reading a number");
+        int rc = lam_parse_number(lx->tok, lx->n, &out[k]);
+        if (rc == LAM_ENOMEM) return lex_error(lx, LAM_ENOMEM, "out of memory reading a number");
         if (rc)
             return lex_error(lx, LAM_ESYNTAX, "expected the %s %c coordinate (a number), found %s",
                              what, "xyz"[k], found(lx, q, sizeof q));
@@ -489,7 +329,7 @@ static int looks_ascii(const unsigned char *data, size_t len)
 {
     size_t i = skip_bom(data, len);
     while (i < len && is_space(data[i])) i++;
-    return len - i >= 5 && word_eq(data + i, 5, "solid");
+    return len - i >= 5 && lam_word_eq_nocase(data + i, 5, "solid");
 }
 
 /* ---- entry -------------------------------------------------------------- */

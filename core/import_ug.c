@@ -742,21 +742,48 @@ static int add_item(ug_parser *p, ug_scope *s, const ug_item *it)
     return LAM_OK;
 }
 
+/* The optional ID and the '(' after the keyword of a face, wire or instance
+ * (`what`): the ID, if any, into it->name; the '(' is consumed. */
+static int read_id_paren(ug_parser *p, const ug_token *kw, const char *what, ug_item *it)
+{
+    ug_token t;
+    int rc = next(p, &t);
+    if (rc) return rc;
+    char w[64];
+    if (t.kind == TK_WORD) {
+        it->name = t.s;
+        if ((rc = next(p, &t))) return rc;
+        if (t.kind == TK_LPAREN) return LAM_OK;
+        snprintf(w, sizeof w, "'(' after %s name", what);
+    } else {
+        if (t.kind == TK_LPAREN) return LAM_OK;
+        snprintf(w, sizeof w, "%s name or '(' after '%s'", what, kw->s);
+    }
+    return expected(p, &t, w);
+}
+
+/* The optional colour and the ';' that end a face or wire (`what`). */
+static int end_colour_semi(ug_parser *p, const char *what)
+{
+    const ug_token *nt;
+    int rc = peek(p, &nt);
+    if (rc) return rc;
+    if (nt->kind != TK_WORD) return expect_semi(p, what);
+    ug_token t;
+    if ((rc = next(p, &t))) return rc;
+    char after[32];
+    snprintf(after, sizeof after, "%s colour", what);
+    return expect_semi(p, after);
+}
+
 /* f [ID] (v1 ... vn) [(h1 ...) ...] [color]; */
 static int st_face(ug_parser *p, const ug_token *kw)
 {
     ug_scope *s = cur_scope(p);
     ug_item it = { .kind = IT_FACE, .line = kw->line, .col = kw->col };
     ug_token t;
-    int rc = next(p, &t);
+    int rc = read_id_paren(p, kw, "face", &it);
     if (rc) return rc;
-    if (t.kind == TK_WORD) {
-        it.name = t.s;
-        if ((rc = next(p, &t))) return rc;
-        if (t.kind != TK_LPAREN) return expected(p, &t, "'(' after face name");
-    } else if (t.kind != TK_LPAREN) {
-        return expected(p, &t, "face name or '(' after 'f'");
-    }
     it.first = s->nrefs;
     it.ring = s->nrings;
     for (;;) {
@@ -783,14 +810,7 @@ static int st_face(ug_parser *p, const ug_token *kw)
     }
     it.count = s->nrefs - it.first;
     it.nrings = s->nrings - it.ring;
-    const ug_token *nt;
-    if ((rc = peek(p, &nt))) return rc;
-    if (nt->kind == TK_WORD) {            /* the colour */
-        if ((rc = next(p, &t))) return rc;
-        if ((rc = expect_semi(p, "face colour"))) return rc;
-    } else if ((rc = expect_semi(p, "face"))) {
-        return rc;
-    }
+    if ((rc = end_colour_semi(p, "face"))) return rc;
     return add_item(p, s, &it);
 }
 
@@ -799,29 +819,14 @@ static int st_wire(ug_parser *p, const ug_token *kw)
 {
     ug_scope *s = cur_scope(p);
     ug_item it = { .kind = IT_WIRE, .line = kw->line, .col = kw->col };
-    ug_token t;
-    int rc = next(p, &t);
+    int rc = read_id_paren(p, kw, "wire", &it);
     if (rc) return rc;
-    if (t.kind == TK_WORD) {
-        it.name = t.s;
-        if ((rc = next(p, &t))) return rc;
-        if (t.kind != TK_LPAREN) return expected(p, &t, "'(' after wire name");
-    } else if (t.kind != TK_LPAREN) {
-        return expected(p, &t, "wire name or '(' after 'w'");
-    }
     it.first = s->nrefs;
     if ((rc = read_ring(p, s, "wire", it.name, &it.count))) return rc;
     if (it.count < 2)
         return perr(p, LAM_EINVAL, kw->line, kw->col, "wire%s%s%s needs at least 2 distinct vertices",
                     it.name ? " '" : "", it.name ? it.name : "", it.name ? "'" : "");
-    const ug_token *nt;
-    if ((rc = peek(p, &nt))) return rc;
-    if (nt->kind == TK_WORD) {
-        if ((rc = next(p, &t))) return rc;
-        if ((rc = expect_semi(p, "wire colour"))) return rc;
-    } else if ((rc = expect_semi(p, "wire"))) {
-        return rc;
-    }
+    if ((rc = end_colour_semi(p, "wire"))) return rc;
     return add_item(p, s, &it);
 }
 
@@ -890,15 +895,8 @@ static int st_instance(ug_parser *p, const ug_token *kw)
     ug_import *imp = p->imp;
     ug_item it = { .kind = IT_INST, .line = kw->line, .col = kw->col };
     ug_token t;
-    int rc = next(p, &t);
+    int rc = read_id_paren(p, kw, "instance", &it);
     if (rc) return rc;
-    if (t.kind == TK_WORD) {
-        it.name = t.s;
-        if ((rc = next(p, &t))) return rc;
-        if (t.kind != TK_LPAREN) return expected(p, &t, "'(' after instance name");
-    } else if (t.kind != TK_LPAREN) {
-        return expected(p, &t, "instance name or '(' after 'i'");
-    }
     if ((rc = next(p, &t))) return rc;
     if (t.kind != TK_WORD) return expected(p, &t, "definition name after '('");
     if (!find_def(imp, p->scope, t.s, t.len, &it.target))

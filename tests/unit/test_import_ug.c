@@ -3,6 +3,7 @@
  * its exact position. */
 #include "import.h"
 #include "tap.h"
+#include "util.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -27,9 +28,13 @@ static int load(const char *src, const char *name, lam_mesh *m, lam_error *err)
     return lam_import_ug_buf(model_path(rel, path, sizeof path), src, strlen(src), m, err);
 }
 
-static int has(const char *s, const char *sub)
+/* Import the file tests/models/<rel> into a fresh mesh. */
+static int load_file(const char *rel, lam_mesh *m, lam_error *err)
 {
-    return s && strstr(s, sub) != NULL;
+    char path[1024];
+    lam_mesh_init(m);
+    lam_error_clear(err);
+    return lam_import_ug(model_path(rel, path, sizeof path), m, err);
 }
 
 static int ends_with(const char *s, const char *suffix)
@@ -84,13 +89,10 @@ static void check_xf(const char *xf, double x, double y, double z, double tol, i
 
 static void test_thesis_cube_hole(void)
 {
-    char path[1024];
     lam_mesh m;
     lam_error err;
-    lam_mesh_init(&m);
-    int rc = lam_import_ug(model_path("thesis_cube_hole.ug", path, sizeof path), &m, &err);
-    is_int(rc, LAM_OK, "thesis_cube_hole: loads");
-    if (rc) diag("%s", err.msg);
+    int rc = load_file("thesis_cube_hole.ug", &m, &err);
+    load_ok(rc, &err, "thesis_cube_hole: loads");
     is_int(m.ntris, 24, "thesis_cube_hole: 12 quads -> 24 triangles");
     is_int(m.nfaces, 12, "thesis_cube_hole: 12 face records");
     is_int(m.nverts, 16, "thesis_cube_hole: 16 vertices emitted");
@@ -115,13 +117,10 @@ static void test_thesis_cube_hole(void)
 
 static void test_frame_island(void)
 {
-    char path[1024];
     lam_mesh m;
     lam_error err;
-    lam_mesh_init(&m);
-    int rc = lam_import_ug(model_path("frame_island.ug", path, sizeof path), &m, &err);
-    is_int(rc, LAM_OK, "frame_island: loads");
-    if (rc) diag("%s", err.msg);
+    int rc = load_file("frame_island.ug", &m, &err);
+    load_ok(rc, &err, "frame_island: loads");
     is_int(m.ntris, 44, "frame_island: 8 + 8 + 16 + 12 triangles");
     is_int(m.nfaces, 16, "frame_island: 10 frame faces + 6 box faces");
     /* Triangles per face record: the frame's top and bottom are annuli. */
@@ -237,8 +236,7 @@ static void test_syntax(void)
                   "w edge (v f def v) green; w (n v);\n"
                   "c red 0.5 0.3; c_rgb green 0 1 0; l light 1 2 3; cam x (1 2 3);;\n",
                   NULL, &m, &err);
-    is_int(rc, LAM_OK, "keywords as names, attributes, normals, wires");
-    if (rc) diag("%s", err.msg);
+    load_ok(rc, &err, "keywords as names, attributes, normals, wires");
     is_int(m.ntris, 2, "two faces");
     is_int(m.nwires, 2, "two wires");
     is_int(m.nwire_segs, 4, "3 + 1 wire segments");
@@ -263,8 +261,7 @@ static void test_syntax(void)
               "v i 5 5 0; v j 6 5 0; v k 6 6 0; v l 5 6 0;\n"
               "f holes (a b c d a) (e h g f) (i l k j);\n",
               NULL, &m, &err);
-    is_int(rc, LAM_OK, "face with two holes");
-    if (rc) diag("%s", err.msg);
+    load_ok(rc, &err, "face with two holes");
     is_int(m.ntris, 14, "12 vertices, two holes -> 12 + 2*2 - 2 = 14 triangles");
     lam_mesh_free(&m);
 
@@ -287,13 +284,10 @@ static void test_includes(void)
 {
     lam_mesh m;
     lam_error err;
-    char path[1024];
 
     /* The thesis's sample #2: `include` inside a def, then instanced. */
-    lam_mesh_init(&m);
-    int rc = lam_import_ug(model_path("ug/sample2.ug", path, sizeof path), &m, &err);
-    is_int(rc, LAM_OK, "sample2 (include inside def) loads");
-    if (rc) diag("%s", err.msg);
+    int rc = load_file("ug/sample2.ug", &m, &err);
+    load_ok(rc, &err, "sample2 (include inside def) loads");
     is_int(m.ntris, 4, "sample2: two squares");
     if (m.nfaces == 2) {
         is_str(lam_mesh_string(&m, m.faces[0].name), "sq1", "slc1's face");
@@ -306,8 +300,7 @@ static void test_includes(void)
     /* Included geometry takes the include's transform; the library's
      * definitions become visible; a second include of it is fine. */
     rc = load("include lib -tz 1;\ni (tri -tx 10);\ninclude \"lib.ug\" -mx;", "main.ug", &m, &err);
-    is_int(rc, LAM_OK, "include with transforms, library definition");
-    if (rc) diag("%s", err.msg);
+    load_ok(rc, &err, "include with transforms, library definition");
     if (!rc && m.nverts == 9 && m.ntris == 3) {
         ok(m.xyz[0] == 0 && m.xyz[1] == 0 && m.xyz[2] == 6, "lib top triangle at z = 5 + 1");
         ok(m.xyz[3] == 1 && m.xyz[5] == 6, "its b at (1,0,6)");
@@ -326,8 +319,7 @@ static void test_includes(void)
     lam_mesh_free(&m);
 
     /* Include cycle: a.ug -> b.ug -> a.ug, reported at b's include. */
-    lam_mesh_init(&m);
-    rc = lam_import_ug(model_path("ug/a.ug", path, sizeof path), &m, &err);
+    rc = load_file("ug/a.ug", &m, &err);
     is_int(rc, LAM_EINVAL, "include cycle: status");
     ok(ends_with(err.file, "ug/b.ug"), "include cycle: in b.ug (%s)", err.file);
     is_int(err.line, 2, "include cycle: line");
@@ -347,8 +339,7 @@ static void test_includes(void)
                 "included definition 'tri'");
 
     /* A missing root file. */
-    lam_mesh_init(&m);
-    rc = lam_import_ug(model_path("ug/does_not_exist.ug", path, sizeof path), &m, &err);
+    rc = load_file("ug/does_not_exist.ug", &m, &err);
     is_int(rc, LAM_EIO, "missing root file");
     lam_mesh_free(&m);
 }
