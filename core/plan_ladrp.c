@@ -5,6 +5,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "offset.h"
+
 typedef struct xedge {
     double vlo, vhi;       /* v of the lower and upper end (rotated frame) */
     double ulo, uhi;       /* u of the same ends */
@@ -89,15 +91,57 @@ static int move(emitter *e, int deposit, double ur, double vr)
     return e->sink->move ? e->sink->move(e->sink->ctx, deposit, p) : LAM_OK;
 }
 
-int lam_plan_ladrp_layer(const lam_layer *L, const lam_frame *f, const lam_plan_opts *o,
+/* Perimeter passes: each contour of each inset, travel to its start, then
+ * deposit round it and back to the start. */
+static int perimeters(emitter *e, const lam_layer *L, lam_layer **inner, lam_error *err)
+{
+    *inner = NULL;
+    double d = e->o->bead;
+    int rc = LAM_OK;
+    double c = e->c, s = e->s;
+    e->c = 1; /* perimeters follow the contours: no raster rotation */
+    e->s = 0;
+    for (int k = 0; k < e->o->perimeters && !rc; k++) {
+        lam_layer *P;
+        if ((rc = lam_layer_offset(L, -(d / 2 + k * d), &P, err))) break;
+        for (size_t i = 0; i < P->ncontours && !rc; i++) {
+            const lam_contour *ct = &P->contours[i];
+            const double *uv = P->uv + 2 * ct->first;
+            rc = move(e, 0, uv[0], uv[1]);
+            for (size_t j = 1; j <= ct->n && !rc; j++) rc = move(e, 1, uv[2 * (j % ct->n)], uv[2 * (j % ct->n) + 1]);
+            e->st->deposits++;
+        }
+        lam_layer_free(P);
+    }
+    e->c = c;
+    e->s = s;
+    if (!rc) rc = lam_layer_offset(L, -(e->o->perimeters * d), inner, err);
+    /* the raster continues from the stage in its own (rotated) frame */
+    double u = e->ur, v = e->vr;
+    e->ur = s == 0 ? u * c : u * c + v * s;
+    e->vr = s == 0 ? v * c : -u * s + v * c;
+    return rc;
+}
+
+int lam_plan_ladrp_layer(const lam_layer *L0, const lam_frame *f, const lam_plan_opts *o,
                          const lam_sink *sink, double pos[3], int *laser_state, lam_ladrp_stats *st,
                          lam_error *err)
 {
     memset(st, 0, sizeof *st);
     if (!(o->bead > 0) || !isfinite(o->bead))
         return lam_error_set(err, LAM_EUSAGE, NULL, 0, 0, "bead width must be positive");
-    emitter e = { sink, f, o, 1, 0, L->cut, pos, 0, 0, laser_state, st };
-    rotation(o->angle + (double)L->index * o->angle_step, &e.c, &e.s);
+    emitter e = { sink, f, o, 1, 0, L0->cut, pos, 0, 0, laser_state, st };
+    rotation(o->angle + (double)L0->index * o->angle_step, &e.c, &e.s);
+    const lam_layer *L = L0;
+    lam_layer *inner = NULL;
+    if (o->perimeters > 0) {
+        int prc = perimeters(&e, L0, &inner, err);
+        if (prc) {
+            lam_layer_free(inner);
+            return prc;
+        }
+        L = inner;
+    }
 
     /* the layer's edges in the scan frame (rotated by -angle) */
     xedge *edges = malloc((L->npoints + 1) * sizeof *edges);
@@ -107,6 +151,7 @@ int lam_plan_ladrp_layer(const lam_layer *L, const lam_frame *f, const lam_plan_
         free(edges);
         free(xs);
         free(active);
+        lam_layer_free(inner);
         return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory planning a layer");
     }
     size_t ne = 0;
@@ -158,7 +203,7 @@ int lam_plan_ladrp_layer(const lam_layer *L, const lam_frame *f, const lam_plan_
             double a = xs[2 * pi], b = xs[2 * pi + 1];
             if (b - a < o->min_deposit || !(b > a)) continue;
             double from = backward ? b : a, to = backward ? a : b;
-            if (emitted == 0 && ndep == 0) {
+            if (emitted == 0 && ndep == 0 && o->perimeters <= 0) {
                 /* the thesis's approach: one bead above the first line, then down */
                 rc = move(&e, 0, from, y + d);
                 if (!rc) rc = move(&e, 0, from, y);
@@ -178,5 +223,6 @@ int lam_plan_ladrp_layer(const lam_layer *L, const lam_frame *f, const lam_plan_
     free(edges);
     free(xs);
     free(active);
+    lam_layer_free(inner);
     return rc;
 }

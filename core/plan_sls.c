@@ -3,8 +3,25 @@
 
 #include <stdlib.h>
 
+#include "offset.h"
+
+static int emit_layer(const lam_layer *L, const lam_frame *f, const lam_plan_opts *o,
+                      const lam_sink *sink, size_t *next_id, lam_error *err);
+
 int lam_plan_sls_layer(const lam_layer *L, const lam_frame *f, const lam_plan_opts *o,
                        const lam_sink *sink, size_t *next_id, lam_error *err)
+{
+    if (!o->beam_offset) return emit_layer(L, f, o, sink, next_id, err);
+    lam_layer *inset;
+    int rc = lam_layer_offset(L, -o->bead / 2, &inset, err);
+    if (rc) return rc;
+    rc = emit_layer(inset, f, o, sink, next_id, err);
+    lam_layer_free(inset);
+    return rc;
+}
+
+static int emit_layer(const lam_layer *L, const lam_frame *f, const lam_plan_opts *o,
+                      const lam_sink *sink, size_t *next_id, lam_error *err)
 {
     size_t maxn = 0;
     for (size_t k = 0; k < L->ncontours; k++)

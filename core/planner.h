@@ -11,8 +11,12 @@
  * as in the thesis sample. A raster angle rotates the scan lines
  * (angle + index * angle_step degrees, counter-clockwise in the layer).
  *
+ * Optional perimeter passes go round the contours before the raster,
+ * offset inward with GEOS (offset.h).
+ *
  * SLS (thesis 4.2, SPEC 4.2): every contour of the layer as one block,
- * solids counter-clockwise, holes clockwise, in the layer's order. */
+ * solids counter-clockwise, holes clockwise, in the layer's order;
+ * optionally offset by half the spot width (beam compensation). */
 #ifndef LAM_PLANNER_H
 #define LAM_PLANNER_H
 
@@ -32,6 +36,12 @@ typedef struct lam_plan_opts {
     double angle, angle_step;    /* degrees */
     int alternate;               /* boustrophedon */
     double min_deposit;          /* skip deposits shorter than this */
+    int perimeters;              /* LADRP: passes around the contours, the first
+                                    offset d/2 inward, each next one d further; the
+                                    raster then fills what lies inside them */
+    /* SLS */
+    int beam_offset;             /* contours moved inward by half the spot (holes
+                                    outward), so the beam's edge traces the part */
 } lam_plan_opts;
 
 /* Defaults: SLS, bead 1, rates 0, model frame, edge, 0 degrees, alternate. */

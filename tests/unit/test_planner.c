@@ -338,6 +338,55 @@ int main(void)
     free(r.ops);
     lam_slicer_free(s);
 
+    /* SLS beam offset: solids move in and holes out by half the spot */
+    lam_slicer_new(hole, &so, &s, &err);
+    lam_plan_opts_init(&po);
+    po.bead = 0.1;
+    po.beam_offset = 1;
+    sink = recorder(&r);
+    ok(lam_plan_run(s, hole, &po, &sink, NULL, NULL, &err) == LAM_OK, "beam offset plans (%s)", err.msg);
+    ok(r.ops[1].kind == OP_CONTOUR && r.ops[1].n == 4 && fabs(r.ops[1].v[0] + 0.95) < 1e-12 &&
+           fabs(r.ops[1].v[1] + 0.95) < 1e-12,
+       "the outer square starts at (-0.95, -0.95): inset by 0.05");
+    ok(r.ops[2].kind == OP_CONTOUR && !r.ops[2].solid && fabs(r.ops[2].v[0] + 0.55) < 1e-12,
+       "the hole grows to start at (-0.55, -0.55)");
+    free(r.ops);
+    lam_slicer_free(s);
+
+    /* LADRP perimeters: one pass at d/2 inside, then the raster inside it */
+    lam_slice_opts_init(&so);
+    so.cut = LAM_CUT_FLOOR;
+    so.width = 0.08;
+    lam_slicer_new(cube, &so, &s, &err);
+    lam_plan_opts_init(&po);
+    po.kind = LAM_PLAN_LADRP;
+    po.bead = 0.08;
+    po.perimeters = 1;
+    {
+        lam_layer *L;
+        lam_slicer_next(s, &L, &err);
+        sink = recorder(&r);
+        double p0[3] = { 0, 0, -1 };
+        int las = -1;
+        lam_ladrp_stats st;
+        ok(lam_plan_ladrp_layer(L, lam_slicer_frame(s), &po, &sink, p0, &las, &st, &err) == LAM_OK,
+           "perimeter pass plans (%s)", err.msg);
+        double first[3] = { 0, 0, 0 }, ymax = -INFINITY;
+        int seen = 0;
+        for (i = 0; i < r.n; i++) {
+            if (r.ops[i].kind != OP_MOVE) continue;
+            if (!seen++) memcpy(first, r.ops[i].v, sizeof first);
+            if (i > 6 && r.ops[i].deposit && r.ops[i].v[1] > ymax) ymax = r.ops[i].v[1];
+        }
+        ok(fabs(fabs(first[0]) - 0.96) < 1e-12 && fabs(fabs(first[1]) - 0.96) < 1e-12,
+           "the perimeter starts on the square inset by d/2 (|x| = |y| = 0.96)");
+        is_num(st.deposit_length, 4 * 1.92 + 23 * 1.84, 1e-9,
+               "deposits: the 1.92 square's perimeter + 23 raster lines of 1.84 inside it");
+        free(r.ops);
+        lam_layer_free(L);
+    }
+    lam_slicer_free(s);
+
     lam_model_free(cube);
     lam_model_free(hole);
     lam_model_free(fi);
