@@ -95,6 +95,37 @@ int lam_contour_contains(const lam_layer *layer, const lam_contour *c, double u,
 
 /* ---- nesting ------------------------------------------------------------ */
 
+/* The loop's nesting is decided at a point strictly inside it, a hair into
+ * the corner at its lowest-leftmost vertex (always convex), along the sum
+ * of the unit vectors to its two neighbours. A vertex itself may lie on
+ * another loop: a hole whose sides run along the outline around it (the
+ * thesis's through hole cut lengthwise) would then miss the crossing. */
+static void inner_point(const double *uv, size_t n, size_t a, double q[2])
+{
+    const double *A = uv + 2 * a, *P = uv + 2 * ((a + n - 1) % n), *N = uv + 2 * ((a + 1) % n);
+    double pu = P[0] - A[0], pv = P[1] - A[1], nu = N[0] - A[0], nv = N[1] - A[1];
+    double lp = hypot(pu, pv), ln = hypot(nu, nv);
+    q[0] = A[0];
+    q[1] = A[1];
+    if (!(lp > 0) || !(ln > 0)) return;
+    double du = pu / lp + nu / ln, dv = pv / lp + nv / ln, dl = hypot(du, dv);
+    if (!(dl > 0)) return;
+    double umin = A[0], umax = A[0], vmin = A[1], vmax = A[1];
+    for (size_t i = 0; i < n; i++) {
+        if (uv[2 * i] < umin) umin = uv[2 * i];
+        if (uv[2 * i] > umax) umax = uv[2 * i];
+        if (uv[2 * i + 1] < vmin) vmin = uv[2 * i + 1];
+        if (uv[2 * i + 1] > vmax) vmax = uv[2 * i + 1];
+    }
+    double size = umax - umin > vmax - vmin ? umax - umin : vmax - vmin;
+    /* small against the loop, large against rounding of its coordinates */
+    double eps = 1e-6 * (lp < ln ? lp : ln);
+    double floor_eps = 1e-12 * (fabs(A[0]) + fabs(A[1]) + size);
+    if (eps < floor_eps) eps = floor_eps;
+    q[0] = A[0] + eps * du / dl;
+    q[1] = A[1] + eps * dv / dl;
+}
+
 typedef struct seg {
     double vmin, vmax;
     uint32_t loop, i; /* edge from point i to i+1 of its loop */
@@ -122,6 +153,7 @@ static int cmp_query(const void *a, const void *b)
 
 typedef struct loopinfo {
     size_t first, n, start;   /* start: lowest-leftmost point */
+    double q[2];              /* a point just inside the loop, next to start */
     double area;
     int depth;
     long parent;
@@ -152,7 +184,7 @@ static void nest_few(const lam_loops *L, loopinfo *li)
 {
     size_t nl = L->nloops;
     for (size_t l = 0; l < nl; l++) {
-        const double *q = L->uv + 2 * (li[l].first + li[l].start);
+        const double *q = li[l].q;
         li[l].depth = 0;
         li[l].parent = -1;
         double best = INFINITY;
@@ -195,8 +227,8 @@ static int nest(const lam_loops *L, loopinfo *li, lam_error *err)
             s->loop = (uint32_t)l;
             s->i = (uint32_t)i;
         }
-        qs[l].u = uv[2 * li[l].start];
-        qs[l].v = uv[2 * li[l].start + 1];
+        qs[l].u = li[l].q[0];
+        qs[l].v = li[l].q[1];
         qs[l].loop = (uint32_t)l;
     }
     qsort(segs, ns, sizeof *segs, cmp_seg);
@@ -288,6 +320,7 @@ int lam_contours_assign(lam_layer *layer, const lam_loops *L, lam_error *err)
         li[l].n = L->len[l];
         li[l].start = lowest_leftmost(L->uv + 2 * off, L->len[l]);
         li[l].area = lam_loop_area(L->uv + 2 * off, L->len[l]);
+        inner_point(L->uv + 2 * off, L->len[l], li[l].start, li[l].q);
         off += L->len[l];
     }
     if ((rc = nest(L, li, err))) goto done;
