@@ -25,7 +25,27 @@
  * text "solid" or "hole"; `number` is index + 1; `points` expands to
  * x,y,x,y,... (layer-plane coordinates in the output frame, each number with
  * the field's format, default %.6f), repeating the first point when the
- * dialect says `close_polylines: true`; `n` counts the points written. */
+ * dialect says `close_polylines: true`; `n` counts the points written.
+ *
+ * Details fixed by the implementation (machines/README.md says the same):
+ * - `index` is the layer's 0-based index in layer commands and the contour's
+ *   0-based index within its layer in contour commands. `points` are the
+ *   contour's uv (the layer plane; x,y when slicing along z), or the output
+ *   x,y when a planner gives no uv. close_polylines also repeats the first
+ *   point as a last `vertex` command.
+ * - Default formats: integer fields (index number layers dimension n id dir
+ *   depth i) as integers; other numbers as lam_dialect_number (shortest
+ *   exact); text as is. %d/%i on a non-integer field rounds half away from
+ *   zero. Exactly %.Nf (or %f) renders with lam_fmt_fixed.
+ * - No negative zeros: under f/F a value that would print as "-0.000" prints
+ *   as "0.000" (as core/sls.c does for the thesis dialect); -0.0 is positive
+ *   under every conversion.
+ * - Relative moves: the stage position after a written move is the previous
+ *   position plus the dx dy dz as written (read back from the text), so
+ *   rounding never accumulates; an axis without its relative field in the
+ *   template is taken as reached. An absent travel/deposit command writes
+ *   nothing and leaves the stage where it was.
+ * - The sink copies the job's strings at begin. */
 #ifndef LAM_DIALECT_H
 #define LAM_DIALECT_H
 
@@ -74,5 +94,12 @@ void lam_dialect_free(lam_dialect *d);
  * travel/deposit/laser commands is the job's travel_rate or rate. Errors go
  * to err, which must outlive the sink. */
 int lam_dialect_sink(const lam_dialect *d, lam_writer *w, lam_error *err, lam_sink *out);
+
+/* The default rendering of a number field: the fewest significant digits
+ * (1..17) that read back as exactly x, in the notation %.17g would choose
+ * (plain decimals for 1e-4 <= |x| < 1e17, else an exponent): 600, 0.08,
+ * 0.1, 1e-05, 1e+20; never "-0". buf holds LAM_FMT_MAX bytes (fmt.h).
+ * Returns the length. */
+size_t lam_dialect_number(char *buf, double x);
 
 #endif

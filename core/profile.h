@@ -1,8 +1,14 @@
 /* Machine profiles: YAML files (libyaml document API) describing a machine's
  * process, widths, feed rates, raster options and command dialect.
- * A profile is data only: nothing in it can run code. Every error names
- * file:line:column of the offending node. See machines/README.md for the
- * keys. */
+ * A profile is data only: nothing in it can run code (YAML tags beyond the
+ * core schema are refused). Every error names file:line:column (1-based) of
+ * the offending node: the key for an unknown or duplicate key, the value for
+ * a wrong type or range, the mapping for a missing key, the exact character
+ * inside a template for template errors (single-line plain or quoted
+ * scalars and `|` blocks; other scalars: the scalar's start), the problem
+ * mark for malformed YAML. Numbers must be plain scalars read whole and
+ * finite; booleans true/false/yes/no. A `|`/`>` block template loses its
+ * final line break. See machines/README.md for the keys. */
 #ifndef LAM_PROFILE_H
 #define LAM_PROFILE_H
 
@@ -38,7 +44,7 @@ typedef struct lam_profile {
     int beam_offset;             /* contours inset by spot/2, default false */
     /* design rules (optional) */
     double max_overhang_deg;     /* 0 when absent */
-    char *writer;                /* "text" (default: the dialect) or a plugin writer name */
+    char *writer;                /* "text" (default: the dialect) or a plugin writer name; never NULL */
     lam_dialect dialect;
 } lam_profile;
 

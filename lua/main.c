@@ -11,6 +11,7 @@ static int help(void)
            "usage:\n"
            "  lamina info MODEL [--json]     model report: shells, cavities, volume, defects\n"
            "  lamina slice MODEL [options]   slice; SLS contours to stdout or -o FILE, --svg preview\n"
+           "  lamina machines [--show NAME]  list machine profiles / print one as resolved YAML\n"
            "  lamina --help | --version\n\n"
            "'lamina COMMAND --help' describes a command's options.\n"
            "Models: Unigrafix (.ug), STL (ASCII or binary), Wavefront OBJ.\n"
@@ -30,5 +31,6 @@ int main(int argc, char **argv)
     }
     if (strcmp(cmd, "info") == 0) return cmd_info(argc - 1, argv + 1);
     if (strcmp(cmd, "slice") == 0) return cmd_slice(argc - 1, argv + 1);
+    if (strcmp(cmd, "machines") == 0) return cmd_machines(argc - 1, argv + 1);
     return cli_usage(NULL, "unknown command '%s'", cmd);
 }

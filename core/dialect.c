@@ -1,0 +1,731 @@
+/* Command templates of a machine dialect (parse once, render per command)
+ * and the sink that writes a plan through them. See dialect.h. */
+#include "dialect.h"
+
+#include <math.h>
+#include <stdarg.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "fmt.h"
+#include "lexnum.h"
+
+/* ---- commands and fields ---------------------------------------------- */
+
+static const char *const cmd_names[LAM_CMD_COUNT] = {
+    "preamble", "postamble", "layer", "layer_end", "feed", "laser_on", "laser_off", "travel", "deposit",
+    "contour_begin", "contour_end", "loop_begin", "loop_end", "vertex", "polyline", "separator",
+};
+
+const char *lam_cmd_name(lam_cmd c)
+{
+    return (unsigned)c < LAM_CMD_COUNT ? cmd_names[c] : "?";
+}
+
+enum field {
+    F_NAME, F_PROCESS, F_UNITS, F_LAYERS, F_DIMENSION, F_BEAD, F_RATE, F_TRAVEL_RATE,
+    F_XMIN, F_YMIN, F_ZMIN, F_XMAX, F_YMAX, F_ZMAX,
+    F_INDEX, F_NUMBER, F_Z, F_WIDTH, F_FLOOR, F_CEILING,
+    F_DX, F_DY, F_DZ, F_X, F_Y, F_I,
+    F_ID, F_DIR, F_KIND, F_DEPTH, F_N, F_POINTS,
+    F_COUNT
+};
+
+static const char *const field_names[F_COUNT] = {
+    "name", "process", "units", "layers", "dimension", "bead", "rate", "travel_rate",
+    "xmin", "ymin", "zmin", "xmax", "ymax", "zmax",
+    "index", "number", "z", "width", "floor", "ceiling",
+    "dx", "dy", "dz", "x", "y", "i",
+    "id", "dir", "kind", "depth", "n", "points",
+};
+
+enum ftype { T_INT, T_NUM, T_TEXT, T_POINTS };
+
+static enum ftype field_type(int f)
+{
+    switch (f) {
+    case F_INDEX: case F_NUMBER: case F_LAYERS: case F_DIMENSION: case F_N: case F_ID: case F_DIR:
+    case F_DEPTH: case F_I:
+        return T_INT;
+    case F_NAME: case F_PROCESS: case F_UNITS: case F_KIND:
+        return T_TEXT;
+    case F_POINTS:
+        return T_POINTS;
+    default:
+        return T_NUM;
+    }
+}
+
+#define B(f) ((uint64_t)1 << (f))
+
+/* The fields of each command, in the order dialect.h lists them. */
+static const char *const cmd_field_text[LAM_CMD_COUNT] = {
+    [LAM_CMD_PREAMBLE] = "name process units layers dimension bead rate travel_rate xmin ymin zmin xmax ymax zmax",
+    [LAM_CMD_POSTAMBLE] = "name process units layers dimension bead rate travel_rate xmin ymin zmin xmax ymax zmax",
+    [LAM_CMD_LAYER] = "index number z width floor ceiling",
+    [LAM_CMD_LAYER_END] = "index number z width floor ceiling",
+    [LAM_CMD_FEED] = "rate",
+    [LAM_CMD_LASER_ON] = "rate",
+    [LAM_CMD_LASER_OFF] = "rate",
+    [LAM_CMD_TRAVEL] = "dx dy dz x y z rate",
+    [LAM_CMD_DEPOSIT] = "dx dy dz x y z rate",
+    [LAM_CMD_CONTOUR_BEGIN] = "index id dir kind depth n z points",
+    [LAM_CMD_CONTOUR_END] = "index id dir kind depth n z points",
+    [LAM_CMD_LOOP_BEGIN] = "n z",
+    [LAM_CMD_LOOP_END] = "n z",
+    [LAM_CMD_VERTEX] = "x y z i",
+    [LAM_CMD_POLYLINE] = "index id dir kind depth n z points",
+    [LAM_CMD_SEPARATOR] = "",
+};
+
+static int field_id(const char *name, size_t len)
+{
+    for (int f = 0; f < F_COUNT; f++)
+        if (strlen(field_names[f]) == len && memcmp(field_names[f], name, len) == 0) return f;
+    return -1;
+}
+
+static uint64_t cmd_fields(lam_cmd c)
+{
+    uint64_t set = 0;
+    for (const char *p = cmd_field_text[c]; *p;) {
+        size_t len = strcspn(p, " ");
+        set |= B(field_id(p, len));
+        p += len;
+        p += strspn(p, " ");
+    }
+    return set;
+}
+
+/* ---- templates ---------------------------------------------------------- */
+
+#define MAX_WIDTH 40
+#define MAX_PREC 40
+
+struct lam_tseg {
+    int field;      /* -1: literal text */
+    char *lit;      /* literal (owned) */
+    size_t len;
+    char conv;      /* 0 default, else d i f F e E g G s */
+    int prec;       /* -1 when not given */
+    int fast;       /* exactly %.Nf (or %f): lam_fmt_fixed with prec */
+    char spec[32];  /* the conversion for snprintf (d/i with "ll") */
+};
+
+void lam_template_free(lam_template *t)
+{
+    if (!t) return;
+    for (size_t i = 0; i < t->nsegs; i++) free(t->segs[i].lit);
+    free(t->segs);
+    free(t->source);
+    memset(t, 0, sizeof *t);
+}
+
+void lam_dialect_free(lam_dialect *d)
+{
+    if (!d) return;
+    for (int c = 0; c < LAM_CMD_COUNT; c++) lam_template_free(&d->cmd[c]);
+}
+
+static int push_seg(lam_template *t, size_t *cap, const lam_tseg *s)
+{
+    if (t->nsegs == *cap) {
+        size_t nc = *cap ? 2 * *cap : 8;
+        lam_tseg *ns = realloc(t->segs, nc * sizeof *ns);
+        if (!ns) return 0;
+        t->segs = ns;
+        *cap = nc;
+    }
+    t->segs[t->nsegs++] = *s;
+    return 1;
+}
+
+/* Append text[0..n) to the literal segment at the end of t (a new one if
+ * the last segment is a field). */
+static int push_lit(lam_template *t, size_t *cap, const char *text, size_t n)
+{
+    lam_tseg *last = t->nsegs ? &t->segs[t->nsegs - 1] : NULL;
+    if (!last || last->field >= 0) {
+        lam_tseg s;
+        memset(&s, 0, sizeof s);
+        s.field = -1;
+        if (!push_seg(t, cap, &s)) return 0;
+        last = &t->segs[t->nsegs - 1];
+    }
+    char *nl = realloc(last->lit, last->len + n + 1);
+    if (!nl) return 0;
+    memcpy(nl + last->len, text, n);
+    last->len += n;
+    nl[last->len] = '\0';
+    last->lit = nl;
+    return 1;
+}
+
+static int perr(lam_error *err, size_t *offset, size_t at, const char *fmt, ...) __attribute__((format(printf, 4, 5)));
+static int perr(lam_error *err, size_t *offset, size_t at, const char *fmt, ...)
+{
+    char msg[900];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    if (offset) *offset = at;
+    return lam_error_set(err, LAM_EINVAL, NULL, 0, 0, "%s", msg);
+}
+
+/* Parse the conversion spec text[at..] (starting at '%') for field f up to the
+ * closing '}'. On success fills seg and sets *endp to the '}' offset. */
+static int parse_spec(lam_cmd c, int f, const char *text, size_t at, lam_tseg *seg, size_t *endp,
+                      size_t *offset, lam_error *err)
+{
+    (void)c;
+    size_t p = at;
+    enum ftype ty = field_type(f);
+    if (text[p] != '%')
+        return perr(err, offset, p, "a format starts with '%%' (as in {%s:%%.3f}), got '%c'", field_names[f],
+                    text[p] ? text[p] : ' ');
+    p++;
+    char flags[8];
+    size_t nflags = 0;
+    while (text[p] && strchr("-+ 0#", text[p])) {
+        if (memchr(flags, text[p], nflags))
+            return perr(err, offset, p, "flag '%c' given twice in the format of '%s'", text[p], field_names[f]);
+        flags[nflags++] = text[p++];
+    }
+    int width = -1;
+    size_t wat = p;
+    if (text[p] >= '0' && text[p] <= '9') {
+        width = 0;
+        while (text[p] >= '0' && text[p] <= '9') {
+            if (width <= MAX_WIDTH) width = width * 10 + (text[p] - '0');
+            p++;
+        }
+        if (width > MAX_WIDTH)
+            return perr(err, offset, wat, "width of '%s' is more than %d", field_names[f], MAX_WIDTH);
+    }
+    int prec = -1;
+    if (text[p] == '.') {
+        p++;
+        size_t pat = p;
+        if (!(text[p] >= '0' && text[p] <= '9')) {
+            if (text[p] == '*') return perr(err, offset, p, "'*' is not allowed in a format: give the precision");
+            return perr(err, offset, p, "precision of '%s' needs digits after '.'", field_names[f]);
+        }
+        prec = 0;
+        while (text[p] >= '0' && text[p] <= '9') {
+            if (prec <= MAX_PREC) prec = prec * 10 + (text[p] - '0');
+            p++;
+        }
+        if (prec > MAX_PREC)
+            return perr(err, offset, pat, "precision of '%s' is more than %d", field_names[f], MAX_PREC);
+    }
+    char conv = text[p];
+    if (conv == '*') return perr(err, offset, p, "'*' is not allowed in a format: give the width");
+    if (conv == 'n') return perr(err, offset, p, "%%n is not allowed: a template only formats values");
+    if (conv && strchr("hlLqjzt", conv))
+        return perr(err, offset, p,
+                    "length modifier '%c' is not allowed: write just the conversion (d i f F e E g G, s for text)",
+                    conv);
+    if (conv == '}' || conv == '\0')
+        return perr(err, offset, p, "the format of '%s' has no conversion letter (d i f F e E g G, s for text)",
+                    field_names[f]);
+    if (!strchr("difFeEgGs", conv))
+        return perr(err, offset, p, "unsupported conversion '%%%c' (allowed: d i f F e E g G, s for text fields)",
+                    conv);
+    if (conv == 's' && ty != T_TEXT)
+        return perr(err, offset, p, "%%s is for text fields; '%s' is a number (use d i f F e E g G)", field_names[f]);
+    if (conv != 's' && ty == T_TEXT)
+        return perr(err, offset, p, "'%s' is text: format it with %%s", field_names[f]);
+    if (conv == 'd' || conv == 'i') {
+        if (ty == T_POINTS) return perr(err, offset, p, "'points' are coordinates: use f F e E g G");
+        if (memchr(flags, '#', nflags))
+            return perr(err, offset, at + 1 + (size_t)((char *)memchr(flags, '#', nflags) - flags),
+                        "flag '#' does not apply to %%%c", conv);
+    }
+    if (conv == 's') {
+        for (size_t k = 0; k < nflags; k++)
+            if (flags[k] != '-')
+                return perr(err, offset, at + 1 + k, "flag '%c' does not apply to %%s (only '-')", flags[k]);
+    }
+    p++;
+    if (text[p] != '}') {
+        if (text[p] == '\0') return perr(err, offset, p, "unterminated field '%s': expected '}'", field_names[f]);
+        return perr(err, offset, p, "unexpected '%c' after the conversion of '%s', expected '}'", text[p],
+                    field_names[f]);
+    }
+    /* the snprintf spec */
+    char *s = seg->spec;
+    size_t k = 0;
+    s[k++] = '%';
+    memcpy(s + k, flags, nflags);
+    k += nflags;
+    if (width >= 0) k += (size_t)snprintf(s + k, sizeof seg->spec - k, "%d", width);
+    if (prec >= 0) k += (size_t)snprintf(s + k, sizeof seg->spec - k, ".%d", prec);
+    if (conv == 'd' || conv == 'i') {
+        s[k++] = 'l';
+        s[k++] = 'l';
+    }
+    s[k++] = conv;
+    s[k] = '\0';
+    seg->conv = conv;
+    seg->prec = prec;
+    seg->fast = conv == 'f' && nflags == 0 && width < 0;
+    if (seg->fast && prec < 0) seg->prec = 6;
+    *endp = p;
+    return LAM_OK;
+}
+
+int lam_template_parse(lam_cmd c, const char *text, lam_template *t, size_t *offset, lam_error *err)
+{
+    memset(t, 0, sizeof *t);
+    if (offset) *offset = 0;
+    if ((unsigned)c >= LAM_CMD_COUNT) return perr(err, offset, 0, "no such command");
+    size_t cap = 0;
+    uint64_t allowed = cmd_fields(c);
+    int rc = LAM_OK;
+    size_t i = 0;
+    while (text[i] && !rc) {
+        char ch = text[i];
+        if (ch == '{' && text[i + 1] == '{') {
+            if (!push_lit(t, &cap, "{", 1)) goto nomem;
+            i += 2;
+            continue;
+        }
+        if (ch == '}') {
+            if (text[i + 1] == '}') {
+                if (!push_lit(t, &cap, "}", 1)) goto nomem;
+                i += 2;
+                continue;
+            }
+            rc = perr(err, offset, i, "single '}' (write '}}' for a literal brace)");
+            break;
+        }
+        if (ch != '{') {
+            size_t run = strcspn(text + i, "{}");
+            if (!push_lit(t, &cap, text + i, run)) goto nomem;
+            i += run;
+            continue;
+        }
+        /* a field: {name} or {name:%spec} */
+        size_t open = i, ns = i + 1, ne = ns;
+        while (text[ne] && text[ne] != '}' && text[ne] != ':' && text[ne] != '{' && text[ne] != '\n') ne++;
+        if (text[ne] != '}' && text[ne] != ':') {
+            rc = perr(err, offset, open, "unterminated '{': a field ends with '}' (write '{{' for a literal brace)");
+            break;
+        }
+        if (ne == ns) {
+            rc = perr(err, offset, open, "empty field name in '{}' (write '{{' for a literal brace)");
+            break;
+        }
+        int f = field_id(text + ns, ne - ns);
+        if (f < 0 || !(allowed & B(f))) {
+            char shown[64];
+            lam_quote_bytes(shown, sizeof shown, (const unsigned char *)text + ns, ne - ns);
+            if (!allowed) {
+                rc = perr(err, offset, ns, "unknown field %s: the %s command has no fields", shown, cmd_names[c]);
+            } else {
+                rc = perr(err, offset, ns, "unknown field %s for the %s command (fields: %s)", shown, cmd_names[c],
+                          cmd_field_text[c]);
+            }
+            break;
+        }
+        lam_tseg seg;
+        memset(&seg, 0, sizeof seg);
+        seg.field = f;
+        seg.prec = -1;
+        size_t close = ne;
+        if (text[ne] == ':') {
+            /* the spec must end with '}' before any newline */
+            size_t e = ne + 1;
+            while (text[e] && text[e] != '}' && text[e] != '\n') e++;
+            if (text[e] != '}') {
+                rc = perr(err, offset, open,
+                          "unterminated '{': a field ends with '}' (write '{{' for a literal brace)");
+                break;
+            }
+            rc = parse_spec(c, f, text, ne + 1, &seg, &close, offset, err);
+            if (rc) break;
+        } else if (field_type(f) == T_POINTS) {
+            seg.conv = 'f';
+            seg.prec = 6;
+            seg.fast = 1;
+            strcpy(seg.spec, "%.6f");
+        }
+        if (!push_seg(t, &cap, &seg)) goto nomem;
+        i = close + 1;
+    }
+    if (!rc && !(t->source = strdup(text))) goto nomem;
+    if (rc) {
+        lam_template_free(t);
+        return rc;
+    }
+    t->present = 1;
+    return LAM_OK;
+nomem:
+    lam_template_free(t);
+    return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory");
+}
+
+/* ---- rendering ---------------------------------------------------------- */
+
+typedef struct buf {
+    char *s;
+    size_t len, cap;
+    int oom;
+} buf;
+
+static void put(buf *b, const char *s, size_t n)
+{
+    if (b->oom) return;
+    if (b->len + n + 1 > b->cap) {
+        size_t nc = b->cap ? b->cap : 256;
+        while (nc < b->len + n + 1) nc *= 2;
+        char *ns = realloc(b->s, nc);
+        if (!ns) {
+            b->oom = 1;
+            return;
+        }
+        b->s = ns;
+        b->cap = nc;
+    }
+    memcpy(b->s + b->len, s, n);
+    b->len += n;
+    b->s[b->len] = '\0';
+}
+
+size_t lam_dialect_number(char *out, double x)
+{
+    if (x == 0) x = 0; /* no "-0" */
+    if (!isfinite(x)) return (size_t)snprintf(out, LAM_FMT_MAX, "%g", x);
+    int prec = 1, n = 0;
+    for (; prec <= 17; prec++) {
+        n = snprintf(out, LAM_FMT_MAX, "%.*e", prec - 1, x);
+        double back;
+        if (lam_parse_number((const unsigned char *)out, (size_t)n, &back) == LAM_OK && back == x) break;
+    }
+    if (prec > 17) prec = 17;
+    /* the decimal exponent of the shortest digits decides the notation, as
+     * %.17g decides it: plain decimals for 1e-4 <= |x| < 1e17 */
+    const char *e = strchr(out, 'e');
+    int exp10 = e ? atoi(e + 1) : 0;
+    if (exp10 >= -4 && exp10 < 17 && prec < exp10 + 1) prec = exp10 + 1;
+    n = snprintf(out, LAM_FMT_MAX, "%.*g", prec, x);
+    return n < 0 ? 0 : (size_t)n;
+}
+
+/* 1 when the fixed rendering s (from lam_fmt_fixed) is "-0", "-0.000...". */
+static int negative_zero(const char *s)
+{
+    if (s[0] != '-') return 0;
+    for (const char *p = s + 1; *p; p++)
+        if (*p != '0' && *p != '.') return 0;
+    return 1;
+}
+
+/* Render number x with seg's conversion (or the default for ftype ty). */
+static size_t fmt_number(char *out, const lam_tseg *seg, double x, enum ftype ty)
+{
+    if (seg->conv == 0) {
+        if (ty == T_INT && fabs(x) < 9e18) return (size_t)snprintf(out, LAM_FMT_MAX, "%lld", (long long)x);
+        return lam_dialect_number(out, x);
+    }
+    if (x == 0) x = 0; /* never "-0" */
+    if (seg->conv == 'f' || seg->conv == 'F') {
+        if (isfinite(x) && signbit(x)) {
+            char tmp[LAM_FMT_MAX];
+            lam_fmt_fixed(tmp, x, seg->prec < 0 ? 6 : seg->prec);
+            if (negative_zero(tmp)) x = 0;
+        }
+        if (seg->fast) return lam_fmt_fixed(out, x, seg->prec);
+    }
+    int n;
+    if (seg->conv == 'd' || seg->conv == 'i') {
+        if (fabs(x) < 9e18) n = snprintf(out, LAM_FMT_MAX, seg->spec, (long long)llround(x));
+        else return lam_dialect_number(out, x);
+    } else {
+        n = snprintf(out, LAM_FMT_MAX, seg->spec, x);
+    }
+    /* width and precision <= 40 keep any double under 360 characters */
+    return n < 0 ? 0 : n >= LAM_FMT_MAX ? LAM_FMT_MAX - 1 : (size_t)n;
+}
+
+/* The values a command can use. */
+typedef struct vals {
+    double num[F_COUNT];
+    const char *text[F_COUNT];
+    const double *uv;        /* points: 2 per point, or xyz with stride 3 */
+    size_t uv_stride, npts;
+    int close;
+} vals;
+
+/* Render t into b; for travel/deposit also the text of dx dy dz
+ * (rel[k] set to the value the machine reads, has_rel[k] to 1). */
+static void render(const lam_template *t, const vals *v, buf *b, double rel[3], int has_rel[3])
+{
+    char num[LAM_FMT_MAX + 8];
+    for (size_t i = 0; i < t->nsegs; i++) {
+        const lam_tseg *s = &t->segs[i];
+        if (s->field < 0) {
+            put(b, s->lit, s->len);
+            continue;
+        }
+        enum ftype ty = field_type(s->field);
+        if (ty == T_TEXT) {
+            const char *txt = v->text[s->field] ? v->text[s->field] : "";
+            if (!s->conv) {
+                put(b, txt, strlen(txt));
+            } else {
+                int n = snprintf(NULL, 0, s->spec, txt);
+                char *tmp = n >= 0 ? malloc((size_t)n + 1) : NULL;
+                if (!tmp) {
+                    b->oom = 1;
+                    return;
+                }
+                snprintf(tmp, (size_t)n + 1, s->spec, txt);
+                put(b, tmp, (size_t)n);
+                free(tmp);
+            }
+        } else if (ty == T_POINTS) {
+            size_t total = v->npts + (v->close && v->npts ? 1 : 0);
+            for (size_t k = 0; k < total; k++) {
+                const double *p = v->uv + (k % v->npts) * v->uv_stride;
+                for (int j = 0; j < 2; j++) {
+                    if (k || j) put(b, ",", 1);
+                    put(b, num, fmt_number(num, s, p[j], T_NUM));
+                }
+            }
+        } else {
+            size_t n = fmt_number(num, s, v->num[s->field], ty);
+            put(b, num, n);
+            int k = s->field == F_DX ? 0 : s->field == F_DY ? 1 : s->field == F_DZ ? 2 : -1;
+            if (rel && k >= 0 && !has_rel[k]) {
+                double back;
+                has_rel[k] = 1;
+                rel[k] = lam_parse_number((const unsigned char *)num, n, &back) == LAM_OK && isfinite(back)
+                             ? back
+                             : v->num[s->field];
+            }
+        }
+    }
+}
+
+/* ---- the sink ----------------------------------------------------------- */
+
+typedef struct dsink {
+    const lam_dialect *d;
+    lam_writer *w;
+    lam_error *err;
+    lam_job_info job;
+    char *name, *process, *units;   /* copies of the job's strings */
+    double pos[3];                  /* the stage position as the machine knows it */
+    size_t blocks;                  /* contour blocks written */
+    size_t layer_index, in_layer;   /* contours seen in the current layer */
+    buf b;
+} dsink;
+
+static int emit(dsink *s, lam_cmd c, const vals *v, double rel[3], int has_rel[3])
+{
+    const lam_template *t = &s->d->cmd[c];
+    if (!t->present) return LAM_OK;
+    s->b.len = 0;
+    render(t, v, &s->b, rel, has_rel);
+    put(&s->b, "\n", 1);
+    if (s->b.oom) return lam_error_set(s->err, LAM_ENOMEM, NULL, 0, 0, "out of memory writing the %s command",
+                                       cmd_names[c]);
+    int rc = lam_writer_write(s->w, s->b.s, s->b.len);
+    if (rc) return lam_error_set(s->err, rc, NULL, 0, 0, "cannot write the program (%s command)", cmd_names[c]);
+    return LAM_OK;
+}
+
+static void job_vals(const dsink *s, vals *v)
+{
+    memset(v, 0, sizeof *v);
+    v->text[F_NAME] = s->name;
+    v->text[F_PROCESS] = s->process;
+    v->text[F_UNITS] = s->units;
+    v->num[F_LAYERS] = (double)s->job.layers;
+    v->num[F_DIMENSION] = 3;
+    v->num[F_BEAD] = s->job.bead;
+    v->num[F_RATE] = s->job.rate;
+    v->num[F_TRAVEL_RATE] = s->job.travel_rate;
+    for (int j = 0; j < 6; j++) v->num[F_XMIN + j] = s->job.bbox[j];
+}
+
+static char *dup_or_empty(const char *s)
+{
+    return strdup(s ? s : "");
+}
+
+static int d_begin(void *ctx, const lam_job_info *job)
+{
+    dsink *s = ctx;
+    s->job = *job;
+    free(s->name);
+    free(s->process);
+    free(s->units);
+    s->name = dup_or_empty(job->name);
+    s->process = dup_or_empty(job->process);
+    s->units = dup_or_empty(job->units);
+    if (!s->name || !s->process || !s->units) return lam_error_set(s->err, LAM_ENOMEM, NULL, 0, 0, "out of memory");
+    memcpy(s->pos, job->origin, sizeof s->pos);
+    s->blocks = 0;
+    vals v;
+    job_vals(s, &v);
+    return emit(s, LAM_CMD_PREAMBLE, &v, NULL, NULL);
+}
+
+static int layer_cmd(dsink *s, lam_cmd c, const lam_layer_info *L)
+{
+    vals v;
+    memset(&v, 0, sizeof v);
+    v.num[F_INDEX] = (double)L->index;
+    v.num[F_NUMBER] = (double)L->index + 1;
+    v.num[F_Z] = L->z;
+    v.num[F_WIDTH] = L->width;
+    v.num[F_FLOOR] = L->floor;
+    v.num[F_CEILING] = L->ceiling;
+    return emit(s, c, &v, NULL, NULL);
+}
+
+static int d_layer(void *ctx, const lam_layer_info *L)
+{
+    dsink *s = ctx;
+    s->layer_index = L->index;
+    s->in_layer = 0;
+    return layer_cmd(s, LAM_CMD_LAYER, L);
+}
+
+static int d_layer_end(void *ctx, const lam_layer_info *L)
+{
+    return layer_cmd(ctx, LAM_CMD_LAYER_END, L);
+}
+
+static int d_feed(void *ctx, double rate)
+{
+    vals v;
+    memset(&v, 0, sizeof v);
+    v.num[F_RATE] = rate;
+    return emit(ctx, LAM_CMD_FEED, &v, NULL, NULL);
+}
+
+static int d_laser(void *ctx, int on)
+{
+    dsink *s = ctx;
+    vals v;
+    memset(&v, 0, sizeof v);
+    v.num[F_RATE] = s->job.rate;
+    return emit(s, on ? LAM_CMD_LASER_ON : LAM_CMD_LASER_OFF, &v, NULL, NULL);
+}
+
+static int d_move(void *ctx, int deposit, const double xyz[3])
+{
+    dsink *s = ctx;
+    lam_cmd c = deposit ? LAM_CMD_DEPOSIT : LAM_CMD_TRAVEL;
+    if (!s->d->cmd[c].present) return LAM_OK; /* the machine was not told to move */
+    vals v;
+    memset(&v, 0, sizeof v);
+    v.num[F_DX] = xyz[0] - s->pos[0];
+    v.num[F_DY] = xyz[1] - s->pos[1];
+    v.num[F_DZ] = xyz[2] - s->pos[2];
+    v.num[F_X] = xyz[0];
+    v.num[F_Y] = xyz[1];
+    v.num[F_Z] = xyz[2];
+    v.num[F_RATE] = deposit ? s->job.rate : s->job.travel_rate;
+    double rel[3];
+    int has_rel[3] = { 0, 0, 0 };
+    int rc = emit(s, c, &v, rel, has_rel);
+    /* The stage now is where the written command takes it: relative moves
+     * are accumulated as the machine reads them (the rounded numbers), so
+     * rounding never drifts; an axis without a relative field is absolute. */
+    for (int j = 0; j < 3; j++) s->pos[j] = has_rel[j] ? s->pos[j] + rel[j] : xyz[j];
+    return rc;
+}
+
+static int d_contour(void *ctx, const lam_contour_info *ci)
+{
+    dsink *s = ctx;
+    const lam_dialect *d = s->d;
+    int rc = LAM_OK;
+    size_t index = s->in_layer++;
+    vals v;
+    memset(&v, 0, sizeof v);
+    if (s->blocks++ > 0 && (rc = emit(s, LAM_CMD_SEPARATOR, &v, NULL, NULL))) return rc;
+    int close = d->close_polylines && ci->n > 0;
+    size_t written = ci->n + (close ? 1 : 0);
+    v.num[F_INDEX] = (double)index;
+    v.num[F_ID] = (double)ci->id;
+    v.num[F_DIR] = ci->solid ? 1 : 0;
+    v.text[F_KIND] = ci->solid ? "solid" : "hole";
+    v.num[F_DEPTH] = ci->depth;
+    v.num[F_N] = (double)written;
+    v.num[F_Z] = ci->z;
+    if (ci->uv) {
+        v.uv = ci->uv;
+        v.uv_stride = 2;
+    } else {
+        v.uv = ci->xyz;
+        v.uv_stride = 3;
+    }
+    v.npts = ci->n;
+    v.close = close;
+    if ((rc = emit(s, LAM_CMD_CONTOUR_BEGIN, &v, NULL, NULL))) return rc;
+    if ((rc = emit(s, LAM_CMD_LOOP_BEGIN, &v, NULL, NULL))) return rc;
+    if (d->cmd[LAM_CMD_VERTEX].present) {
+        vals pv;
+        memset(&pv, 0, sizeof pv);
+        for (size_t k = 0; k < written && !rc; k++) {
+            const double *p = ci->xyz + 3 * (k % ci->n);
+            pv.num[F_X] = p[0];
+            pv.num[F_Y] = p[1];
+            pv.num[F_Z] = p[2];
+            pv.num[F_I] = (double)k;
+            rc = emit(s, LAM_CMD_VERTEX, &pv, NULL, NULL);
+        }
+        if (rc) return rc;
+    }
+    if ((rc = emit(s, LAM_CMD_LOOP_END, &v, NULL, NULL))) return rc;
+    if ((rc = emit(s, LAM_CMD_CONTOUR_END, &v, NULL, NULL))) return rc;
+    return emit(s, LAM_CMD_POLYLINE, &v, NULL, NULL);
+}
+
+static int d_end(void *ctx)
+{
+    dsink *s = ctx;
+    vals v;
+    job_vals(s, &v);
+    return emit(s, LAM_CMD_POSTAMBLE, &v, NULL, NULL);
+}
+
+static void d_destroy(void *ctx)
+{
+    dsink *s = ctx;
+    if (!s) return;
+    free(s->name);
+    free(s->process);
+    free(s->units);
+    free(s->b.s);
+    free(s);
+}
+
+int lam_dialect_sink(const lam_dialect *d, lam_writer *w, lam_error *err, lam_sink *out)
+{
+    memset(out, 0, sizeof *out);
+    dsink *s = calloc(1, sizeof *s);
+    if (!s) return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory");
+    s->d = d;
+    s->w = w;
+    s->err = err;
+    out->ctx = s;
+    out->begin = d_begin;
+    out->layer = d_layer;
+    out->layer_end = d_layer_end;
+    out->feed = d_feed;
+    out->laser = d_laser;
+    out->move = d_move;
+    out->contour = d_contour;
+    out->end = d_end;
+    out->destroy = d_destroy;
+    return LAM_OK;
+}

@@ -1,0 +1,1073 @@
+/* Machine profiles: YAML (libyaml's document API) to lam_profile, with
+ * inheritance, strict types and positions on every error. See profile.h and
+ * machines/README.md.
+ *
+ * A profile is data only. Explicit YAML tags other than the core schema's
+ * (!!str !!int !!float !!bool !!null !!map !!seq) are refused outright, so
+ * `!!python/object` and friends are just errors; nothing in a profile is
+ * ever evaluated: templates are parsed into literal text and fields. */
+#include "profile.h"
+
+#include <errno.h>
+#include <limits.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+#include <yaml.h>
+
+#include "fmt.h"
+#include "lexnum.h"
+#include "paths.h"
+#include "slice.h"
+
+#define MAX_PROFILE_BYTES (4L << 20) /* a profile is a page of text */
+#define MAX_CHAIN 32                 /* inherits depth */
+#define MAX_DIRS 16
+
+/* ---- keys --------------------------------------------------------------- */
+
+enum key {
+    K_NAME, K_DESCRIPTION, K_PROCESS, K_UNITS, K_BEAD_WIDTH, K_SPOT_WIDTH, K_LAYER_WIDTH, K_CUT, K_FEED_RATE,
+    K_TRAVEL_RATE, K_GAP, K_FRAME, K_RASTER, K_BEAM_OFFSET, K_MAX_OVERHANG, K_WRITER, K_INHERITS, K_DIALECT,
+    K_COUNT
+};
+static const char *const key_names[K_COUNT] = {
+    "name", "description", "process", "units", "bead_width", "spot_width", "layer_width", "cut", "feed_rate",
+    "travel_rate", "gap", "frame", "raster", "beam_offset", "max_overhang_deg", "writer", "inherits", "dialect",
+};
+
+enum rkey { R_FIRST_LINE, R_ANGLE, R_ANGLE_STEP, R_ALTERNATE, R_MIN_DEPOSIT, R_PERIMETERS, R_COUNT };
+static const char *const raster_names[R_COUNT] = {
+    "first_line", "angle", "angle_step", "alternate", "min_deposit", "perimeters",
+};
+
+static const char *const process_names[] = { "ladrp", "sls", NULL };
+static const char *const cut_names[] = { "floor", "middle", "ceiling", NULL };
+static const char *const frame_names[] = { "model", "machine", NULL };
+static const char *const first_line_names[] = { "edge", "center", NULL };
+
+/* ---- one source file ---------------------------------------------------- */
+
+typedef struct src {
+    const char *path;        /* as given, for messages */
+    char *text;              /* the raw bytes (positions of template errors) */
+    size_t len;
+    yaml_document_t doc;
+    int have_doc;
+    lam_error *err;
+} src;
+
+/* The loader's state across an inherits chain. */
+typedef struct ldr {
+    lam_profile *p;
+    uint32_t set;            /* keys set by some file of the chain (1 << K_*) */
+    lam_error *err;
+    dev_t dev[MAX_CHAIN];    /* identity of the files being loaded */
+    ino_t ino[MAX_CHAIN];
+    const char *given[MAX_CHAIN];
+    size_t depth;
+} ldr;
+
+static int at(const src *s, yaml_mark_t m, int code, const char *fmt, ...) __attribute__((format(printf, 4, 5)));
+
+static int at(const src *s, yaml_mark_t m, int code, const char *fmt, ...)
+{
+    char msg[1000];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    return lam_error_set(s->err, code, s->path, (long)m.line + 1, (long)m.column + 1, "%s", msg);
+}
+
+static int oom_err(lam_error *err)
+{
+    return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory");
+}
+#define oom() oom_err(s->err)
+
+static int read_all(src *s, const char *path, char **text, size_t *len)
+{
+    *text = NULL;
+    *len = 0;
+    FILE *f = fopen(path, "rb");
+    if (!f) return lam_error_set(s->err, LAM_EIO, path, 0, 0, "cannot open: %s", strerror(errno));
+    struct stat st;
+    if (fstat(fileno(f), &st) == 0 && S_ISDIR(st.st_mode)) {
+        fclose(f);
+        return lam_error_set(s->err, LAM_EIO, path, 0, 0, "cannot read: is a directory");
+    }
+    size_t cap = 4096, n = 0;
+    char *b = malloc(cap);
+    if (!b) {
+        fclose(f);
+        return oom();
+    }
+    for (;;) {
+        if (n + 1 >= cap) {
+            if (cap > (size_t)MAX_PROFILE_BYTES) {
+                free(b);
+                fclose(f);
+                return lam_error_set(s->err, LAM_EINVAL, path, 0, 0, "too large for a machine profile (over %ld bytes)",
+                                     MAX_PROFILE_BYTES);
+            }
+            char *nb = realloc(b, cap * 2);
+            if (!nb) {
+                free(b);
+                fclose(f);
+                return oom();
+            }
+            b = nb;
+            cap *= 2;
+        }
+        size_t got = fread(b + n, 1, cap - n - 1, f);
+        n += got;
+        if (got == 0) break;
+    }
+    int bad = ferror(f);
+    fclose(f);
+    if (bad) {
+        free(b);
+        return lam_error_set(s->err, LAM_EIO, path, 0, 0, "cannot read: %s", strerror(errno ? errno : EIO));
+    }
+    b[n] = '\0';
+    *text = b;
+    *len = n;
+    return LAM_OK;
+}
+
+/* Byte offset where 0-based line `line` starts, or -1. */
+static long line_start(const src *s, size_t line)
+{
+    size_t i = 0;
+    if (s->len >= 3 && memcmp(s->text, "\xEF\xBB\xBF", 3) == 0) i = 3;
+    for (size_t l = 0; l < line; l++) {
+        const char *nl = memchr(s->text + i, '\n', s->len - i);
+        if (!nl) return -1;
+        i = (size_t)(nl - s->text) + 1;
+    }
+    return (long)i;
+}
+
+static int is_cont(unsigned char c) { return (c & 0xC0) == 0x80; }
+
+/* Byte offset of character column col (0-based) of the line at ls, or -1. */
+static long char_at(const src *s, long ls, size_t col)
+{
+    size_t i = (size_t)ls;
+    for (size_t c = 0; c < col; c++) {
+        if (i >= s->len || s->text[i] == '\n') return -1;
+        i++;
+        while (i < s->len && is_cont((unsigned char)s->text[i])) i++;
+    }
+    return (long)i;
+}
+
+/* 0-based character column of byte offset pos on the line at ls. */
+static long col_of(const src *s, long ls, long pos)
+{
+    long c = 0;
+    for (long i = ls; i < pos; i++)
+        if (!is_cont((unsigned char)s->text[i])) c++;
+    return c;
+}
+
+static int hexval(const char *t, size_t n, unsigned long *cp)
+{
+    *cp = 0;
+    for (size_t i = 0; i < n; i++) {
+        char c = t[i];
+        int d = c >= '0' && c <= '9'   ? c - '0'
+                : c >= 'a' && c <= 'f' ? c - 'a' + 10
+                : c >= 'A' && c <= 'F' ? c - 'A' + 10
+                                       : -1;
+        if (d < 0) return 0;
+        *cp = *cp * 16 + (unsigned long)d;
+    }
+    return 1;
+}
+
+/* Position (1-based line, column) in the file of byte `off` of scalar n's
+ * value: exact for single-line plain and quoted scalars and for literal
+ * blocks, checked against the raw text; otherwise the scalar's start. */
+static void scalar_pos(const src *s, const yaml_node_t *n, size_t off, long *line, long *col)
+{
+    yaml_mark_t m = n->start_mark;
+    *line = (long)m.line + 1;
+    *col = (long)m.column + 1;
+    const char *v = (const char *)n->data.scalar.value;
+    size_t vlen = n->data.scalar.length;
+    if (off > vlen) return;
+    long ls = line_start(s, m.line);
+    if (ls < 0) return;
+    long p = char_at(s, ls, m.column);
+    if (p < 0) return;
+    const char *t = s->text;
+    long L = (long)s->len, q = -1, qline = ls;
+    size_t tline = m.line;
+    int single_line = n->end_mark.line == m.line;
+    int verify = 1;
+    switch (n->data.scalar.style) {
+    case YAML_PLAIN_SCALAR_STYLE:
+        if (!single_line || p + (long)off > L || memcmp(t + p, v, off) != 0) return;
+        q = p + (long)off;
+        break;
+    case YAML_SINGLE_QUOTED_SCALAR_STYLE:
+        if (!single_line || t[p] != '\'') return;
+        q = p + 1;
+        for (size_t k = 0; k < off; k++) {
+            if (q >= L) return;
+            if (v[k] == '\'') {
+                if (q + 1 >= L || t[q] != '\'' || t[q + 1] != '\'') return;
+                q += 2;
+            } else {
+                if (t[q] != v[k]) return;
+                q++;
+            }
+        }
+        break;
+    case YAML_DOUBLE_QUOTED_SCALAR_STYLE: {
+        if (!single_line || t[p] != '"') return;
+        q = p + 1;
+        size_t k = 0;
+        while (k < off) {
+            if (q >= L) return;
+            if (t[q] == '\\') {
+                if (q + 1 >= L) return;
+                char e = t[q + 1];
+                size_t rl = 2, dl = 1;
+                unsigned long cp = 0;
+                if (e == 'x' || e == 'u' || e == 'U') {
+                    size_t h = e == 'x' ? 2 : e == 'u' ? 4 : 8;
+                    if (q + 2 + (long)h > L || !hexval(t + q + 2, h, &cp)) return;
+                    rl = 2 + h;
+                    dl = cp < 0x80 ? 1 : cp < 0x800 ? 2 : cp < 0x10000 ? 3 : 4;
+                } else if (e == 'N' || e == '_') {
+                    dl = 2;
+                } else if (e == 'L' || e == 'P') {
+                    dl = 3;
+                }
+                if (k + dl > off) {
+                    verify = 0; /* inside an escape: point at it */
+                    break;
+                }
+                k += dl;
+                q += (long)rl;
+            } else {
+                if (t[q] != v[k]) return;
+                q++;
+                k++;
+            }
+        }
+        if (q < L && t[q] == '\\') verify = 0;
+        break;
+    }
+    case YAML_LITERAL_SCALAR_STYLE: {
+        size_t li = 0, lstart = 0;
+        for (size_t k = 0; k < off; k++)
+            if (v[k] == '\n') {
+                li++;
+                lstart = k + 1;
+            }
+        /* indentation: that of the first content line that is not blank */
+        long indent = -1;
+        for (size_t l = m.line + 1;; l++) {
+            long a = line_start(s, l);
+            if (a < 0) return;
+            long b = a;
+            while (b < L && t[b] == ' ') b++;
+            if (b < L && t[b] != '\n' && t[b] != '\r') {
+                indent = b - a;
+                break;
+            }
+        }
+        tline = m.line + 1 + li;
+        qline = line_start(s, tline);
+        if (qline < 0 || indent < 0) return;
+        q = qline + indent + (long)(off - lstart);
+        if (q > L || memcmp(t + qline + indent, v + lstart, off - lstart) != 0) return;
+        *line = (long)tline + 1;
+        *col = col_of(s, qline, q) + 1;
+        if (off < vlen && (q >= L || t[q] != v[off])) {
+            *line = (long)m.line + 1;
+            *col = (long)m.column + 1;
+        }
+        return;
+    }
+    default:
+        return;
+    }
+    if (verify && off < vlen && (q >= L || (t[q] != v[off] && !(v[off] == '\'' && t[q] == '\'')))) return;
+    *line = (long)tline + 1;
+    *col = col_of(s, qline, q) + 1;
+}
+
+/* ---- node helpers -------------------------------------------------------- */
+
+static yaml_node_t *node(const src *s, int id)
+{
+    return yaml_document_get_node((yaml_document_t *)&s->doc, id);
+}
+
+static int is_null(const yaml_node_t *n)
+{
+    if (n->type != YAML_SCALAR_NODE) return 0;
+    if (strcmp((const char *)n->tag, YAML_NULL_TAG) == 0) return 1;
+    if (n->data.scalar.style != YAML_PLAIN_SCALAR_STYLE) return 0;
+    const char *v = (const char *)n->data.scalar.value;
+    return !*v || !strcmp(v, "~") || !strcmp(v, "null") || !strcmp(v, "Null") || !strcmp(v, "NULL");
+}
+
+/* "a mapping", "a list", "null", "'text'" for messages. */
+static const char *describe(const yaml_node_t *n, char *buf, size_t size)
+{
+    if (n->type == YAML_MAPPING_NODE) return "a mapping";
+    if (n->type == YAML_SEQUENCE_NODE) return "a list";
+    if (is_null(n)) return "null";
+    lam_quote_bytes(buf, size, n->data.scalar.value, n->data.scalar.length);
+    return buf;
+}
+
+static int want_scalar(const src *s, const yaml_node_t *n, const char *key, const char *what)
+{
+    char b[64];
+    if (n->type != YAML_SCALAR_NODE || is_null(n))
+        return at(s, n->start_mark, LAM_EINVAL, "%s must be %s, got %s", key, what, describe(n, b, sizeof b));
+    return LAM_OK;
+}
+
+static int get_text(const src *s, const yaml_node_t *n, const char *key, char **out)
+{
+    int rc = want_scalar(s, n, key, "text");
+    if (rc) return rc;
+    if (strlen((const char *)n->data.scalar.value) != n->data.scalar.length)
+        return at(s, n->start_mark, LAM_EINVAL, "%s contains a NUL character", key);
+    char *copy = strdup((const char *)n->data.scalar.value);
+    if (!copy) return oom();
+    free(*out);
+    *out = copy;
+    return LAM_OK;
+}
+
+static int get_number(const src *s, const yaml_node_t *n, const char *key, double *out)
+{
+    char b[64];
+    int rc = want_scalar(s, n, key, "a number");
+    if (rc) return rc;
+    if (n->data.scalar.style != YAML_PLAIN_SCALAR_STYLE)
+        return at(s, n->start_mark, LAM_EINVAL, "%s must be a number, got the quoted string %s", key,
+                  describe(n, b, sizeof b));
+    double x;
+    rc = lam_parse_number(n->data.scalar.value, n->data.scalar.length, &x);
+    if (rc == LAM_ENOMEM) return oom();
+    if (rc) return at(s, n->start_mark, LAM_EINVAL, "%s must be a number, got %s", key, describe(n, b, sizeof b));
+    if (!isfinite(x))
+        return at(s, n->start_mark, LAM_EINVAL, "%s must be a finite number, got %s", key, describe(n, b, sizeof b));
+    *out = x;
+    return LAM_OK;
+}
+
+static int get_bool(const src *s, const yaml_node_t *n, const char *key, int *out)
+{
+    static const char *const yes[] = { "true", "True", "TRUE", "yes", "Yes", "YES", NULL };
+    static const char *const no[] = { "false", "False", "FALSE", "no", "No", "NO", NULL };
+    char b[64];
+    int rc = want_scalar(s, n, key, "true or false");
+    if (rc) return rc;
+    const char *v = (const char *)n->data.scalar.value;
+    if (n->data.scalar.style == YAML_PLAIN_SCALAR_STYLE) {
+        for (int i = 0; yes[i]; i++)
+            if (!strcmp(v, yes[i])) return *out = 1, LAM_OK;
+        for (int i = 0; no[i]; i++)
+            if (!strcmp(v, no[i])) return *out = 0, LAM_OK;
+    }
+    return at(s, n->start_mark, LAM_EINVAL, "%s must be true or false, got %s", key, describe(n, b, sizeof b));
+}
+
+static int get_choice(const src *s, const yaml_node_t *n, const char *key, const char *const *names, int *out)
+{
+    char b[64], list[128] = "";
+    for (int i = 0; names[i]; i++) {
+        strcat(list, i ? (names[i + 1] ? ", " : " or ") : "");
+        strcat(list, names[i]);
+    }
+    int rc = want_scalar(s, n, key, list);
+    if (rc) return rc;
+    for (int i = 0; names[i]; i++)
+        if (!strcmp((const char *)n->data.scalar.value, names[i])) return *out = i, LAM_OK;
+    return at(s, n->start_mark, LAM_EINVAL, "%s must be %s, got %s", key, list, describe(n, b, sizeof b));
+}
+
+/* Edit distance, for "did you mean". */
+static size_t distance(const char *a, const char *b)
+{
+    size_t la = strlen(a), lb = strlen(b);
+    if (la > 40 || lb > 40) return 99;
+    size_t row[41];
+    for (size_t j = 0; j <= lb; j++) row[j] = j;
+    for (size_t i = 1; i <= la; i++) {
+        size_t diag = row[0];
+        row[0] = i;
+        for (size_t j = 1; j <= lb; j++) {
+            size_t up = row[j];
+            size_t best = diag + (a[i - 1] != b[j - 1]);
+            if (up + 1 < best) best = up + 1;
+            if (row[j - 1] + 1 < best) best = row[j - 1] + 1;
+            row[j] = best;
+            diag = up;
+        }
+    }
+    return row[lb];
+}
+
+/* Check the keys of mapping m: scalars, known (names[0..n)), no duplicates.
+ * where: "" for the top level, else "raster" / "dialect". */
+static int check_keys(const src *s, const yaml_node_t *m, const char *where, const char *const *names, size_t nn)
+{
+    for (yaml_node_pair_t *pr = m->data.mapping.pairs.start; pr < m->data.mapping.pairs.top; pr++) {
+        yaml_node_t *k = node(s, pr->key);
+        char b[64];
+        if (k->type != YAML_SCALAR_NODE || is_null(k))
+            return at(s, k->start_mark, LAM_EINVAL, "keys must be text, got %s", describe(k, b, sizeof b));
+        const char *key = (const char *)k->data.scalar.value;
+        size_t i = 0;
+        while (i < nn && strcmp(names[i], key) != 0) i++;
+        if (i == nn) {
+            char allowed[600] = "";
+            const char *best = NULL;
+            size_t bd = 3;
+            for (size_t j = 0; j < nn; j++) {
+                if (j) strcat(allowed, ", ");
+                strcat(allowed, names[j]);
+                size_t d = distance(key, names[j]);
+                if (d < bd) bd = d, best = names[j];
+            }
+            char hint[80] = "";
+            if (best) snprintf(hint, sizeof hint, "did you mean '%s'? ", best);
+            return at(s, k->start_mark, LAM_EINVAL, "unknown key %s%s%s (%sallowed: %s)", describe(k, b, sizeof b),
+                      *where ? " in " : "", where, hint, allowed);
+        }
+        for (yaml_node_pair_t *q = m->data.mapping.pairs.start; q < pr; q++) {
+            yaml_node_t *k2 = node(s, q->key);
+            if (k2->type == YAML_SCALAR_NODE && !strcmp((const char *)k2->data.scalar.value, key))
+                return at(s, k->start_mark, LAM_EINVAL, "duplicate key '%s%s%s' (first given at line %lu)", where,
+                          *where ? "." : "", key, (unsigned long)k2->start_mark.line + 1);
+        }
+    }
+    return LAM_OK;
+}
+
+static const yaml_node_t *lookup(const src *s, const yaml_node_t *m, const char *key)
+{
+    for (yaml_node_pair_t *pr = m->data.mapping.pairs.start; pr < m->data.mapping.pairs.top; pr++) {
+        yaml_node_t *k = node(s, pr->key);
+        if (k->type == YAML_SCALAR_NODE && !strcmp((const char *)k->data.scalar.value, key)) return node(s, pr->value);
+    }
+    return NULL;
+}
+
+/* Only the core schema's tags: anything else could mean "construct an
+ * object" to some loader, and a profile is data. */
+static int check_tags(const src *s)
+{
+    static const char *const ok_tags[] = { YAML_STR_TAG, YAML_INT_TAG, YAML_FLOAT_TAG, YAML_BOOL_TAG,
+                                           YAML_NULL_TAG, YAML_MAP_TAG, YAML_SEQ_TAG, NULL };
+    for (yaml_node_t *n = s->doc.nodes.start; n < s->doc.nodes.top; n++) {
+        const char *tag = (const char *)n->tag;
+        int good = 0;
+        for (int i = 0; ok_tags[i] && tag; i++) good |= !strcmp(tag, ok_tags[i]);
+        if (!good) {
+            char shown[200];
+            const char *prefix = "tag:yaml.org,2002:";
+            if (tag && !strncmp(tag, prefix, strlen(prefix)))
+                snprintf(shown, sizeof shown, "!!%s", tag + strlen(prefix));
+            else
+                snprintf(shown, sizeof shown, "%s", tag ? tag : "?");
+            return at(s, n->start_mark, LAM_EINVAL, "YAML tag '%s' is not allowed: a machine profile is data only",
+                      shown);
+        }
+    }
+    return LAM_OK;
+}
+
+/* ---- parse one file ----------------------------------------------------- */
+
+static int parse(src *s)
+{
+    yaml_parser_t parser;
+    if (!yaml_parser_initialize(&parser)) return oom();
+    yaml_parser_set_input_string(&parser, (const unsigned char *)s->text, s->len);
+    int rc = LAM_OK;
+    if (!yaml_parser_load(&parser, &s->doc)) {
+        goto fail;
+    }
+    s->have_doc = 1;
+    if (!yaml_document_get_root_node(&s->doc)) {
+        rc = lam_error_set(s->err, LAM_EINVAL, s->path, 1, 1,
+                           "empty profile: expected a mapping of keys (name, process, ...)");
+        goto out;
+    }
+    yaml_document_t more;
+    if (!yaml_parser_load(&parser, &more)) goto fail;
+    yaml_node_t *r = yaml_document_get_root_node(&more);
+    if (r) {
+        yaml_mark_t m = more.start_mark;
+        yaml_document_delete(&more);
+        rc = at(s, m, LAM_EINVAL, "a machine profile is one YAML document; a second one starts here");
+        goto out;
+    }
+    yaml_document_delete(&more);
+    goto out;
+fail:
+    if (parser.error == YAML_MEMORY_ERROR) {
+        rc = oom();
+    } else if (parser.error == YAML_READER_ERROR) {
+        /* invalid encoding: only a byte offset is known */
+        size_t off = parser.problem_offset < s->len ? parser.problem_offset : s->len;
+        long line = 1, ls = 0;
+        for (size_t i = 0; i < off; i++)
+            if (s->text[i] == '\n') line++, ls = (long)i + 1;
+        rc = lam_error_set(s->err, LAM_ESYNTAX, s->path, line, col_of(s, ls, (long)off) + 1, "malformed YAML: %s",
+                           parser.problem ? parser.problem : "cannot read");
+    } else {
+        char ctx[200] = "";
+        if (parser.context)
+            snprintf(ctx, sizeof ctx, " (%s at line %lu, column %lu)", parser.context,
+                     (unsigned long)parser.context_mark.line + 1, (unsigned long)parser.context_mark.column + 1);
+        rc = lam_error_set(s->err, LAM_ESYNTAX, s->path, (long)parser.problem_mark.line + 1,
+                           (long)parser.problem_mark.column + 1, "malformed YAML: %s%s",
+                           parser.problem ? parser.problem : "cannot parse", ctx);
+    }
+out:
+    yaml_parser_delete(&parser);
+    return rc;
+}
+
+/* ---- apply keys --------------------------------------------------------- */
+
+static int positive(const src *s, const yaml_node_t *n, const char *key, double x)
+{
+    if (x > 0) return LAM_OK;
+    char b[64];
+    return at(s, n->start_mark, LAM_EINVAL, "%s must be greater than 0, got %s", key, describe(n, b, sizeof b));
+}
+
+static int nonneg(const src *s, const yaml_node_t *n, const char *key, double x)
+{
+    if (x >= 0) return LAM_OK;
+    char b[64];
+    return at(s, n->start_mark, LAM_EINVAL, "%s must be 0 or more, got %s", key, describe(n, b, sizeof b));
+}
+
+static int apply_raster(const src *s, const yaml_node_t *m, lam_profile *p)
+{
+    char b[64];
+    if (m->type != YAML_MAPPING_NODE)
+        return at(s, m->start_mark, LAM_EINVAL, "raster must be a mapping (first_line, angle, ...), got %s",
+                  describe(m, b, sizeof b));
+    int rc = check_keys(s, m, "raster", raster_names, R_COUNT);
+    for (yaml_node_pair_t *pr = m->data.mapping.pairs.start; !rc && pr < m->data.mapping.pairs.top; pr++) {
+        const char *key = (const char *)node(s, pr->key)->data.scalar.value;
+        const yaml_node_t *v = node(s, pr->value);
+        int k = 0;
+        while (strcmp(raster_names[k], key) != 0) k++;
+        char full[64];
+        snprintf(full, sizeof full, "raster.%s", key);
+        double x;
+        int i;
+        switch (k) {
+        case R_FIRST_LINE:
+            if (!(rc = get_choice(s, v, full, first_line_names, &i))) p->first_line = (lam_first_line)i;
+            break;
+        case R_ANGLE:
+            rc = get_number(s, v, full, &p->angle);
+            break;
+        case R_ANGLE_STEP:
+            rc = get_number(s, v, full, &p->angle_step);
+            break;
+        case R_ALTERNATE:
+            rc = get_bool(s, v, full, &p->alternate);
+            break;
+        case R_MIN_DEPOSIT:
+            if (!(rc = get_number(s, v, full, &x)) && !(rc = nonneg(s, v, full, x))) p->min_deposit = x;
+            break;
+        case R_PERIMETERS:
+            if (!(rc = get_number(s, v, full, &x))) {
+                if (x != floor(x) || x < 0 || x > 1000)
+                    rc = at(s, v->start_mark, LAM_EINVAL, "%s must be a whole number from 0 to 1000, got %s", full,
+                            describe(v, b, sizeof b));
+                else
+                    p->perimeters = (int)x;
+            }
+            break;
+        }
+    }
+    return rc;
+}
+
+static int apply_dialect(const src *s, const yaml_node_t *m, lam_profile *p)
+{
+    const char *names[LAM_CMD_COUNT + 1];
+    for (int c = 0; c < LAM_CMD_COUNT; c++) names[c] = lam_cmd_name((lam_cmd)c);
+    names[LAM_CMD_COUNT] = "close_polylines";
+    char b[64];
+    if (m->type != YAML_MAPPING_NODE)
+        return at(s, m->start_mark, LAM_EINVAL,
+                  "dialect must be a mapping of commands (preamble, deposit, ...), got %s", describe(m, b, sizeof b));
+    int rc = check_keys(s, m, "dialect", names, LAM_CMD_COUNT + 1);
+    for (yaml_node_pair_t *pr = m->data.mapping.pairs.start; !rc && pr < m->data.mapping.pairs.top; pr++) {
+        const char *key = (const char *)node(s, pr->key)->data.scalar.value;
+        const yaml_node_t *v = node(s, pr->value);
+        int c = 0;
+        while (strcmp(names[c], key) != 0) c++;
+        char full[64];
+        snprintf(full, sizeof full, "dialect.%s", key);
+        if (c == LAM_CMD_COUNT) {
+            rc = get_bool(s, v, full, &p->dialect.close_polylines);
+            continue;
+        }
+        lam_template *t = &p->dialect.cmd[c];
+        if (is_null(v)) { /* null: the command emits nothing */
+            lam_template_free(t);
+            continue;
+        }
+        if (v->type != YAML_SCALAR_NODE) {
+            rc = at(s, v->start_mark, LAM_EINVAL, "%s must be a template (text) or null, got %s", full,
+                    describe(v, b, sizeof b));
+            break;
+        }
+        size_t len = v->data.scalar.length;
+        if (strlen((const char *)v->data.scalar.value) != len) {
+            rc = at(s, v->start_mark, LAM_EINVAL, "%s contains a NUL character", full);
+            break;
+        }
+        char *text = strdup((const char *)v->data.scalar.value);
+        if (!text) return oom();
+        /* a block scalar's final line break ends the template, it is not an
+         * empty last line (`|` and `|-` mean the same here) */
+        yaml_scalar_style_t style = v->data.scalar.style;
+        int block = style == YAML_LITERAL_SCALAR_STYLE || style == YAML_FOLDED_SCALAR_STYLE;
+        if (block && len && text[len - 1] == '\n') text[len - 1] = '\0';
+        lam_template nt;
+        size_t off = 0;
+        rc = lam_template_parse((lam_cmd)c, text, &nt, &off, s->err);
+        free(text);
+        if (rc == LAM_ENOMEM) return rc;
+        if (rc) {
+            char msg[sizeof s->err->msg];
+            snprintf(msg, sizeof msg, "%s", s->err->msg);
+            long line, col;
+            scalar_pos(s, v, off, &line, &col);
+            return lam_error_set(s->err, LAM_EINVAL, s->path, line, col, "%s: %s", full, msg);
+        }
+        lam_template_free(t);
+        *t = nt;
+    }
+    return rc;
+}
+
+static int apply(ldr *L, const src *s, const yaml_node_t *root)
+{
+    lam_profile *p = L->p;
+    int rc = LAM_OK;
+    for (yaml_node_pair_t *pr = root->data.mapping.pairs.start; !rc && pr < root->data.mapping.pairs.top; pr++) {
+        const char *key = (const char *)node(s, pr->key)->data.scalar.value;
+        const yaml_node_t *v = node(s, pr->value);
+        int k = 0;
+        while (strcmp(key_names[k], key) != 0) k++;
+        double x;
+        int i;
+        char b[64];
+        switch (k) {
+        case K_NAME:
+            if (!(rc = get_text(s, v, key, &p->name)) && !*p->name)
+                rc = at(s, v->start_mark, LAM_EINVAL, "name must not be empty");
+            break;
+        case K_DESCRIPTION:
+            rc = get_text(s, v, key, &p->description);
+            break;
+        case K_PROCESS:
+            if (!(rc = get_choice(s, v, key, process_names, &i))) p->process = (lam_process)i;
+            break;
+        case K_UNITS:
+            if (!(rc = get_text(s, v, key, &p->units)) && !*p->units)
+                rc = at(s, v->start_mark, LAM_EINVAL, "units must not be empty");
+            break;
+        case K_BEAD_WIDTH:
+            if (!(rc = get_number(s, v, key, &x)) && !(rc = positive(s, v, key, x))) p->bead_width = x;
+            break;
+        case K_SPOT_WIDTH:
+            if (!(rc = get_number(s, v, key, &x)) && !(rc = positive(s, v, key, x))) p->spot_width = x;
+            break;
+        case K_LAYER_WIDTH:
+            if (!(rc = get_number(s, v, key, &x)) && !(rc = positive(s, v, key, x))) p->layer_width = x;
+            break;
+        case K_CUT:
+            if (!(rc = get_choice(s, v, key, cut_names, &i))) p->cut = i;
+            break;
+        case K_FEED_RATE:
+            if (!(rc = get_number(s, v, key, &x)) && !(rc = nonneg(s, v, key, x))) p->feed_rate = x;
+            break;
+        case K_TRAVEL_RATE:
+            if (!(rc = get_number(s, v, key, &x)) && !(rc = nonneg(s, v, key, x))) p->travel_rate = x;
+            break;
+        case K_GAP:
+            if (!(rc = get_number(s, v, key, &x)) && !(rc = nonneg(s, v, key, x))) p->gap = x;
+            break;
+        case K_FRAME:
+            if (!(rc = get_choice(s, v, key, frame_names, &i))) p->frame_machine = i;
+            break;
+        case K_RASTER:
+            rc = apply_raster(s, v, p);
+            break;
+        case K_BEAM_OFFSET:
+            rc = get_bool(s, v, key, &p->beam_offset);
+            break;
+        case K_MAX_OVERHANG:
+            if (!(rc = get_number(s, v, key, &x))) {
+                if (x < 0 || x > 90)
+                    rc = at(s, v->start_mark, LAM_EINVAL, "max_overhang_deg must be from 0 to 90 (degrees), got %s",
+                            describe(v, b, sizeof b));
+                else
+                    p->max_overhang_deg = x;
+            }
+            break;
+        case K_WRITER:
+            if (!(rc = get_text(s, v, key, &p->writer)) && !*p->writer)
+                rc = at(s, v->start_mark, LAM_EINVAL, "writer must not be empty (\"text\" writes the dialect)");
+            break;
+        case K_INHERITS:
+            break; /* resolved before */
+        case K_DIALECT:
+            rc = apply_dialect(s, v, p);
+            break;
+        }
+        if (!rc) L->set |= 1u << k;
+    }
+    return rc;
+}
+
+/* ---- inherits ------------------------------------------------------------ */
+
+static int ends_with(const char *s, const char *suffix)
+{
+    size_t a = strlen(s), b = strlen(suffix);
+    return a >= b && strcmp(s + a - b, suffix) == 0;
+}
+
+static int is_path(const char *s)
+{
+    return strchr(s, '/') || ends_with(s, ".yaml") || ends_with(s, ".yml");
+}
+
+static int is_file(const char *path)
+{
+    struct stat st;
+    return stat(path, &st) == 0 && S_ISREG(st.st_mode);
+}
+
+size_t lam_machine_dirs(char **dirs, size_t max)
+{
+    static const char *const rel[] = { "../machines", "../share/lamina/machines", NULL };
+    return lam_search_dirs("LAMINA_MACHINES", rel, dirs, max);
+}
+
+/* NAME.yaml in the machine directories: a malloc'd path, or NULL with the
+ * searched directories listed in `searched`. */
+static char *find_shipped(const char *name, char *searched, size_t size)
+{
+    char *dirs[MAX_DIRS];
+    size_t n = lam_machine_dirs(dirs, MAX_DIRS);
+    char *found = NULL;
+    size_t k = 0;
+    searched[0] = '\0';
+    for (size_t i = 0; i < n; i++) {
+        if (!found) {
+            size_t need = strlen(dirs[i]) + strlen(name) + 7;
+            char *path = malloc(need);
+            if (path) {
+                snprintf(path, need, "%s/%s.yaml", dirs[i], name);
+                if (is_file(path)) found = path;
+                else free(path);
+            }
+            if (k + 1 < size) {
+                int w = snprintf(searched + k, size - k, "%s%s", k ? ", " : "", dirs[i]);
+                if (w > 0) k += (size_t)w < size - k ? (size_t)w : size - k - 1;
+            }
+        }
+        free(dirs[i]);
+    }
+    if (!n) snprintf(searched, size, "(no directories: set LAMINA_MACHINES)");
+    return found;
+}
+
+static int load_file(ldr *L, const char *path, int top);
+
+static int resolve_parent(ldr *L, const src *s, const yaml_node_t *v)
+{
+    char *name = NULL;
+    int rc = get_text(s, v, "inherits", &name);
+    if (rc) return rc;
+    char *parent = NULL;
+    if (!*name) {
+        rc = at(s, v->start_mark, LAM_EINVAL, "inherits must name a profile");
+    } else if (is_path(name)) {
+        if (name[0] == '/') {
+            parent = strdup(name);
+        } else {
+            const char *slash = strrchr(s->path, '/');
+            size_t dl = slash ? (size_t)(slash - s->path) + 1 : 0;
+            parent = malloc(dl + strlen(name) + 1);
+            if (parent) {
+                memcpy(parent, s->path, dl);
+                strcpy(parent + dl, name);
+            }
+        }
+        struct stat st;
+        if (!parent) rc = oom();
+        else if (stat(parent, &st) != 0)
+            rc = at(s, v->start_mark, LAM_EINVAL, "inherits '%s': cannot open %s: %s", name, parent, strerror(errno));
+        else if (!S_ISREG(st.st_mode))
+            rc = at(s, v->start_mark, LAM_EINVAL, "inherits '%s': %s is not a file", name, parent);
+    } else {
+        char searched[1024];
+        parent = find_shipped(name, searched, sizeof searched);
+        if (!parent)
+            rc = at(s, v->start_mark, LAM_EINVAL, "inherits '%s': no machine profile %s.yaml in %s", name, name,
+                    searched);
+    }
+    if (!rc) {
+        struct stat st;
+        if (stat(parent, &st) != 0) {
+            rc = at(s, v->start_mark, LAM_EINVAL, "inherits '%s': cannot open %s: %s", name, parent, strerror(errno));
+        } else {
+            for (size_t i = 0; i < L->depth && !rc; i++) {
+                if (L->dev[i] != st.st_dev || L->ino[i] != st.st_ino) continue;
+                char cycle[700] = "";
+                for (size_t j = i; j < L->depth; j++) {
+                    strncat(cycle, L->given[j], sizeof cycle - strlen(cycle) - 1);
+                    strncat(cycle, " -> ", sizeof cycle - strlen(cycle) - 1);
+                }
+                strncat(cycle, parent, sizeof cycle - strlen(cycle) - 1);
+                rc = at(s, v->start_mark, LAM_EINVAL, "inherits cycle: %s", cycle);
+            }
+            if (!rc && L->depth >= MAX_CHAIN)
+                rc = at(s, v->start_mark, LAM_EINVAL, "inherits chain longer than %d profiles", MAX_CHAIN);
+        }
+    }
+    if (!rc) rc = load_file(L, parent, 0);
+    free(parent);
+    free(name);
+    return rc;
+}
+
+static int finish(ldr *L, const src *s, const yaml_node_t *root)
+{
+    lam_profile *p = L->p;
+    const char *missing = NULL;
+    if (!(L->set & (1u << K_NAME))) missing = "name";
+    else if (!(L->set & (1u << K_PROCESS))) missing = "process";
+    else if (!(L->set & (1u << K_DIALECT)) && !(p->writer && strcmp(p->writer, "text") != 0))
+        missing = "dialect";
+    else if (p->process == LAM_PROCESS_LADRP && !(L->set & (1u << K_BEAD_WIDTH))) missing = "bead_width";
+    else if (p->process == LAM_PROCESS_SLS && !(L->set & (1u << K_SPOT_WIDTH))) missing = "spot_width";
+    if (missing)
+        return at(s, root->start_mark, LAM_EINVAL,
+                  "missing key '%s' (required: name, process, dialect or writer, and bead_width for ladrp or "
+                  "spot_width for sls)",
+                  missing);
+    if (!p->units && !(p->units = strdup("mm"))) return oom();
+    if (!p->writer && !(p->writer = strdup("text"))) return oom();
+    if (!(L->set & (1u << K_TRAVEL_RATE))) p->travel_rate = p->feed_rate;
+    if (p->process == LAM_PROCESS_SLS) p->bead_width = p->spot_width;
+    return LAM_OK;
+}
+
+static int load_file(ldr *L, const char *path, int top)
+{
+    src file;
+    memset(&file, 0, sizeof file);
+    src *s = &file;
+    s->path = path;
+    s->err = L->err;
+    int rc = read_all(s, path, &s->text, &s->len);
+    if (rc) return rc;
+    if ((rc = parse(s))) goto out;
+    if ((rc = check_tags(s))) goto out;
+    const yaml_node_t *root = yaml_document_get_root_node(&s->doc);
+    char b[64];
+    if (root->type != YAML_MAPPING_NODE) {
+        rc = at(s, root->start_mark, LAM_EINVAL, "a machine profile is a mapping of keys (name, process, ...), got %s",
+                describe(root, b, sizeof b));
+        goto out;
+    }
+    if ((rc = check_keys(s, root, "", key_names, K_COUNT))) goto out;
+    const yaml_node_t *inh = lookup(s, root, "inherits");
+    if (inh) {
+        struct stat st;
+        if (stat(path, &st) != 0) {
+            rc = lam_error_set(s->err, LAM_EIO, path, 0, 0, "cannot open: %s", strerror(errno));
+            goto out;
+        }
+        L->dev[L->depth] = st.st_dev;
+        L->ino[L->depth] = st.st_ino;
+        L->given[L->depth] = path;
+        L->depth++;
+        rc = resolve_parent(L, s, inh);
+        L->depth--;
+        if (rc) goto out;
+    }
+    if ((rc = apply(L, s, root))) goto out;
+    if (top) rc = finish(L, s, root);
+out:
+    if (s->have_doc) yaml_document_delete(&s->doc);
+    free(s->text);
+    return rc;
+}
+
+/* ---- public ---------------------------------------------------------------- */
+
+static lam_profile *new_profile(void)
+{
+    lam_profile *p = calloc(1, sizeof *p);
+    if (!p) return NULL;
+    p->process = LAM_PROCESS_LADRP;
+    p->cut = LAM_CUT_MIDDLE;
+    p->gap = LAM_DEFAULT_GAP;
+    p->first_line = LAM_FIRST_EDGE;
+    p->alternate = 1;
+    return p;
+}
+
+void lam_profile_free(lam_profile *p)
+{
+    if (!p) return;
+    free(p->name);
+    free(p->path);
+    free(p->description);
+    free(p->units);
+    free(p->writer);
+    lam_dialect_free(&p->dialect);
+    free(p);
+}
+
+int lam_profile_load(const char *path, lam_profile **out, lam_error *err)
+{
+    *out = NULL;
+    lam_error scratch;
+    if (!err) err = &scratch;
+    lam_error_clear(err);
+    ldr L;
+    memset(&L, 0, sizeof L);
+    L.err = err;
+    if (!(L.p = new_profile())) return oom_err(err);
+    int rc = load_file(&L, path, 1);
+    if (!rc && !(L.p->path = strdup(path))) rc = oom_err(err);
+    if (rc) {
+        lam_profile_free(L.p);
+        return rc;
+    }
+    *out = L.p;
+    return LAM_OK;
+}
+
+int lam_profile_find(const char *name_or_path, lam_profile **out, lam_error *err)
+{
+    *out = NULL;
+    if (is_path(name_or_path)) return lam_profile_load(name_or_path, out, err);
+    if (!*name_or_path) return lam_error_set(err, LAM_EINVAL, NULL, 0, 0, "empty machine profile name");
+    char searched[1024];
+    char *path = find_shipped(name_or_path, searched, sizeof searched);
+    if (!path)
+        return lam_error_set(err, LAM_EINVAL, NULL, 0, 0,
+                             "unknown machine '%s': no %s.yaml in %s ('lamina machines' lists them)", name_or_path,
+                             name_or_path, searched);
+    int rc = lam_profile_load(path, out, err);
+    free(path);
+    return rc;
+}
+
+/* ---- dump --------------------------------------------------------------- */
+
+static void put_string(lam_writer *w, const char *s)
+{
+    lam_writer_write(w, "\"", 1);
+    for (const unsigned char *c = (const unsigned char *)s; *c; c++) {
+        switch (*c) {
+        case '"': lam_writer_write(w, "\\\"", 2); break;
+        case '\\': lam_writer_write(w, "\\\\", 2); break;
+        case '\n': lam_writer_write(w, "\\n", 2); break;
+        case '\t': lam_writer_write(w, "\\t", 2); break;
+        case '\r': lam_writer_write(w, "\\r", 2); break;
+        default:
+            if (*c < 0x20 || *c == 0x7f) lam_writer_printf(w, "\\x%02x", *c);
+            else lam_writer_write(w, c, 1);
+        }
+    }
+    lam_writer_write(w, "\"", 1);
+}
+
+static void put_number(lam_writer *w, double x)
+{
+    char buf[LAM_FMT_MAX];
+    lam_writer_write(w, buf, lam_dialect_number(buf, x));
+}
+
+static void kv_num(lam_writer *w, const char *indent, const char *key, double x)
+{
+    lam_writer_printf(w, "%s%s: ", indent, key);
+    put_number(w, x);
+    lam_writer_write(w, "\n", 1);
+}
+
+static void kv_str(lam_writer *w, const char *indent, const char *key, const char *s)
+{
+    lam_writer_printf(w, "%s%s: ", indent, key);
+    put_string(w, s);
+    lam_writer_write(w, "\n", 1);
+}
+
+/* A comment line: control characters shown as '?'. */
+static void put_comment(lam_writer *w, const char *label, const char *text)
+{
+    lam_writer_printf(w, "# %s", label);
+    for (const unsigned char *c = (const unsigned char *)text; *c; c++)
+        lam_writer_write(w, *c < 0x20 ? "?" : (const char *)c, 1);
+    lam_writer_write(w, "\n", 1);
+}
+
+int lam_profile_dump(const lam_profile *p, lam_writer *w)
+{
+    put_comment(w, "lamina machine profile ", p->name ? p->name : "");
+    if (p->path) put_comment(w, "resolved from ", p->path);
+    kv_str(w, "", "name", p->name ? p->name : "");
+    if (p->description) kv_str(w, "", "description", p->description);
+    lam_writer_printf(w, "process: %s\n", process_names[p->process == LAM_PROCESS_SLS]);
+    kv_str(w, "", "units", p->units ? p->units : "mm");
+    if (p->process == LAM_PROCESS_LADRP && p->bead_width > 0) kv_num(w, "", "bead_width", p->bead_width);
+    if (p->spot_width > 0) kv_num(w, "", "spot_width", p->spot_width);
+    if (p->layer_width > 0) kv_num(w, "", "layer_width", p->layer_width);
+    lam_writer_printf(w, "cut: %s\n", cut_names[p->cut >= 0 && p->cut <= 2 ? p->cut : 1]);
+    kv_num(w, "", "feed_rate", p->feed_rate);
+    kv_num(w, "", "travel_rate", p->travel_rate);
+    kv_num(w, "", "gap", p->gap);
+    lam_writer_printf(w, "frame: %s\n", frame_names[p->frame_machine ? 1 : 0]);
+    lam_writer_printf(w, "raster:\n  first_line: %s\n", first_line_names[p->first_line == LAM_FIRST_CENTER]);
+    kv_num(w, "  ", "angle", p->angle);
+    kv_num(w, "  ", "angle_step", p->angle_step);
+    lam_writer_printf(w, "  alternate: %s\n", p->alternate ? "true" : "false");
+    kv_num(w, "  ", "min_deposit", p->min_deposit);
+    lam_writer_printf(w, "  perimeters: %d\n", p->perimeters);
+    lam_writer_printf(w, "beam_offset: %s\n", p->beam_offset ? "true" : "false");
+    if (p->max_overhang_deg > 0) kv_num(w, "", "max_overhang_deg", p->max_overhang_deg);
+    kv_str(w, "", "writer", p->writer ? p->writer : "text");
+    lam_writer_printf(w, "dialect:\n  close_polylines: %s\n", p->dialect.close_polylines ? "true" : "false");
+    for (int c = 0; c < LAM_CMD_COUNT; c++)
+        if (p->dialect.cmd[c].present) kv_str(w, "  ", lam_cmd_name((lam_cmd)c), p->dialect.cmd[c].source);
+    return lam_writer_write(w, "", 0);
+}
