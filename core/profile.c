@@ -888,6 +888,8 @@ static int finish(ldr *L, const src *s, const yaml_node_t *root)
     return LAM_OK;
 }
 
+static int load_text(ldr *L, src *s, const char *path, int top);
+
 static int load_file(ldr *L, const char *path, int top)
 {
     src file;
@@ -897,6 +899,13 @@ static int load_file(ldr *L, const char *path, int top)
     s->err = L->err;
     int rc = read_all(s, path, &s->text, &s->len);
     if (rc) return rc;
+    return load_text(L, s, path, top);
+}
+
+/* Parse and apply s->text (owned: freed here). */
+static int load_text(ldr *L, src *s, const char *path, int top)
+{
+    int rc;
     if ((rc = parse(s))) goto out;
     if ((rc = check_tags(s))) goto out;
     const yaml_node_t *root = yaml_document_get_root_node(&s->doc);
@@ -968,6 +977,36 @@ int lam_profile_load(const char *path, lam_profile **out, lam_error *err)
     if (!(L.p = new_profile())) return oom_err(err);
     int rc = load_file(&L, path, 1);
     if (!rc && !(L.p->path = strdup(path))) rc = oom_err(err);
+    if (rc) {
+        lam_profile_free(L.p);
+        return rc;
+    }
+    *out = L.p;
+    return LAM_OK;
+}
+
+int lam_profile_load_buf(const char *name, const char *text, size_t len, lam_profile **out, lam_error *err)
+{
+    *out = NULL;
+    lam_error scratch;
+    if (!err) err = &scratch;
+    lam_error_clear(err);
+    ldr L;
+    memset(&L, 0, sizeof L);
+    L.err = err;
+    if (!(L.p = new_profile())) return oom_err(err);
+    src buf;
+    memset(&buf, 0, sizeof buf);
+    buf.path = name;
+    buf.err = err;
+    buf.len = len;
+    int rc = (buf.text = malloc(len + 1)) ? LAM_OK : oom_err(err);
+    if (!rc) {
+        memcpy(buf.text, text, len);
+        buf.text[len] = '\0';
+        rc = load_text(&L, &buf, name, 1);
+    }
+    if (!rc && !(L.p->path = strdup(name))) rc = oom_err(err);
     if (rc) {
         lam_profile_free(L.p);
         return rc;

@@ -60,6 +60,18 @@ int lam_profile_load(const char *path, lam_profile **out, lam_error *err);
  * (lam_machine_dirs). */
 int lam_profile_find(const char *name_or_path, lam_profile **out, lam_error *err);
 
+/* Load a profile from YAML text in memory; `name` stands for the file in
+ * messages. `inherits:` resolves relative to the current directory. */
+int lam_profile_load_buf(const char *name, const char *text, size_t len, lam_profile **out, lam_error *err);
+
+/* The thesis's SLS contour dialect, built in: what `lamina slice` writes
+ * without -m (the same profile as machines/sls-contours.yaml, which a test
+ * keeps identical), so it works without any machine directory. */
+int lam_profile_builtin_sls(lam_profile **out, lam_error *err);
+
+/* Its YAML text (static). */
+const char *lam_profile_builtin_sls_text(void);
+
 void lam_profile_free(lam_profile *p);
 
 /* The directories searched for shipped profiles, in order: $LAMINA_MACHINES

@@ -7,7 +7,7 @@ MF="$M/machines"
 
 run "$LAMINA" machines
 is "$RC" 0 "machines: exit 0"
-is "$(wc -l <<<"$OUT")" 4 "machines: the four shipped profiles"
+is "$(wc -l <<<"$OUT")" 5 "machines: the five shipped profiles"
 like "$OUT" '^cli-ascii +sls +Common Layer Interface' "cli-ascii listed: sls, description"
 like "$OUT" $'\ncreol-ladrp +ladrp +LADRP stage of the thesis' "creol-ladrp listed: ladrp, description"
 like "$OUT" $'\nded-gcode +ladrp +DED cell' "ded-gcode listed"
@@ -21,7 +21,7 @@ cp "$MF/base.yaml" "$TMP/m/zz-base.yaml"
 echo "not a profile" >"$TMP/m/notes.txt"
 run env LAMINA_MACHINES="$TMP/m" "$LAMINA" machines
 is "$RC" 0 "LAMINA_MACHINES: exit 0"
-is "$(wc -l <<<"$OUT")" 5 "LAMINA_MACHINES: four shipped plus one, the shadowed one once"
+is "$(wc -l <<<"$OUT")" 6 "LAMINA_MACHINES: five shipped plus one, the shadowed one once"
 like "$OUT" $'\ncreol-ladrp +ladrp +my own thesis cell' "LAMINA_MACHINES: its creol-ladrp wins"
 like "$OUT" $'\nzz-base +ladrp +$' "LAMINA_MACHINES: its own profile listed (no description)"
 run env LAMINA_MACHINES="$TMP/m" "$LAMINA" machines --show creol-ladrp
@@ -32,7 +32,7 @@ cp "$MF/bead_zero.yaml" "$TMP/m/broken.yaml"
 run env LAMINA_MACHINES="$TMP/m" "$LAMINA" machines
 is "$RC" 1 "a broken profile: exit 1"
 like "$ERR" 'broken\.yaml:3:13: bead_width must be greater than 0' "a broken profile: file:line:col on stderr"
-is "$(wc -l <<<"$OUT")" 5 "a broken profile: the others are listed"
+is "$(wc -l <<<"$OUT")" 6 "a broken profile: the others are listed"
 
 # --show: valid YAML that loads again as the same profile.
 for name in creol-ladrp sls-contours ded-gcode cli-ascii; do
@@ -47,9 +47,9 @@ run "$LAMINA" machines --show creol-ladrp
 like "$OUT" $'name: "creol-ladrp"\n' "--show: name quoted"
 like "$OUT" $'\nbead_width: 0\\.08\n' "--show: bead width"
 like "$OUT" $'\n  deposit: "\\{dx:%\\.5f\\} \\{dy:%\\.5f\\} \\{dz:%\\.5f\\} uline"' "--show: templates quoted"
-like "$OUT" 'preamble: "start_plot\\n\{dimension\} set_dimension"' "--show: newlines escaped"
+like "$OUT" 'preamble: "start_plot\\n\{dimension\} set_dimension\\n\{rate:%\.2f\} feedrate"' "--show: newlines escaped"
 if command -v python3 >/dev/null && python3 -c 'import yaml' 2>/dev/null; then
-    printf '%s\n' "$OUT" | python3 -c 'import sys, yaml; d = yaml.safe_load(sys.stdin); sys.exit(0 if d["dialect"]["preamble"] == "start_plot\n{dimension} set_dimension" and d["bead_width"] == 0.08 else 1)'
+    printf '%s\n' "$OUT" | python3 -c 'import sys, yaml; d = yaml.safe_load(sys.stdin); sys.exit(0 if d["dialect"]["preamble"] == "start_plot\n{dimension} set_dimension\n{rate:%.2f} feedrate" and d["bead_width"] == 0.08 else 1)'
     ok $? "--show: another YAML parser reads the same values"
 fi
 

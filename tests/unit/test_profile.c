@@ -5,7 +5,6 @@
 #include "model.h"
 #include "profile.h"
 #include "slice.h"
-#include "sls.h"
 #include "util.h"
 #include "writer.h"
 
@@ -78,8 +77,8 @@ static char *program(const lam_profile *p, const lam_job_info *job, script_fn sc
 static void thesis_script(const lam_sink *s)
 {
     /* the thesis's sample plan: a 2-unit cube centred on the origin, first
-     * scan line on the top edge y = 1, stage starting at the origin */
-    s->feed(s->ctx, 0.15);
+     * scan line on the top edge y = 1, stage starting at the origin (the
+     * first "0.15 feedrate" comes from the preamble) */
     s->laser(s->ctx, 0);
     s->move(s->ctx, 0, (double[]){ -1, 1.08, 0 });
     s->move(s->ctx, 0, (double[]){ -1, 1.0, 0 });
@@ -257,7 +256,31 @@ static void test_dialect_programs(void)
     }
 }
 
-/* The sls-contours profile writes what `lamina slice` writes without one. */
+/* The thesis's SLS dialect written directly with printf, as lamina did
+ * before profiles existed: the reference the sls-contours profile must
+ * match byte for byte (six decimals, no "-0.000000", blank lines between
+ * blocks). */
+static double tidy(double x)
+{
+    return fabs(x) < 5e-7 ? 0.0 : x;
+}
+
+static void lam_sls_write_layer(lam_writer *w, const lam_layer *L, const lam_frame *f, size_t *blocks)
+{
+    for (size_t i = 0; i < L->ncontours; i++) {
+        const lam_contour *c = &L->contours[i];
+        if ((*blocks)++) lam_writer_write(w, "\n", 1);
+        lam_writer_printf(w, "contour %.6f\nloop %zu\n", tidy(L->cut), c->n);
+        for (size_t k = 0; k < c->n; k++) {
+            double p[3];
+            lam_frame_to_model(f, L->uv[2 * (c->first + k)], L->uv[2 * (c->first + k) + 1], L->cut, p);
+            lam_writer_printf(w, "%.6f %.6f %.6f\n", tidy(p[0]), tidy(p[1]), tidy(p[2]));
+        }
+        lam_writer_printf(w, "endloop\nendcontour\n");
+    }
+}
+
+/* The sls-contours profile writes what `lamina slice` wrote without one. */
 static int sls_same(const char *model, const double dir[3], double width, lam_cut cut)
 {
     lam_error err;
@@ -343,7 +366,7 @@ static void test_inherits(void)
         is_str(src(p, LAM_CMD_FEED), "{rate:%.3f} feedrate", "child: feed overridden");
         is_str(src(p, LAM_CMD_LASER_ON), "0 pendown", "child: laser_on kept");
         ok(!p->dialect.cmd[LAM_CMD_LASER_OFF].present, "child: laser_off removed by null");
-        is_str(src(p, LAM_CMD_PREAMBLE), "start_plot\n{dimension} set_dimension", "child: preamble kept");
+        is_str(src(p, LAM_CMD_PREAMBLE), "start_plot\n{dimension} set_dimension\n{rate:%.2f} feedrate", "child: preamble kept");
         ok(strstr(p->path, "child.yaml") != NULL, "child: path is the child's");
         lam_profile_free(p);
     }
@@ -625,5 +648,23 @@ int main(void)
     char cmd[400];
     snprintf(cmd, sizeof cmd, "rm -rf '%s'", tmpdir);
     if (system(cmd) != 0) diag("could not remove %s", tmpdir);
+    {
+        /* the built-in SLS profile is the shipped file, to the byte */
+        char path[1024];
+        const char *tdir = getenv("TESTS");
+        snprintf(path, sizeof path, "%s/../machines/sls-contours.yaml", tdir ? tdir : "tests");
+        FILE *f = fopen(path, "rb");
+        char text[8192];
+        size_t n = f ? fread(text, 1, sizeof text - 1, f) : 0;
+        if (f) fclose(f);
+        text[n] = '\0';
+        is_str(text, lam_profile_builtin_sls_text(), "built-in SLS profile text equals machines/sls-contours.yaml");
+        lam_profile *bp = NULL;
+        lam_error berr;
+        lam_error_clear(&berr);
+        ok(lam_profile_builtin_sls(&bp, &berr) == LAM_OK && bp && strcmp(bp->name, "sls-contours") == 0,
+           "the built-in profile loads (%s)", berr.msg);
+        lam_profile_free(bp);
+    }
     return done_testing();
 }

@@ -1,0 +1,30 @@
+#!/usr/bin/env python3
+"""Independent reader of binary Common Layer Interface files, printing the
+same text the cli-ascii profile writes, so a test can compare the two.
+usage: clidecode.py FILE.cli"""
+import struct
+import sys
+
+data = open(sys.argv[1], "rb").read()
+end = data.index(b"$$HEADEREND") + len(b"$$HEADEREND")
+header = data[:end].decode("ascii").split("\n")
+assert header[0] == "$$HEADERSTART" and "$$BINARY" in header, "not a binary CLI header"
+layers = [h for h in header if h.startswith("$$LAYERS/")][0]
+print("$$HEADERSTART\n$$ASCII\n$$UNITS/1\n$$VERSION/200\n%s\n$$HEADEREND\n$$GEOMETRYSTART" % layers)
+pos = end
+while pos < len(data):
+    (cmd,) = struct.unpack_from("<H", data, pos)
+    pos += 2
+    if cmd == 127:
+        (z,) = struct.unpack_from("<f", data, pos)
+        pos += 4
+        print("$$LAYER/%.5f" % z)
+    elif cmd == 130:
+        pid, pdir, n = struct.unpack_from("<iii", data, pos)
+        pos += 12
+        xy = struct.unpack_from("<%df" % (2 * n), data, pos)
+        pos += 8 * n
+        print("$$POLYLINE/%d,%d,%d,%s" % (pid, pdir, n, ",".join("%.5f" % v for v in xy)))
+    else:
+        sys.exit("unknown command %d at byte %d" % (cmd, pos - 2))
+print("$$GEOMETRYEND")
