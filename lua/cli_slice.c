@@ -5,6 +5,8 @@
  * twin of machines/sls-contours.yaml). Everything is written through atomic
  * writers: a run that fails leaves no output file. */
 #include "cli.h"
+#include "cli_args.h"
+#include "cli_check.h"
 #include "dialect.h"
 #include "model.h"
 #include "planner.h"
@@ -25,7 +27,8 @@ static const char usage_text[] =
     "                          [--allow-open] [--first-line edge|center] [--angle DEG]\n"
     "                          [--angle-step DEG] [--min-deposit LEN] [--no-alternate]\n"
     "                          [--perimeters N] [--beam-offset]\n"
-    "                          [--frame model|machine] [--svg FILE] [-o FILE]\n"
+    "                          [--frame model|machine] [--fill evenodd|nonzero] [--validate]\n"
+    "                          [--svg FILE] [-o FILE]\n"
     "  -m, --machine    machine profile: a shipped name (see 'lamina machines') or a path\n"
     "  -a, --axis       slice axis or direction (default z)\n"
     "  -w, --width      uniform layer width (default: the profile's, else 1/100 of the extent)\n"
@@ -38,218 +41,19 @@ static const char usage_text[] =
     "                   LADRP raster options (override the profile)\n"
     "      --beam-offset   SLS: move contours inward by half the spot width\n"
     "      --frame      coordinates of the program: model (default) or machine (layer frame)\n"
+    "      --fill       evenodd (default: nesting parity) or nonzero (overlapping bodies merge)\n"
+    "      --validate   check every label with Embree first; write nothing if any disagrees\n"
     "      --svg        write a contact sheet of the layers\n"
     "  -o, --output     program file (default: standard output)\n";
-
-/* Parse "a,b,c" into a malloc'd array. Returns count, or -1 on a bad number. */
-static long parse_list(const char *s, double **out)
-{
-    size_t cap = 8, n = 0;
-    double *v = malloc(cap * sizeof *v);
-    if (!v) return -1;
-    const char *p = s;
-    for (;;) {
-        char *end;
-        errno = 0;
-        double x = strtod(p, &end);
-        if (end == p || errno == ERANGE || !isfinite(x)) {
-            free(v);
-            return -1;
-        }
-        if (n == cap) {
-            double *nv = realloc(v, 2 * cap * sizeof *nv);
-            if (!nv) {
-                free(v);
-                return -1;
-            }
-            v = nv;
-            cap *= 2;
-        }
-        v[n++] = x;
-        if (*end == '\0') break;
-        if (*end != ',') {
-            free(v);
-            return -1;
-        }
-        p = end + 1;
-    }
-    *out = v;
-    return (long)n;
-}
-
-static int parse_number(const char *s, double *x)
-{
-    char *end;
-    errno = 0;
-    *x = strtod(s, &end);
-    return end != s && *end == '\0' && errno != ERANGE && isfinite(*x);
-}
-
-/* What the command line said; "set" flags mark overrides of the profile. */
-typedef struct args {
-    const char *path, *out, *svg, *machine;
-    lam_slice_opts so;
-    double *list;
-    int allow_open, set_width, set_cut, set_gap, set_frame;
-    int set_first, first_center, set_angle, set_step, set_min, no_alternate, frame_machine;
-    int perimeters, set_perimeters, beam_offset;
-    double angle, angle_step, min_deposit;
-} args;
-
-static int parse_args(int argc, char **argv, args *a)
-{
-    memset(a, 0, sizeof *a);
-    lam_slice_opts_init(&a->so);
-    lam_error err;
-    lam_error_clear(&err);
-#define NEED() do { if (i + 1 >= argc) return cli_usage("slice", "option %s needs a value", argv[i]); } while (0)
-    for (int i = 1; i < argc; i++) {
-        const char *o = argv[i];
-        if (!strcmp(o, "-h") || !strcmp(o, "--help")) {
-            fputs(usage_text, stdout);
-            return -1;
-        } else if (!strcmp(o, "-m") || !strcmp(o, "--machine")) {
-            NEED();
-            a->machine = argv[++i];
-        } else if (!strcmp(o, "-a") || !strcmp(o, "--axis")) {
-            NEED();
-            const char *v = argv[++i];
-            if (strlen(v) == 1 && strchr("xyzXYZ", v[0])) {
-                lam_frame_axis(v[0], &a->so.frame, &err);
-            } else {
-                double *d = NULL;
-                long n = parse_list(v, &d);
-                int bad = n != 3 || lam_frame_direction(d, &a->so.frame, &err) != LAM_OK;
-                free(d);
-                if (bad) return cli_usage("slice", "unknown axis '%s' (x, y, z or a direction DX,DY,DZ)", v);
-            }
-        } else if (!strcmp(o, "-w") || !strcmp(o, "--width")) {
-            NEED();
-            if (!parse_number(argv[++i], &a->so.width) || !(a->so.width > 0))
-                return cli_usage("slice", "layer width must be a positive number (got '%s')", argv[i]);
-            a->set_width = 1;
-        } else if (!strcmp(o, "--widths") || !strcmp(o, "--planes")) {
-            NEED();
-            free(a->list);
-            a->list = NULL;
-            long n = parse_list(argv[++i], &a->list);
-            if (n < 1) return cli_usage("slice", "%s takes numbers separated by commas (got '%s')", o, argv[i]);
-            a->so.widths = a->so.planes = NULL;
-            a->so.nwidths = a->so.nplanes = 0;
-            if (!strcmp(o, "--widths")) {
-                a->so.widths = a->list;
-                a->so.nwidths = (size_t)n;
-            } else {
-                a->so.planes = a->list;
-                a->so.nplanes = (size_t)n;
-            }
-        } else if (!strcmp(o, "--cut")) {
-            NEED();
-            const char *v = argv[++i];
-            if (!strcmp(v, "floor")) a->so.cut = LAM_CUT_FLOOR;
-            else if (!strcmp(v, "middle")) a->so.cut = LAM_CUT_MIDDLE;
-            else if (!strcmp(v, "ceiling")) a->so.cut = LAM_CUT_CEILING;
-            else return cli_usage("slice", "--cut takes floor, middle or ceiling (got '%s')", v);
-            a->set_cut = 1;
-        } else if (!strcmp(o, "--gap")) {
-            NEED();
-            if (!parse_number(argv[++i], &a->so.gap) || a->so.gap < 0)
-                return cli_usage("slice", "--gap takes a tolerance >= 0 (got '%s')", argv[i]);
-            a->set_gap = 1;
-        } else if (!strcmp(o, "--allow-open")) {
-            a->allow_open = 1;
-        } else if (!strcmp(o, "--first-line")) {
-            NEED();
-            const char *v = argv[++i];
-            if (strcmp(v, "edge") && strcmp(v, "center"))
-                return cli_usage("slice", "--first-line takes edge or center (got '%s')", v);
-            a->set_first = 1;
-            a->first_center = !strcmp(v, "center");
-        } else if (!strcmp(o, "--angle") || !strcmp(o, "--angle-step") || !strcmp(o, "--min-deposit")) {
-            NEED();
-            double x;
-            if (!parse_number(argv[++i], &x)) return cli_usage("slice", "%s takes a number (got '%s')", o, argv[i]);
-            if (!strcmp(o, "--angle")) a->angle = x, a->set_angle = 1;
-            else if (!strcmp(o, "--angle-step")) a->angle_step = x, a->set_step = 1;
-            else if (x < 0) return cli_usage("slice", "--min-deposit takes a length >= 0 (got '%s')", argv[i]);
-            else a->min_deposit = x, a->set_min = 1;
-        } else if (!strcmp(o, "--perimeters")) {
-            NEED();
-            double x;
-            if (!parse_number(argv[++i], &x) || x < 0 || x > 1000 || x != floor(x))
-                return cli_usage("slice", "--perimeters takes a whole number from 0 to 1000 (got '%s')", argv[i]);
-            a->perimeters = (int)x;
-            a->set_perimeters = 1;
-        } else if (!strcmp(o, "--beam-offset")) {
-            a->beam_offset = 1;
-        } else if (!strcmp(o, "--no-alternate")) {
-            a->no_alternate = 1;
-        } else if (!strcmp(o, "--frame")) {
-            NEED();
-            const char *v = argv[++i];
-            if (strcmp(v, "model") && strcmp(v, "machine"))
-                return cli_usage("slice", "--frame takes model or machine (got '%s')", v);
-            a->set_frame = 1;
-            a->frame_machine = !strcmp(v, "machine");
-        } else if (!strcmp(o, "--svg")) {
-            NEED();
-            a->svg = argv[++i];
-        } else if (!strcmp(o, "-o") || !strcmp(o, "--output")) {
-            NEED();
-            a->out = argv[++i];
-        } else if (o[0] == '-' && o[1]) {
-            return cli_usage("slice", "unknown option '%s'", o);
-        } else if (a->path) {
-            return cli_usage("slice", "more than one model given ('%s' and '%s')", a->path, o);
-        } else {
-            a->path = o;
-        }
-    }
-#undef NEED
-    if (!a->path) return cli_usage("slice", "no model given");
-    if ((a->so.widths || a->so.planes) && a->set_width)
-        return cli_usage("slice", "give one of -w, --widths and --planes");
-    return EXIT_OK;
-}
-
-/* Profile defaults under the command line's overrides. */
-static void apply_profile(args *a, const lam_profile *p, lam_plan_opts *po)
-{
-    if (!a->set_width && !a->so.widths && !a->so.planes && p->layer_width > 0) a->so.width = p->layer_width;
-    if (!a->set_cut) a->so.cut = (lam_cut)p->cut;
-    if (!a->set_gap) a->so.gap = p->gap;
-    po->kind = p->process == LAM_PROCESS_LADRP ? LAM_PLAN_LADRP : LAM_PLAN_SLS;
-    po->name = p->name;
-    po->units = p->units;
-    po->bead = p->process == LAM_PROCESS_LADRP ? p->bead_width : p->spot_width;
-    po->rate = p->feed_rate;
-    po->travel_rate = p->travel_rate;
-    po->frame_machine = p->frame_machine;
-    po->first_center = p->first_line == LAM_FIRST_CENTER;
-    po->angle = p->angle;
-    po->angle_step = p->angle_step;
-    po->alternate = p->alternate;
-    po->min_deposit = p->min_deposit;
-    po->perimeters = p->perimeters;
-    po->beam_offset = p->beam_offset;
-}
-
-static void apply_overrides(const args *a, lam_plan_opts *po)
-{
-    if (a->set_frame) po->frame_machine = a->frame_machine;
-    if (a->set_first) po->first_center = a->first_center;
-    if (a->set_angle) po->angle = a->angle;
-    if (a->set_step) po->angle_step = a->angle_step;
-    if (a->set_min) po->min_deposit = a->min_deposit;
-    if (a->no_alternate) po->alternate = 0;
-    if (a->set_perimeters) po->perimeters = a->perimeters;
-    if (a->beam_offset) po->beam_offset = 1;
-}
 
 /* Per-layer reports and the SVG preview, before each layer is planned. */
 typedef struct report {
     const char *path;
     lam_svg *svg;
+    lam_validator *v;        /* --validate */
+    const lam_frame *frame;
+    int fill_nonzero;
+    vreport vr;
     size_t open_total, gaps_total, gap_layers;
     double gap_max;
 } report;
@@ -269,15 +73,19 @@ static int on_layer(void *ctx, const lam_layer *L, lam_error *err)
         r->gaps_total += L->gaps_closed;
         if (L->max_gap > r->gap_max) r->gap_max = L->max_gap;
     }
+    if (r->v) {
+        int rc = vreport_layer(&r->vr, r->v, L, r->frame, r->fill_nonzero, err);
+        if (rc) return rc;
+    }
     return r->svg ? lam_svg_add(r->svg, L, err) : LAM_OK;
 }
 
 int cmd_slice(int argc, char **argv)
 {
     args a;
-    int rc = parse_args(argc, argv, &a);
+    int rc = cli_parse_args("slice", usage_text, OPT_SLICE | OPT_PLAN, argc, argv, &a);
     if (rc) {
-        free(a.list);
+        cli_args_free(&a);
         return rc < 0 ? EXIT_OK : rc;
     }
     lam_error err;
@@ -287,16 +95,18 @@ int cmd_slice(int argc, char **argv)
     lam_slicer *s = NULL;
     lam_writer *w = NULL;
     lam_sink sink = { 0 };
-    report rep = { a.path, NULL, 0, 0, 0, 0 };
+    report rep;
+    memset(&rep, 0, sizeof rep);
+    rep.path = a.path;
+    rep.vr.out = stderr;
 
-    if (a.machine ? lam_profile_find(a.machine, &prof, &err) : lam_profile_builtin_sls(&prof, &err)) {
+    if (cli_load_profile(&a, &prof, &err)) {
         rc = cli_fail(&err);
         goto done;
     }
     lam_plan_opts po;
     lam_plan_opts_init(&po);
-    apply_profile(&a, prof, &po);
-    apply_overrides(&a, &po);
+    cli_apply_profile(&a, prof, &po);
     if (lam_model_load(a.path, &m, &err)) {
         rc = cli_fail(&err);
         goto done;
@@ -304,6 +114,14 @@ int cmd_slice(int argc, char **argv)
     if (lam_slicer_new(m, &a.so, &s, &err)) {
         rc = err.code == LAM_EUSAGE ? cli_usage("slice", "%s", err.msg) : cli_fail(&err);
         goto done;
+    }
+    if (a.validate) {
+        if (lam_validator_new(m, &rep.v, &err)) {
+            rc = cli_fail(&err);
+            goto done;
+        }
+        rep.frame = lam_slicer_frame(s);
+        rep.fill_nonzero = a.so.fill_nonzero;
     }
     if (a.svg) {
         double box[4];
@@ -332,6 +150,12 @@ int cmd_slice(int argc, char **argv)
     if (rep.gap_layers > 20)
         fprintf(stderr, "lamina: %s: closed %zu gaps in %zu layers, largest %g\n", a.path, rep.gaps_total,
                 rep.gap_layers, rep.gap_max);
+    if (rep.vr.disagreeing) {
+        fprintf(stderr, "lamina: %s: %zu contour label%s disagree%s with the model; nothing written\n", a.path,
+                rep.vr.disagreeing, rep.vr.disagreeing == 1 ? "" : "s", rep.vr.disagreeing == 1 ? "s" : "");
+        rc = EXIT_CHECK;
+        goto done;
+    }
     if (rep.open_total) {
         fprintf(stderr, "lamina: %s: %zu outline%s stayed open (gap tolerance %g)%s\n", a.path, rep.open_total,
                 rep.open_total == 1 ? "" : "s", a.so.gap,
@@ -362,9 +186,10 @@ done:
     if (sink.destroy) sink.destroy(sink.ctx);
     lam_writer_abort(w);
     lam_svg_free(rep.svg);
+    lam_validator_free(rep.v);
     lam_slicer_free(s);
     lam_model_free(m);
     lam_profile_free(prof);
-    free(a.list);
+    cli_args_free(&a);
     return rc;
 }
