@@ -13,6 +13,8 @@ typedef struct panel {
     double cut;
     char *path;       /* SVG path data, owned */
     size_t ncontours;
+    double *marks;    /* u, v pairs, owned */
+    size_t nmarks;
 } panel;
 
 struct lam_svg {
@@ -98,6 +100,20 @@ int lam_svg_add(lam_svg *s, const lam_layer *L, lam_error *err)
     return rc;
 }
 
+int lam_svg_mark(lam_svg *s, size_t index, double u, double v, lam_error *err)
+{
+    long k = find_panel(s, index);
+    if (k < 0) return LAM_OK;
+    panel *p = &s->panels[k];
+    double *nm = realloc(p->marks, 2 * (p->nmarks + 1) * sizeof *nm);
+    if (!nm) return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory");
+    p->marks = nm;
+    p->marks[2 * p->nmarks] = u;
+    p->marks[2 * p->nmarks + 1] = v;
+    p->nmarks++;
+    return LAM_OK;
+}
+
 static void xml_text(lam_writer *w, const char *t)
 {
     for (; *t; t++) {
@@ -143,6 +159,11 @@ int lam_svg_write(const lam_svg *s, lam_writer *w)
                               "<path transform=\"translate(%.0f %.0f)\" fill=\"#2f6db5\" fill-rule=\"evenodd\" "
                               "stroke=\"#1b3f6b\" stroke-width=\"0.5\" d=\"%s\"/>\n",
                               PAD, PAD, p->path);
+        double sc = scale_of(s);
+        for (size_t i = 0; i < p->nmarks; i++)
+            lam_writer_printf(w, "<circle cx=\"%.2f\" cy=\"%.2f\" r=\"5\" fill=\"none\" stroke=\"#d62728\" "
+                                 "stroke-width=\"2\"/>\n",
+                              PAD + (p->marks[2 * i] - s->box[0]) * sc, PAD + (s->box[3] - p->marks[2 * i + 1]) * sc);
         lam_writer_printf(w,
                           "<text x=\"2\" y=\"%.0f\" font-family=\"sans-serif\" font-size=\"12\" fill=\"#222\">"
                           "layer %zu  h=%.4g  (%zu contour%s)</text>\n</g>\n",
@@ -155,7 +176,10 @@ void lam_svg_free(lam_svg *s)
 {
     if (!s) return;
     if (s->panels)
-        for (size_t k = 0; k < s->npanels; k++) free(s->panels[k].path);
+        for (size_t k = 0; k < s->npanels; k++) {
+            free(s->panels[k].path);
+            free(s->panels[k].marks);
+        }
     free(s->panels);
     free(s->wanted);
     free(s->title);

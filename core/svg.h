@@ -23,6 +23,10 @@ int lam_svg_wants(const lam_svg *svg, size_t index);
 /* Record a layer's panel (only if wanted; otherwise a no-op). */
 int lam_svg_add(lam_svg *svg, const lam_layer *layer, lam_error *err);
 
+/* Mark a point (layer-frame u, v) on layer `index`'s panel with a red ring
+ * (design-rule violations); a layer without a panel is ignored. */
+int lam_svg_mark(lam_svg *svg, size_t index, double u, double v, lam_error *err);
+
 /* Write the whole sheet. */
 int lam_svg_write(const lam_svg *svg, lam_writer *w);
 

@@ -355,6 +355,43 @@ static int cast_dir(lam_validator *v, const double p[3], int k, int *w)
     return CAST_OK;
 }
 
+int lam_validator_ray(lam_validator *v, const double p[3], const double d[3], double tmin, double *t, uint32_t *tri,
+                      lam_error *err)
+{
+    *t = INFINITY;
+    if (tri) *tri = UINT32_MAX;
+    struct RTCRayHit rh;
+    memset(&rh, 0, sizeof rh);
+    rh.ray.org_x = (float)p[0];
+    rh.ray.org_y = (float)p[1];
+    rh.ray.org_z = (float)p[2];
+    rh.ray.dir_x = (float)d[0];
+    rh.ray.dir_y = (float)d[1];
+    rh.ray.dir_z = (float)d[2];
+    rh.ray.tnear = 0;
+    rh.ray.tfar = INFINITY;
+    rh.ray.mask = UINT32_MAX;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    ray_ctx c;
+    rtcInitIntersectContext(&c.rtc);
+    c.v = v;
+    v->nhits = 0;
+    v->nomem = 0;
+    rtcIntersect1(v->scene, &c.rtc, &rh);
+    v->st.rays++;
+    if (v->nomem) return nomem(err);
+    /* every hit was gathered (and rejected): the nearest past tmin wins */
+    for (size_t i = 0; i < v->nhits; i++) {
+        double ti = v->hits[i].t;
+        if (ti > tmin && ti < *t) {
+            *t = ti;
+            if (tri) *tri = v->hits[i].prim;
+        }
+    }
+    return LAM_OK;
+}
+
 /* ---- votes ------------------------------------------------------------------------ */
 
 enum { W_DECIDED, W_SURFACE, W_UNDECIDED, W_NOMEM };

@@ -83,6 +83,14 @@ double lam_validator_min_inset(const lam_validator *v);
  * and diagnostics. */
 const double *lam_validator_direction(size_t k);
 
+/* The nearest surface along the ray from p in direction d (unit length)
+ * beyond distance tmin (nearer hits are ignored: a ray leaving a surface
+ * must not see that surface). *t is INFINITY when nothing is hit; *tri (may
+ * be NULL) the triangle hit. Errors: LAM_ENOMEM. The scene is float32, so
+ * distances are good to about lam_validator_tolerance. */
+int lam_validator_ray(lam_validator *v, const double p[3], const double d[3], double tmin, double *t, uint32_t *tri,
+                      lam_error *err);
+
 typedef struct lam_validator_stats {
     size_t points;      /* winding queries (including surface retries) */
     size_t rays;        /* rays cast */

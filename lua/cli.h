@@ -26,6 +26,7 @@ const char *cli_num(char *buf, size_t size, double x);
 int cmd_info(int argc, char **argv);
 int cmd_slice(int argc, char **argv);
 int cmd_validate(int argc, char **argv);
+int cmd_check(int argc, char **argv);
 int cmd_machines(int argc, char **argv);
 
 #endif

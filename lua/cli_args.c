@@ -59,12 +59,13 @@ static unsigned group_of(const char *o)
                                               "--planes", "--cut", "--gap", "--allow-open", "--fill", NULL };
     static const char *const plan_opts[] = { "--first-line", "--angle", "--angle-step", "--min-deposit",
                                              "--no-alternate", "--perimeters", "--beam-offset", "--frame",
-                                             "--svg", "-o", "--output", "--validate", NULL };
+                                             "-o", "--output", "--validate", NULL };
     for (int i = 0; slice_opts[i]; i++)
         if (!strcmp(o, slice_opts[i])) return OPT_SLICE;
     for (int i = 0; plan_opts[i]; i++)
         if (!strcmp(o, plan_opts[i])) return OPT_PLAN;
     if (!strcmp(o, "--json")) return OPT_JSON;
+    if (!strcmp(o, "--svg")) return OPT_SVG;
     return 0;
 }
 

@@ -10,8 +10,9 @@
 /* Option groups a command accepts. */
 enum {
     OPT_SLICE = 1,     /* -m -a -w --widths --planes --cut --gap --allow-open --fill */
-    OPT_PLAN = 2,      /* raster and SLS options, --frame, --svg, -o, --validate */
-    OPT_JSON = 4       /* --json */
+    OPT_PLAN = 2,      /* raster and SLS options, --frame, -o, --validate */
+    OPT_JSON = 4,      /* --json */
+    OPT_SVG = 8        /* --svg FILE */
 };
 
 typedef struct args {

@@ -83,7 +83,7 @@ static int on_layer(void *ctx, const lam_layer *L, lam_error *err)
 int cmd_slice(int argc, char **argv)
 {
     args a;
-    int rc = cli_parse_args("slice", usage_text, OPT_SLICE | OPT_PLAN, argc, argv, &a);
+    int rc = cli_parse_args("slice", usage_text, OPT_SLICE | OPT_PLAN | OPT_SVG, argc, argv, &a);
     if (rc) {
         cli_args_free(&a);
         return rc < 0 ? EXIT_OK : rc;

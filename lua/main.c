@@ -32,6 +32,7 @@ int main(int argc, char **argv)
     if (strcmp(cmd, "info") == 0) return cmd_info(argc - 1, argv + 1);
     if (strcmp(cmd, "slice") == 0) return cmd_slice(argc - 1, argv + 1);
     if (strcmp(cmd, "validate") == 0) return cmd_validate(argc - 1, argv + 1);
+    if (strcmp(cmd, "check") == 0) return cmd_check(argc - 1, argv + 1);
     if (strcmp(cmd, "machines") == 0) return cmd_machines(argc - 1, argv + 1);
     return cli_usage(NULL, "unknown command '%s'", cmd);
 }
