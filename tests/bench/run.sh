@@ -54,3 +54,15 @@ for mesh in sphere torus; do
                lm / 1024, sm / 1024, lm / sm }'
 done
 echo "(medians of $RUNS alternating runs; speedup = slic3r time / lamina time; mem_ratio = lamina peak RSS / slic3r peak RSS)"
+
+# Embree validation of every label: the sphere at 0.1 layers, and the model
+# load + slice alone for comparison.
+: >"$work/v.txt"; : >"$work/s.txt"
+for ((r = 0; r < RUNS; r++)); do
+    measure "$LAMINA" validate "$work/sphere.stl" -w 0.1 >>"$work/v.txt"
+    measure "$LAMINA" slice "$work/sphere.stl" -w 0.1 -o "$work/sphere.sls" >>"$work/s.txt"
+done
+vt=$(cut -d' ' -f1 "$work/v.txt" | median); vm=$(cut -d' ' -f2 "$work/v.txt" | median)
+st=$(cut -d' ' -f1 "$work/s.txt" | median)
+awk -v vt="$vt" -v vm="$vm" -v st="$st" 'BEGIN {
+    printf "validate sphere (400 layers): %.3f s, %.1f MB peak (slice alone %.3f s)\n", vt, vm / 1024, st }'
