@@ -105,15 +105,18 @@ RUN_PART := recipes/parts/thesis_cube_hole.ug
 run: deps
 	@$(MAKE) --no-print-directory all
 	@mkdir -p out
-	$(LAMINA) info $(RUN_PART) > out/thesis_cube_hole.info.txt
-	$(LAMINA) slice $(RUN_PART) -w 0.25 --cut floor -o out/thesis_cube_hole.sls --svg out/thesis_cube_hole.svg
+	@$(LAMINA) info $(RUN_PART) > out/thesis_cube_hole.info.txt
+	$(LAMINA) slice $(RUN_PART) -m creol-ladrp -o out/thesis_cube_hole.ladrp
+	$(LAMINA) slice $(RUN_PART) -m sls-contours -w 0.25 --cut floor -o out/thesis_cube_hole.sls --svg out/thesis_cube_hole.svg
+	$(LAMINA) validate $(RUN_PART) -w 0.25 --cut floor > out/thesis_cube_hole.validate.txt
 	@echo
-	@cat out/thesis_cube_hole.info.txt
-	@echo
+	@tail -n 1 out/thesis_cube_hole.validate.txt
 	@echo "lamina: outputs in $(abspath out)/:"
-	@echo "  thesis_cube_hole.info.txt  model report"
-	@echo "  thesis_cube_hole.sls       SLS contour program (thesis dialect)"
-	@echo "  thesis_cube_hole.svg       contact sheet of the layers"
+	@echo "  thesis_cube_hole.info.txt      model report (lamina info)"
+	@echo "  thesis_cube_hole.ladrp         LADRP program for the thesis's CREOL cell"
+	@echo "  thesis_cube_hole.sls           SLS contour program (thesis dialect)"
+	@echo "  thesis_cube_hole.svg           contact sheet of the SLS layers"
+	@echo "  thesis_cube_hole.validate.txt  Embree check of every solid/hole label"
 
 # Tests: C unit tests are compiled to TAP programs; tests/cli/*.t are shell
 # scripts that drive the executable. prove runs both and prints the summary.
