@@ -1,6 +1,7 @@
 #include "fill.h"
 
-#include <geos_c.h>
+#include "geos.h"
+
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -25,66 +26,16 @@ int lam_loops_winding(const lam_loops *L, double u, double v)
     return w;
 }
 
-typedef struct ctx {
-    GEOSContextHandle_t h;
-    char msg[256];
-} ctx;
-
-static void on_error(const char *message, void *userdata)
-{
-    ctx *c = userdata;
-    snprintf(c->msg, sizeof c->msg, "%s", message);
-}
-
-/* Append a GEOS ring to out (dropping its repeated closing point). */
-static int add_ring(ctx *c, const GEOSGeometry *ring, lam_loops *out, size_t *cap_pts, size_t *cap_loops)
-{
-    const GEOSCoordSequence *cs = GEOSGeom_getCoordSeq_r(c->h, ring);
-    unsigned n = 0;
-    if (!cs || !GEOSCoordSeq_getSize_r(c->h, cs, &n)) return LAM_EGEOM;
-    if (n < 4) return LAM_OK; /* a closed ring needs 3 points + the closing one */
-    n--;
-    if (out->npoints + n > *cap_pts) {
-        size_t cap = *cap_pts ? *cap_pts : 64;
-        while (cap < out->npoints + n) cap *= 2;
-        double *nu = realloc(out->uv, 2 * cap * sizeof *nu);
-        if (!nu) return LAM_ENOMEM;
-        out->uv = nu;
-        *cap_pts = cap;
-    }
-    if (out->nloops + 1 > *cap_loops) {
-        size_t cap = *cap_loops ? 2 * *cap_loops : 8;
-        size_t *nl = realloc(out->len, cap * sizeof *nl);
-        if (!nl) return LAM_ENOMEM;
-        out->len = nl;
-        *cap_loops = cap;
-    }
-    for (unsigned i = 0; i < n; i++) {
-        double x, y;
-        GEOSCoordSeq_getXY_r(c->h, cs, i, &x, &y);
-        out->uv[2 * (out->npoints + i)] = x;
-        out->uv[2 * (out->npoints + i) + 1] = y;
-    }
-    /* GEOS keeps points of straight runs split at former crossings */
-    n = (unsigned)lam_loop_simplify(out->uv + 2 * out->npoints, n);
-    if (n < 3) return LAM_OK;
-    out->npoints += n;
-    out->len[out->nloops++] = n;
-    return LAM_OK;
-}
-
 int lam_fill_nonzero(lam_loops *loops, lam_error *err)
 {
     if (loops->nloops == 0) return LAM_OK;
-    ctx c = { GEOS_init_r(), "" };
-    if (!c.h) return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory (GEOS)");
-    GEOSContext_setErrorMessageHandler_r(c.h, on_error, &c);
+    lam_geos c;
+    if (lam_geos_init(&c)) return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory (GEOS)");
     int rc = LAM_OK;
     size_t nl = loops->nloops;
     GEOSGeometry **lines = calloc(nl, sizeof *lines), *mls = NULL, *noded = NULL, *faces = NULL, *uni = NULL;
     GEOSGeometry **kept = NULL;
-    lam_loops out = { 0 };
-    size_t cap_pts = 0, cap_loops = 0;
+    lam_loops_builder out = { 0 };
     if (!lines) {
         rc = LAM_ENOMEM;
         goto done;
@@ -155,20 +106,12 @@ int lam_fill_nonzero(lam_loops *loops, lam_error *err)
             rc = LAM_EGEOM;
             goto done;
         }
-        int np = GEOSGetNumGeometries_r(c.h, uni);
-        for (int i = 0; i < np && !rc; i++) {
-            const GEOSGeometry *poly = GEOSGetGeometryN_r(c.h, uni, i);
-            if (GEOSGeomTypeId_r(c.h, poly) != GEOS_POLYGON) continue;
-            rc = add_ring(&c, GEOSGetExteriorRing_r(c.h, poly), &out, &cap_pts, &cap_loops);
-            int nh = GEOSGetNumInteriorRings_r(c.h, poly);
-            for (int k = 0; k < nh && !rc; k++)
-                rc = add_ring(&c, GEOSGetInteriorRingN_r(c.h, poly, k), &out, &cap_pts, &cap_loops);
-        }
+        rc = lam_geos_add_polygons(&c, uni, &out);
     }
     if (!rc) {
         free(loops->uv);
         free(loops->len);
-        *loops = out;
+        *loops = out.loops;
         memset(&out, 0, sizeof out);
     }
 done:
@@ -186,9 +129,8 @@ done:
     if (noded) GEOSGeom_destroy_r(c.h, noded);
     if (faces) GEOSGeom_destroy_r(c.h, faces);
     if (uni) GEOSGeom_destroy_r(c.h, uni);
-    free(out.uv);
-    free(out.len);
-    GEOS_finish_r(c.h);
+    lam_loops_builder_free(&out);
+    lam_geos_finish(&c);
     if (rc == LAM_ENOMEM) return lam_error_set(err, rc, NULL, 0, 0, "out of memory merging overlapping outlines");
     if (rc) return lam_error_set(err, rc, NULL, 0, 0, "merging overlapping outlines failed%s%s", c.msg[0] ? ": " : "", c.msg);
     return LAM_OK;

@@ -7,7 +7,7 @@
  * shared vertices that the slicer chains by. */
 #include "mesh.h"
 
-#include <geos_c.h>
+#include "geos.h"
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -84,18 +84,7 @@ static int is_convex(const lam_mesh *m, proj p, const uint32_t *r, size_t n)
     return sign != 0 && xflips <= 2 && yflips <= 2;
 }
 
-typedef struct geos_ctx {
-    GEOSContextHandle_t h;
-    char msg[256];
-} geos_ctx;
-
-static void geos_msg_r(const char *message, void *userdata)
-{
-    geos_ctx *c = userdata;
-    snprintf(c->msg, sizeof c->msg, "%s", message);
-}
-
-static GEOSGeometry *make_ring(geos_ctx *c, const lam_mesh *m, proj p,
+static GEOSGeometry *make_ring(lam_geos *c, const lam_mesh *m, proj p,
                                const uint32_t *r, size_t n)
 {
     GEOSCoordSequence *cs = GEOSCoordSeq_create_r(c->h, (unsigned)(n + 1), 2);
@@ -140,14 +129,14 @@ static int geos_triangulate(lam_mesh *m, proj p, const uint32_t *idx, const size
                             lam_error *err)
 {
     int rc = LAM_OK;
-    geos_ctx c = { GEOS_init_r(), "" };
+    lam_geos c;
+    int ginit = lam_geos_init(&c);
     GEOSGeometry **holes = NULL, *shell = NULL, *poly = NULL, *tris = NULL;
     key2 *keys = malloc(total * sizeof *keys);
-    if (!c.h || !keys) {
+    if (ginit || !keys) {
         rc = lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory triangulating a face");
         goto done;
     }
-    GEOSContext_setErrorMessageHandler_r(c.h, geos_msg_r, &c);
     for (size_t i = 0; i < total; i++) {
         keys[i].x = px(m, p, idx[i]);
         keys[i].y = py(m, p, idx[i]);
@@ -214,7 +203,7 @@ done:
         free(holes);
     }
     free(keys);
-    if (c.h) GEOS_finish_r(c.h);
+    lam_geos_finish(&c);
     return rc;
 }
 

@@ -271,25 +271,19 @@ static int tri_sign(const lam_validator *v, uint32_t t, const double d[3])
 }
 
 /* Cast direction k from p; on CAST_OK *w is the winding along that ray. */
-static int cast_dir(lam_validator *v, const double p[3], int k, int *w)
+/* Cast one ray from o along d, gathering every hit into v->hits (the
+ * filter rejects each hit so traversal goes on). Non-zero when the hit list
+ * could not grow. */
+static int trace(lam_validator *v, const float o[3], const float d[3])
 {
-    const double *d = v->dird[k];
-    /* start a little behind p, so that a surface through p is seen in
-     * every direction and not lost to the float rounding of the origin */
-    double back = 4 * v->tol;
-    float o[3];
-    for (int j = 0; j < 3; j++) o[j] = (float)(p[j] - back * d[j]);
-    double dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-    double sp = ((p[0] - o[0]) * d[0] + (p[1] - o[1]) * d[1] + (p[2] - o[2]) * d[2]) / dd;
-
     struct RTCRayHit rh;
     memset(&rh, 0, sizeof rh);
     rh.ray.org_x = o[0];
     rh.ray.org_y = o[1];
     rh.ray.org_z = o[2];
-    rh.ray.dir_x = v->dirf[k][0];
-    rh.ray.dir_y = v->dirf[k][1];
-    rh.ray.dir_z = v->dirf[k][2];
+    rh.ray.dir_x = d[0];
+    rh.ray.dir_y = d[1];
+    rh.ray.dir_z = d[2];
     rh.ray.tnear = 0;
     rh.ray.tfar = INFINITY;
     rh.ray.mask = UINT32_MAX;
@@ -302,7 +296,21 @@ static int cast_dir(lam_validator *v, const double p[3], int k, int *w)
     v->nomem = 0;
     rtcIntersect1(v->scene, &c.rtc, &rh);
     v->st.rays++;
-    if (v->nomem) return CAST_NOMEM;
+    return v->nomem;
+}
+
+static int cast_dir(lam_validator *v, const double p[3], int k, int *w)
+{
+    const double *d = v->dird[k];
+    /* start a little behind p, so that a surface through p is seen in
+     * every direction and not lost to the float rounding of the origin */
+    double back = 4 * v->tol;
+    float o[3];
+    for (int j = 0; j < 3; j++) o[j] = (float)(p[j] - back * d[j]);
+    double dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+    double sp = ((p[0] - o[0]) * d[0] + (p[1] - o[1]) * d[1] + (p[2] - o[2]) * d[2]) / dd;
+
+    if (trace(v, o, v->dirf[k])) return CAST_NOMEM;
 
     size_t n = v->nhits;
     hit *h = v->hits;
@@ -360,27 +368,8 @@ int lam_validator_ray(lam_validator *v, const double p[3], const double d[3], do
 {
     *t = INFINITY;
     if (tri) *tri = UINT32_MAX;
-    struct RTCRayHit rh;
-    memset(&rh, 0, sizeof rh);
-    rh.ray.org_x = (float)p[0];
-    rh.ray.org_y = (float)p[1];
-    rh.ray.org_z = (float)p[2];
-    rh.ray.dir_x = (float)d[0];
-    rh.ray.dir_y = (float)d[1];
-    rh.ray.dir_z = (float)d[2];
-    rh.ray.tnear = 0;
-    rh.ray.tfar = INFINITY;
-    rh.ray.mask = UINT32_MAX;
-    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    ray_ctx c;
-    rtcInitIntersectContext(&c.rtc);
-    c.v = v;
-    v->nhits = 0;
-    v->nomem = 0;
-    rtcIntersect1(v->scene, &c.rtc, &rh);
-    v->st.rays++;
-    if (v->nomem) return nomem(err);
+    float o[3] = { (float)p[0], (float)p[1], (float)p[2] }, df[3] = { (float)d[0], (float)d[1], (float)d[2] };
+    if (trace(v, o, df)) return nomem(err);
     /* every hit was gathered (and rejected): the nearest past tmin wins */
     for (size_t i = 0; i < v->nhits; i++) {
         double ti = v->hits[i].t;

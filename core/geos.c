@@ -1,0 +1,84 @@
+#include "geos.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static void on_error(const char *message, void *userdata)
+{
+    lam_geos *g = userdata;
+    snprintf(g->msg, sizeof g->msg, "%s", message);
+}
+
+int lam_geos_init(lam_geos *g)
+{
+    g->msg[0] = '\0';
+    g->h = GEOS_init_r();
+    if (!g->h) return LAM_ENOMEM;
+    GEOSContext_setErrorMessageHandler_r(g->h, on_error, g);
+    return LAM_OK;
+}
+
+void lam_geos_finish(lam_geos *g)
+{
+    if (g->h) GEOS_finish_r(g->h);
+    g->h = NULL;
+}
+
+static int add_ring(lam_geos *gc, const GEOSGeometry *ring, lam_loops_builder *b)
+{
+    const GEOSCoordSequence *cs = GEOSGeom_getCoordSeq_r(gc->h, ring);
+    unsigned n = 0;
+    if (!cs || !GEOSCoordSeq_getSize_r(gc->h, cs, &n)) return LAM_EGEOM;
+    if (n < 4) return LAM_OK; /* a closed ring needs 3 points + the closing one */
+    n--;
+    lam_loops *L = &b->loops;
+    if (L->npoints + n > b->cap_points) {
+        size_t cap = b->cap_points ? b->cap_points : 64;
+        while (cap < L->npoints + n) cap *= 2;
+        double *nu = realloc(L->uv, 2 * cap * sizeof *nu);
+        if (!nu) return LAM_ENOMEM;
+        L->uv = nu;
+        b->cap_points = cap;
+    }
+    if (L->nloops + 1 > b->cap_loops) {
+        size_t cap = b->cap_loops ? 2 * b->cap_loops : 8;
+        size_t *nl = realloc(L->len, cap * sizeof *nl);
+        if (!nl) return LAM_ENOMEM;
+        L->len = nl;
+        b->cap_loops = cap;
+    }
+    double *dst = L->uv + 2 * L->npoints;
+    for (unsigned i = 0; i < n; i++) GEOSCoordSeq_getXY_r(gc->h, cs, i, &dst[2 * i], &dst[2 * i + 1]);
+    /* GEOS keeps points of straight runs split at former crossings */
+    n = (unsigned)lam_loop_simplify(dst, n);
+    if (n < 3 || lam_loop_area(dst, n) == 0) return LAM_OK;
+    L->npoints += n;
+    L->len[L->nloops++] = n;
+    return LAM_OK;
+}
+
+int lam_geos_add_polygons(lam_geos *gc, const GEOSGeometry *g, lam_loops_builder *b)
+{
+    int type = GEOSGeomTypeId_r(gc->h, g);
+    if (type == GEOS_POLYGON) {
+        if (GEOSisEmpty_r(gc->h, g)) return LAM_OK;
+        int rc = add_ring(gc, GEOSGetExteriorRing_r(gc->h, g), b);
+        int nh = GEOSGetNumInteriorRings_r(gc->h, g);
+        for (int k = 0; k < nh && !rc; k++) rc = add_ring(gc, GEOSGetInteriorRingN_r(gc->h, g, k), b);
+        return rc;
+    }
+    if (type == GEOS_MULTIPOLYGON || type == GEOS_GEOMETRYCOLLECTION) {
+        int n = GEOSGetNumGeometries_r(gc->h, g), rc = LAM_OK;
+        for (int i = 0; i < n && !rc; i++) rc = lam_geos_add_polygons(gc, GEOSGetGeometryN_r(gc->h, g, i), b);
+        return rc;
+    }
+    return LAM_OK; /* points and lines have no area */
+}
+
+void lam_loops_builder_free(lam_loops_builder *b)
+{
+    free(b->loops.uv);
+    free(b->loops.len);
+    memset(b, 0, sizeof *b);
+}

@@ -1,0 +1,35 @@
+/* The GEOS glue every polygon operation shares: a context that keeps the
+ * last GEOS message, and turning polygon results back into lam_loops. */
+#ifndef LAM_GEOS_H
+#define LAM_GEOS_H
+
+#include <geos_c.h>
+
+#include "contour.h"
+
+typedef struct lam_geos {
+    GEOSContextHandle_t h;
+    char msg[256];           /* GEOS's last error message, "" if none */
+} lam_geos;
+
+/* Start a context (returns LAM_ENOMEM when GEOS cannot) / end it. */
+int lam_geos_init(lam_geos *g);
+void lam_geos_finish(lam_geos *g);
+
+/* Growable lam_loops being filled from GEOS output. */
+typedef struct lam_loops_builder {
+    lam_loops loops;         /* owned until taken */
+    size_t cap_points, cap_loops;
+} lam_loops_builder;
+
+/* Append every ring of every polygon in g (a Polygon, MultiPolygon or
+ * collection) to b: exterior rings and holes alike, each without GEOS's
+ * repeated closing point, simplified (lam_loop_simplify); rings left with
+ * under 3 points or no area are skipped. Returns LAM_OK, LAM_ENOMEM or
+ * LAM_EGEOM. */
+int lam_geos_add_polygons(lam_geos *gc, const GEOSGeometry *g, lam_loops_builder *b);
+
+/* Free a builder's arrays. */
+void lam_loops_builder_free(lam_loops_builder *b);
+
+#endif
