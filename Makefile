@@ -22,8 +22,8 @@ endif
 
 # Debian packages the build, the tests and `make run` need; `make deps`
 # installs only the missing ones.
-DEPS_PKGS := gcc make perl liblua5.4-dev libyaml-dev libembree-dev libgeos-dev \
-             jq python3 librsvg2-bin
+DEPS_PKGS := gcc make perl liblua5.4-dev lua5.4 libyaml-dev libembree-dev libgeos-dev libreadline8 \
+             jq python3 librsvg2-bin tmux
 
 LUA_CFLAGS := -I/usr/include/lua5.4
 LUA_LIBS   := -llua5.4

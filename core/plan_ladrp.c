@@ -123,27 +123,12 @@ static int perimeters(emitter *e, const lam_layer *L, lam_layer **inner, lam_err
     return rc;
 }
 
-int lam_plan_ladrp_layer(const lam_layer *L0, const lam_frame *f, const lam_plan_opts *o,
-                         const lam_sink *sink, double pos[3], int *laser_state, lam_ladrp_stats *st,
-                         lam_error *err)
+/* The raster of one region (a layer, or one island of it). */
+static int raster(emitter *e, const lam_layer *L, int approach, lam_error *err)
 {
-    memset(st, 0, sizeof *st);
-    if (!(o->bead > 0) || !isfinite(o->bead))
-        return lam_error_set(err, LAM_EUSAGE, NULL, 0, 0, "bead width must be positive");
-    emitter e = { sink, f, o, 1, 0, L0->cut, pos, 0, 0, laser_state, st };
-    rotation(o->angle + (double)L0->index * o->angle_step, &e.c, &e.s);
-    const lam_layer *L = L0;
-    lam_layer *inner = NULL;
-    if (o->perimeters > 0) {
-        int prc = perimeters(&e, L0, &inner, err);
-        if (prc) {
-            lam_layer_free(inner);
-            return prc;
-        }
-        L = inner;
-    }
-
-    /* the layer's edges in the scan frame (rotated by -angle) */
+    const lam_plan_opts *o = e->o;
+    lam_ladrp_stats *st = e->st;
+    /* the region's edges in the scan frame (rotated by -angle) */
     xedge *edges = malloc((L->npoints + 1) * sizeof *edges);
     double *xs = malloc((L->npoints + 1) * sizeof *xs);
     uint32_t *active = malloc((L->npoints + 1) * sizeof *active);
@@ -151,7 +136,6 @@ int lam_plan_ladrp_layer(const lam_layer *L0, const lam_frame *f, const lam_plan
         free(edges);
         free(xs);
         free(active);
-        lam_layer_free(inner);
         return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory planning a layer");
     }
     size_t ne = 0;
@@ -161,10 +145,10 @@ int lam_plan_ladrp_layer(const lam_layer *L0, const lam_frame *f, const lam_plan
         for (size_t i = 0; i < c->n; i++) {
             size_t j = (i + 1) % c->n;
             const double *p = L->uv + 2 * (c->first + i), *q = L->uv + 2 * (c->first + j);
-            double pu = e.s == 0 ? p[0] * e.c : p[0] * e.c + p[1] * e.s;
-            double pv = e.s == 0 ? p[1] * e.c : -p[0] * e.s + p[1] * e.c;
-            double qu = e.s == 0 ? q[0] * e.c : q[0] * e.c + q[1] * e.s;
-            double qv = e.s == 0 ? q[1] * e.c : -q[0] * e.s + q[1] * e.c;
+            double pu = e->s == 0 ? p[0] * e->c : p[0] * e->c + p[1] * e->s;
+            double pv = e->s == 0 ? p[1] * e->c : -p[0] * e->s + p[1] * e->c;
+            double qu = e->s == 0 ? q[0] * e->c : q[0] * e->c + q[1] * e->s;
+            double qv = e->s == 0 ? q[1] * e->c : -q[0] * e->s + q[1] * e->c;
             if (pv < vmin) vmin = pv;
             if (pv > vmax) vmax = pv;
             if (pv == qv) continue; /* along the scan direction: never crossed */
@@ -178,6 +162,8 @@ int lam_plan_ladrp_layer(const lam_layer *L0, const lam_frame *f, const lam_plan
     int rc = LAM_OK;
     double d = o->bead;
     double y0 = o->first_center ? vmax - d / 2 : vmax;
+    if (ne && (vmax - vmin) / d > 1e7) rc = lam_error_set(err, LAM_EUSAGE, NULL, 0, 0,
+                                                          "bead width %g makes more than 10^7 scan lines in a layer", d);
     size_t ins = 0, nact = 0, emitted = 0;
     for (size_t k = 0; ne && rc == LAM_OK; k++) {
         double y = y0 - (double)k * d; /* never accumulated */
@@ -203,14 +189,14 @@ int lam_plan_ladrp_layer(const lam_layer *L0, const lam_frame *f, const lam_plan
             double a = xs[2 * pi], b = xs[2 * pi + 1];
             if (b - a < o->min_deposit || !(b > a)) continue;
             double from = backward ? b : a, to = backward ? a : b;
-            if (emitted == 0 && ndep == 0 && o->perimeters <= 0) {
+            if (approach && emitted == 0 && ndep == 0) {
                 /* the thesis's approach: one bead above the first line, then down */
-                rc = move(&e, 0, from, y + d);
-                if (!rc) rc = move(&e, 0, from, y);
-            } else if (e.ur != from || e.vr != y) {
-                rc = move(&e, 0, from, y);
+                rc = move(e, 0, from, y + d);
+                if (!rc) rc = move(e, 0, from, y);
+            } else if (e->ur != from || e->vr != y) {
+                rc = move(e, 0, from, y);
             }
-            if (!rc) rc = move(&e, 1, to, y);
+            if (!rc) rc = move(e, 1, to, y);
             ndep++;
             st->deposits++;
         }
@@ -219,10 +205,131 @@ int lam_plan_ladrp_layer(const lam_layer *L0, const lam_frame *f, const lam_plan
             st->lines++;
         }
     }
-    if (!rc) rc = laser(&e, 0);
     free(edges);
     free(xs);
     free(active);
+    return rc;
+}
+
+/* The island of root contour r: it and every contour nested in it, as a
+ * layer of its own. */
+static lam_layer *island(const lam_layer *L, size_t r)
+{
+    lam_layer *I = calloc(1, sizeof *I);
+    size_t n = 0, pts = 0;
+    long *map = malloc((L->ncontours + 1) * sizeof *map);
+    if (!I || !map) goto fail;
+    for (size_t k = 0; k < L->ncontours; k++) {
+        long p = (long)k;
+        while (p >= 0 && (size_t)p != r) p = L->contours[p].parent;
+        map[k] = p < 0 ? -1 : (long)n++;
+        if (map[k] >= 0) pts += L->contours[k].n;
+    }
+    I->contours = calloc(n + 1, sizeof *I->contours);
+    I->uv = malloc((2 * pts + 1) * sizeof *I->uv);
+    if (!I->contours || !I->uv) goto fail;
+    *I = (lam_layer){ L->index, L->floor, L->ceiling, L->width, L->cut, I->uv, 0, I->contours, n, 0, 0, NULL, 0 };
+    for (size_t k = 0; k < L->ncontours; k++) {
+        if (map[k] < 0) continue;
+        lam_contour *c = &I->contours[map[k]];
+        *c = L->contours[k];
+        c->first = I->npoints;
+        c->parent = c->parent >= 0 ? map[c->parent] : -1;
+        memcpy(I->uv + 2 * I->npoints, L->uv + 2 * L->contours[k].first, 2 * c->n * sizeof *I->uv);
+        I->npoints += c->n;
+    }
+    free(map);
+    return I;
+fail:
+    free(map);
+    lam_layer_free(I);
+    return NULL;
+}
+
+/* Islands one after the other, each next one the nearest to the stage (by
+ * the corner where its raster starts), so the stage crosses the gaps
+ * between islands once instead of on every scan line. */
+static int raster_islands(emitter *e, const lam_layer *L, lam_error *err)
+{
+    size_t nroots = 0;
+    for (size_t k = 0; k < L->ncontours; k++) nroots += L->contours[k].parent < 0;
+    lam_layer **isl = calloc(nroots + 1, sizeof *isl);
+    double *corner = malloc((2 * nroots + 1) * sizeof *corner);
+    int rc = isl && corner ? LAM_OK : LAM_ENOMEM;
+    size_t ni = 0;
+    for (size_t k = 0; k < L->ncontours && !rc; k++) {
+        if (L->contours[k].parent >= 0) continue;
+        if (!(isl[ni] = island(L, k))) {
+            rc = LAM_ENOMEM;
+            break;
+        }
+        /* the top-left corner of its bounding box in the scan frame */
+        const lam_contour *c = &L->contours[k];
+        double umin = INFINITY, vmax = -INFINITY;
+        for (size_t i = 0; i < c->n; i++) {
+            const double *p = L->uv + 2 * (c->first + i);
+            double pu = e->s == 0 ? p[0] * e->c : p[0] * e->c + p[1] * e->s;
+            double pv = e->s == 0 ? p[1] * e->c : -p[0] * e->s + p[1] * e->c;
+            if (pu < umin) umin = pu;
+            if (pv > vmax) vmax = pv;
+        }
+        corner[2 * ni] = umin;
+        corner[2 * ni + 1] = vmax;
+        ni++;
+    }
+    if (rc) lam_error_set(err, rc, NULL, 0, 0, "out of memory planning a layer");
+    for (size_t done = 0; done < ni && !rc; done++) {
+        size_t best = ni;
+        double bd = INFINITY;
+        for (size_t i = 0; i < ni; i++) {
+            if (!isl[i]) continue;
+            double dd = hypot(corner[2 * i] - e->ur, corner[2 * i + 1] - e->vr);
+            if (dd < bd) {
+                bd = dd;
+                best = i;
+            }
+        }
+        rc = raster(e, isl[best], 1, err);
+        lam_layer_free(isl[best]);
+        isl[best] = NULL;
+    }
+    for (size_t i = 0; i < ni; i++) lam_layer_free(isl[i]);
+    free(isl);
+    free(corner);
+    return rc;
+}
+
+int lam_plan_ladrp_layer(const lam_layer *L0, const lam_frame *f, const lam_plan_opts *o,
+                         const lam_sink *sink, double pos[3], int *laser_state, lam_ladrp_stats *st,
+                         lam_error *err)
+{
+    memset(st, 0, sizeof *st);
+    if (!(o->bead > 0) || !isfinite(o->bead))
+        return lam_error_set(err, LAM_EUSAGE, NULL, 0, 0, "bead width must be positive");
+    emitter e = { sink, f, o, 1, 0, L0->cut, pos, 0, 0, laser_state, st };
+    rotation(o->angle + (double)L0->index * o->angle_step, &e.c, &e.s);
+    /* the stage in the scan frame, for travel lengths and island order */
+    {
+        double u, v;
+        if (o->frame_machine) {
+            u = pos[0];
+            v = pos[1];
+        } else {
+            u = pos[0] * f->u[0] + pos[1] * f->u[1] + pos[2] * f->u[2];
+            v = pos[0] * f->v[0] + pos[1] * f->v[1] + pos[2] * f->v[2];
+        }
+        e.ur = e.s == 0 ? u * e.c : u * e.c + v * e.s;
+        e.vr = e.s == 0 ? v * e.c : -u * e.s + v * e.c;
+    }
+    const lam_layer *L = L0;
+    lam_layer *inner = NULL;
+    int rc = LAM_OK;
+    if (o->perimeters > 0) {
+        rc = perimeters(&e, L0, &inner, err);
+        L = inner;
+    }
+    if (!rc) rc = o->islands ? raster_islands(&e, L, err) : raster(&e, L, o->perimeters <= 0, err);
+    if (!rc) rc = laser(&e, 0);
     lam_layer_free(inner);
     return rc;
 }

@@ -68,6 +68,12 @@ int lam_plan_run(lam_slicer *s, const lam_model *m, const lam_plan_opts *o, cons
             if (o->kind == LAM_PLAN_LADRP) {
                 lam_ladrp_stats st;
                 rc = lam_plan_ladrp_layer(L, f, o, sink, pos, &laser, &st, err);
+                if (o->totals) {
+                    o->totals->lines += st.lines;
+                    o->totals->deposits += st.deposits;
+                    o->totals->deposit_length += st.deposit_length;
+                    o->totals->travel_length += st.travel_length;
+                }
             } else {
                 rc = lam_plan_sls_layer(L, f, o, sink, &next_id, err);
             }

@@ -25,6 +25,13 @@
 
 typedef enum lam_plan_kind { LAM_PLAN_LADRP, LAM_PLAN_SLS } lam_plan_kind;
 
+/* Statistics of LADRP planning (lengths in the layer plane). */
+typedef struct lam_ladrp_stats {
+    size_t lines, deposits;
+    double deposit_length, travel_length;
+} lam_ladrp_stats;
+typedef lam_ladrp_stats lam_ladrp_stats_out;
+
 typedef struct lam_plan_opts {
     lam_plan_kind kind;
     const char *name, *units;    /* for the job header */
@@ -36,9 +43,14 @@ typedef struct lam_plan_opts {
     double angle, angle_step;    /* degrees */
     int alternate;               /* boustrophedon */
     double min_deposit;          /* skip deposits shorter than this */
+    int islands;                 /* LADRP: raster each island (an outer contour and
+                                    what it holds) on its own, nearest next, instead
+                                    of whole scan lines across the layer */
     int perimeters;              /* LADRP: passes around the contours, the first
                                     offset d/2 inward, each next one d further; the
                                     raster then fills what lies inside them */
+    lam_ladrp_stats_out *totals; /* if not NULL: LADRP lines, deposits and lengths of
+                                    the whole run are added here */
     /* SLS */
     int beam_offset;             /* contours moved inward by half the spot (holes
                                     outward), so the beam's edge traces the part */
@@ -56,12 +68,6 @@ typedef int (*lam_layer_cb)(void *ctx, const lam_layer *layer, lam_error *err);
  * planner, the sink or the callback). */
 int lam_plan_run(lam_slicer *s, const lam_model *m, const lam_plan_opts *o, const lam_sink *sink,
                  lam_layer_cb cb, void *cbctx, lam_error *err);
-
-/* Statistics of the last LADRP layer planned, for tests and reports. */
-typedef struct lam_ladrp_stats {
-    size_t lines, deposits;
-    double deposit_length, travel_length;
-} lam_ladrp_stats;
 
 /* Plan one layer (exposed for tests and Lua). pos: the stage position in
  * the output frame, updated; laser: the laser state (-1 unknown), updated. */

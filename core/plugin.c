@@ -13,9 +13,7 @@
 #include "lamina_plugin.h"
 #include "paths.h"
 
-#ifndef LAMINA_VERSION
-#define LAMINA_VERSION "0.1.0"
-#endif
+#include "version.h"
 
 #define MSG_MAX 1024
 #define MAX_DIRS 16

@@ -58,7 +58,7 @@ static unsigned group_of(const char *o)
     static const char *const slice_opts[] = { "-m", "--machine", "-a", "--axis", "-w", "--width", "--widths",
                                               "--planes", "--cut", "--gap", "--allow-open", "--fill", NULL };
     static const char *const plan_opts[] = { "--first-line", "--angle", "--angle-step", "--min-deposit",
-                                             "--no-alternate", "--perimeters", "--beam-offset", "--frame",
+                                             "--no-alternate", "--perimeters", "--beam-offset", "--frame", "--islands",
                                              "-o", "--output", "--validate", NULL };
     for (int i = 0; slice_opts[i]; i++)
         if (!strcmp(o, slice_opts[i])) return OPT_SLICE;
@@ -166,6 +166,8 @@ int cli_parse_args(const char *cmd, const char *usage_text, unsigned groups, int
                 return cli_usage(cmd, "--perimeters takes a whole number from 0 to 1000 (got '%s')", argv[i]);
             a->perimeters = (int)x;
             a->set_perimeters = 1;
+        } else if (!strcmp(o, "--islands")) {
+            a->islands = 1;
         } else if (!strcmp(o, "--beam-offset")) {
             a->beam_offset = 1;
         } else if (!strcmp(o, "--no-alternate")) {
@@ -232,6 +234,7 @@ static void apply_overrides(const args *a, lam_plan_opts *po)
     if (a->no_alternate) po->alternate = 0;
     if (a->set_perimeters) po->perimeters = a->perimeters;
     if (a->beam_offset) po->beam_offset = 1;
+    if (a->islands) po->islands = 1;
 }
 
 void cli_args_free(args *a)

@@ -21,7 +21,7 @@ typedef struct args {
     double *list;
     int allow_open, set_width, set_cut, set_gap, set_frame, json, validate;
     int set_first, first_center, set_angle, set_step, set_min, no_alternate, frame_machine;
-    int perimeters, set_perimeters, beam_offset;
+    int perimeters, set_perimeters, beam_offset, islands;
     double angle, angle_step, min_deposit;
 } args;
 

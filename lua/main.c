@@ -1,17 +1,23 @@
 /* The `lamina` executable: dispatch to one command per file (cli_*.c). */
 #include "cli.h"
+#include "cli_lua.h"
+#include "version.h"
 
 #include <string.h>
-
-#define LAMINA_VERSION "0.1.0"
 
 static int help(void)
 {
     printf("lamina " LAMINA_VERSION " - process planning for layered manufacturing\n\n"
            "usage:\n"
-           "  lamina info MODEL [--json]     model report: shells, cavities, volume, defects\n"
-           "  lamina slice MODEL [options]   slice; SLS contours to stdout or -o FILE, --svg preview\n"
-           "  lamina machines [--show NAME]  list machine profiles / print one as resolved YAML\n"
+           "  lamina info MODEL [--json]          model report: shells, cavities, volume, defects\n"
+           "  lamina slice MODEL [options]        slice and plan; program to stdout or -o FILE\n"
+           "  lamina validate MODEL [options]     Embree check of every solid/hole label\n"
+           "  lamina check MODEL -m MACHINE       design-rule check (wall thickness, overhangs)\n"
+           "  lamina machines [--show NAME]       list machine profiles / print one resolved\n"
+           "  lamina run RECIPE.lua [ARGS...]     run a Lua recipe (ARGS in `arg` and ...)\n"
+           "  lamina repl                         Lua prompt with lamina loaded (also plain\n"
+           "                                      `lamina` on a terminal)\n"
+           "  lamina -e CODE [-e CODE ...]        run Lua code with lamina loaded\n"
            "  lamina --help | --version\n\n"
            "'lamina COMMAND --help' describes a command's options.\n"
            "Models: Unigrafix (.ug), STL (ASCII or binary), Wavefront OBJ.\n"
@@ -22,7 +28,7 @@ static int help(void)
 
 int main(int argc, char **argv)
 {
-    if (argc < 2) return cli_usage(NULL, "no command given");
+    if (argc < 2) return lua_main_default();
     const char *cmd = argv[1];
     if (strcmp(cmd, "--help") == 0 || strcmp(cmd, "-h") == 0 || strcmp(cmd, "help") == 0) return help();
     if (strcmp(cmd, "--version") == 0) {
@@ -34,5 +40,8 @@ int main(int argc, char **argv)
     if (strcmp(cmd, "validate") == 0) return cmd_validate(argc - 1, argv + 1);
     if (strcmp(cmd, "check") == 0) return cmd_check(argc - 1, argv + 1);
     if (strcmp(cmd, "machines") == 0) return cmd_machines(argc - 1, argv + 1);
+    if (strcmp(cmd, "run") == 0) return cmd_run(argc - 1, argv + 1);
+    if (strcmp(cmd, "repl") == 0) return cmd_repl(argc - 1, argv + 1);
+    if (strcmp(cmd, "-e") == 0) return cmd_eval(argc - 1, argv + 1);
     return cli_usage(NULL, "unknown command '%s'", cmd);
 }

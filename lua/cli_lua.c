@@ -1,0 +1,277 @@
+/* lamina run / lamina -e / lamina repl: a Lua 5.4 state with the lamina
+ * module, in the manner of lua.c (arg table, traceback on errors, Ctrl-C
+ * interrupts the running code). */
+#include "cli_lua.h"
+
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include <lauxlib.h>
+#include <lualib.h>
+
+#include "cli.h"
+#include "l_common.h"
+#include "paths.h"
+
+LUAMOD_API int luaopen_lamina(lua_State *L);
+
+/* ---- the state ------------------------------------------------------------- */
+
+static int init_state(lua_State *L)
+{
+    luaL_openlibs(L);
+    luaL_requiref(L, "lamina", luaopen_lamina, 1);
+    lua_pop(L, 1);
+    /* lamina's own Lua modules: <exe>/../lua and <exe>/../share/lamina/lua first */
+    static const char *const rel[] = { "../lua", "../share/lamina/lua", NULL };
+    char *dirs[4];
+    void **box = lam_lua_newbox(L); /* the C string below, freed even on a memory error */
+    size_t n = lam_search_dirs(NULL, rel, dirs, 4), len = 1;
+    for (size_t i = 0; i < n; i++) len += 2 * strlen(dirs[i]) + 20;
+    char *path = malloc(len);
+    if (path) {
+        size_t k = 0;
+        path[0] = '\0';
+        for (size_t i = 0; i < n; i++)
+            k += (size_t)snprintf(path + k, len - k, "%s/?.lua;%s/?/init.lua;", dirs[i], dirs[i]);
+    }
+    for (size_t i = 0; i < n; i++) free(dirs[i]);
+    *box = path;
+    if (!path) return luaL_error(L, "not enough memory");
+    lua_getglobal(L, "package");
+    lua_pushstring(L, path);
+    lua_getfield(L, -2, "path");
+    lua_concat(L, 2);
+    lua_setfield(L, -2, "path");
+    return 0;
+}
+
+lua_State *lam_cli_newstate(void)
+{
+    lua_State *L = luaL_newstate();
+    if (!L) {
+        fprintf(stderr, "lamina: cannot create a Lua state: not enough memory\n");
+        return NULL;
+    }
+    lua_pushcfunction(L, init_state);
+    if (lua_pcall(L, 0, 0, 0) != LUA_OK) {
+        fprintf(stderr, "lamina: %s\n", lua_tostring(L, -1));
+        lua_close(L);
+        return NULL;
+    }
+    return L;
+}
+
+/* ---- calls, interrupts, errors -------------------------------------------- */
+
+static lua_State *globalL;
+
+/* The hook set by laction. It stays armed, on Lua instructions only (a
+ * count hook never runs inside C functions such as the message handler),
+ * until lam_cli_docall returns: an "interrupted" raised where Lua discards
+ * errors (a finalizer) or caught by the script's own pcall is raised
+ * again. lam_lua_interrupt stays set as well, so the binding's loops stop. */
+static void lstop(lua_State *L, lua_Debug *ar)
+{
+    (void)ar;
+    lua_sethook(L, lstop, LUA_MASKCOUNT, 1);
+    luaL_error(L, "interrupted");
+}
+
+/* SIGINT while Lua runs: stop at the next instruction or call (hook) or the
+ * next layer (the binding polls lam_lua_interrupt). SA_RESETHAND: a second
+ * Ctrl-C kills the process if the first is not noticed (a long C call). */
+static void laction(int sig)
+{
+    (void)sig;
+    lam_lua_interrupt = 1;
+    lua_sethook(globalL, lstop, LUA_MASKCALL | LUA_MASKRET | LUA_MASKLINE | LUA_MASKCOUNT, 1);
+}
+
+static int msghandler(lua_State *L)
+{
+    const char *msg = lua_tostring(L, 1);
+    if (msg == NULL) {
+        if (luaL_callmeta(L, 1, "__tostring") && lua_type(L, -1) == LUA_TSTRING) return 1;
+        msg = lua_pushfstring(L, "(error object is a %s value)", luaL_typename(L, 1));
+    }
+    luaL_traceback(L, L, msg, 1);
+    return 1;
+}
+
+int lam_cli_docall(lua_State *L, int narg, int nres)
+{
+    int base = lua_gettop(L) - narg;
+    lua_pushcfunction(L, msghandler);
+    lua_insert(L, base);
+    globalL = L;
+    struct sigaction sa, old;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = laction;
+    sa.sa_flags = SA_RESETHAND;
+    sigemptyset(&sa.sa_mask);
+    lam_lua_interrupt = 0;
+    sigaction(SIGINT, &sa, &old);
+    int status = lua_pcall(L, narg, nres, base);
+    sigaction(SIGINT, &old, NULL);
+    lua_sethook(L, NULL, 0, 0);
+    lam_lua_interrupt = 0;
+    lua_remove(L, base);
+    return status;
+}
+
+void lam_cli_report(lua_State *L, int prefix)
+{
+    const char *msg = lua_tostring(L, -1);
+    if (!msg) msg = "(error object is not a string)";
+    fprintf(stderr, "%s%s\n", prefix ? "lamina: " : "", msg);
+    fflush(stderr);
+    lua_pop(L, 1);
+}
+
+/* arg = { [-2] = "lamina", [-1] = cmd, [0] = script, args... } as lua.c does. */
+static void set_arg(lua_State *L, const char *cmd, const char *script, int argc, char **argv)
+{
+    lua_createtable(L, argc, 3);
+    lua_pushliteral(L, "lamina");
+    lua_rawseti(L, -2, -2);
+    lua_pushstring(L, cmd);
+    lua_rawseti(L, -2, -1);
+    lua_pushstring(L, script);
+    lua_rawseti(L, -2, 0);
+    for (int i = 0; i < argc; i++) {
+        lua_pushstring(L, argv[i]);
+        lua_rawseti(L, -2, i + 1);
+    }
+    lua_setglobal(L, "arg");
+}
+
+/* ---- lamina run ---------------------------------------------------------- */
+
+static const char run_usage[] =
+    "usage: lamina run RECIPE.lua [ARGS...]\n"
+    "Run a Lua recipe with the lamina module loaded (global `lamina`, or\n"
+    "require \"lamina\"). ARGS are in the table `arg` (arg[0] is the recipe,\n"
+    "arg[1] the first argument) and in `...`, as with lua. RECIPE '-' reads\n"
+    "the recipe from standard input. Exit code 1 when the recipe fails.\n";
+
+typedef struct runargs {
+    const char *script;
+    int argc;
+    char **argv;
+    int status;
+} runargs;
+
+static int run_main(lua_State *L)
+{
+    runargs *a = lua_touserdata(L, 1);
+    set_arg(L, "run", a->script, a->argc, a->argv);
+    const char *fname = strcmp(a->script, "-") == 0 ? NULL : a->script;
+    if (luaL_loadfile(L, fname) != LUA_OK) {
+        lam_cli_report(L, 1);
+        a->status = EXIT_INPUT;
+        return 0;
+    }
+    luaL_checkstack(L, a->argc + 5, "too many arguments to the recipe");
+    for (int i = 0; i < a->argc; i++) lua_pushstring(L, a->argv[i]);
+    if (lam_cli_docall(L, a->argc, 0) != LUA_OK) {
+        lam_cli_report(L, 1);
+        a->status = EXIT_INPUT;
+    }
+    return 0;
+}
+
+static int protected_run(lua_CFunction f, void *ud)
+{
+    lua_State *L = lam_cli_newstate();
+    if (!L) return EXIT_INPUT;
+    runargs *a = ud;
+    a->status = EXIT_OK;
+    lua_pushcfunction(L, f);
+    lua_pushlightuserdata(L, ud);
+    if (lua_pcall(L, 1, 0, 0) != LUA_OK) {
+        lam_cli_report(L, 1);
+        a->status = EXIT_INPUT;
+    }
+    lua_close(L);
+    return a->status;
+}
+
+int cmd_run(int argc, char **argv)
+{
+    if (argc >= 2 && (strcmp(argv[1], "-h") == 0 || strcmp(argv[1], "--help") == 0)) {
+        fputs(run_usage, stdout);
+        return EXIT_OK;
+    }
+    if (argc < 2) return cli_usage("run", "no recipe given");
+    runargs a = { argv[1], argc - 2, argv + 2, EXIT_OK };
+    return protected_run(run_main, &a);
+}
+
+/* ---- lamina -e ------------------------------------------------------------- */
+
+static int eval_main(lua_State *L)
+{
+    runargs *a = lua_touserdata(L, 1);
+    set_arg(L, "-e", "", 0, NULL);
+    for (int i = 1; i < a->argc; i += 2) {
+        const char *code = a->argv[i];
+        if (luaL_loadbuffer(L, code, strlen(code), "=(command line)") != LUA_OK ||
+            lam_cli_docall(L, 0, 0) != LUA_OK) {
+            lam_cli_report(L, 1);
+            a->status = EXIT_INPUT;
+            return 0;
+        }
+    }
+    return 0;
+}
+
+int cmd_eval(int argc, char **argv)
+{
+    for (int i = 0; i < argc; i += 2) {
+        if (strcmp(argv[i], "-e") != 0) return cli_usage(NULL, "unexpected '%s' after -e CODE (give -e CODE ...)", argv[i]);
+        if (i + 1 >= argc) return cli_usage(NULL, "-e needs Lua code");
+    }
+    runargs a = { "", argc, argv, EXIT_OK };
+    return protected_run(eval_main, &a);
+}
+
+/* ---- lamina repl ----------------------------------------------------------- */
+
+static const char repl_usage[] =
+    "usage: lamina repl\n"
+    "An interactive Lua 5.4 prompt with the lamina module loaded (also plain\n"
+    "`lamina` on a terminal). Expressions and `=expr` print their values;\n"
+    "an incomplete statement continues on the next line; Ctrl-C interrupts a\n"
+    "running command (or abandons the line being typed), Ctrl-D quits.\n"
+    "Line editing and history (~/.lamina_history, or $LAMINA_HISTORY) come\n"
+    "from GNU readline or libedit when installed.\n";
+
+static int repl_main(lua_State *L)
+{
+    runargs *a = lua_touserdata(L, 1);
+    set_arg(L, "repl", "", 0, NULL);
+    a->status = lam_repl(L);
+    return 0;
+}
+
+int cmd_repl(int argc, char **argv)
+{
+    if (argc >= 2 && (strcmp(argv[1], "-h") == 0 || strcmp(argv[1], "--help") == 0)) {
+        fputs(repl_usage, stdout);
+        return EXIT_OK;
+    }
+    if (argc >= 2) return cli_usage("repl", "unexpected argument '%s'", argv[1]);
+    runargs a = { "", 0, NULL, EXIT_OK };
+    return protected_run(repl_main, &a);
+}
+
+int lua_main_default(void)
+{
+    if (!isatty(STDIN_FILENO)) return cli_usage(NULL, "no command given");
+    char *argv[] = { "repl", NULL };
+    return cmd_repl(1, argv);
+}

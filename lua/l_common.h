@@ -1,0 +1,201 @@
+/* Private helpers shared by the Lua binding (lua/lamina.c, lua/l_*.c) and
+ * the REPL. Not part of any public interface.
+ *
+ * Object graph (every arrow a user value, so a child keeps its parent
+ * alive): contour -> layer -> run -> model; a derived machine -> the machine
+ * that owns the loaded profile. A run is the hidden record of one slicing
+ * call (frame, options, extents) shared by the layers it made.
+ *
+ * Every accessor goes through the parent userdata and checks that it is
+ * still alive: a finalizer may have run on it already (objects collected in
+ * the same cycle are finalized together, and a finalizer elsewhere can
+ * resurrect a child), so a finalized object raises "attempt to use a
+ * collected lamina.X" instead of touching freed memory.
+ *
+ * The same reason sets one rule for the C code: a raw pointer into an
+ * object's C data is not used across a Lua call that may run the garbage
+ * collector (anything that allocates: pushing a string, a table, a
+ * userdata), because a pending finalizer of a resurrected object can run
+ * there. Data is copied first, or re-checked after, or allocated before the
+ * pointers are taken; model:slice, which must allocate while the slicer
+ * reads the model, pins the model instead (lmodel.busy: its finalizer then
+ * only marks it, and the run frees it when slicing ends). */
+#ifndef LAM_L_COMMON_H
+#define LAM_L_COMMON_H
+
+#include <signal.h>
+#include <stddef.h>
+
+#include <lauxlib.h>
+#include <lua.h>
+
+#include "error.h"
+#include "model.h"
+#include "planner.h"
+#include "profile.h"
+#include "slice.h"
+
+#include "version.h"
+
+#define LAM_MODEL   "lamina.model"
+#define LAM_RUN     "lamina.run"
+#define LAM_LAYER   "lamina.layer"
+#define LAM_CONTOUR "lamina.contour"
+#define LAM_MACHINE "lamina.machine"
+#define LAM_PLAN    "lamina.plan"
+
+/* Most layers one model:slice may make (each is kept in memory). */
+#define LAM_LUA_MAX_LAYERS 1000000
+/* Most scan lines a LADRP plan may lay in one layer. */
+#define LAM_LUA_MAX_LINES 10000000
+
+/* Set by the SIGINT handler of cli_lua.c while Lua code runs, cleared when
+ * that code returns; long C loops of the binding (slicing, planning) poll
+ * it between layers and raise "interrupted". Nothing sets it in a stock
+ * lua5.4. */
+extern volatile sig_atomic_t lam_lua_interrupt;
+
+/* Raise "interrupted" if the flag is set. */
+void lam_lua_check_interrupt(lua_State *L);
+
+/* ---- userdata --------------------------------------------------------- */
+
+/* Every lamina userdata starts with its type's tag, and is looked up with
+ * lam_lua_checkud / lam_lua_testud: luaL_checkudata / luaL_testudata that
+ * also check the block's size and tag, so a userdata given another type's
+ * metatable (debug.setmetatable) is refused instead of misread. */
+enum { LAM_TAG_MODEL = 0x1a4d0001, LAM_TAG_RUN, LAM_TAG_LAYER, LAM_TAG_CONTOUR, LAM_TAG_MACHINE, LAM_TAG_PLAN,
+       LAM_TAG_BOX, LAM_TAG_PLANJOB };
+
+void *lam_lua_checkud(lua_State *L, int idx, const char *tname, size_t size, unsigned tag);
+void *lam_lua_testud(lua_State *L, int idx, const char *tname, size_t size, unsigned tag);
+#define LAM_CHECKUD(L, idx, type, tname, tag) ((type *)lam_lua_checkud((L), (idx), (tname), sizeof(type), (tag)))
+#define LAM_TESTUD(L, idx, type, tname, tag) ((type *)lam_lua_testud((L), (idx), (tname), sizeof(type), (tag)))
+
+typedef struct lmodel {
+    unsigned tag;
+    lam_model *m;            /* NULL once finalized */
+    int busy;                /* slicing runs reading m right now */
+    int doomed;              /* finalized while busy: freed when the last run ends */
+} lmodel;
+
+typedef struct lrun {
+    unsigned tag;
+    lam_slicer *s;           /* only while slicing; the layers own their data */
+    int pinned;              /* holds one lmodel.busy count (while slicing) */
+    lam_frame frame;
+    lam_cut cut;
+    size_t nlayers;          /* layers the run made */
+    double uvbox[4];         /* the model's extent in the layer frame */
+    double wmin, wmax;       /* first and last plane */
+    double bbox[6];          /* the model's bounding box (model frame) */
+} lrun;
+
+typedef struct llayer {
+    unsigned tag;
+    lam_layer *L;            /* NULL once finalized */
+} llayer;
+
+typedef struct lcontour {
+    unsigned tag;
+    size_t i;                /* index in the layer; SIZE_MAX once finalized */
+} lcontour;
+
+typedef struct lmachine {
+    unsigned tag;
+    lam_profile *root;       /* the loaded profile; owned when owner, NULL once freed */
+    int owner;               /* 1: loaded by lamina.machine; 0: made by override */
+    lam_profile p;           /* effective values; strings and dialect borrowed from root */
+} lmachine;
+
+typedef struct lplan {
+    unsigned tag;
+    char *data;              /* the program (NUL-terminated), NULL once finalized */
+    size_t len, lines, layers;
+    int binary;              /* written by a plugin writer: #plan counts bytes */
+    char name[128], process[8];
+} lplan;
+
+/* Checked accessors: raise the usual "bad argument" error for a wrong type
+ * and "attempt to use a collected ..." for a finalized object. */
+lmodel *lam_lua_checkmodel(lua_State *L, int idx);
+lam_layer *lam_lua_checklayer(lua_State *L, int idx);
+lrun *lam_lua_layerrun(lua_State *L, int idx);   /* run of the layer at idx */
+lmachine *lam_lua_checkmachine(lua_State *L, int idx);
+
+/* Push the contour userdata k of the layer at idx (cached: the same
+ * userdata every time), or nil when k is out of range. */
+void lam_lua_pushcontour(lua_State *L, int layer_idx, size_t k);
+
+/* ---- classes and modules --------------------------------------------- */
+
+/* Create metatable tname with metamethods `meta` and an __index that looks
+ * in `methods` first, then calls `fields` (self, key) for anything else. */
+void lam_lua_newclass(lua_State *L, const char *tname, const luaL_Reg *meta, const luaL_Reg *methods,
+                      lua_CFunction fields);
+
+void lam_lua_open_model(lua_State *L);
+void lam_lua_open_layer(lua_State *L);
+void lam_lua_open_contour(lua_State *L);
+void lam_lua_open_machine(lua_State *L);
+void lam_lua_open_plan(lua_State *L);
+
+/* Module-level functions and methods defined in one file, used in another. */
+int lam_lua_load(lua_State *L);            /* lamina.load (l_model.c) */
+int lam_lua_slice(lua_State *L);           /* model:slice (l_layer.c) */
+int lam_lua_machine(lua_State *L);         /* lamina.machine (l_machine.c) */
+int lam_lua_machines(lua_State *L);        /* lamina.machines (l_machine.c) */
+int lam_lua_plan(lua_State *L);            /* machine:plan (l_plan.c) */
+
+/* Fill plan options from a machine profile's values. */
+void lam_lua_plan_opts(const lam_profile *p, lam_plan_opts *o);
+
+/* Values of a machine profile given in a Lua table (machine:override,
+ * the options of machine:plan), read and checked as the YAML loader checks
+ * them before being applied: reading may run the table's metamethods, so
+ * it happens before any pointer into a profile is taken. */
+typedef struct lam_lua_overrides {
+    unsigned set;            /* bit k: value k was given */
+    double v[16];
+} lam_lua_overrides;
+
+/* Read table t (argument number arg, as luaL_argerror counts); `keys`
+ * lists the keys allowed (NULL: every overridable key). */
+void lam_lua_read_overrides(lua_State *L, int t, int arg, const char *const *keys, lam_lua_overrides *o);
+void lam_lua_apply_overrides(const lam_lua_overrides *o, lam_profile *p);
+
+/* ---- errors and options ----------------------------------------------- */
+
+/* Push a userdata holding one malloc'd pointer (initially NULL) that its
+ * finalizer frees: C memory that must not leak if Lua raises an error
+ * before the C code frees it itself (then set *box = NULL). */
+void **lam_lua_newbox(lua_State *L);
+
+/* The expected-failure convention of io.open: push nil and the formatted
+ * error; returns 2. */
+int lam_lua_fail(lua_State *L, const lam_error *err);
+
+/* Raise an error of an option: "bad argument #arg to 'fn' (msg)". */
+int lam_lua_opterror(lua_State *L, int arg, const char *fmt, ...);
+
+/* Check that every key of table t is a string in `allowed` (NULL-ended);
+ * otherwise raise a bad-argument error naming the unknown key. */
+void lam_lua_checkkeys(lua_State *L, int t, int arg, const char *const *allowed);
+
+/* Field `key` of table t: 0 when absent (nil), 1 with *x set when a finite
+ * number; anything else raises "KEY must be a number, got TYPE". */
+int lam_lua_numfield(lua_State *L, int t, int arg, const char *key, double *x);
+
+/* Field `key` of table t when it is a string among `names` (NULL-ended):
+ * 0 when absent, 1 with *i its index; anything else raises an error that
+ * lists the names. */
+int lam_lua_choicefield(lua_State *L, int t, int arg, const char *key, const char *const *names, int *i);
+
+/* Field `key` as a boolean: 0 absent, 1 with *b set; other types raise. */
+int lam_lua_boolfield(lua_State *L, int t, int arg, const char *key, int *b);
+
+/* A short description of the value at idx for messages: "-1", "'top'",
+ * "a table". Pushes nothing; the text lives in buf. */
+const char *lam_lua_describe(lua_State *L, int idx, char *buf, size_t size);
+
+#endif

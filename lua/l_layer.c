@@ -1,0 +1,465 @@
+/* lamina.layer and model:slice.
+ *
+ * model:slice{...} runs the core slicer to the end and returns a sequence of
+ * layer userdata. Each layer owns its lam_layer and keeps the slicing run
+ * (frame, options, extents: a hidden lamina.run userdata) alive through its
+ * first user value; the run keeps the model alive. The second user value is
+ * the layer's cache of contour userdata, so layer:contours() and
+ * contour.parent give the same userdata every time (usable as table keys). */
+#include "l_common.h"
+
+#include <math.h>
+#include <string.h>
+
+/* ---- the run -------------------------------------------------------------- */
+
+/* End of slicing (__close of the run, a to-be-closed slot of model:slice,
+ * so it also runs when slicing raises an error), and __gc: free the
+ * slicer, unpin the model, and free the model if it was finalized while
+ * pinned. */
+static int run_close(lua_State *L)
+{
+    lrun *r = LAM_CHECKUD(L, 1, lrun, LAM_RUN, LAM_TAG_RUN);
+    lam_slicer_free(r->s);
+    r->s = NULL;
+    if (r->pinned) {
+        r->pinned = 0;
+        lua_getiuservalue(L, 1, 1);
+        lmodel *mu = LAM_TESTUD(L, -1, lmodel, LAM_MODEL, LAM_TAG_MODEL);
+        if (mu && mu->busy > 0 && --mu->busy == 0 && mu->doomed) {
+            lam_model_free(mu->m);
+            mu->m = NULL;
+            mu->doomed = 0;
+        }
+    }
+    return 0;
+}
+
+/* ---- slicing -------------------------------------------------------------- */
+
+static const char *const slice_keys[] = { "axis", "width", "widths", "planes", "cut", "gap", "fill",
+                                          "allow_open", "machine", NULL };
+static const char *const cut_names[] = { "floor", "middle", "ceiling", NULL };
+static const char *const fill_names[] = { "evenodd", "nonzero", NULL };
+
+static void get_axis(lua_State *L, int t, lam_frame *f)
+{
+    lam_error err;
+    lam_error_clear(&err);
+    int ty = lua_getfield(L, t, "axis");
+    if (ty == LUA_TNIL) {
+        lam_frame_axis('z', f, &err);
+    } else if (ty == LUA_TSTRING) {
+        const char *s = lua_tostring(L, -1);
+        if (strlen(s) != 1 || !strchr("xyzXYZ", s[0]) || lam_frame_axis((char)(s[0] | 0x20), f, &err))
+            lam_lua_opterror(L, 2, "axis must be 'x', 'y', 'z' or a direction {dx, dy, dz}, got '%s'", s);
+    } else if (ty == LUA_TTABLE) {
+        double d[3];
+        int ok = lua_rawlen(L, -1) == 3;
+        for (int j = 0; j < 3 && ok; j++) {
+            ok = lua_rawgeti(L, -1, j + 1) == LUA_TNUMBER;
+            d[j] = ok ? (double)lua_tonumber(L, -1) : 0;
+            ok = ok && isfinite(d[j]);
+            lua_pop(L, 1);
+        }
+        if (!ok) lam_lua_opterror(L, 2, "axis as a direction must be {dx, dy, dz}: three finite numbers");
+        if (lam_frame_direction(d, f, &err)) lam_lua_opterror(L, 2, "axis: %s", err.msg);
+    } else {
+        char b[64];
+        lam_lua_opterror(L, 2, "axis must be 'x', 'y', 'z' or a direction {dx, dy, dz}, got %s",
+                         lam_lua_describe(L, -1, b, sizeof b));
+    }
+    lua_pop(L, 1);
+}
+
+/* A list option (widths, planes) as a C array in a new userdata (pushed, so
+ * it is collected on any error). Returns the count, 0 when absent. */
+static size_t get_list(lua_State *L, int t, const char *key, const double **out)
+{
+    *out = NULL;
+    int ty = lua_getfield(L, t, key);
+    if (ty == LUA_TNIL) {
+        lua_pop(L, 1);
+        return 0;
+    }
+    char b[64];
+    if (ty != LUA_TTABLE)
+        lam_lua_opterror(L, 2, "%s must be a list of numbers, got %s", key, lam_lua_describe(L, -1, b, sizeof b));
+    lua_Unsigned n = lua_rawlen(L, -1);
+    if (n == 0) lam_lua_opterror(L, 2, "%s must not be empty", key);
+    if (n > LAM_LUA_MAX_LAYERS + 1)
+        lam_lua_opterror(L, 2, "%s has %llu entries (at most %d layers)", key, (unsigned long long)n,
+                         LAM_LUA_MAX_LAYERS);
+    double *v = lua_newuserdatauv(L, (size_t)n * sizeof *v, 0);
+    for (lua_Unsigned i = 0; i < n; i++) {
+        if (lua_rawgeti(L, -2, (lua_Integer)i + 1) != LUA_TNUMBER)
+            lam_lua_opterror(L, 2, "%s[%llu] must be a number, got %s", key, (unsigned long long)i + 1,
+                             lam_lua_describe(L, -1, b, sizeof b));
+        v[i] = (double)lua_tonumber(L, -1);
+        if (!isfinite(v[i]))
+            lam_lua_opterror(L, 2, "%s[%llu] must be a finite number, got %s", key, (unsigned long long)i + 1,
+                             lam_lua_describe(L, -1, b, sizeof b));
+        lua_pop(L, 1);
+    }
+    lua_remove(L, -2); /* the table; the array userdata stays */
+    *out = v;
+    return (size_t)n;
+}
+
+/* The model's extent along the frame's w axis. */
+static void extent(const lam_model *m, const lam_frame *f, double *lo, double *hi)
+{
+    *lo = INFINITY;
+    *hi = -INFINITY;
+    for (size_t i = 0; i < m->mesh.nverts; i++) {
+        const double *p = m->mesh.xyz + 3 * i;
+        double w = p[0] * f->w[0] + p[1] * f->w[1] + p[2] * f->w[2];
+        if (w < *lo) *lo = w;
+        if (w > *hi) *hi = w;
+    }
+}
+
+/* model:slice{axis=, width= | widths= | planes=, cut=, gap=, fill=,
+ *             allow_open=, machine=} -> { layer, ... } | nil, message */
+int lam_lua_slice(lua_State *L)
+{
+    lmodel *mu = lam_lua_checkmodel(L, 1);
+    luaL_checktype(L, 2, LUA_TTABLE);
+    lua_settop(L, 2);
+    /* the run first: it pins the model until slicing ends, however it ends */
+    lrun *r = lua_newuserdatauv(L, sizeof *r, 1);
+    memset(r, 0, sizeof *r);
+    r->tag = LAM_TAG_RUN;
+    luaL_setmetatable(L, LAM_RUN);
+    lua_pushvalue(L, 1);
+    lua_setiuservalue(L, 3, 1);
+    lam_lua_checkmodel(L, 1); /* still alive after that allocation? */
+    mu->busy++;
+    r->pinned = 1;
+    lua_toclose(L, 3);
+    lam_lua_checkkeys(L, 2, 2, slice_keys);
+    lam_slice_opts o;
+    lam_slice_opts_init(&o);
+    get_axis(L, 2, &o.frame);
+    if (lua_getfield(L, 2, "machine") != LUA_TNIL) {
+        lmachine *mc = LAM_TESTUD(L, -1, lmachine, LAM_MACHINE, LAM_TAG_MACHINE);
+        char b[64];
+        if (!mc) lam_lua_opterror(L, 2, "machine must be a lamina.machine, got %s", lam_lua_describe(L, -1, b, sizeof b));
+        mc = lam_lua_checkmachine(L, -1);
+        if (mc->p.layer_width > 0) o.width = mc->p.layer_width;
+        o.cut = (lam_cut)mc->p.cut;
+        o.gap = mc->p.gap;
+    }
+    lua_pop(L, 1);
+    int i, given = 0;
+    double x;
+    if (lam_lua_numfield(L, 2, 2, "width", &x)) {
+        if (!(x > 0)) lam_lua_opterror(L, 2, "width must be greater than 0, got %.14g", x);
+        o.width = x;
+        given++;
+    }
+    const double *list;
+    size_t n = get_list(L, 2, "widths", &list); /* pushes an array when present */
+    if (n) {
+        o.widths = list;
+        o.nwidths = n;
+        given++;
+    }
+    n = get_list(L, 2, "planes", &list);
+    if (n) {
+        o.planes = list;
+        o.nplanes = n;
+        given++;
+    }
+    if (given > 1) lam_lua_opterror(L, 2, "give one of width, widths and planes");
+    if (lam_lua_choicefield(L, 2, 2, "cut", cut_names, &i)) o.cut = (lam_cut)i;
+    if (lam_lua_numfield(L, 2, 2, "gap", &x)) {
+        if (x < 0) lam_lua_opterror(L, 2, "gap must be 0 or more, got %.14g", x);
+        o.gap = x;
+    }
+    if (lam_lua_choicefield(L, 2, 2, "fill", fill_names, &i)) o.fill_nonzero = i;
+    int allow_open = 0;
+    lam_lua_boolfield(L, 2, 2, "allow_open", &allow_open);
+
+    const lam_model *m = mu->m;
+    if (!o.widths && !o.planes && o.width > 0) {
+        double lo, hi;
+        extent(m, &o.frame, &lo, &hi);
+        if ((hi - lo) / o.width > LAM_LUA_MAX_LAYERS)
+            lam_lua_opterror(L, 2, "width %.14g makes %.0f layers (at most %d)", o.width, (hi - lo) / o.width,
+                             LAM_LUA_MAX_LAYERS);
+    }
+
+    const int run = 3;
+    lam_error err;
+    lam_error_clear(&err);
+    if (lam_slicer_new(m, &o, &r->s, &err)) {
+        if (err.code == LAM_EUSAGE) lam_lua_opterror(L, 2, "%s", err.msg);
+        return lam_lua_fail(L, &err);
+    }
+    r->frame = *lam_slicer_frame(r->s);
+    r->cut = o.cut;
+    r->nlayers = lam_slicer_count(r->s);
+    lam_slicer_uv_bounds(r->s, r->uvbox);
+    r->wmin = lam_slicer_planes(r->s)[0];
+    r->wmax = lam_slicer_planes(r->s)[r->nlayers];
+    memcpy(r->bbox, m->stats.bbox, sizeof r->bbox);
+
+    lua_createtable(L, r->nlayers < LAM_LUA_MAX_LAYERS ? (int)r->nlayers : 0, 0);
+    int result = lua_gettop(L);
+    for (lua_Integer k = 1;; k++) {
+        lam_lua_check_interrupt(L);
+        llayer *lu = lua_newuserdatauv(L, sizeof *lu, 2);
+        lu->tag = LAM_TAG_LAYER;
+        lu->L = NULL;
+        luaL_setmetatable(L, LAM_LAYER);
+        lua_pushvalue(L, run);
+        lua_setiuservalue(L, -2, 1);
+        if (lam_slicer_next(r->s, &lu->L, &err)) return lam_lua_fail(L, &err);
+        if (!lu->L) break;
+        if (lu->L->nopen && !allow_open) {
+            const lam_open_end *e = &lu->L->open[0];
+            lua_pushnil(L);
+            lua_pushfstring(L,
+                            "%s: layer %I (z=%f): open outline from (%f, %f) to (%f, %f) could not be closed "
+                            "(gap tolerance %f); raise gap or pass allow_open=true to drop open outlines",
+                            m->path, k, lu->L->cut, e->start[0], e->start[1], e->end[0], e->end[1], o.gap);
+            return 2;
+        }
+        lua_rawseti(L, result, k);
+    }
+    lua_settop(L, result);   /* drop the last, empty layer userdata */
+    lua_replace(L, run - 1); /* the result over the options table */
+    lua_closeslot(L, run);   /* unpins the model (freeing it if it was finalized meanwhile) */
+    lua_settop(L, run - 1);
+    return 1;
+}
+
+/* ---- layers --------------------------------------------------------------- */
+
+lam_layer *lam_lua_checklayer(lua_State *L, int idx)
+{
+    llayer *u = LAM_CHECKUD(L, idx, llayer, LAM_LAYER, LAM_TAG_LAYER);
+    if (!u->L) luaL_error(L, "attempt to use a collected " LAM_LAYER);
+    return u->L;
+}
+
+lrun *lam_lua_layerrun(lua_State *L, int idx)
+{
+    lua_getiuservalue(L, idx, 1);
+    lrun *r = LAM_TESTUD(L, -1, lrun, LAM_RUN, LAM_TAG_RUN);
+    lua_pop(L, 1); /* the layer keeps it alive */
+    if (!r) luaL_error(L, "attempt to use a collected " LAM_LAYER);
+    return r;
+}
+
+void lam_lua_pushcontour(lua_State *L, int idx, size_t k)
+{
+    idx = lua_absindex(L, idx);
+    const lam_layer *ly = lam_lua_checklayer(L, idx);
+    if (k >= ly->ncontours) {
+        lua_pushnil(L);
+        return;
+    }
+    if (lua_getiuservalue(L, idx, 2) != LUA_TTABLE) {
+        lua_pop(L, 1);
+        lua_createtable(L, ly->ncontours < 1000000 ? (int)ly->ncontours : 0, 0);
+        lua_pushvalue(L, -1);
+        lua_setiuservalue(L, idx, 2);
+    }
+    if (lua_rawgeti(L, -1, (lua_Integer)k + 1) == LUA_TNIL) {
+        lua_pop(L, 1);
+        lcontour *c = lua_newuserdatauv(L, sizeof *c, 1);
+        c->tag = LAM_TAG_CONTOUR;
+        c->i = k;
+        luaL_setmetatable(L, LAM_CONTOUR);
+        lua_pushvalue(L, idx);
+        lua_setiuservalue(L, -2, 1);
+        lua_pushvalue(L, -1);
+        lua_rawseti(L, -3, (lua_Integer)k + 1);
+    }
+    lua_remove(L, -2); /* the cache */
+}
+
+static int l_gc(lua_State *L)
+{
+    llayer *u = LAM_CHECKUD(L, 1, llayer, LAM_LAYER, LAM_TAG_LAYER);
+    lam_layer_free(u->L);
+    u->L = NULL;
+    return 0;
+}
+
+static int l_tostring(lua_State *L)
+{
+    llayer *u = LAM_CHECKUD(L, 1, llayer, LAM_LAYER, LAM_TAG_LAYER);
+    if (!u->L) lua_pushliteral(L, LAM_LAYER " (collected)");
+    else
+        lua_pushfstring(L, LAM_LAYER " %I (z=%f, width %f, %I contour%s)", (lua_Integer)u->L->index + 1, u->L->cut,
+                        u->L->width, (lua_Integer)u->L->ncontours, u->L->ncontours == 1 ? "" : "s");
+    return 1;
+}
+
+static int l_len(lua_State *L)
+{
+    lua_pushinteger(L, (lua_Integer)lam_lua_checklayer(L, 1)->ncontours);
+    return 1;
+}
+
+static int l_fields(lua_State *L)
+{
+    const lam_layer *ly = lam_lua_checklayer(L, 1);
+    const char *k = lua_tostring(L, 2);
+    if (strcmp(k, "index") == 0) lua_pushinteger(L, (lua_Integer)ly->index + 1);
+    else if (strcmp(k, "z") == 0) lua_pushnumber(L, ly->cut);
+    else if (strcmp(k, "floor") == 0) lua_pushnumber(L, ly->floor);
+    else if (strcmp(k, "ceiling") == 0) lua_pushnumber(L, ly->ceiling);
+    else if (strcmp(k, "width") == 0) lua_pushnumber(L, ly->width);
+    else if (strcmp(k, "points") == 0) lua_pushinteger(L, (lua_Integer)ly->npoints);
+    else if (strcmp(k, "gaps_closed") == 0) lua_pushinteger(L, (lua_Integer)ly->gaps_closed);
+    else if (strcmp(k, "max_gap") == 0) lua_pushnumber(L, ly->max_gap);
+    else if (strcmp(k, "open") == 0) lua_pushinteger(L, (lua_Integer)ly->nopen);
+    else if (strcmp(k, "area") == 0) {
+        double a = 0;
+        for (size_t i = 0; i < ly->ncontours; i++) a += ly->contours[i].area;
+        lua_pushnumber(L, a);
+    } else if (strcmp(k, "cut") == 0) {
+        lua_pushstring(L, cut_names[lam_lua_layerrun(L, 1)->cut]);
+    } else if (strcmp(k, "layers") == 0) {
+        lua_pushinteger(L, (lua_Integer)lam_lua_layerrun(L, 1)->nlayers);
+    } else if (strcmp(k, "model") == 0) {
+        lua_getiuservalue(L, 1, 1);
+        if (LAM_TESTUD(L, -1, lrun, LAM_RUN, LAM_TAG_RUN)) lua_getiuservalue(L, -1, 1);
+        else lua_pushnil(L);
+    } else {
+        lua_pushnil(L);
+    }
+    return 1;
+}
+
+/* layer:contours() -> { contour, ... } (parents before children) */
+static int l_contours(lua_State *L)
+{
+    const lam_layer *ly = lam_lua_checklayer(L, 1);
+    size_t n = ly->ncontours;
+    lua_createtable(L, n < 1000000 ? (int)n : 0, 0);
+    for (size_t k = 0; k < n; k++) {
+        lam_lua_pushcontour(L, 1, k);
+        lua_rawseti(L, -2, (lua_Integer)k + 1);
+    }
+    return 1;
+}
+
+/* layer:contour(i) -> contour | nil */
+static int l_contour(lua_State *L)
+{
+    lam_lua_checklayer(L, 1);
+    lua_Integer i = luaL_checkinteger(L, 2);
+    if (i < 1) lua_pushnil(L);
+    else lam_lua_pushcontour(L, 1, (size_t)((lua_Unsigned)i - 1));
+    return 1;
+}
+
+/* layer:bbox() -> umin, vmin, umax, vmax of its contours (nil when empty) */
+static int l_bbox(lua_State *L)
+{
+    const lam_layer *ly = lam_lua_checklayer(L, 1);
+    if (!ly->ncontours) {
+        lua_pushnil(L);
+        return 1;
+    }
+    double b[4] = { INFINITY, INFINITY, -INFINITY, -INFINITY };
+    for (size_t i = 0; i < ly->ncontours; i++) {
+        const double *c = ly->contours[i].bbox;
+        if (c[0] < b[0]) b[0] = c[0];
+        if (c[1] < b[1]) b[1] = c[1];
+        if (c[2] > b[2]) b[2] = c[2];
+        if (c[3] > b[3]) b[3] = c[3];
+    }
+    for (int j = 0; j < 4; j++) lua_pushnumber(L, b[j]);
+    return 4;
+}
+
+/* layer:open_ends() -> { {u1, v1, u2, v2}, ... } of outlines left open */
+static int l_open_ends(lua_State *L)
+{
+    size_t n = lam_lua_checklayer(L, 1)->nopen;
+    lua_createtable(L, n < 1000000 ? (int)n : 0, 0);
+    for (size_t i = 0; i < n; i++) {
+        /* a copy, re-checked every time: creating a table may run the collector */
+        const lam_layer *ly = lam_lua_checklayer(L, 1);
+        if (i >= ly->nopen) break;
+        const lam_open_end e = ly->open[i];
+        const double v[4] = { e.start[0], e.start[1], e.end[0], e.end[1] };
+        lua_createtable(L, 4, 0);
+        for (int j = 0; j < 4; j++) {
+            lua_pushnumber(L, v[j]);
+            lua_rawseti(L, -2, j + 1);
+        }
+        lua_rawseti(L, -2, (lua_Integer)i + 1);
+    }
+    return 1;
+}
+
+static void push_vec(lua_State *L, const double v[3])
+{
+    lua_createtable(L, 3, 0);
+    for (int j = 0; j < 3; j++) {
+        lua_pushnumber(L, v[j]);
+        lua_rawseti(L, -2, j + 1);
+    }
+}
+
+/* layer:frame() -> u, v, w (unit vectors as {x, y, z}) */
+static int l_frame(lua_State *L)
+{
+    lam_lua_checklayer(L, 1);
+    const lrun *r = lam_lua_layerrun(L, 1);
+    push_vec(L, r->frame.u);
+    push_vec(L, r->frame.v);
+    push_vec(L, r->frame.w);
+    return 3;
+}
+
+/* layer:to_model(u, v [, w]) -> x, y, z (w defaults to the layer's z) */
+static int l_to_model(lua_State *L)
+{
+    const lam_layer *ly = lam_lua_checklayer(L, 1);
+    double u = (double)luaL_checknumber(L, 2), v = (double)luaL_checknumber(L, 3);
+    double w = (double)luaL_optnumber(L, 4, ly->cut);
+    const lrun *r = lam_lua_layerrun(L, 1);
+    double xyz[3];
+    lam_frame_to_model(&r->frame, u, v, w, xyz);
+    for (int j = 0; j < 3; j++) lua_pushnumber(L, xyz[j]);
+    return 3;
+}
+
+static const luaL_Reg layer_meta[] = {
+    { "__gc", l_gc },
+    { "__tostring", l_tostring },
+    { "__len", l_len },
+    { NULL, NULL },
+};
+
+static const luaL_Reg layer_methods[] = {
+    { "contours", l_contours },
+    { "contour", l_contour },
+    { "bbox", l_bbox },
+    { "open_ends", l_open_ends },
+    { "frame", l_frame },
+    { "to_model", l_to_model },
+    { NULL, NULL },
+};
+
+static const luaL_Reg run_meta[] = {
+    { "__gc", run_close },
+    { "__close", run_close },
+    { NULL, NULL },
+};
+
+void lam_lua_open_layer(lua_State *L)
+{
+    luaL_newmetatable(L, LAM_RUN);
+    luaL_setfuncs(L, run_meta, 0);
+    lua_pop(L, 1);
+    lam_lua_newclass(L, LAM_LAYER, layer_meta, layer_methods, l_fields);
+}

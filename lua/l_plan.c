@@ -1,0 +1,301 @@
+/* lamina.plan: a machine program, made by machine:plan(layers [, opts]).
+ *
+ * The layers given (one slicing run, in slicing order; any subset) are
+ * planned as they are, through the core planners of the machine's process
+ * (lam_plan_ladrp_layer / lam_plan_sls_layer) into the machine's writer:
+ * its dialect templates, or a plugin writer (`writer:` in the profile). The
+ * job header mirrors lam_plan_run: bounding box of the model (or of the run
+ * in the layer frame for `frame: machine`), the stage starting at the model
+ * origin in the plane of the first layer planned. The program is kept in
+ * memory: plan:text() returns it, plan:write(path) writes it atomically. */
+#include "l_common.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "dialect.h"
+#include "plugin.h"
+#include "writer.h"
+
+#define LAM_PLANJOB "lamina.planjob"
+
+/* Everything C that a planning run holds, released by __gc if Lua raises an
+ * error half-way (an interrupt, a memory error). */
+typedef struct planjob {
+    unsigned tag;
+    lam_writer *w;
+    lam_sink sink;
+    int have_sink;
+    lam_error err;           /* the sink reports through it: it must not move */
+} planjob;
+
+static void job_release(planjob *j)
+{
+    if (j->have_sink && j->sink.destroy) j->sink.destroy(j->sink.ctx);
+    j->have_sink = 0;
+    lam_writer_abort(j->w);
+    j->w = NULL;
+}
+
+static int job_gc(lua_State *L)
+{
+    job_release(LAM_CHECKUD(L, 1, planjob, LAM_PLANJOB, LAM_TAG_PLANJOB));
+    return 0;
+}
+
+static const char *const plan_keys[] = { "bead_width", "spot_width", "feed_rate", "travel_rate", "frame",
+                                         "first_line", "angle", "angle_step", "alternate", "min_deposit",
+                                         "perimeters", "beam_offset", NULL };
+
+/* Check argument 2: a non-empty sequence of live layers of one run in
+ * increasing order; store their lam_layer pointers into ls (room for n,
+ * the table's length) and return the run. Nothing here allocates. */
+static const lrun *check_layers(lua_State *L, const lam_layer **ls, size_t n)
+{
+    const lrun *run = NULL;
+    char b[64];
+    for (size_t i = 0; i < n; i++) {
+        lua_rawgeti(L, 2, (lua_Integer)i + 1);
+        if (!LAM_TESTUD(L, -1, llayer, LAM_LAYER, LAM_TAG_LAYER))
+            lam_lua_opterror(L, 2, "layers[%zu] must be a lamina.layer, got %s", i + 1,
+                             lam_lua_describe(L, -1, b, sizeof b));
+        ls[i] = lam_lua_checklayer(L, -1);
+        const lrun *r = lam_lua_layerrun(L, -1);
+        if (!run) run = r;
+        else if (r != run)
+            lam_lua_opterror(L, 2, "layers[%zu] comes from another slicing run (plan the layers of one model:slice)",
+                             i + 1);
+        if (i && !(ls[i]->index > ls[i - 1]->index))
+            lam_lua_opterror(L, 2, "layers must be in slicing order (layers[%zu] is layer %zu, after layer %zu)", i + 1,
+                             ls[i]->index + 1, ls[i - 1]->index + 1);
+        lua_pop(L, 1); /* the table keeps the layer alive */
+    }
+    return run;
+}
+
+/* Scan lines a layer would get (at any raster angle), to refuse bead widths
+ * that would make an endless program. */
+static int too_many_lines(const lam_layer *ly, double bead)
+{
+    if (!ly->ncontours) return 0;
+    double b[4] = { INFINITY, INFINITY, -INFINITY, -INFINITY };
+    for (size_t i = 0; i < ly->ncontours; i++) {
+        const double *c = ly->contours[i].bbox;
+        if (c[0] < b[0]) b[0] = c[0];
+        if (c[1] < b[1]) b[1] = c[1];
+        if (c[2] > b[2]) b[2] = c[2];
+        if (c[3] > b[3]) b[3] = c[3];
+    }
+    double lines = hypot(b[2] - b[0], b[3] - b[1]) / bead;
+    return !(lines <= LAM_LUA_MAX_LINES);
+}
+
+static size_t count_lines(const char *s, size_t len)
+{
+    size_t n = 0;
+    for (const char *p = s; (p = memchr(p, '\n', len - (size_t)(p - s))); p++) n++;
+    if (len && s[len - 1] != '\n') n++;
+    return n;
+}
+
+/* machine:plan(layers [, opts]) -> plan | nil, message */
+int lam_lua_plan(lua_State *L)
+{
+    lam_lua_checkmachine(L, 1);
+    luaL_checktype(L, 2, LUA_TTABLE);
+    lam_lua_overrides ovr;
+    memset(&ovr, 0, sizeof ovr);
+    if (!lua_isnoneornil(L, 3)) {
+        luaL_checktype(L, 3, LUA_TTABLE);
+        lam_lua_read_overrides(L, 3, 3, plan_keys, &ovr); /* may run metamethods: before any pointer */
+    }
+    lua_settop(L, 3);
+    lua_Unsigned nl = lua_rawlen(L, 2);
+    if (nl == 0) luaL_argerror(L, 2, "no layers to plan (an empty table)");
+    if (nl > LAM_LUA_MAX_LAYERS) luaL_argerror(L, 2, "too many layers");
+    size_t n = (size_t)nl;
+    /* Everything Lua is allocated first: after this, until the program is
+     * complete, no call can run the collector (and a finalizer with it), so
+     * the pointers into the machine and the layers stay good. */
+    const lam_layer **ls = lua_newuserdatauv(L, n * sizeof *ls, 0);
+    lplan *pl = lua_newuserdatauv(L, sizeof *pl, 0);
+    memset(pl, 0, sizeof *pl);
+    pl->tag = LAM_TAG_PLAN;
+    luaL_setmetatable(L, LAM_PLAN);
+    int plan = lua_gettop(L);
+    planjob *j = lua_newuserdatauv(L, sizeof *j, 0);
+    memset(j, 0, sizeof *j);
+    j->tag = LAM_TAG_PLANJOB;
+    if (luaL_newmetatable(L, LAM_PLANJOB)) {
+        lua_pushcfunction(L, job_gc);
+        lua_setfield(L, -2, "__gc");
+    }
+    lua_setmetatable(L, -2);
+
+    lam_profile p = lam_lua_checkmachine(L, 1)->p;
+    lam_lua_apply_overrides(&ovr, &p);
+    const lrun *run = check_layers(L, ls, n);
+    lam_plan_opts o;
+    lam_lua_plan_opts(&p, &o);
+    if (o.kind == LAM_PLAN_LADRP)
+        for (size_t i = 0; i < n; i++)
+            if (too_many_lines(ls[i], o.bead))
+                luaL_error(L, "plan: bead width %f gives layer %I more than %d scan lines", o.bead,
+                           (lua_Integer)ls[i]->index + 1, LAM_LUA_MAX_LINES);
+
+    lam_error_clear(&j->err);
+    if (lam_writer_memory(&j->w, &j->err)) return lam_lua_fail(L, &j->err);
+    int text = !p.writer || strcmp(p.writer, "text") == 0;
+    int rc = text ? lam_dialect_sink(&p.dialect, j->w, &j->err, &j->sink)
+                  : lam_plugin_writer_sink(p.writer, j->w, &j->err, &j->sink);
+    if (rc) return lam_lua_fail(L, &j->err);
+    j->have_sink = 1;
+
+    lam_job_info job;
+    memset(&job, 0, sizeof job);
+    job.name = o.name;
+    job.process = o.kind == LAM_PLAN_LADRP ? "ladrp" : "sls";
+    job.units = o.units;
+    job.layers = n;
+    job.bead = o.bead;
+    job.rate = o.rate;
+    job.travel_rate = o.travel_rate;
+    if (o.frame_machine) {
+        const double bb[6] = { run->uvbox[0], run->uvbox[1], run->wmin, run->uvbox[2], run->uvbox[3], run->wmax };
+        memcpy(job.bbox, bb, sizeof bb);
+        job.origin[2] = ls[0]->cut;
+    } else {
+        memcpy(job.bbox, run->bbox, sizeof job.bbox);
+        lam_frame_to_model(&run->frame, 0, 0, ls[0]->cut, job.origin);
+    }
+    const lam_sink *s = &j->sink;
+    rc = s->begin ? s->begin(s->ctx, &job) : LAM_OK;
+    double pos[3] = { job.origin[0], job.origin[1], job.origin[2] };
+    int laser = -1;
+    size_t next_id = 1;
+    for (size_t i = 0; i < n && !rc; i++) {
+        lam_lua_check_interrupt(L);
+        const lam_layer *ly = ls[i];
+        lam_layer_info li = { ly->index, ly->cut, ly->width, ly->floor, ly->ceiling };
+        if (s->layer) rc = s->layer(s->ctx, &li);
+        if (!rc) {
+            if (o.kind == LAM_PLAN_LADRP) {
+                lam_ladrp_stats st;
+                rc = lam_plan_ladrp_layer(ly, &run->frame, &o, s, pos, &laser, &st, &j->err);
+            } else {
+                rc = lam_plan_sls_layer(ly, &run->frame, &o, s, &next_id, &j->err);
+            }
+        }
+        if (!rc && s->layer_end) rc = s->layer_end(s->ctx, &li);
+    }
+    if (!rc && s->end) rc = s->end(s->ctx);
+    if (s->destroy) s->destroy(s->ctx);
+    j->have_sink = 0;
+    if (rc) {
+        if (j->err.code == LAM_OK) lam_error_set(&j->err, rc, NULL, 0, 0, "planning failed");
+        return lam_lua_fail(L, &j->err);
+    }
+    rc = lam_writer_take(j->w, &pl->data, &pl->len, &j->err);
+    j->w = NULL;
+    if (rc) return lam_lua_fail(L, &j->err);
+    pl->lines = count_lines(pl->data, pl->len);
+    pl->layers = n;
+    pl->binary = !text;
+    snprintf(pl->name, sizeof pl->name, "%s", p.name ? p.name : "");
+    snprintf(pl->process, sizeof pl->process, "%s", job.process);
+    lua_settop(L, plan);
+    return 1;
+}
+
+/* ---- the plan userdata -------------------------------------------------- */
+
+static lplan *check(lua_State *L, int idx)
+{
+    lplan *pl = LAM_CHECKUD(L, idx, lplan, LAM_PLAN, LAM_TAG_PLAN);
+    if (!pl->data) luaL_error(L, "attempt to use a collected " LAM_PLAN);
+    return pl;
+}
+
+static int p_gc(lua_State *L)
+{
+    lplan *pl = LAM_CHECKUD(L, 1, lplan, LAM_PLAN, LAM_TAG_PLAN);
+    free(pl->data);
+    pl->data = NULL;
+    return 0;
+}
+
+static int p_tostring(lua_State *L)
+{
+    lplan *pl = LAM_CHECKUD(L, 1, lplan, LAM_PLAN, LAM_TAG_PLAN);
+    if (!pl->data) lua_pushliteral(L, LAM_PLAN " (collected)");
+    else if (pl->binary)
+        lua_pushfstring(L, LAM_PLAN " (%s, %s, %I layers, %I bytes)", pl->name, pl->process, (lua_Integer)pl->layers,
+                        (lua_Integer)pl->len);
+    else
+        lua_pushfstring(L, LAM_PLAN " (%s, %s, %I layers, %I lines)", pl->name, pl->process, (lua_Integer)pl->layers,
+                        (lua_Integer)pl->lines);
+    return 1;
+}
+
+static int p_len(lua_State *L)
+{
+    lplan *pl = check(L, 1);
+    lua_pushinteger(L, (lua_Integer)(pl->binary ? pl->len : pl->lines));
+    return 1;
+}
+
+static int p_fields(lua_State *L)
+{
+    lplan *pl = check(L, 1);
+    const char *k = lua_tostring(L, 2);
+    if (strcmp(k, "bytes") == 0) lua_pushinteger(L, (lua_Integer)pl->len);
+    else if (strcmp(k, "lines") == 0) lua_pushinteger(L, (lua_Integer)pl->lines);
+    else if (strcmp(k, "layers") == 0) lua_pushinteger(L, (lua_Integer)pl->layers);
+    else if (strcmp(k, "machine") == 0) lua_pushstring(L, pl->name);
+    else if (strcmp(k, "process") == 0) lua_pushstring(L, pl->process);
+    else if (strcmp(k, "binary") == 0) lua_pushboolean(L, pl->binary);
+    else lua_pushnil(L);
+    return 1;
+}
+
+/* plan:text() -> the program (bytes, for a binary writer) */
+static int p_text(lua_State *L)
+{
+    lplan *pl = check(L, 1);
+    lua_pushlstring(L, pl->data, pl->len);
+    return 1;
+}
+
+/* plan:write(path) -> true | nil, message (atomic: all or nothing) */
+static int p_write(lua_State *L)
+{
+    lplan *pl = check(L, 1);
+    const char *path = luaL_checkstring(L, 2);
+    lam_writer *w;
+    lam_error err;
+    lam_error_clear(&err);
+    if (lam_writer_file(path, &w, &err)) return lam_lua_fail(L, &err);
+    lam_writer_write(w, pl->data, pl->len);
+    if (lam_writer_commit(w, &err)) return lam_lua_fail(L, &err);
+    lua_pushboolean(L, 1);
+    return 1;
+}
+
+static const luaL_Reg plan_meta[] = {
+    { "__gc", p_gc },
+    { "__tostring", p_tostring },
+    { "__len", p_len },
+    { NULL, NULL },
+};
+
+static const luaL_Reg plan_methods[] = {
+    { "text", p_text },
+    { "write", p_write },
+    { NULL, NULL },
+};
+
+void lam_lua_open_plan(lua_State *L)
+{
+    lam_lua_newclass(L, LAM_PLAN, plan_meta, plan_methods, p_fields);
+}

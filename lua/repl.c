@@ -1,0 +1,358 @@
+/* The interactive prompt (`lamina repl`): lua.c's read-eval-print loop with
+ * lamina loaded.
+ *
+ * - A line is first tried as an expression (`return LINE;`) whose values
+ *   are printed; `=expr` is `return expr`. Otherwise it is a statement; one
+ *   that is incomplete (its syntax error ends in "<eof>") continues on the
+ *   next line, as in lua.c.
+ * - Line editing and history come from GNU readline or libedit, loaded at
+ *   run time with dlopen (so the executable links neither, and runs
+ *   without them: plain line input). $LAMINA_READLINE names the library to
+ *   try ("none": no line editing). History is kept in $LAMINA_HISTORY or
+ *   ~/.lamina_history.
+ * - Ctrl-C while a command runs raises "interrupted" in it (lam_cli_docall);
+ *   at the prompt it abandons the line (and any unfinished statement). The
+ *   line editor's own signal handling is turned off (rl_catch_signals = 0,
+ *   as Python does) and its character input goes through ed_getc, which
+ *   ends the line when SIGINT arrives.
+ *
+ * Without a terminal on standard input there is no prompt and no banner:
+ * statements are read line by line and values printed, so the loop can be
+ * driven from a pipe. */
+#include "cli_lua.h"
+
+#include <dlfcn.h>
+#include <errno.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/select.h>
+#include <unistd.h>
+
+#include <lauxlib.h>
+
+#include "l_common.h"
+
+#define PROMPT1 "> "
+#define PROMPT2 ">> "
+#define EOFMARK "<eof>"
+#define HISTORY_LINES 1000
+
+enum { LINE_EOF = -1, LINE_INTERRUPTED = -2 };
+
+/* ---- the line editor (dlopen) ------------------------------------------- */
+
+typedef struct editor {
+    void *lib;
+    const char *name;
+    char *(*readline)(const char *);
+    void (*add_history)(const char *);
+    int (*read_history)(const char *);
+    int (*write_history)(const char *);
+    int (*history_truncate_file)(const char *, int);
+    void (*stifle_history)(int);
+    int *catch_signals;
+    int (**getc_function)(FILE *);
+    const char **readline_name;
+} editor;
+
+static volatile sig_atomic_t prompt_interrupted = 0;
+
+static void prompt_action(int sig)
+{
+    (void)sig;
+    prompt_interrupted = 1;
+}
+
+/* The editor's character input: one byte from the terminal, or a newline
+ * that ends the line once SIGINT has arrived (pselect with SIGINT unblocked
+ * only while waiting, so no signal slips in between test and wait). */
+static int ed_getc(FILE *f)
+{
+    int fd = fileno(f);
+    sigset_t block, orig;
+    sigemptyset(&block);
+    sigaddset(&block, SIGINT);
+    for (;;) {
+        sigprocmask(SIG_BLOCK, &block, &orig);
+        if (prompt_interrupted) {
+            sigprocmask(SIG_SETMASK, &orig, NULL);
+            return '\n';
+        }
+        fd_set rd;
+        FD_ZERO(&rd);
+        FD_SET(fd, &rd);
+        int r = pselect(fd + 1, &rd, NULL, NULL, NULL, &orig);
+        sigprocmask(SIG_SETMASK, &orig, NULL);
+        if (r < 0) {
+            if (errno == EINTR) continue;
+            return EOF;
+        }
+        unsigned char c;
+        ssize_t n = read(fd, &c, 1);
+        if (n == 1) return c;
+        if (n == 0 || errno != EINTR) return EOF;
+    }
+}
+
+#define SYM(field, name) (*(void **)(&ed->field) = dlsym(ed->lib, name))
+
+static int try_editor(editor *ed, const char *lib)
+{
+    ed->lib = dlopen(lib, RTLD_NOW | RTLD_LOCAL);
+    if (!ed->lib) return 0;
+    SYM(readline, "readline");
+    SYM(add_history, "add_history");
+    if (!ed->readline || !ed->add_history) {
+        dlclose(ed->lib);
+        memset(ed, 0, sizeof *ed);
+        return 0;
+    }
+    SYM(read_history, "read_history");
+    SYM(write_history, "write_history");
+    SYM(history_truncate_file, "history_truncate_file");
+    SYM(stifle_history, "stifle_history");
+    ed->catch_signals = dlsym(ed->lib, "rl_catch_signals");
+    ed->getc_function = dlsym(ed->lib, "rl_getc_function");
+    ed->readline_name = dlsym(ed->lib, "rl_readline_name");
+    ed->name = lib;
+    if (ed->catch_signals) *ed->catch_signals = 0;
+    if (ed->getc_function) *ed->getc_function = ed_getc;
+    if (ed->readline_name) *ed->readline_name = "lamina";
+    if (ed->stifle_history) ed->stifle_history(HISTORY_LINES);
+    return 1;
+}
+
+static void load_editor(editor *ed)
+{
+    memset(ed, 0, sizeof *ed);
+    const char *want = getenv("LAMINA_READLINE");
+    if (want && *want) {
+        if (strcmp(want, "none") != 0) try_editor(ed, want);
+        return;
+    }
+    static const char *const libs[] = { "libreadline.so.8", "libreadline.so", "libedit.so.2", NULL };
+    for (int i = 0; libs[i] && !try_editor(ed, libs[i]); i++) {
+    }
+}
+
+/* The history file (malloc'd), or NULL when disabled. */
+static char *history_path(void)
+{
+    const char *p = getenv("LAMINA_HISTORY");
+    if (p) return *p ? strdup(p) : NULL;
+    const char *home = getenv("HOME");
+    if (!home || !*home) return NULL;
+    size_t n = strlen(home) + 32;
+    char *path = malloc(n);
+    if (path) snprintf(path, n, "%s/.lamina_history", home);
+    return path;
+}
+
+/* ---- reading statements (lua.c's pushline / addreturn / multiline) ------ */
+
+typedef struct repl {
+    lua_State *L;
+    int base;                /* stack slot of the current statement */
+    int tty;
+    editor ed;
+    int first_eq;            /* the statement was typed as "=expr" */
+} repl;
+
+static const char *get_prompt(lua_State *L, int firstline)
+{
+    if (lua_getglobal(L, firstline ? "_PROMPT" : "_PROMPT2") == LUA_TNIL) {
+        lua_pop(L, 1);
+        lua_pushstring(L, firstline ? PROMPT1 : PROMPT2);
+    } else {
+        luaL_tolstring(L, -1, NULL); /* the prompt may be any value */
+        lua_remove(L, -2);
+    }
+    return lua_tostring(L, -1);
+}
+
+/* Read one line and push it (with `=` turned into `return`). Returns 1, or
+ * LINE_EOF, or LINE_INTERRUPTED (Ctrl-C at the prompt). */
+static int pushline(repl *r, int firstline)
+{
+    lua_State *L = r->L;
+    const char *prompt = get_prompt(L, firstline);
+    void **box = lam_lua_newbox(L); /* the line, freed whatever happens */
+    prompt_interrupted = 0;
+    char *line;
+    if (r->ed.readline) {
+        line = r->ed.readline(prompt);
+        *box = line;
+    } else {
+        if (r->tty) {
+            fputs(prompt, stdout);
+            fflush(stdout);
+        }
+        size_t cap = 0;
+        line = NULL;
+        ssize_t n = getline(&line, &cap, stdin);
+        *box = line;
+        if (n < 0) {
+            line = NULL;
+            if (prompt_interrupted) clearerr(stdin);
+        }
+    }
+    int result = 1;
+    if (prompt_interrupted) {
+        if (!r->ed.readline && r->tty) fputc('\n', stdout);
+        result = LINE_INTERRUPTED;
+    } else if (!line) {
+        result = LINE_EOF;
+    } else {
+        size_t len = strlen(line);
+        if (len > 0 && line[len - 1] == '\n') line[--len] = '\0';
+        if (firstline) r->first_eq = line[0] == '=';
+        if (firstline && line[0] == '=') lua_pushfstring(L, "return %s", line + 1);
+        else lua_pushlstring(L, line, len);
+        lua_replace(L, -3); /* over the prompt */
+    }
+    free(*box);
+    *box = NULL;
+    lua_pop(L, result == 1 ? 1 : 2);
+    return result;
+}
+
+static void saveline(repl *r, const char *line)
+{
+    if (!r->ed.add_history || !line[0]) return;
+    if (r->first_eq && strncmp(line, "return ", 7) == 0) {
+        lua_pushfstring(r->L, "=%s", line + 7);
+        r->ed.add_history(lua_tostring(r->L, -1));
+        lua_pop(r->L, 1);
+    } else {
+        r->ed.add_history(line);
+    }
+}
+
+/* The statement at base as an expression: pushes the compiled chunk and
+ * returns LUA_OK, or pushes nothing and returns an error status. */
+static int addreturn(repl *r)
+{
+    lua_State *L = r->L;
+    const char *line = lua_tostring(L, -1);
+    const char *retline = lua_pushfstring(L, "return %s;", line);
+    int status = luaL_loadbuffer(L, retline, strlen(retline), "=stdin");
+    if (status == LUA_OK) {
+        lua_remove(L, -2);
+        saveline(r, line);
+    } else {
+        lua_pop(L, 2);
+    }
+    return status;
+}
+
+static int incomplete(lua_State *L, int status)
+{
+    if (status == LUA_ERRSYNTAX) {
+        size_t lmsg;
+        const char *msg = lua_tolstring(L, -1, &lmsg);
+        size_t mark = sizeof EOFMARK - 1;
+        if (lmsg >= mark && strcmp(msg + lmsg - mark, EOFMARK) == 0) {
+            lua_pop(L, 1);
+            return 1;
+        }
+    }
+    return 0;
+}
+
+/* The statement at base, with continuation lines while it is incomplete. */
+static int multiline(repl *r)
+{
+    lua_State *L = r->L;
+    for (;;) {
+        size_t len;
+        const char *line = lua_tolstring(L, r->base, &len);
+        int status = luaL_loadbuffer(L, line, len, "=stdin");
+        if (!incomplete(L, status)) {
+            saveline(r, line);
+            return status;
+        }
+        int got = pushline(r, 0);
+        if (got == LINE_INTERRUPTED) return LINE_INTERRUPTED;
+        if (got == LINE_EOF) { /* report the unfinished statement */
+            saveline(r, line);
+            return luaL_loadbuffer(L, line, len, "=stdin");
+        }
+        lua_pushliteral(L, "\n");
+        lua_insert(L, -2);
+        lua_concat(L, 3);
+    }
+}
+
+/* Read and compile one statement: LUA_OK with the chunk on the stack, an
+ * error status with the message, LINE_EOF or LINE_INTERRUPTED. */
+static int loadline(repl *r)
+{
+    lua_State *L = r->L;
+    lua_settop(L, r->base - 1);
+    int got = pushline(r, 1);
+    if (got != 1) return got;
+    int status = addreturn(r);
+    if (status != LUA_OK) status = multiline(r);
+    lua_remove(L, r->base);
+    if (status == LINE_INTERRUPTED) lua_settop(L, r->base - 1);
+    return status;
+}
+
+/* Print the values from base on with the global print (__tostring). */
+static void print_results(repl *r)
+{
+    lua_State *L = r->L;
+    int n = lua_gettop(L) - r->base + 1;
+    if (n <= 0) return;
+    luaL_checkstack(L, LUA_MINSTACK, "too many results to print");
+    lua_getglobal(L, "print");
+    lua_insert(L, r->base);
+    if (lua_pcall(L, n, 0, 0) != LUA_OK) {
+        fprintf(stderr, "error calling 'print' (%s)\n", lua_tostring(L, -1));
+        lua_pop(L, 1);
+    }
+    fflush(stdout);
+}
+
+int lam_repl(lua_State *L)
+{
+    repl r;
+    memset(&r, 0, sizeof r);
+    r.L = L;
+    r.base = lua_gettop(L) + 1;
+    r.tty = isatty(STDIN_FILENO);
+    if (r.tty) load_editor(&r.ed);
+    struct sigaction sa, old;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = prompt_action; /* no SA_RESTART: a read in progress returns EINTR */
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGINT, &sa, &old);
+    void **hist = lam_lua_newbox(L); /* the history path */
+    r.base++;
+    if (r.ed.readline) *hist = history_path();
+    if (*hist && r.ed.read_history) r.ed.read_history(*hist);
+    if (r.tty) {
+        printf("lamina %s (%s): the lamina module is loaded; Ctrl-D quits, Ctrl-C interrupts.\n", LAMINA_VERSION,
+               LUA_RELEASE);
+        if (!r.ed.readline) printf("(no line editing: install GNU readline or libedit)\n");
+        fflush(stdout);
+    }
+    int status;
+    while ((status = loadline(&r)) != LINE_EOF) {
+        if (status == LINE_INTERRUPTED) continue;
+        if (status == LUA_OK) status = lam_cli_docall(L, 0, LUA_MULTRET);
+        if (status == LUA_OK) print_results(&r);
+        else lam_cli_report(L, 0);
+    }
+    lua_settop(L, r.base - 1);
+    if (r.tty) {
+        fputc('\n', stdout);
+        fflush(stdout);
+    }
+    if (*hist && r.ed.write_history && r.ed.write_history(*hist) == 0 && r.ed.history_truncate_file)
+        r.ed.history_truncate_file(*hist, HISTORY_LINES);
+    sigaction(SIGINT, &old, NULL);
+    return 0;
+}

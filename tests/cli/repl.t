@@ -1,0 +1,198 @@
+#!/usr/bin/env bash
+# lamina repl on a real terminal: tmux runs it in a pseudo-terminal, the
+# test types into it and reads the screen. Checks the banner, =expr and
+# bare expressions, continued statements, line editing and history
+# (readline), Ctrl-C interrupting a Lua loop and a long slice and
+# abandoning a line, errors, Ctrl-D, and plain `lamina` on a terminal.
+. "$(dirname "$0")/lib.sh"
+
+if ! command -v tmux >/dev/null; then
+    echo "1..0 # SKIP tmux is not installed"
+    exit 0
+fi
+
+SOCK="lamina-repl-test-$$"
+tm() { tmux -L "$SOCK" "$@"; }
+trap 'tm kill-server 2>/dev/null; sleep 0.2; rm -rf "$TMP"' EXIT
+mkdir -p "$TMP/home"
+
+# start NAME CMD...: a 100x50 terminal running CMD; the pane stays after
+# exit, and CMD's exit status goes to $TMP/NAME.status (from the shell:
+# tmux does not always reap a sanitizer build's exit in time to show it)
+start() {
+    local name=$1; shift
+    tm -f /dev/null new-session -d -s "$name" -x 100 -y 50 \
+        "env HOME=$TMP/home LAMINA_HISTORY=$TMP/history TESTS=$TESTS $*; echo \$? >$TMP/$name.status" \; \
+        set-option -t "$name" remain-on-exit on
+}
+screen() { tm capture-pane -p -t "$1" -S -200; }
+dead() { [ "$(tm display-message -p -t "$1" '#{pane_dead}')" = 1 ]; }
+# wait_for NAME REGEX [SECONDS]: until the screen matches; 0 if it did
+# (gives up at once when the program has exited)
+wait_for() {
+    local t=0 limit=$(( ${3:-10} * 10 ))
+    while [ $t -lt $limit ]; do
+        screen "$1" | grep -Eq -- "$2" && return 0
+        dead "$1" && return 1
+        sleep 0.1
+        t=$((t + 1))
+    done
+    return 1
+}
+# the last non-empty line of the screen (tmux trims trailing blanks: "> " is ">")
+last_line() { screen "$1" | sed '/^[[:space:]]*$/d' | tail -1; }
+prompt() { # prompt NAME: wait for a fresh "> " prompt
+    local t=0
+    while [ $t -lt 100 ]; do
+        [ "$(last_line "$1")" = ">" ] && return 0
+        dead "$1" && return 1
+        sleep 0.1
+        t=$((t + 1))
+    done
+    return 1
+}
+type_line() { tm send-keys -t "$1" -l "$2"; tm send-keys -t "$1" Enter; }
+show_on_failure() { [ "$1" -eq 0 ] || screen "$2" | sed '/^[[:space:]]*$/d; s/^/#   | /' | tail -25; }
+
+start r "$LAMINA" repl
+wait_for r 'the lamina module is loaded' 20
+rc=$?; ok $rc "banner"
+if [ $rc -ne 0 ]; then # nothing else can work
+    show_on_failure 1 r
+    done_testing
+    exit 1
+fi
+prompt r
+ok $? "first prompt '> '"
+editing=1
+screen r | grep -q 'no line editing' && editing=0
+
+type_line r '=1 + 1'
+wait_for r '^2$'
+ok $? "=expr prints its value"
+prompt r
+type_line r 'lamina.version'
+wait_for r '^[0-9]+\.[0-9]+\.[0-9]+$'
+ok $? "a bare expression prints its value"
+prompt r
+
+type_line r 'for i = 1, 3 do'
+wait_for r '^>> $|^>>$'
+ok $? "an unfinished statement continues at '>>'"
+type_line r 'print("row", i * 10)'
+type_line r 'end'
+wait_for r '^row +30$'
+rc=$?; ok $rc "the continued statement runs"; show_on_failure $rc r
+prompt r
+
+type_line r 'm = lamina.load(os.getenv("TESTS") .. "/models/thesis_cube_hole.ug")'
+prompt r
+type_line r 'm'
+wait_for r 'lamina\.model \(.*thesis_cube_hole\.ug: 24 triangles, 2 shells\)'
+ok $? "objects print through __tostring"
+prompt r
+
+type_line r 'lamina.load(nil)'
+wait_for r "bad argument #1 to 'load' \(string expected, got nil\)"
+ok $? "an error is shown"
+prompt r
+ok $? "and the prompt comes back"
+
+# Ctrl-C: a Lua loop
+type_line r 'while true do end'
+sleep 0.5
+tm send-keys -t r C-c
+wait_for r 'interrupted'
+rc=$?; ok $rc "Ctrl-C interrupts a Lua loop"; show_on_failure $rc r
+prompt r
+ok $? "prompt after the interrupt"
+tm send-keys -t r C-l 2>/dev/null; tm clear-history -t r
+
+# Ctrl-C: a long slice (the binding stops between layers)
+type_line r 'c = lamina.load(os.getenv("TESTS") .. "/models/thesis_cube.ug")'
+prompt r
+type_line r 'for i = 1, 1000 do layers = c:slice{width = 2e-5} end'
+sleep 1
+tm send-keys -t r C-c
+wait_for r 'interrupted' 20
+rc=$?; ok $rc "Ctrl-C interrupts a long slice"; show_on_failure $rc r
+prompt r
+type_line r '=2 * 21'
+wait_for r '^42$'
+ok $? "the session goes on after the interrupt"
+prompt r
+
+# Ctrl-C at the prompt abandons the line, and an unfinished statement
+tm send-keys -t r -l 'abandoned_call('
+tm send-keys -t r C-c
+prompt r
+rc=$?; ok $rc "Ctrl-C abandons the line being typed"; show_on_failure $rc r
+type_line r 'x = {'
+wait_for r '^>>'
+tm send-keys -t r C-c
+prompt r
+ok $? "Ctrl-C abandons an unfinished statement"
+type_line r '=x'
+wait_for r '^nil$'
+ok $? "the abandoned statement did not run"
+prompt r
+
+if [ $editing -eq 1 ]; then
+    # line editing: backspace, beginning of line
+    tm send-keys -t r -l '=6*8'
+    tm send-keys -t r BSpace
+    tm send-keys -t r -l '7'
+    tm send-keys -t r Enter
+    wait_for r '^42$'
+    ok $? "line editing: backspace"
+    prompt r
+    tm send-keys -t r -l '+1'
+    tm send-keys -t r C-a
+    tm send-keys -t r -l '=100'
+    tm send-keys -t r Enter
+    wait_for r '^101$'
+    ok $? "line editing: Ctrl-A to the start of the line"
+    prompt r
+    # history: Up recalls the last statement
+    tm send-keys -t r Up
+    wait_for r '^> =100\+1$'
+    ok $? "history: Up recalls the last line"
+    tm send-keys -t r C-u
+else
+    echo "# no line editor found: skipping the editing and history checks"
+fi
+
+# Ctrl-D quits with exit code 0 and saves the history
+tm send-keys -t r C-d
+t=0
+while [ ! -s "$TMP/r.status" ] && [ $t -lt 100 ]; do sleep 0.1; t=$((t + 1)); done
+is "$(cat "$TMP/r.status" 2>/dev/null)" "0" "Ctrl-D quits, exit 0"
+if [ $editing -eq 1 ]; then
+    grep -qx '=100+1' "$TMP/history"
+    ok $? "history file written"
+    grep -q 'abandoned_call' "$TMP/history"
+    ok $((! $?)) "abandoned lines are not in the history"
+    # the history is there in the next session
+    start h "$LAMINA" repl
+    prompt h
+    tm send-keys -t h Up
+    wait_for h '^> =100\+1$'
+    ok $? "history comes back in a new session"
+    tm send-keys -t h C-u C-d
+fi
+
+# plain `lamina` on a terminal is the prompt
+start p "$LAMINA"
+wait_for p 'the lamina module is loaded' 20
+ok $? "plain lamina on a terminal starts the prompt"
+prompt p
+type_line p '=#lamina.load(os.getenv("TESTS") .. "/models/thesis_cube.ug")'
+wait_for p '^12$'
+ok $? "with lamina loaded"
+prompt p
+tm send-keys -t p C-d
+t=0
+while [ ! -s "$TMP/p.status" ] && [ $t -lt 100 ]; do sleep 0.1; t=$((t + 1)); done
+is "$(cat "$TMP/p.status" 2>/dev/null)" "0" "plain lamina: Ctrl-D quits, exit 0"
+
+done_testing
