@@ -1,6 +1,8 @@
 /* lam_plan_run: one slicing run through a planner into a sink. */
 #include "planner.h"
 
+#include "profile.h"
+
 #include <math.h>
 #include <string.h>
 
@@ -12,6 +14,27 @@ void lam_plan_opts_init(lam_plan_opts *o)
     o->units = "mm";
     o->bead = 1;
     o->alternate = 1;
+}
+
+void lam_plan_opts_from_profile(lam_plan_opts *o, const lam_profile *p)
+{
+    lam_plan_opts_init(o);
+    int sls = p->process == LAM_PROCESS_SLS;
+    o->kind = sls ? LAM_PLAN_SLS : LAM_PLAN_LADRP;
+    o->name = p->name;
+    o->units = p->units;
+    o->bead = sls ? p->spot_width : p->bead_width;
+    o->rate = p->feed_rate;
+    o->travel_rate = p->travel_rate;
+    o->frame_machine = p->frame_machine;
+    o->first_center = p->first_line == LAM_FIRST_CENTER;
+    o->angle = p->angle;
+    o->angle_step = p->angle_step;
+    o->alternate = p->alternate;
+    o->min_deposit = p->min_deposit;
+    o->perimeters = p->perimeters;
+    o->islands = p->islands;
+    o->beam_offset = p->beam_offset;
 }
 
 static void job_bbox(const lam_slicer *s, const lam_model *m, const lam_plan_opts *o, double bb[6])

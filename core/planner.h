@@ -59,6 +59,13 @@ typedef struct lam_plan_opts {
 /* Defaults: SLS, bead 1, rates 0, model frame, edge, 0 degrees, alternate. */
 void lam_plan_opts_init(lam_plan_opts *o);
 
+struct lam_profile;
+
+/* The planning values of a machine profile (process, bead or spot width,
+ * rates, frame, raster and SLS options); o is initialised first. The
+ * profile's strings are borrowed: it must outlive o. */
+void lam_plan_opts_from_profile(lam_plan_opts *o, const struct lam_profile *p);
+
 /* Called with every layer before it is planned (reports, previews). A
  * non-zero return stops the run with that code. */
 typedef int (*lam_layer_cb)(void *ctx, const lam_layer *layer, lam_error *err);

@@ -41,9 +41,9 @@ static const char *const key_names[K_COUNT] = {
     "travel_rate", "gap", "frame", "raster", "beam_offset", "max_overhang_deg", "writer", "inherits", "dialect",
 };
 
-enum rkey { R_FIRST_LINE, R_ANGLE, R_ANGLE_STEP, R_ALTERNATE, R_MIN_DEPOSIT, R_PERIMETERS, R_COUNT };
+enum rkey { R_FIRST_LINE, R_ANGLE, R_ANGLE_STEP, R_ALTERNATE, R_MIN_DEPOSIT, R_PERIMETERS, R_ISLANDS, R_COUNT };
 static const char *const raster_names[R_COUNT] = {
-    "first_line", "angle", "angle_step", "alternate", "min_deposit", "perimeters",
+    "first_line", "angle", "angle_step", "alternate", "min_deposit", "perimeters", "islands",
 };
 
 static const char *const process_names[] = { "ladrp", "sls", NULL };
@@ -593,6 +593,9 @@ static int apply_raster(const src *s, const yaml_node_t *m, lam_profile *p)
         case R_ALTERNATE:
             rc = get_bool(s, v, full, &p->alternate);
             break;
+        case R_ISLANDS:
+            rc = get_bool(s, v, full, &p->islands);
+            break;
         case R_MIN_DEPOSIT:
             if (!(rc = get_number(s, v, full, &x)) && !(rc = nonneg(s, v, full, x))) p->min_deposit = x;
             break;
@@ -1102,6 +1105,7 @@ int lam_profile_dump(const lam_profile *p, lam_writer *w)
     lam_writer_printf(w, "  alternate: %s\n", p->alternate ? "true" : "false");
     kv_num(w, "  ", "min_deposit", p->min_deposit);
     lam_writer_printf(w, "  perimeters: %d\n", p->perimeters);
+    lam_writer_printf(w, "  islands: %s\n", p->islands ? "true" : "false");
     lam_writer_printf(w, "beam_offset: %s\n", p->beam_offset ? "true" : "false");
     if (p->max_overhang_deg > 0) kv_num(w, "", "max_overhang_deg", p->max_overhang_deg);
     kv_str(w, "", "writer", p->writer ? p->writer : "text");

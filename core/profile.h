@@ -40,6 +40,7 @@ typedef struct lam_profile {
     int alternate;               /* boustrophedon, default true */
     double min_deposit;          /* >= 0, default 0 */
     int perimeters;              /* passes around each contour offset by d/2, default 0 */
+    int islands;                 /* raster island by island, nearest next; default false */
     /* SLS */
     int beam_offset;             /* contours inset by spot/2, default false */
     /* design rules (optional) */

@@ -207,20 +207,7 @@ void cli_apply_profile(args *a, const lam_profile *p, lam_plan_opts *po)
     if (!a->set_width && !a->so.widths && !a->so.planes && p->layer_width > 0) a->so.width = p->layer_width;
     if (!a->set_cut) a->so.cut = (lam_cut)p->cut;
     if (!a->set_gap) a->so.gap = p->gap;
-    po->kind = p->process == LAM_PROCESS_LADRP ? LAM_PLAN_LADRP : LAM_PLAN_SLS;
-    po->name = p->name;
-    po->units = p->units;
-    po->bead = p->process == LAM_PROCESS_LADRP ? p->bead_width : p->spot_width;
-    po->rate = p->feed_rate;
-    po->travel_rate = p->travel_rate;
-    po->frame_machine = p->frame_machine;
-    po->first_center = p->first_line == LAM_FIRST_CENTER;
-    po->angle = p->angle;
-    po->angle_step = p->angle_step;
-    po->alternate = p->alternate;
-    po->min_deposit = p->min_deposit;
-    po->perimeters = p->perimeters;
-    po->beam_offset = p->beam_offset;
+    lam_plan_opts_from_profile(po, p);
     apply_overrides(a, po);
 }
 

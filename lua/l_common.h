@@ -114,6 +114,8 @@ typedef struct lplan {
     size_t len, lines, layers;
     int binary;              /* written by a plugin writer: #plan counts bytes */
     char name[128], process[8];
+    double travel, deposit;  /* LADRP: stage travel and deposit lengths (layer plane) */
+    size_t deposits;         /* LADRP: deposit moves */
 } lplan;
 
 /* Checked accessors: raise the usual "bad argument" error for a wrong type
@@ -156,7 +158,7 @@ void lam_lua_plan_opts(const lam_profile *p, lam_plan_opts *o);
  * it happens before any pointer into a profile is taken. */
 typedef struct lam_lua_overrides {
     unsigned set;            /* bit k: value k was given */
-    double v[16];
+    double v[24];
 } lam_lua_overrides;
 
 /* Read table t (argument number arg, as luaL_argerror counts); `keys`

@@ -164,6 +164,7 @@ static int mc_fields(lua_State *L)
     else if (strcmp(k, "min_deposit") == 0) lua_pushnumber(L, p->min_deposit);
     else if (strcmp(k, "perimeters") == 0) lua_pushinteger(L, p->perimeters);
     else if (strcmp(k, "beam_offset") == 0) lua_pushboolean(L, p->beam_offset);
+    else if (strcmp(k, "islands") == 0) lua_pushboolean(L, p->islands);
     else if (strcmp(k, "max_overhang_deg") == 0) push_opt_number(L, p->max_overhang_deg);
     else lua_pushnil(L);
     return 1;
@@ -182,7 +183,7 @@ typedef struct okey {
 } okey;
 
 enum { O_BEAD, O_SPOT, O_LAYER, O_CUT, O_FEED, O_TRAVEL, O_GAP, O_FRAME, O_FIRST, O_ANGLE, O_STEP,
-       O_ALTERNATE, O_MIN_DEPOSIT, O_PERIMETERS, O_BEAM, O_OVERHANG, O_COUNT };
+       O_ALTERNATE, O_MIN_DEPOSIT, O_PERIMETERS, O_BEAM, O_OVERHANG, O_ISLANDS, O_COUNT };
 
 static const okey okeys[O_COUNT] = {
     { "bead_width", NUM, 0, HUGE_VAL, 1, NULL },
@@ -201,12 +202,13 @@ static const okey okeys[O_COUNT] = {
     { "perimeters", WHOLE, 0, 1000, 0, NULL },
     { "beam_offset", BOOL, 0, 0, 0, NULL },
     { "max_overhang_deg", NUM, 0, 90, 0, NULL },
+    { "islands", BOOL, 0, 0, 0, NULL },
 };
 
 static const char *const override_keys[O_COUNT + 1] = {
     "bead_width", "spot_width", "layer_width", "cut", "feed_rate", "travel_rate", "gap", "frame",
     "first_line", "angle", "angle_step", "alternate", "min_deposit", "perimeters", "beam_offset",
-    "max_overhang_deg", NULL,
+    "max_overhang_deg", "islands", NULL,
 };
 
 static const char *const fixed_keys[] = { "name", "description", "process", "units", "writer", "dialect",
@@ -307,6 +309,7 @@ void lam_lua_apply_overrides(const lam_lua_overrides *o, lam_profile *p)
     if (SET(O_PERIMETERS)) p->perimeters = (int)o->v[O_PERIMETERS];
     if (SET(O_BEAM)) p->beam_offset = (int)o->v[O_BEAM];
     if (SET(O_OVERHANG)) p->max_overhang_deg = o->v[O_OVERHANG];
+    if (SET(O_ISLANDS)) p->islands = (int)o->v[O_ISLANDS];
 #undef SET
 }
 
@@ -351,22 +354,7 @@ static int mc_yaml(lua_State *L)
 
 void lam_lua_plan_opts(const lam_profile *p, lam_plan_opts *o)
 {
-    lam_plan_opts_init(o);
-    int sls = p->process == LAM_PROCESS_SLS;
-    o->kind = sls ? LAM_PLAN_SLS : LAM_PLAN_LADRP;
-    o->name = p->name;
-    o->units = p->units;
-    o->bead = sls ? p->spot_width : p->bead_width;
-    o->rate = p->feed_rate;
-    o->travel_rate = p->travel_rate;
-    o->frame_machine = p->frame_machine;
-    o->first_center = p->first_line == LAM_FIRST_CENTER;
-    o->angle = p->angle;
-    o->angle_step = p->angle_step;
-    o->alternate = p->alternate;
-    o->min_deposit = p->min_deposit;
-    o->perimeters = p->perimeters;
-    o->beam_offset = p->beam_offset;
+    lam_plan_opts_from_profile(o, p);
 }
 
 static const luaL_Reg machine_meta[] = {

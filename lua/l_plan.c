@@ -46,7 +46,7 @@ static int job_gc(lua_State *L)
 
 static const char *const plan_keys[] = { "bead_width", "spot_width", "feed_rate", "travel_rate", "frame",
                                          "first_line", "angle", "angle_step", "alternate", "min_deposit",
-                                         "perimeters", "beam_offset", NULL };
+                                         "perimeters", "beam_offset", "islands", NULL };
 
 /* Check argument 2: a non-empty sequence of live layers of one run in
  * increasing order; store their lam_layer pointers into ls (room for n,
@@ -183,6 +183,9 @@ int lam_lua_plan(lua_State *L)
             if (o.kind == LAM_PLAN_LADRP) {
                 lam_ladrp_stats st;
                 rc = lam_plan_ladrp_layer(ly, &run->frame, &o, s, pos, &laser, &st, &j->err);
+                pl->travel += st.travel_length;
+                pl->deposit += st.deposit_length;
+                pl->deposits += st.deposits;
             } else {
                 rc = lam_plan_sls_layer(ly, &run->frame, &o, s, &next_id, &j->err);
             }
@@ -255,6 +258,9 @@ static int p_fields(lua_State *L)
     else if (strcmp(k, "machine") == 0) lua_pushstring(L, pl->name);
     else if (strcmp(k, "process") == 0) lua_pushstring(L, pl->process);
     else if (strcmp(k, "binary") == 0) lua_pushboolean(L, pl->binary);
+    else if (strcmp(k, "travel") == 0) lua_pushnumber(L, pl->travel);
+    else if (strcmp(k, "deposit") == 0) lua_pushnumber(L, pl->deposit);
+    else if (strcmp(k, "deposits") == 0) lua_pushinteger(L, (lua_Integer)pl->deposits);
     else lua_pushnil(L);
     return 1;
 }
