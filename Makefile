@@ -85,7 +85,7 @@ $(LIB): $(CORE_OBJ)
 $(LAMINA): $(CLI_OBJ) $(LIB)
 	$(CC) $(LDFLAGS) -o $@ $(CLI_OBJ) $(LIB) $(LUA_LIBS) $(LDLIBS)
 
-$(BUILD)/tests/%.t: tests/unit/%.c tests/unit/tap.h tests/unit/util.h $(LIB)
+$(BUILD)/tests/%.t: tests/unit/%.c $(wildcard tests/unit/*.h) $(LIB)
 	@mkdir -p $(dir $@)
 	$(CC) $(CPPFLAGS) -Itests/unit $(CFLAGS) -o $@ $< $(LIB) $(LDFLAGS) $(LDLIBS)
 
