@@ -56,7 +56,7 @@ LAMINA  := $(BUILD)/lamina
 PLUGIN_NAMES := $(patsubst plugins/%/,%,$(sort $(dir $(wildcard plugins/*/*.c))))
 PLUGIN_SO    := $(PLUGIN_NAMES:%=$(PLUGIN_OUT)/%.so)
 
-.PHONY: all deps run test check clean install bench
+.PHONY: all deps run test check clean install bench fuzz
 .DEFAULT_GOAL := all
 .SECONDEXPANSION:
 
@@ -120,13 +120,27 @@ run: deps
 
 # Tests: C unit tests are compiled to TAP programs; tests/cli/*.t are shell
 # scripts that drive the executable. prove runs both and prints the summary.
+# The fuzz target, as a mutation driver for the test suite; `make fuzz`
+# builds it for libFuzzer with clang instead.
+FUZZ_BIN := $(BUILD)/tests/fuzz_inputs
+$(FUZZ_BIN): tests/fuzz/fuzz_inputs.c $(LIB)
+	@mkdir -p $(dir $@)
+	$(CC) $(CPPFLAGS) $(CFLAGS) -o $@ $< $(LIB) $(LDFLAGS) $(LDLIBS)
+
+fuzz:
+	@$(MAKE) --no-print-directory BUILD=build-fuzz CC=clang OPT="-O1 -g" \
+	  SANFLAGS="-fsanitize=address,undefined,fuzzer-no-link" build-fuzz/liblamina.a
+	clang $(CPPFLAGS) -DLAMINA_LIBFUZZER -g -O1 -fsanitize=address,undefined,fuzzer \
+	  -o build-fuzz/fuzz_inputs tests/fuzz/fuzz_inputs.c build-fuzz/liblamina.a $(LDLIBS)
+	@echo "run: build-fuzz/fuzz_inputs CORPUS_DIR (first byte of an input: 0 ug, 1 stl, 2 obj, 3 yaml)"
+
 $(BUILD)/tests/plugins/%.so: tests/plugins/%.c core/lamina_plugin.h
 	@mkdir -p $(dir $@)
 	$(CC) $(CPPFLAGS) $(CFLAGS) -fPIC -shared -o $@ $< $(LDFLAGS)
 
-check: all $(UNIT_BIN) $(TEST_PLUGIN_SO)
+check: all $(UNIT_BIN) $(TEST_PLUGIN_SO) $(FUZZ_BIN)
 	LAMINA=$(abspath $(LAMINA)) TESTS=$(abspath tests) BUILD=$(abspath $(BUILD)) \
-	  prove --exec '' $(UNIT_BIN) $(sort $(wildcard tests/cli/*.t))
+	  prove --exec '' $(UNIT_BIN) $(sort $(wildcard tests/cli/*.t)) tests/fuzz/fuzz.t
 
 test: deps
 	@$(MAKE) --no-print-directory check
@@ -145,6 +159,6 @@ install: all
 	$(if $(PLUGIN_SO),install -m 755 $(PLUGIN_SO) $(DESTDIR)$(PREFIX)/lib/lamina/plugins/)
 
 clean:
-	rm -rf build build-san build-bench out $(PLUGIN_SO)
+	rm -rf build build-san build-bench build-fuzz out $(PLUGIN_SO)
 
 -include $(CORE_OBJ:.o=.d) $(CLI_OBJ:.o=.d)
