@@ -157,6 +157,9 @@ install: all
 	install -d $(DESTDIR)$(PREFIX)/share/lamina/machines $(DESTDIR)$(PREFIX)/lib/lamina/plugins
 	install -m 644 machines/*.yaml $(DESTDIR)$(PREFIX)/share/lamina/machines/
 	$(if $(PLUGIN_SO),install -m 755 $(PLUGIN_SO) $(DESTDIR)$(PREFIX)/lib/lamina/plugins/)
+	install -d $(DESTDIR)$(PREFIX)/share/lamina/lua/lamina $(DESTDIR)$(PREFIX)/lib/lua/5.4
+	$(if $(wildcard lua/lamina/*.lua),install -m 644 lua/lamina/*.lua $(DESTDIR)$(PREFIX)/share/lamina/lua/lamina/)
+	install -m 755 $(LUAMOD) $(DESTDIR)$(PREFIX)/lib/lua/5.4/lamina.so
 
 clean:
 	rm -rf build build-san build-bench build-fuzz out $(PLUGIN_SO)
