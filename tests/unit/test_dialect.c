@@ -4,18 +4,13 @@
 #include "dialect.h"
 #include "fmt.h"
 #include "tap.h"
+#include "util.h"
 
 #include <stdint.h>
 #include <stdlib.h>
 
 static uint64_t rng = 0x9e3779b97f4a7c15ull;
-static uint64_t next(void)
-{
-    rng ^= rng << 13;
-    rng ^= rng >> 7;
-    rng ^= rng << 17;
-    return rng;
-}
+static uint64_t next(void) { return xorshift64(&rng); }
 
 /* text with newlines shown as \n (TAP descriptions are one line) */
 static const char *oneline(const char *text)

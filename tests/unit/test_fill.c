@@ -1,31 +1,11 @@
 /* Non-zero fill: overlapping shells merge; holes stay where the winding is
  * zero; even-odd (the default) keeps the nesting parity. */
 #include "fill.h"
+#include "meshes.h"
 #include "model.h"
 #include "slice.h"
-#include "tap.h"
 
 #include <math.h>
-
-static void add_box(lam_mesh *m, double x0, double y0, double z0, double x1, double y1, double z1, int inward)
-{
-    lam_error err;
-    uint32_t v[8];
-    for (int i = 0; i < 8; i++)
-        lam_mesh_add_vertex(m, i & 1 ? x1 : x0, i & 2 ? y1 : y0, i & 4 ? z1 : z0, &v[i], &err);
-    static const int q[6][4] = { { 0, 2, 3, 1 }, { 4, 5, 7, 6 }, { 0, 1, 5, 4 },
-                                 { 2, 6, 7, 3 }, { 0, 4, 6, 2 }, { 1, 3, 7, 5 } };
-    for (int f = 0; f < 6; f++) {
-        uint32_t a = v[q[f][0]], b = v[q[f][1]], c = v[q[f][2]], d = v[q[f][3]];
-        if (inward) {
-            lam_mesh_add_tri(m, a, c, b, LAM_NO_NAME, &err);
-            lam_mesh_add_tri(m, a, d, c, LAM_NO_NAME, &err);
-        } else {
-            lam_mesh_add_tri(m, a, b, c, LAM_NO_NAME, &err);
-            lam_mesh_add_tri(m, a, c, d, LAM_NO_NAME, &err);
-        }
-    }
-}
 
 /* Slice at one plane (middle of [z0, z1]) and return the layer. */
 static lam_layer *section(lam_model *m, double z0, double z1, int nonzero)
@@ -54,16 +34,14 @@ static double net_area(const lam_layer *L)
 
 int main(void)
 {
-    lam_error err;
-    lam_error_clear(&err);
     lam_mesh mesh;
     lam_model *m;
 
     /* Two overlapping cubes as separate shells: [0,2]^3 and [1,3]^3. */
     lam_mesh_init(&mesh);
-    add_box(&mesh, 0, 0, 0, 2, 2, 2, 0);
-    add_box(&mesh, 1, 1, 1, 3, 3, 3, 0);
-    lam_model_from_mesh(&mesh, "two", "mesh", &m, &err);
+    add_box(&mesh, 0, 0, 0, 2, 2, 2, 0, -1);
+    add_box(&mesh, 1, 1, 1, 3, 3, 3, 0, -1);
+    m = build_model_quiet(&mesh, "two");
     is_int(m->stats.shells, 2, "two shells");
 
     lam_layer *L = section(m, 1.25, 1.75, 0);
@@ -91,10 +69,10 @@ int main(void)
      * 1 in the wall, 0 in the cavity, 1 in the inner body. Non-zero keeps
      * all three outlines: solid, hole, solid. */
     lam_mesh_init(&mesh);
-    add_box(&mesh, 0, 0, 0, 10, 10, 10, 0);
-    add_box(&mesh, 2, 2, 2, 8, 8, 8, 1);
-    add_box(&mesh, 4, 4, 4, 6, 6, 6, 0);
-    lam_model_from_mesh(&mesh, "nested", "mesh", &m, &err);
+    add_box(&mesh, 0, 0, 0, 10, 10, 10, 0, -1);
+    add_box(&mesh, 2, 2, 2, 8, 8, 8, BOX_INWARD, -1);
+    add_box(&mesh, 4, 4, 4, 6, 6, 6, 0, -1);
+    m = build_model_quiet(&mesh, "nested");
     L = section(m, 4.5, 5.5, 1);
     is_int(L->ncontours, 3, "non-zero keeps the cavity and the island");
     if (L->ncontours == 3) {
@@ -109,10 +87,10 @@ int main(void)
      * crosses the cavity, 2 in the wall, 1 outside. (A body entirely inside
      * the box would count as enclosed and so as a cavity: SPEC 2.3.) */
     lam_mesh_init(&mesh);
-    add_box(&mesh, 0, 0, 0, 10, 10, 10, 0);
-    add_box(&mesh, 2, 2, 2, 8, 8, 8, 1);
-    add_box(&mesh, 5, 4, 4, 12, 6, 6, 0);
-    lam_model_from_mesh(&mesh, "bar", "mesh", &m, &err);
+    add_box(&mesh, 0, 0, 0, 10, 10, 10, 0, -1);
+    add_box(&mesh, 2, 2, 2, 8, 8, 8, BOX_INWARD, -1);
+    add_box(&mesh, 5, 4, 4, 12, 6, 6, 0, -1);
+    m = build_model_quiet(&mesh, "bar");
     is_int(m->stats.cavities, 1, "the bar is not enclosed: one cavity only");
     L = section(m, 4.5, 5.5, 1);
     is_num(net_area(L), 100 - 36 + 3 * 2 + 2 * 2, 1e-9, "non-zero: the bar fills 3 x 2 of the cavity and adds 2 x 2 outside");

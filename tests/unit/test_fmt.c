@@ -1,18 +1,13 @@
 /* lam_fmt_fixed must print exactly what printf("%.*f") prints. */
 #include "fmt.h"
 #include "tap.h"
+#include "util.h"
 
 #include <stdint.h>
 #include <stdlib.h>
 
 static uint64_t rng = 0x243f6a8885a308d3ull;
-static uint64_t next(void)
-{
-    rng ^= rng << 13;
-    rng ^= rng >> 7;
-    rng ^= rng << 17;
-    return rng;
-}
+static uint64_t next(void) { return xorshift64(&rng); }
 
 static int same(double x, int d)
 {

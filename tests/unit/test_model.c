@@ -1,56 +1,9 @@
 /* Model core: welding, edge table, shells, orientation from adjacency,
  * cavities, volume, defect counts — on meshes built by hand. */
+#include "meshes.h"
 #include "model.h"
-#include "tap.h"
 
 #include <stdlib.h>
-
-/* Add an axis-aligned box as 12 triangles. flip_mask flips chosen
- * triangles so orientation must be recovered from adjacency. */
-static void add_box(lam_mesh *m, double x0, double y0, double z0, double x1, double y1,
-                    double z1, unsigned flip_mask, int skip_face)
-{
-    lam_error err;
-    uint32_t v[8];
-    for (int i = 0; i < 8; i++)
-        lam_mesh_add_vertex(m, i & 1 ? x1 : x0, i & 2 ? y1 : y0, i & 4 ? z1 : z0, &v[i], &err);
-    /* outward quads */
-    static const int q[6][4] = { { 0, 2, 3, 1 }, { 4, 5, 7, 6 }, { 0, 1, 5, 4 },
-                                 { 2, 6, 7, 3 }, { 0, 4, 6, 2 }, { 1, 3, 7, 5 } };
-    int k = 0;
-    for (int f = 0; f < 6; f++) {
-        if (f == skip_face) { k += 2; continue; }
-        uint32_t a = v[q[f][0]], b = v[q[f][1]], c = v[q[f][2]], d = v[q[f][3]];
-        if (flip_mask >> k++ & 1) lam_mesh_add_tri(m, a, c, b, LAM_NO_NAME, &err);
-        else lam_mesh_add_tri(m, a, b, c, LAM_NO_NAME, &err);
-        if (flip_mask >> k++ & 1) lam_mesh_add_tri(m, a, d, c, LAM_NO_NAME, &err);
-        else lam_mesh_add_tri(m, a, c, d, LAM_NO_NAME, &err);
-    }
-}
-
-static lam_model *build(lam_mesh *m)
-{
-    lam_error err;
-    lam_error_clear(&err);
-    lam_model *md = NULL;
-    int rc = lam_model_from_mesh(m, "test", "mesh", &md, &err);
-    if (rc) diag("build failed: %s", err.msg);
-    return md;
-}
-
-/* Sum of signed volumes recomputed from the model's final triangles. */
-static double volume_of(const lam_model *md)
-{
-    double v = 0;
-    for (size_t t = 0; t < md->mesh.ntris; t++) {
-        const double *a = md->mesh.xyz + 3 * md->mesh.tris[3 * t];
-        const double *b = md->mesh.xyz + 3 * md->mesh.tris[3 * t + 1];
-        const double *c = md->mesh.xyz + 3 * md->mesh.tris[3 * t + 2];
-        v += a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
-             a[2] * (b[0] * c[1] - b[1] * c[0]);
-    }
-    return v / 6.0;
-}
 
 int main(void)
 {
@@ -60,7 +13,7 @@ int main(void)
     /* A unit cube, every other triangle flipped: orientation is rebuilt. */
     lam_mesh_init(&m);
     add_box(&m, 0, 0, 0, 2, 2, 2, 0x555, -1);
-    md = build(&m);
+    md = build_model_quiet(&m, "test");
     ok(md != NULL, "cube builds");
     is_int(md->stats.vertices, 8, "8 welded vertices from 8 per box");
     is_int(md->stats.triangles, 12, "12 triangles");
@@ -68,7 +21,7 @@ int main(void)
     is_int(md->stats.shells, 1, "one shell");
     is_int(md->stats.cavities, 0, "no cavity");
     is_num(md->stats.volume, 8, 0, "volume 8 exactly despite flipped input triangles");
-    is_num(volume_of(md), 8, 0, "triangles themselves now face outward");
+    is_num(signed_volume(&md->mesh), 8, 0, "triangles themselves now face outward");
     is_num(md->stats.area, 24, 1e-12, "surface area 24");
     is_int(md->stats.boundary_edges, 0, "closed");
     is_int(md->stats.orientation_conflicts, 0, "orientable");
@@ -105,7 +58,7 @@ int main(void)
     /* The whole cube wound inward: turned outward by its volume. */
     lam_mesh_init(&m);
     add_box(&m, -1, -1, -1, 1, 1, 1, 0xfff, -1);
-    md = build(&m);
+    md = build_model_quiet(&m, "test");
     is_num(md->stats.volume, 8, 0, "inside-out cube is turned outward");
     lam_model_free(md);
 
@@ -113,11 +66,11 @@ int main(void)
     lam_mesh_init(&m);
     add_box(&m, 0, 0, 0, 4, 4, 4, 0, -1);
     add_box(&m, 1, 1, 1, 3, 3, 3, 0x0f0, -1);
-    md = build(&m);
+    md = build_model_quiet(&m, "test");
     is_int(md->stats.shells, 2, "two shells");
     is_int(md->stats.cavities, 1, "one cavity");
     is_num(md->stats.volume, 56, 0, "volume 64 - 8");
-    is_num(volume_of(md), 56, 0, "cavity triangles face into the void");
+    is_num(signed_volume(&md->mesh), 56, 0, "cavity triangles face into the void");
     ok(md->shells[1].cavity && md->shells[1].volume == -8, "the inner shell is the cavity, volume -8");
     double inside[3] = { 2, 2, 2 }, outside[3] = { 10, 0, 0 };
     is_num(lam_model_shell_winding(md, 0, inside), 1, 1e-9, "winding 1 inside the outer shell");
@@ -129,7 +82,7 @@ int main(void)
     add_box(&m, 0, 0, 0, 10, 10, 10, 0, -1);
     add_box(&m, 2, 2, 2, 8, 8, 8, 0, -1);
     add_box(&m, 4, 4, 4, 6, 6, 6, 0xfff, -1);
-    md = build(&m);
+    md = build_model_quiet(&m, "test");
     is_int(md->stats.cavities, 1, "only the middle shell is a cavity");
     is_int(md->shells[2].enclosing, 2, "the island is enclosed twice");
     is_num(md->stats.volume, 1000 - 216 + 8, 0, "volume 1000 - 216 + 8");
@@ -139,7 +92,7 @@ int main(void)
     lam_mesh_init(&m);
     add_box(&m, 0, 0, 0, 1, 1, 1, 0, -1);
     add_box(&m, 5, 0, 0, 6, 1, 1, 0x3, -1);
-    md = build(&m);
+    md = build_model_quiet(&m, "test");
     is_int(md->stats.shells, 2, "two shells");
     is_int(md->stats.cavities, 0, "side by side: no cavity");
     is_num(md->stats.volume, 2, 0, "volume 1 + 1");
@@ -149,7 +102,7 @@ int main(void)
     lam_mesh_init(&m);
     add_box(&m, 0, 0, 0, 1, 1, 1, 0, -1);
     add_box(&m, 1, 1, 0, 2, 2, 1, 0, -1);
-    md = build(&m);
+    md = build_model_quiet(&m, "test");
     is_int(md->stats.nonmanifold_edges, 1, "the shared edge has four triangles");
     is_int(md->stats.shells, 2, "shells split at the non-manifold edge");
     is_int(md->stats.vertices, 14, "two shared vertices welded");
@@ -159,7 +112,7 @@ int main(void)
     /* A cube without its top: open, boundary edges counted. */
     lam_mesh_init(&m);
     add_box(&m, 0, 0, 0, 1, 1, 1, 0, 1);
-    md = build(&m);
+    md = build_model_quiet(&m, "test");
     is_int(md->stats.boundary_edges, 4, "four boundary edges around the missing face");
     is_int(md->stats.triangles, 10, "10 triangles");
     lam_model_free(md);
@@ -177,7 +130,7 @@ int main(void)
         lam_mesh_add_tri(&m, a, b, c, LAM_NO_NAME, &err);
         lam_mesh_add_tri(&m, a, a, b, LAM_NO_NAME, &err);
     }
-    md = build(&m);
+    md = build_model_quiet(&m, "test");
     is_int(md->stats.degenerate_tris, 2, "two degenerate triangles reported");
     is_int(md->stats.triangles, 13, "the collapsed one is dropped, the collinear one kept");
     lam_model_free(md);
@@ -215,7 +168,7 @@ int main(void)
     /* A translated cube far from the origin keeps an exact volume. */
     lam_mesh_init(&m);
     add_box(&m, 1e6, 1e6, 1e6, 1e6 + 2, 1e6 + 2, 1e6 + 2, 0, -1);
-    md = build(&m);
+    md = build_model_quiet(&m, "test");
     is_num(md->stats.volume, 8, 0, "volume exact far from the origin");
     lam_model_free(md);
     return done_testing();

@@ -3,9 +3,9 @@
  * layer area, raster angles, and the SLS block order. */
 #include "model.h"
 #include "contour.h"
+#include "meshes.h"
 #include "planner.h"
 #include "slice.h"
-#include "tap.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -64,18 +64,6 @@ static lam_sink recorder(rec *r)
     memset(r, 0, sizeof *r);
     lam_sink s = { r, s_begin, s_layer, s_layer_end, s_feed, s_laser, s_move, s_contour, NULL, NULL };
     return s;
-}
-
-static lam_model *load(const char *name)
-{
-    char path[1024];
-    const char *t = getenv("TESTS");
-    snprintf(path, sizeof path, "%s/models/%s", t ? t : "tests", name);
-    lam_model *m = NULL;
-    lam_error err;
-    lam_error_clear(&err);
-    if (lam_model_load(path, &m, &err)) diag("load %s: %s", path, err.msg);
-    return m;
 }
 
 /* material at (u, v): inside an odd number of the layer's contours */
@@ -166,7 +154,7 @@ int main(void)
 
     /* The thesis's LADRP sample: the 2-unit cube centred on the origin, bead
      * 0.08, feed 0.15, first scan line on the top edge, floor cut. */
-    lam_model *cube = load("thesis_cube.ug");
+    lam_model *cube = load_model_quiet("thesis_cube.ug");
     lam_slice_opts so;
     lam_slice_opts_init(&so);
     so.cut = LAM_CUT_FLOOR;
@@ -266,7 +254,7 @@ int main(void)
     po.angle = 0;
 
     /* min_deposit: a cube with a hole sliced so that lines cross the hole */
-    lam_model *hole = load("thesis_cube_hole.ug");
+    lam_model *hole = load_model_quiet("thesis_cube_hole.ug");
     lam_slice_opts_init(&so);
     so.width = 1;
     so.cut = LAM_CUT_FLOOR;
@@ -288,7 +276,7 @@ int main(void)
     po.min_deposit = 0;
 
     /* Property checks on every layer. */
-    lam_model *fi = load("frame_island.ug");
+    lam_model *fi = load_model_quiet("frame_island.ug");
     check_ladrp("frame_island", fi, 'z', 2, 0.5, 0, 0);
     check_ladrp("frame_island", fi, 'x', 3, 0.7, 0, 0);
     check_ladrp("frame_island", fi, 'z', 2, 0.5, 67.5, 67.5);
@@ -297,28 +285,8 @@ int main(void)
     {
         lam_mesh mesh;
         lam_mesh_init(&mesh);
-        int nseg = 48, nring = 24;
-        uint32_t top, bot, *ring = malloc((size_t)(nseg * (nring - 1)) * sizeof *ring);
-        lam_mesh_add_vertex(&mesh, 0, 0, 10, &top, &err);
-        lam_mesh_add_vertex(&mesh, 0, 0, -10, &bot, &err);
-        for (int a = 1; a < nring; a++)
-            for (int b = 0; b < nseg; b++) {
-                double th = 3.14159265358979 * a / nring, ph = 2 * 3.14159265358979 * b / nseg;
-                lam_mesh_add_vertex(&mesh, 10 * sin(th) * cos(ph), 10 * sin(th) * sin(ph), 10 * cos(th),
-                                    &ring[(a - 1) * nseg + b], &err);
-            }
-        for (int b = 0; b < nseg; b++) {
-            int b1 = (b + 1) % nseg;
-            lam_mesh_add_tri(&mesh, top, ring[b], ring[b1], LAM_NO_NAME, &err);
-            lam_mesh_add_tri(&mesh, bot, ring[(nring - 2) * nseg + b1], ring[(nring - 2) * nseg + b], LAM_NO_NAME, &err);
-            for (int a = 0; a + 1 < nring - 1; a++) {
-                lam_mesh_add_tri(&mesh, ring[a * nseg + b], ring[(a + 1) * nseg + b], ring[(a + 1) * nseg + b1], LAM_NO_NAME, &err);
-                lam_mesh_add_tri(&mesh, ring[a * nseg + b], ring[(a + 1) * nseg + b1], ring[a * nseg + b1], LAM_NO_NAME, &err);
-            }
-        }
-        free(ring);
-        lam_model *sphere;
-        lam_model_from_mesh(&mesh, "sphere", "mesh", &sphere, &err);
+        add_uv_sphere(&mesh, 10, 48, 24, 0);
+        lam_model *sphere = build_model_quiet(&mesh, "sphere");
         check_ladrp("sphere", sphere, 'z', 0.7, 0.3, 0, 0);
         check_ladrp("sphere", sphere, 'y', 0.9, 0.25, 30, 0);
         lam_model_free(sphere);
@@ -347,19 +315,8 @@ int main(void)
     {
         lam_mesh mesh;
         lam_mesh_init(&mesh);
-        for (int b = 0; b < 2; b++) {
-            uint32_t v[8];
-            for (int k = 0; k < 8; k++)
-                lam_mesh_add_vertex(&mesh, (k & 1 ? 2 : 0) + 8 * b, k & 2 ? 2 : 0, k & 4 ? 2 : 0, &v[k], &err);
-            static const int q[6][4] = { { 0, 2, 3, 1 }, { 4, 5, 7, 6 }, { 0, 1, 5, 4 },
-                                         { 2, 6, 7, 3 }, { 0, 4, 6, 2 }, { 1, 3, 7, 5 } };
-            for (int f = 0; f < 6; f++) {
-                lam_mesh_add_tri(&mesh, v[q[f][0]], v[q[f][1]], v[q[f][2]], LAM_NO_NAME, &err);
-                lam_mesh_add_tri(&mesh, v[q[f][0]], v[q[f][2]], v[q[f][3]], LAM_NO_NAME, &err);
-            }
-        }
-        lam_model *two;
-        lam_model_from_mesh(&mesh, "two", "mesh", &two, &err);
+        for (int b = 0; b < 2; b++) add_box(&mesh, 8 * b, 0, 0, 8 * b + 2, 2, 2, 0, -1);
+        lam_model *two = build_model_quiet(&mesh, "two");
         lam_slice_opts_init(&so);
         so.width = 1;
         double dep[2], trav[2];

@@ -9,8 +9,8 @@
 #include "contour.h"
 #include "mesh.h"
 #include "model.h"
+#include "meshes.h"
 #include "slice.h"
-#include "tap.h"
 
 #include <stdint.h>
 #include <stdlib.h>
@@ -18,66 +18,6 @@
 #include <unistd.h>
 
 /* ---- helpers ----------------------------------------------------------------- */
-
-static const char *tests_dir(void)
-{
-    const char *t = getenv("TESTS");
-    return t && *t ? t : "tests";
-}
-
-static lam_model *load(const char *name)
-{
-    char path[1024];
-    snprintf(path, sizeof path, "%s/models/%s", tests_dir(), name);
-    lam_error err;
-    lam_error_clear(&err);
-    lam_model *m = NULL;
-    int rc = lam_model_load(path, &m, &err);
-    ok(rc == LAM_OK && m, "load %s", name);
-    if (rc) diag("%s: %s", path, err.msg);
-    return rc ? NULL : m;
-}
-
-static lam_model *build(lam_mesh *mesh, const char *name)
-{
-    lam_error err;
-    lam_error_clear(&err);
-    lam_model *m = NULL;
-    int rc = lam_model_from_mesh(mesh, name, "mesh", &m, &err);
-    ok(rc == LAM_OK && m, "build %s", name);
-    if (rc) diag("%s: %s", name, err.msg);
-    return rc ? NULL : m;
-}
-
-static uint32_t vtx(lam_mesh *m, double x, double y, double z)
-{
-    uint32_t i = 0;
-    lam_error err;
-    if (lam_mesh_add_vertex(m, x, y, z, &i, &err)) diag("add_vertex: %s", err.msg);
-    return i;
-}
-
-static void tri(lam_mesh *m, uint32_t a, uint32_t b, uint32_t c)
-{
-    lam_error err;
-    if (lam_mesh_add_tri(m, a, b, c, LAM_NO_NAME, &err)) diag("add_tri: %s", err.msg);
-}
-
-/* Axis-aligned box, quads wound outward; face skip (0..5: -z +z -y +y -x +x)
- * is left out (-1 keeps all six). */
-static void add_box(lam_mesh *m, double xa, double ya, double za, double xb, double yb, double zb,
-                    int skip)
-{
-    uint32_t v[8];
-    for (int i = 0; i < 8; i++) v[i] = vtx(m, i & 1 ? xb : xa, i & 2 ? yb : ya, i & 4 ? zb : za);
-    static const int q[6][4] = { { 0, 2, 3, 1 }, { 4, 5, 7, 6 }, { 0, 1, 5, 4 },
-                                 { 2, 6, 7, 3 }, { 0, 4, 6, 2 }, { 1, 3, 7, 5 } };
-    for (int f = 0; f < 6; f++) {
-        if (f == skip) continue;
-        tri(m, v[q[f][0]], v[q[f][1]], v[q[f][2]]);
-        tri(m, v[q[f][0]], v[q[f][2]], v[q[f][3]]);
-    }
-}
 
 static lam_model *octahedron(void)
 {
@@ -89,50 +29,7 @@ static lam_model *octahedron(void)
         tri(&m, e[i], e[(i + 1) % 4], top);
         tri(&m, e[(i + 1) % 4], e[i], bot);
     }
-    return build(&m, "octahedron");
-}
-
-/* Deterministic pseudo-random bits (no libc rand: same on every platform). */
-static uint32_t lcg(uint32_t *s)
-{
-    *s = *s * 1664525u + 1013904223u;
-    return *s >> 16;
-}
-
-/* UV sphere: poles plus rings-1 rings of seg points; quads split in two.
- * seed 0 winds every triangle outward, otherwise each triangle is flipped
- * at random. */
-static lam_model *uv_sphere(double r, int seg, int rings, uint32_t seed)
-{
-    lam_mesh m;
-    lam_mesh_init(&m);
-    const double pi = acos(-1.0);
-    uint32_t north = vtx(&m, 0, 0, r);
-    uint32_t first = north + 1;
-    for (int j = 1; j < rings; j++) {
-        double th = pi * j / rings;
-        for (int i = 0; i < seg; i++) {
-            double ph = 2 * pi * i / seg;
-            vtx(&m, r * sin(th) * cos(ph), r * sin(th) * sin(ph), r * cos(th));
-        }
-    }
-    uint32_t south = vtx(&m, 0, 0, -r);
-#define RV(j, i) (first + (uint32_t)(((j) - 1) * seg + ((i) % seg)))
-    uint32_t s = seed;
-#define TRI(a, b, c) do { if (seed && (lcg(&s) & 1)) tri(&m, a, c, b); else tri(&m, a, b, c); } while (0)
-    for (int i = 0; i < seg; i++) TRI(north, RV(1, i), RV(1, i + 1));
-    for (int j = 1; j + 1 < rings; j++)
-        for (int i = 0; i < seg; i++) {
-            uint32_t a = RV(j, i), b = RV(j, i + 1), c = RV(j + 1, i + 1), d = RV(j + 1, i);
-            TRI(a, d, c);
-            TRI(a, c, b);
-        }
-    for (int i = 0; i < seg; i++) TRI(RV(rings - 1, i + 1), RV(rings - 1, i), south);
-#undef TRI
-#undef RV
-    char name[64];
-    snprintf(name, sizeof name, "sphere %dx%d seed %u", seg, rings, (unsigned)seed);
-    return build(&m, name);
+    return build_model(&m, "octahedron");
 }
 
 /* A copy of model's mesh with every vertex's coordinates permuted:
@@ -149,7 +46,7 @@ static lam_model *permuted(const lam_model *src, const int perm[3], const char *
         const uint32_t *tv = src->mesh.tris + 3 * t;
         tri(&m, tv[0], tv[1], tv[2]);
     }
-    return build(&m, name);
+    return build_model(&m, name);
 }
 
 /* ---- runs and the invariants every layer must keep --------------------------- */
@@ -626,7 +523,7 @@ static void test_vertex_planes(void)
 {
     static const double square[8] = { -1, -1, 1, -1, 1, 1, -1, 1 };
     double p3[3] = { -1, 0, 1 };
-    lam_model *cube = load("thesis_cube.ug");
+    lam_model *cube = load_model("thesis_cube.ug");
     if (cube) {
         run r = slice_planes(cube, p3, 3, LAM_CUT_FLOOR, "cube planes -1 0 1 floor");
         if (r.n == 2) {
@@ -722,7 +619,7 @@ static void test_vertex_planes(void)
     /* A step: 4x4x1 box with a 2x2x1 box on top, one closed solid whose
      * ledge at z = 1 is a face with a hole. At z = 1 the floor (and middle)
      * cut sees the small square above, the ceiling cut the big one below. */
-    lam_model *step = load("slice/step.ug");
+    lam_model *step = load_model("slice/step.ug");
     if (!step) return;
     is_num(step->stats.volume, 20, 1e-12, "step: volume 16 + 4");
     static const double big[8] = { -2, -2, 2, -2, 2, 2, -2, 2 };
@@ -798,8 +695,8 @@ static double brute_section(const lam_model *m, double c, int *through)
 
 static void test_sphere(void)
 {
-    lam_model *sph = uv_sphere(10, 64, 32, 0);
-    lam_model *rnd = uv_sphere(10, 64, 32, 12345);
+    lam_model *sph = uv_sphere(10, 64, 32, 0, NULL);
+    lam_model *rnd = uv_sphere(10, 64, 32, 12345, NULL);
     if (!sph || !rnd) goto out;
     const double pi = acos(-1.0);
     ok(sph->stats.volume > 0 && fabs(sph->stats.volume - 4 * pi * 1000 / 3) < 0.01 * 4 * pi * 1000 / 3,
@@ -918,8 +815,8 @@ static void test_open(void)
 {
     lam_mesh me;
     lam_mesh_init(&me);
-    add_box(&me, -1, -1, -1, 1, 1, 1, 5); /* no x = +1 face */
-    lam_model *m = build(&me, "open cube");
+    add_box(&me, -1, -1, -1, 1, 1, 1, 0, 5); /* no x = +1 face */
+    lam_model *m = build_model(&me, "open cube");
     if (!m) return;
     is_int(m->stats.boundary_edges, 4, "open cube: 4 boundary edges");
     static const double square[8] = { -1, -1, 1, -1, 1, 1, -1, 1 };
@@ -983,9 +880,9 @@ static void test_shells(void)
     /* AABB: two disjoint cubes side by side, the same v range */
     lam_mesh me;
     lam_mesh_init(&me);
-    add_box(&me, -3, -1, -1, -1, 1, 1, -1);
-    add_box(&me, 1, -1, -1, 3, 1, 1, -1);
-    lam_model *m = build(&me, "two cubes");
+    add_box(&me, -3, -1, -1, -1, 1, 1, 0, -1);
+    add_box(&me, 1, -1, -1, 3, 1, 1, 0, -1);
+    lam_model *m = build_model(&me, "two cubes");
     if (m) {
         is_int(m->stats.shells, 2, "two cubes: 2 shells");
         lam_slice_opts o = opts_axis('z', LAM_CUT_MIDDLE, 0.5);
@@ -1016,10 +913,10 @@ static void test_shells(void)
      * all wound outward in the input, the model turns the cavity inward */
     for (int depth = 2; depth <= 3; depth++) {
         lam_mesh_init(&me);
-        for (int k = 0; k < depth; k++) add_box(&me, -3 + k, -3 + k, -3 + k, 3 - k, 3 - k, 3 - k, -1);
+        for (int k = 0; k < depth; k++) add_box(&me, -3 + k, -3 + k, -3 + k, 3 - k, 3 - k, 3 - k, 0, -1);
         char name[64];
         snprintf(name, sizeof name, "%d nested cubes", depth);
-        m = build(&me, name);
+        m = build_model(&me, name);
         if (!m) continue;
         double want_vol = depth == 2 ? 216 - 64 : 216 - 64 + 8;
         is_num(m->stats.volume, want_vol, 1e-9, "%s: volume %g", name, want_vol);
@@ -1058,8 +955,8 @@ static void test_shells(void)
  * cube, all above it, and sphere planes starting below it and ending above. */
 static void test_outside(void)
 {
-    lam_model *cube = load("thesis_cube.ug");
-    lam_model *sph = uv_sphere(10, 16, 8, 0);
+    lam_model *cube = load_model("thesis_cube.ug");
+    lam_model *sph = uv_sphere(10, 16, 8, 0, NULL);
     double below[2] = { -3, -2 }, above[2] = { 2, 3 }, through[5] = { -10.5, -10.25, 0.1, 10.25, 10.5 };
     for (int which = 0; which < 3; which++) {
         const lam_model *m = which < 2 ? cube : sph;
@@ -1177,7 +1074,7 @@ static void test_options(const lam_model *m)
     ok(fx.u[2] == 1 && fx.v[0] == 1 && fx.w[1] == 1, "axis y frame is (u, v, w) = (z, x, y)");
 
     /* a general direction: (1, 1, 1) through the cube [-1,1]^3 */
-    lam_model *cube = load("thesis_cube.ug");
+    lam_model *cube = load_model("thesis_cube.ug");
     if (!cube) return;
     double d[3] = { 1, 1, 1 };
     o = opts_axis('z', LAM_CUT_MIDDLE, 0);
@@ -1236,7 +1133,7 @@ static void test_options(const lam_model *m)
 
 static void group_cube_hole(void)
 {
-    lam_model *ch = load("thesis_cube_hole.ug");
+    lam_model *ch = load_model("thesis_cube_hole.ug");
     if (!ch) return;
     test_cube_hole(ch);
     static const double w1[4] = { 0.3, 0.5, 0.5, 0.5 };
@@ -1254,7 +1151,7 @@ static void group_cube_hole(void)
 
 static void group_frame_island(void)
 {
-    lam_model *fi = load("frame_island.ug");
+    lam_model *fi = load_model("frame_island.ug");
     if (!fi) return;
     test_frame_island(fi);
     static const double w2[3] = { 2.5, 3, 2.5 };
@@ -1265,7 +1162,7 @@ static void group_frame_island(void)
 
 static void group_options(void)
 {
-    lam_model *ch = load("thesis_cube_hole.ug");
+    lam_model *ch = load_model("thesis_cube_hole.ug");
     if (!ch) return;
     test_options(ch);
     lam_model_free(ch);

@@ -12,74 +12,14 @@
 #include "contour.h"
 #include "mesh.h"
 #include "model.h"
+#include "meshes.h"
 #include "slice.h"
-#include "tap.h"
 #include "validate.h"
 
 #include <stdint.h>
 #include <stdlib.h>
 
 /* ---- helpers ----------------------------------------------------------------- */
-
-static const char *tests_dir(void)
-{
-    const char *t = getenv("TESTS");
-    return t && *t ? t : "tests";
-}
-
-static lam_model *load(const char *name)
-{
-    char path[1024];
-    snprintf(path, sizeof path, "%s/models/%s", tests_dir(), name);
-    lam_error err;
-    lam_error_clear(&err);
-    lam_model *m = NULL;
-    int rc = lam_model_load(path, &m, &err);
-    ok(rc == LAM_OK && m, "load %s", name);
-    if (rc) diag("%s: %s", path, err.msg);
-    return rc ? NULL : m;
-}
-
-static lam_model *build(lam_mesh *mesh, const char *name)
-{
-    lam_error err;
-    lam_error_clear(&err);
-    lam_model *m = NULL;
-    int rc = lam_model_from_mesh(mesh, name, "mesh", &m, &err);
-    ok(rc == LAM_OK && m, "build %s", name);
-    if (rc) diag("%s: %s", name, err.msg);
-    return rc ? NULL : m;
-}
-
-static uint32_t vtx(lam_mesh *m, double x, double y, double z)
-{
-    uint32_t i = 0;
-    lam_error err;
-    if (lam_mesh_add_vertex(m, x, y, z, &i, &err)) diag("add_vertex: %s", err.msg);
-    return i;
-}
-
-static void tri(lam_mesh *m, uint32_t a, uint32_t b, uint32_t c)
-{
-    lam_error err;
-    if (lam_mesh_add_tri(m, a, b, c, LAM_NO_NAME, &err)) diag("add_tri: %s", err.msg);
-}
-
-/* Corner i of a box: bit 0 x, bit 1 y, bit 2 z. */
-static const int QUADS[6][4] = { { 0, 2, 3, 1 }, { 4, 5, 7, 6 }, { 0, 1, 5, 4 },
-                                 { 2, 6, 7, 3 }, { 0, 4, 6, 2 }, { 1, 3, 7, 5 } };
-
-/* Axis-aligned box with its own eight vertices (a separate shell), quads
- * wound outward and split along their corner 0 - corner 2 diagonal. */
-static void add_box(lam_mesh *m, double xa, double ya, double za, double xb, double yb, double zb)
-{
-    uint32_t v[8];
-    for (int i = 0; i < 8; i++) v[i] = vtx(m, i & 1 ? xb : xa, i & 2 ? yb : ya, i & 4 ? zb : za);
-    for (int f = 0; f < 6; f++) {
-        tri(m, v[QUADS[f][0]], v[QUADS[f][1]], v[QUADS[f][2]]);
-        tri(m, v[QUADS[f][0]], v[QUADS[f][2]], v[QUADS[f][3]]);
-    }
-}
 
 static lam_validator *validator(const lam_model *m, const char *what)
 {
@@ -292,8 +232,8 @@ static void rays_through_features(lam_validator *v)
     for (int f = 0; f < 6; f++) { /* the diagonal every face is split along */
         double a[3], b[3];
         for (int k = 0; k < 3; k++) {
-            a[k] = (QUADS[f][0] >> k) & 1;
-            b[k] = (QUADS[f][2] >> k) & 1;
+            a[k] = (BOX_QUADS[f][0] >> k) & 1;
+            b[k] = (BOX_QUADS[f][2] >> k) & 1;
         }
         for (int k = 0; k < 3; k++) feat[nf][k] = a[k] + 0.5 * (b[k] - a[k]); /* face centre */
         nf++;
@@ -333,8 +273,8 @@ static void test_unit_cube(void)
 {
     lam_mesh mesh;
     lam_mesh_init(&mesh);
-    add_box(&mesh, 0, 0, 0, 1, 1, 1);
-    lam_model *m = build(&mesh, "unit cube");
+    add_box(&mesh, 0, 0, 0, 1, 1, 1, 0, -1);
+    lam_model *m = build_model(&mesh, "unit cube");
     lam_validator *v = validator(m, "unit cube");
     /* +1 inside proves the sign convention end to end: each crossing must
      * agree with Embree's Ng = (v1 - v0) x (v2 - v0), or every ray would be
@@ -387,7 +327,7 @@ static void test_unit_cube(void)
 
 static void test_thesis_models(void)
 {
-    lam_model *m = load("thesis_cube_hole.ug");
+    lam_model *m = load_model("thesis_cube_hole.ug");
     lam_validator *v = validator(m, "thesis_cube_hole.ug");
     static const pt H[] = {
         { { 0, 0, 1 }, 0, "in the hole" },
@@ -460,7 +400,7 @@ static void test_thesis_models(void)
     lam_validator_free(v);
     lam_model_free(m);
 
-    m = load("frame_island.ug");
+    m = load_model("frame_island.ug");
     v = validator(m, "frame_island.ug");
     static const pt F[] = {
         { { 0, 0, 0 }, 1, "in the island" },
@@ -478,7 +418,7 @@ static void test_thesis_models(void)
     lam_validator_free(v);
     lam_model_free(m);
 
-    m = load("thesis_cube.ug");
+    m = load_model("thesis_cube.ug");
     v = validator(m, "thesis_cube.ug");
     static const double wc[] = { 1, 0.5, 0.3 };
     all_layers_confirmed(m, v, wc, 3, 0, "thesis_cube");
@@ -493,9 +433,9 @@ static void test_cavity_and_thin_wall(void)
 {
     lam_mesh mesh;
     lam_mesh_init(&mesh);
-    add_box(&mesh, 0, 0, 0, 4, 4, 4);
-    add_box(&mesh, 1, 1, 1, 3, 3, 3);
-    lam_model *m = build(&mesh, "box with a cavity");
+    add_box(&mesh, 0, 0, 0, 4, 4, 4, 0, -1);
+    add_box(&mesh, 1, 1, 1, 3, 3, 3, 0, -1);
+    lam_model *m = build_model(&mesh, "box with a cavity");
     lam_validator *v = validator(m, "box with a cavity");
     static const pt C[] = {
         { { 2, 2, 2 }, 0, "in the cavity" },
@@ -519,9 +459,9 @@ static void test_cavity_and_thin_wall(void)
         in[i] = vtx(&mesh, i & 1 ? 9.99 : 0.01, i & 2 ? 9.99 : 0.01, i & 4 ? 10 : 0);
     }
     /* side faces of the outer box (outward) and the inner one (inward):
-     * QUADS 2..5 are the sides */
+     * BOX_QUADS 2..5 are the sides */
     for (int f = 2; f < 6; f++) {
-        const int *q = QUADS[f];
+        const int *q = BOX_QUADS[f];
         tri(&mesh, o[q[0]], o[q[1]], o[q[2]]);
         tri(&mesh, o[q[0]], o[q[2]], o[q[3]]);
         tri(&mesh, in[q[0]], in[q[2]], in[q[1]]);
@@ -540,7 +480,7 @@ static void test_cavity_and_thin_wall(void)
                 tri(&mesh, o[a], in[a], in[b]);
             }
         }
-    m = build(&mesh, "thin-walled tube");
+    m = build_model(&mesh, "thin-walled tube");
     v = validator(m, "thin-walled tube");
     static const pt T[] = {
         { { 0.005, 5, 5 }, 1, "in the wall" },
@@ -558,7 +498,7 @@ static void test_cavity_and_thin_wall(void)
  * from the fixture validate/overlap_cubes.ug. */
 static void test_overlap(void)
 {
-    lam_model *fm = load("validate/overlap_cubes.ug");
+    lam_model *fm = load_model("validate/overlap_cubes.ug");
     lam_validator *fv = validator(fm, "validate/overlap_cubes.ug");
     if (fm) is_int(fm->nshells, 2, "overlap_cubes.ug: two shells");
     is_int(wind(fv, 1.5, 1.5, 1.5), 2, "overlap_cubes.ug: winding 2 where the cubes overlap");
@@ -568,9 +508,9 @@ static void test_overlap(void)
 
     lam_mesh mesh;
     lam_mesh_init(&mesh);
-    add_box(&mesh, 0, 0, 0, 2, 2, 2);
-    add_box(&mesh, 1, 1, 1, 3, 3, 3);
-    lam_model *m = build(&mesh, "overlapping cubes");
+    add_box(&mesh, 0, 0, 0, 2, 2, 2, 0, -1);
+    add_box(&mesh, 1, 1, 1, 3, 3, 3, 0, -1);
+    lam_model *m = build_model(&mesh, "overlapping cubes");
     lam_validator *v = validator(m, "overlapping cubes");
     static const pt P[] = {
         { { 1.5, 1.5, 1.5 }, 2, "where they overlap" },
@@ -683,35 +623,6 @@ static void test_overlap(void)
     lam_model_free(m);
 }
 
-/* UV sphere: poles plus rings-1 rings of seg points; quads split in two. */
-static lam_model *uv_sphere(double r, int seg, int rings)
-{
-    lam_mesh m;
-    lam_mesh_init(&m);
-    const double pi = acos(-1.0);
-    uint32_t north = vtx(&m, 0, 0, r);
-    uint32_t first = north + 1;
-    for (int j = 1; j < rings; j++) {
-        double th = pi * j / rings;
-        for (int i = 0; i < seg; i++) {
-            double ph = 2 * pi * i / seg;
-            vtx(&m, r * sin(th) * cos(ph), r * sin(th) * sin(ph), r * cos(th));
-        }
-    }
-    uint32_t south = vtx(&m, 0, 0, -r);
-#define RV(j, i) (first + (uint32_t)(((j) - 1) * seg + ((i) % seg)))
-    for (int i = 0; i < seg; i++) tri(&m, north, RV(1, i), RV(1, i + 1));
-    for (int j = 1; j + 1 < rings; j++)
-        for (int i = 0; i < seg; i++) {
-            uint32_t a = RV(j, i), b = RV(j, i + 1), c = RV(j + 1, i + 1), d = RV(j + 1, i);
-            tri(&m, a, d, c);
-            tri(&m, a, c, b);
-        }
-    for (int i = 0; i < seg; i++) tri(&m, RV(rings - 1, i + 1), RV(rings - 1, i), south);
-#undef RV
-    return build(&m, "uv sphere");
-}
-
 /* A tessellated sphere: random points against the geometry (inside the
  * inscribed sphere of the polyhedron: 1; outside the circumscribed one: 0),
  * and every layer along x, y and z, shallow facets near the poles included. */
@@ -719,7 +630,7 @@ static void test_sphere(void)
 {
     const double pi = acos(-1.0);
     int seg = 48, rings = 24;
-    lam_model *m = uv_sphere(10, seg, rings);
+    lam_model *m = uv_sphere(10, seg, rings, 0, "uv sphere");
     lam_validator *v = validator(m, "uv sphere");
     if (!m || !v) {
         lam_validator_free(v);
@@ -732,12 +643,7 @@ static void test_sphere(void)
     size_t tested = 0, wrong = 0;
     for (int i = 0; i < 2000; i++) {
         double p[3];
-        for (int k = 0; k < 3; k++) {
-            st ^= st << 13;
-            st ^= st >> 7;
-            st ^= st << 17;
-            p[k] = -12 + 24 * (double)(st >> 11) / 9007199254740992.0;
-        }
+        for (int k = 0; k < 3; k++) p[k] = -12 + 24 * (double)(xorshift64(&st) >> 11) / 9007199254740992.0;
         double r = sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
         int want = r < rin - 1e-3 ? 1 : r > 10 + 1e-3 ? 0 : -1;
         if (want < 0) continue;

@@ -1,10 +1,7 @@
-/* Helpers shared by the importer unit tests. All static inline, so a test
- * program that includes this pays nothing for the helpers it does not use
- * (and -Wunused-function stays quiet). It includes tap.h itself.
- *
- * Note: the Makefile's rule for build/tests/%.t names tap.h but not this
- * file, so after editing only util.h, touch the test sources (or make clean)
- * to rebuild the tests. */
+/* Helpers shared by the unit tests (the importers' above all; meshes.h has
+ * the model builders). All static inline, so a test program that includes
+ * this pays nothing for the helpers it does not use (and -Wunused-function
+ * stays quiet). It includes tap.h itself. */
 #ifndef LAM_TEST_UTIL_H
 #define LAM_TEST_UTIL_H
 
