@@ -105,17 +105,15 @@ RUN_PART := recipes/parts/thesis_cube_hole.ug
 run: deps
 	@$(MAKE) --no-print-directory all
 	@mkdir -p out
+	$(LAMINA) run recipes/default.lua --out out $(RUN_PART)
 	@$(LAMINA) info $(RUN_PART) > out/thesis_cube_hole.info.txt
-	$(LAMINA) slice $(RUN_PART) -m creol-ladrp -o out/thesis_cube_hole.ladrp
-	$(LAMINA) slice $(RUN_PART) -m sls-contours -w 0.25 --cut floor -o out/thesis_cube_hole.sls --svg out/thesis_cube_hole.svg
-	$(LAMINA) validate $(RUN_PART) -w 0.25 --cut floor > out/thesis_cube_hole.validate.txt
-	@echo
+	@$(LAMINA) validate $(RUN_PART) -w 0.25 --cut floor > out/thesis_cube_hole.validate.txt
 	@tail -n 1 out/thesis_cube_hole.validate.txt
 	@echo "lamina: outputs in $(abspath out)/:"
-	@echo "  thesis_cube_hole.info.txt      model report (lamina info)"
 	@echo "  thesis_cube_hole.ladrp         LADRP program for the thesis's CREOL cell"
 	@echo "  thesis_cube_hole.sls           SLS contour program (thesis dialect)"
 	@echo "  thesis_cube_hole.svg           contact sheet of the SLS layers"
+	@echo "  thesis_cube_hole.info.txt      model report (lamina info)"
 	@echo "  thesis_cube_hole.validate.txt  Embree check of every solid/hole label"
 
 # Tests: C unit tests are compiled to TAP programs; tests/cli/*.t are shell
@@ -160,6 +158,9 @@ install: all
 	install -d $(DESTDIR)$(PREFIX)/share/lamina/lua/lamina $(DESTDIR)$(PREFIX)/lib/lua/5.4
 	$(if $(wildcard lua/lamina/*.lua),install -m 644 lua/lamina/*.lua $(DESTDIR)$(PREFIX)/share/lamina/lua/lamina/)
 	install -m 755 $(LUAMOD) $(DESTDIR)$(PREFIX)/lib/lua/5.4/lamina.so
+	install -d $(DESTDIR)$(PREFIX)/share/lamina/recipes/parts
+	install -m 644 recipes/*.lua recipes/README.md $(DESTDIR)$(PREFIX)/share/lamina/recipes/
+	install -m 644 recipes/parts/* $(DESTDIR)$(PREFIX)/share/lamina/recipes/parts/
 
 clean:
 	rm -rf build build-san build-bench build-fuzz out $(PLUGIN_SO)

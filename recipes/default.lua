@@ -1,0 +1,47 @@
+-- default.lua: the default job, programs and a preview of one part.
+--
+--   lamina run recipes/default.lua [--out DIR] [--sls-width W] [MODEL]
+--
+-- Slices MODEL (recipes/parts/thesis_cube_hole.ug) along z twice: with the
+-- LADRP profile creol-ladrp (its layer width and cut) and with the SLS
+-- profile sls-contours (layers --sls-width wide, 0.25, floor cut). Writes
+-- into --out (out/, created if missing), named after the model:
+--   NAME.ladrp   the LADRP program
+--   NAME.sls     the SLS program
+--   NAME.svg     a contact sheet of the SLS layers (lamina.svg)
+-- and prints the layers, contours, program sizes and paths.
+local args = require "lamina.args"
+local svg = require "lamina.svg"
+
+local o, fail = args.parse(arg, {
+  usage = "lamina run recipes/default.lua [--out DIR] [--sls-width W] [MODEL]",
+  options = { out = "out", sls_width = 0.25,
+              model = args.beside(arg, "parts/thesis_cube_hole.ug") },
+  positive = { "sls_width" },
+  positional = { "model" },
+})
+local model, err = lamina.load(o.model)
+if not model then fail("%s", err) end
+local name = o.model:match("([^/]+)$"):gsub("%.[^.]*$", "")
+os.execute(("mkdir -p '%s'"):format((o.out:gsub("'", "'\\''"))))
+
+print(("%s: %d triangles, %d shells, volume %.6g"):format(
+  o.model, #model, model.shells, model.volume))
+local function job(profile, slicing, ext)
+  local machine = assert(lamina.machine(profile))
+  slicing.machine = machine
+  local layers = assert(model:slice(slicing))
+  local plan = assert(machine:plan(layers))
+  local path = ("%s/%s.%s"):format(o.out, name, ext)
+  assert(plan:write(path))
+  local contours = 0
+  for _, l in ipairs(layers) do contours = contours + #l end
+  print(("%-12s %4d layers  %5d contours  %7d lines  %8d bytes  %s"):format(
+    profile, #layers, contours, plan.lines, plan.bytes, path))
+  return layers
+end
+job("creol-ladrp", {}, "ladrp")
+local sls = job("sls-contours", { width = o.sls_width, cut = "floor" }, "sls")
+local sheet = ("%s/%s.svg"):format(o.out, name)
+assert(svg.contact_sheet(sls, sheet, { title = "lamina: " .. o.model }))
+print(("%-12s %4d layers  %s"):format("preview", #sls, sheet))

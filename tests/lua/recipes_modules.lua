@@ -1,0 +1,138 @@
+-- The Lua-side library modules the recipes share (lua/lamina/*.lua):
+-- lamina.args, lamina.axes, lamina.adaptive, lamina.svg, on hand-made
+-- facets whose answers follow by reasoning and on small models.
+local T = dofile(os.getenv("TESTS") .. "/lua/tap.lua")
+local lamina, M = T.lamina, T.M
+local args = require "lamina.args"
+local axes = require "lamina.axes"
+local adaptive = require "lamina.adaptive"
+local svg = require "lamina.svg"
+
+-- lamina.args ------------------------------------------------------------------
+local spec = {
+  usage = "r.lua [--cusp H] [--list] [MODEL]",
+  options = { cusp = 0.05, list = false, axis = "z", w_stair = 1, model = "m.ug" },
+  positive = { "cusp" },
+  positional = { "model" },
+}
+local o = args.parse({ [0] = "some/dir/r.lua", "--cusp", "0.1", "--list", "--w-stair=2", "a.stl" }, spec)
+T.ok(o.cusp == 0.1 and o.list == true and o.w_stair == 2 and o.model == "a.stl" and o.axis == "z",
+     "args: values, a flag, --name=value, a dash as underscore, a positional")
+o = args.parse({ [0] = "r.lua" }, spec)
+T.ok(o.cusp == 0.05 and o.list == false and o.model == "m.ug", "args: defaults")
+o = args.parse({ [0] = "r.lua", "--", "--odd-name.stl" }, spec)
+T.is(o.model, "--odd-name.stl", "args: -- ends the options")
+local function bad(argv, msg, desc)
+  argv[0] = "dir/r.lua"
+  T.raises(msg, "args: " .. desc, args.parse, argv, spec)
+end
+bad({ "--bogus" }, "r.lua: unknown option --bogus\nusage: r.lua [--cusp H]", "unknown option, with the usage")
+bad({ "-x" }, "r.lua: unknown option -x", "unknown short option")
+bad({ "--cusp" }, "r.lua: --cusp needs a value", "missing value")
+bad({ "--cusp", "abc" }, "r.lua: --cusp expects a number, got 'abc'", "not a number")
+bad({ "--cusp", "nan" }, "--cusp expects a number, got 'nan'", "nan is not a number")
+bad({ "--cusp", "-1" }, "r.lua: --cusp must be greater than 0, got -1", "positive")
+bad({ "--list=maybe" }, "--list is a flag (true or false), got 'maybe'", "flag value")
+bad({ "a", "b" }, "r.lua: unexpected argument 'b'", "too many positionals")
+local _, fail = args.parse({ [0] = "r.lua" }, spec)
+T.raises("r.lua: min 2 > max 1\nusage: r.lua", "args: fail() for the recipe's own checks", fail, "min %g > max %g", 2, 1)
+T.is(args.beside({ [0] = "recipes/x.lua" }, "parts/a.ug"), "recipes/parts/a.ug", "args.beside")
+T.is(args.beside({ [0] = "x.lua" }, "parts/a.ug"), "parts/a.ug", "args.beside in the current directory")
+
+-- lamina.axes ------------------------------------------------------------------
+local z = axes.parse("z")
+T.ok(z.slice == "z" and z.dir[3] == 1, "axes.parse z slices along the named axis")
+local nz = axes.parse("-z")
+T.ok(type(nz.slice) == "table" and nz.dir[3] == -1, "axes.parse -z is the direction (0, 0, -1)")
+local d = axes.parse("1,1,1")
+T.near(d.dir[1], 1 / math.sqrt(3), "axes.parse 1,1,1 is a unit vector")
+T.fails("axis must be x, y, z", "axes.parse rejects a word", axes.parse, "up")
+T.fails("not zero", "axes.parse rejects the zero direction", axes.parse, "0,0,0")
+T.is(#axes.candidates(false), 3, "three candidates")
+T.is(#axes.candidates(true), 10, "ten with more")
+
+local cube = assert(lamina.load(M .. "thesis_cube_hole.ug"))
+local f = axes.facets(cube, z)
+T.ok(#f == 24 and f.lo == 0 and f.hi == 2, "facets: one per triangle, the span along the axis")
+local flat, wall = 0, 0
+for _, t in ipairs(f) do
+  if t.k == 1 then flat = flat + 1 elseif t.k == 0 then wall = wall + 1 end
+end
+T.ok(flat == 8 and wall == 16, "facets: |n.z| is 1 on the tops and bottoms, 0 on the walls")
+
+local plate = assert(lamina.load(M .. "recipes/plate.ug"))
+local mz = axes.measures(axes.facets(plate, z), 0.1)
+local mx = axes.measures(axes.facets(plate, axes.parse("x")), 0.1)
+T.ok(mz.height == 1 and mz.layers == 10 and mz.stair == 0 and mz.overhang == 0,
+     "measures: the plate along z is 1 high, 10 layers, no stairs, no overhang")
+T.ok(mx.height == 10 and mx.layers == 100 and mx.overhang == 0, "measures: along x 10 high, 100 layers")
+local tee = assert(lamina.load(M .. "recipes/tee.ug"))
+T.near(axes.measures(axes.facets(tee, z), 0.1).overhang, 96, "measures: the T's underside overhangs along z")
+T.near(axes.measures(axes.facets(tee, axes.parse("x")), 0.1).overhang, 16, "measures: the stem's side along x")
+T.near(axes.measures(axes.facets(tee, nz), 0.1).overhang, 0, "measures: nothing upside down")
+-- a 45-degree roof: sloped facets count in the stair error, area * k * w / 2
+local function facet(lo, hi, k, area) return { lo = lo, hi = hi, k = k, d = k, area = area or 1 } end
+local roof = { facet(0, 1, math.sqrt(0.5), 2), lo = 0, hi = 1 }
+T.near(axes.measures(roof, 0.2).stair, 2 * math.sqrt(0.5) * 0.1, "measures: stair error of a slope")
+
+-- lamina.adaptive ----------------------------------------------------------------
+local function near_all(got, want, desc)
+  local same = #got == #want
+  for i = 1, #want do same = same and math.abs(got[i] - want[i]) < 1e-9 end
+  T.ok(same, desc, table.concat(got, " "))
+end
+local ws = adaptive.cusp_widths({ facet(0, 10, 0.5), lo = 0, hi = 10 }, { cusp = 0.1, min = 0.01, max = 1 })
+local all = #ws == 50
+for _, w in ipairs(ws) do all = all and math.abs(w - 0.2) < 1e-9 end
+T.ok(all, "cusp_widths: a slope with |n.a| = 0.5 and cusp 0.1 gets 50 layers of 0.2")
+
+-- a gentle slope (limit 1) with a steep band 2.5..3 (limit 0.1): the layer
+-- below stops under the band instead of crossing it
+local fs = { facet(0, 10, 0.1), facet(2.5, 3, 1), lo = 0, hi = 10 }
+ws = adaptive.cusp_widths(fs, { cusp = 0.1, min = 0.01, max = 1 })
+near_all(ws, { 1, 1, 0.5, 0.1, 0.1, 0.1, 0.1, 0.1, 1, 1, 1, 1, 1, 1, 1 },
+         "cusp_widths: stops under a steeper band, narrow across it, wide again above")
+local planes = adaptive.planes(0, ws)
+T.ok(#planes == 16 and planes[1] == 0 and math.abs(planes[16] - 10) < 1e-9, "planes: from the floor to the top")
+T.near(adaptive.worst_cusp(fs, planes), 0.1, "worst_cusp: the cusp limit holds")
+local uniform = {}
+for i = 0, 10 do uniform[i + 1] = i end
+local worst, at = adaptive.worst_cusp(fs, uniform)
+T.ok(math.abs(worst - 1) < 1e-9 and at == fs[2], "worst_cusp: a unit layer across the steep band")
+T.is(adaptive.worst_cusp({ facet(1, 1, 1), lo = 0, hi = 2 }, { 0, 1, 2 }), 0,
+     "worst_cusp: a flat face on a boundary crosses no layer")
+T.near(adaptive.worst_cusp({ facet(1, 1, 1), lo = 0, hi = 2 }, { 0, 0.5, 1.5, 2 }), 1,
+       "worst_cusp: a flat face inside a layer of 1")
+ws = adaptive.cusp_widths({ facet(0, 1, 1), lo = 0, hi = 1 }, { cusp = 0.001, min = 0.1, max = 0.5 })
+T.ok(#ws == 10 and math.abs(ws[1] - 0.1) < 1e-12, "cusp_widths: never narrower than min")
+ws = adaptive.cusp_widths({ facet(0, 1, 0), lo = 0, hi = 1.2 }, { cusp = 0.1, min = 0.5, max = 1 })
+T.ok(#ws == 2 and ws[1] == 1 and ws[2] == 0.5, "cusp_widths: walls do not limit; the last layer is min wide")
+
+local u = adaptive.uniform({ facet(0, 10, 0.5), facet(2, 3, 0.8), lo = 0, hi = 10 }, 0.08, 1)
+T.ok(math.abs(u.width - 0.1) < 1e-12 and u.layers == 100 and math.abs(u.worst - 0.08) < 1e-9,
+     "uniform: the width that gives the steepest facet the cusp")
+u = adaptive.uniform({ facet(0, 0, 1), facet(0, 2, 0), lo = 0, hi = 2 }, 0, 0.5)
+T.ok(u.width == 0.5 and u.layers == 4 and u.worst == 0, "uniform: max wide without sloped facets")
+
+local terrace = { facet(0, 0, 1), facet(1, 1, 1), facet(1.05, 1.05, 1), facet(2.5, 2.5, 1),
+                  facet(0, 1, 0), lo = 0, hi = 2.5 }
+near_all(adaptive.flat_heights(terrace), { 0, 1, 1.05, 2.5 }, "flat_heights")
+local ap, short = adaptive.aligned_planes(terrace, 0.1, 0.5)
+near_all(ap, { 0, 0.5, 1, 1.05, 1.05 + 1.45 / 3, 1.05 + 2.9 / 3, 2.5 },
+         "aligned_planes: flat heights kept, equal layers of at most max between")
+T.ok(#short == 1 and short[1][1] == 1 and short[1][2] == 1.05, "aligned_planes: names the interval under min")
+
+-- lamina.svg -----------------------------------------------------------------
+local layers = cube:slice{ width = 0.5 }
+local text = svg.contact_sheet(layers)
+local _, paths = text:gsub("<path ", "")
+T.ok(text:match("^<%?xml") and paths == 4 and text:find('fill-rule="evenodd"', 1, true),
+     "svg: one evenodd path per layer")
+T.ok(text:find("(4 layers)", 1, true) and text:find("layer 4  h=1.75  (2 contours)", 1, true), "svg: title and labels")
+text = svg.contact_sheet(cube:slice{ width = 0.01 }, nil, { max_panels = 10, title = "a<b" })
+_, paths = text:gsub("<path ", "")
+T.ok(paths == 10 and text:find("a&lt;b (10 of 200 layers shown, evenly chosen)", 1, true)
+     and text:find("layer 200 ", 1, true), "svg: at most max_panels, the last layer among them")
+T.fails("no/such/dir", "svg: an unwritable path is nil, message", svg.contact_sheet, layers, "/no/such/dir/x.svg")
+
+T.done()
