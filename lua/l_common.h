@@ -177,6 +177,9 @@ void **lam_lua_newbox(lua_State *L);
  * error; returns 2. */
 int lam_lua_fail(lua_State *L, const lam_error *err);
 
+/* lamina.preview(layers, path [, title]) (l_preview.c) */
+int lam_lua_preview(lua_State *L);
+
 /* Raise an error of an option: "bad argument #arg to 'fn' (msg)". */
 int lam_lua_opterror(lua_State *L, int arg, const char *fmt, ...);
 

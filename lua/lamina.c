@@ -274,6 +274,7 @@ static const luaL_Reg lamina_funcs[] = {
     { "machines", lam_lua_machines },
     { "plugin", l_plugin },
     { "writers", l_writers },
+    { "preview", lam_lua_preview },
     { NULL, NULL },
 };
 

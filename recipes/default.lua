@@ -8,10 +8,9 @@
 -- into --out (out/, created if missing), named after the model:
 --   NAME.ladrp   the LADRP program
 --   NAME.sls     the SLS program
---   NAME.svg     a contact sheet of the SLS layers (lamina.svg)
+--   NAME.svg     a contact sheet of the SLS layers (lamina.preview)
 -- and prints the layers, contours, program sizes and paths.
 local args = require "lamina.args"
-local svg = require "lamina.svg"
 
 local o, fail = args.parse(arg, {
   usage = "lamina run recipes/default.lua [--out DIR] [--sls-width W] [MODEL]",
@@ -43,5 +42,5 @@ end
 job("creol-ladrp", {}, "ladrp")
 local sls = job("sls-contours", { width = o.sls_width, cut = "floor" }, "sls")
 local sheet = ("%s/%s.svg"):format(o.out, name)
-assert(svg.contact_sheet(sls, sheet, { title = "lamina: " .. o.model }))
+assert(lamina.preview(sls, sheet, "lamina: " .. o.model))
 print(("%-12s %4d layers  %s"):format("preview", #sls, sheet))

@@ -1,12 +1,11 @@
 -- The Lua-side library modules the recipes share (lua/lamina/*.lua):
--- lamina.args, lamina.axes, lamina.adaptive, lamina.svg, on hand-made
+-- lamina.args, lamina.axes, lamina.adaptive and lamina.preview, on hand-made
 -- facets whose answers follow by reasoning and on small models.
 local T = dofile(os.getenv("TESTS") .. "/lua/tap.lua")
 local lamina, M = T.lamina, T.M
 local args = require "lamina.args"
 local axes = require "lamina.axes"
 local adaptive = require "lamina.adaptive"
-local svg = require "lamina.svg"
 
 -- lamina.args ------------------------------------------------------------------
 local spec = {
@@ -122,17 +121,17 @@ near_all(ap, { 0, 0.5, 1, 1.05, 1.05 + 1.45 / 3, 1.05 + 2.9 / 3, 2.5 },
          "aligned_planes: flat heights kept, equal layers of at most max between")
 T.ok(#short == 1 and short[1][1] == 1 and short[1][2] == 1.05, "aligned_planes: names the interval under min")
 
--- lamina.svg -----------------------------------------------------------------
+-- lamina.preview (the C contact sheet) -------------------------------------------
 local layers = cube:slice{ width = 0.5 }
-local text = svg.contact_sheet(layers)
+local path = os.tmpname()
+T.ok(lamina.preview(layers, path), "preview: written")
+local f = io.open(path, "rb")
+local text = f:read("a")
+f:close()
+os.remove(path)
 local _, paths = text:gsub("<path ", "")
 T.ok(text:match("^<%?xml") and paths == 4 and text:find('fill-rule="evenodd"', 1, true),
-     "svg: one evenodd path per layer")
-T.ok(text:find("(4 layers)", 1, true) and text:find("layer 4  h=1.75  (2 contours)", 1, true), "svg: title and labels")
-text = svg.contact_sheet(cube:slice{ width = 0.01 }, nil, { max_panels = 10, title = "a<b" })
-_, paths = text:gsub("<path ", "")
-T.ok(paths == 10 and text:find("a&lt;b (10 of 200 layers shown, evenly chosen)", 1, true)
-     and text:find("layer 200 ", 1, true), "svg: at most max_panels, the last layer among them")
-T.fails("no/such/dir", "svg: an unwritable path is nil, message", svg.contact_sheet, layers, "/no/such/dir/x.svg")
+     "preview: one evenodd path per layer")
+T.fails("no/such/dir", "preview: an unwritable path is nil, message", lamina.preview, layers, "/no/such/dir/x.svg")
 
 T.done()

@@ -1,0 +1,71 @@
+/* lamina.preview(layers, path [, title]): the SVG contact sheet of
+ * `lamina slice --svg` (core/svg.c) for layers of one slicing run. */
+#include "l_common.h"
+#include "svg.h"
+#include "writer.h"
+
+#include <string.h>
+
+/* A run's sheet state, released by __gc should Lua raise half-way. */
+#define LAM_PREVIEWJOB "lamina.previewjob"
+
+typedef struct pjob {
+    lam_svg *svg;
+    lam_writer *w;
+} pjob;
+
+static int pjob_gc(lua_State *L)
+{
+    pjob *j = luaL_checkudata(L, 1, LAM_PREVIEWJOB);
+    lam_svg_free(j->svg);
+    lam_writer_abort(j->w);
+    j->svg = NULL;
+    j->w = NULL;
+    return 0;
+}
+
+int lam_lua_preview(lua_State *L)
+{
+    luaL_checktype(L, 1, LUA_TTABLE);
+    const char *path = luaL_checkstring(L, 2);
+    const char *title = luaL_optstring(L, 3, "lamina");
+    lua_Unsigned n = lua_rawlen(L, 1);
+    if (n == 0) luaL_argerror(L, 1, "no layers to draw (an empty table)");
+    /* check every element before anything is allocated on the C side */
+    const lrun *run = NULL;
+    for (lua_Unsigned i = 1; i <= n; i++) {
+        lua_rawgeti(L, 1, (lua_Integer)i);
+        lam_lua_checklayer(L, -1);
+        const lrun *r = lam_lua_layerrun(L, -1);
+        if (run && r != run)
+            return luaL_argerror(L, 1, "the layers come from different slicing runs");
+        run = r;
+        lua_pop(L, 1);
+    }
+    pjob *j = lua_newuserdatauv(L, sizeof *j, 0);
+    memset(j, 0, sizeof *j);
+    if (luaL_newmetatable(L, LAM_PREVIEWJOB)) {
+        lua_pushcfunction(L, pjob_gc);
+        lua_setfield(L, -2, "__gc");
+    }
+    lua_setmetatable(L, -2);
+    lam_error err;
+    lam_error_clear(&err);
+    /* panels for the run's layer count, so the given layers keep their place */
+    if (lam_svg_new(run->nlayers, run->uvbox, title, &j->svg, &err)) return lam_lua_fail(L, &err);
+    for (lua_Unsigned i = 1; i <= n; i++) {
+        lua_rawgeti(L, 1, (lua_Integer)i);
+        int rc = lam_svg_add(j->svg, lam_lua_checklayer(L, -1), &err);
+        lua_pop(L, 1);
+        if (rc) return lam_lua_fail(L, &err);
+    }
+    if (lam_writer_file(path, &j->w, &err)) return lam_lua_fail(L, &err);
+    lam_svg_write(j->svg, j->w);
+    lam_writer *w = j->w;
+    j->w = NULL;
+    if (lam_writer_commit(w, &err)) return lam_lua_fail(L, &err);
+    lam_svg_free(j->svg);
+    j->svg = NULL;
+    lua_pushboolean(L, 1);
+    return 1;
+}
