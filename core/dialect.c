@@ -432,13 +432,18 @@ static size_t fmt_number(char *out, const lam_tseg *seg, double x, enum ftype ty
         return lam_dialect_number(out, x);
     }
     if (x == 0) x = 0; /* never "-0" */
+    if ((seg->conv == 'f' || seg->conv == 'F') && seg->fast) {
+        /* one formatting; a negative that rounds to zero loses its sign */
+        size_t n = lam_fmt_fixed(out, x, seg->prec);
+        if (out[0] == '-' && negative_zero(out)) memmove(out, out + 1, n--);
+        return n;
+    }
     if (seg->conv == 'f' || seg->conv == 'F') {
         if (isfinite(x) && signbit(x)) {
             char tmp[LAM_FMT_MAX];
             lam_fmt_fixed(tmp, x, seg->prec < 0 ? 6 : seg->prec);
             if (negative_zero(tmp)) x = 0;
         }
-        if (seg->fast) return lam_fmt_fixed(out, x, seg->prec);
     }
     int n;
     if (seg->conv == 'd' || seg->conv == 'i') {
@@ -525,18 +530,28 @@ typedef struct dsink {
     buf b;
 } dsink;
 
+/* Commands collect in s->b and go to the writer in blocks of about this
+ * size: one writer call per line was a fifth of the run time. */
+#define FLUSH_AT 65536
+
+static int flush(dsink *s, lam_cmd c)
+{
+    if (s->b.len == 0) return LAM_OK;
+    int rc = lam_writer_write(s->w, s->b.s, s->b.len);
+    s->b.len = 0;
+    if (rc) return lam_error_set(s->err, rc, NULL, 0, 0, "cannot write the program (%s command)", cmd_names[c]);
+    return LAM_OK;
+}
+
 static int emit(dsink *s, lam_cmd c, const vals *v, double rel[3], int has_rel[3])
 {
     const lam_template *t = &s->d->cmd[c];
     if (!t->present) return LAM_OK;
-    s->b.len = 0;
     render(t, v, &s->b, rel, has_rel);
     put(&s->b, "\n", 1);
     if (s->b.oom) return lam_error_set(s->err, LAM_ENOMEM, NULL, 0, 0, "out of memory writing the %s command",
                                        cmd_names[c]);
-    int rc = lam_writer_write(s->w, s->b.s, s->b.len);
-    if (rc) return lam_error_set(s->err, rc, NULL, 0, 0, "cannot write the program (%s command)", cmd_names[c]);
-    return LAM_OK;
+    return s->b.len >= FLUSH_AT ? flush(s, c) : LAM_OK;
 }
 
 static void job_vals(const dsink *s, vals *v)
@@ -695,13 +710,17 @@ static int d_end(void *ctx)
     dsink *s = ctx;
     vals v;
     job_vals(s, &v);
-    return emit(s, LAM_CMD_POSTAMBLE, &v, NULL, NULL);
+    int rc = emit(s, LAM_CMD_POSTAMBLE, &v, NULL, NULL);
+    return rc ? rc : flush(s, LAM_CMD_POSTAMBLE);
 }
 
 static void d_destroy(void *ctx)
 {
     dsink *s = ctx;
     if (!s) return;
+    /* best effort for callers that stop without end(); after a failure the
+     * writer is aborted and these bytes go nowhere */
+    if (s->b.len && !s->b.oom) lam_writer_write(s->w, s->b.s, s->b.len);
     free(s->name);
     free(s->process);
     free(s->units);

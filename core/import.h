@@ -37,4 +37,13 @@ int lam_import_obj_buf(const char *path, const char *data, size_t len,
  * Fails with LAM_EIO naming the file and the system's reason. */
 int lam_read_file(const char *path, char **data, size_t *len, lam_error *err);
 
+/* The same for a large input: maps a regular file read-only when the
+ * mapping is NUL-terminated by the system (size not a multiple of the page
+ * size), else reads it. *mapped says which; release with lam_unmap_file.
+ * The buffer must not be written. */
+int lam_map_file(const char *path, char **data, size_t *len, int *mapped, lam_error *err);
+
+/* Releases what lam_map_file returned. */
+void lam_unmap_file(char *data, size_t len, int mapped);
+
 #endif

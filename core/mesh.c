@@ -250,6 +250,7 @@ void lam_welder_init(lam_welder *w)
 void lam_welder_free(lam_welder *w)
 {
     free(w->table);
+    free(w->recent);
     lam_welder_init(w);
 }
 
@@ -292,14 +293,26 @@ int lam_mesh_add_vertex_welded(lam_mesh *m, lam_welder *w, double x, double y, d
         int rc = lam_welder_reserve(w, m, w->count + 1 > 512 ? 2 * w->count : 512, err);
         if (rc) return rc;
     }
+    if (!w->recent) {
+        w->recent = malloc(LAM_WELDER_RECENT * sizeof *w->recent);
+        if (!w->recent) return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory welding vertices");
+        for (size_t k = 0; k < LAM_WELDER_RECENT; k++) w->recent[k].v = UINT32_MAX;
+    }
     double p[3] = { x + 0.0, y + 0.0, z + 0.0 };
     uint64_t h = hash_xyz(p), tag = h & 0xffffffff00000000ull;
+    size_t r = (size_t)(h >> 20) & (LAM_WELDER_RECENT - 1);
+    if (w->recent[r].h == h && w->recent[r].v != UINT32_MAX && same_xyz(m->xyz + 3 * (size_t)w->recent[r].v, p)) {
+        *idx = w->recent[r].v;
+        return LAM_OK;
+    }
     size_t i = (size_t)h & (w->cap - 1);
     for (;;) {
         uint64_t slot = w->table[i];
         if (slot == SLOT_EMPTY) break;
         if ((slot & 0xffffffff00000000ull) == tag && same_xyz(m->xyz + 3 * (size_t)(uint32_t)slot, p)) {
             *idx = (uint32_t)slot;
+            w->recent[r].h = h;
+            w->recent[r].v = *idx;
             return LAM_OK;
         }
         i = (i + 1) & (w->cap - 1);
@@ -308,6 +321,8 @@ int lam_mesh_add_vertex_welded(lam_mesh *m, lam_welder *w, double x, double y, d
     if (rc) return rc;
     w->table[i] = tag | *idx;
     w->count++;
+    w->recent[r].h = h;
+    w->recent[r].v = *idx;
     return LAM_OK;
 }
 

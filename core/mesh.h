@@ -82,9 +82,14 @@ int lam_mesh_add_polygon(lam_mesh *m, const uint32_t *idx, const size_t *ring_le
 /* Welding while importing: formats that repeat every vertex per triangle
  * (STL) look each one up by exact position instead of storing it again,
  * which keeps the mesh small from the start. */
+#define LAM_WELDER_RECENT 4096
 typedef struct lam_welder {
     uint64_t *table;      /* open addressing: hash tag << 32 | vertex index */
     size_t cap, count;
+    /* Direct-mapped cache of recent vertices (full hash, index): a mesh
+     * file names each vertex again a few facets later, and this small
+     * table answers those from cache instead of the big one. */
+    struct { uint64_t h; uint32_t v; } *recent;
 } lam_welder;
 
 /* An empty welder (no allocation until the first vertex). */

@@ -33,18 +33,6 @@ static size_t drop_collapsed(lam_mesh *m)
     return dropped;
 }
 
-static uint32_t he_lo(const lam_mesh *m, size_t i)
-{
-    uint32_t a = m->tris[i], b = m->tris[i - i % 3 + (i % 3 + 1) % 3];
-    return a < b ? a : b;
-}
-
-static uint32_t he_hi(const lam_mesh *m, size_t i)
-{
-    uint32_t a = m->tris[i], b = m->tris[i - i % 3 + (i % 3 + 1) % 3];
-    return a < b ? b : a;
-}
-
 static int cmp_u64(const void *x, const void *y)
 {
     uint64_t a = *(const uint64_t *)x, b = *(const uint64_t *)y;
@@ -54,22 +42,38 @@ static int cmp_u64(const void *x, const void *y)
 /* The edge table. Half-edges are bucketed by their lower vertex (a
  * counting sort), and each vertex's few half-edges are matched by their
  * upper vertex: linear and cache-friendly, unlike a hash of all edges.
+ * The bucket keeps each half-edge's upper vertex beside it, so matching
+ * reads one array in order instead of jumping back into the triangles.
  * Edge ids follow the lower vertex, then first appearance. */
 static int build_edges(const lam_mesh *m, lam_edges *e, lam_error *err)
 {
     size_t nt = m->ntris, nv = m->nverts, nh = 3 * nt;
     uint32_t *first = calloc(nv + 1, sizeof *first);
     uint32_t *he = malloc(nh * sizeof *he + 1);
+    uint32_t *hh = malloc(nh * sizeof *hh + 1);
     e->v = malloc(nh * 2 * sizeof *e->v + 1);
     e->tri_edge = malloc(nh * sizeof *e->tri_edge + 1);
-    if (!first || !he || !e->v || !e->tri_edge) {
+    if (!first || !he || !hh || !e->v || !e->tri_edge) {
         free(first);
         free(he);
+        free(hh);
         return oom(err);
     }
-    for (size_t i = 0; i < nh; i++) first[he_lo(m, i) + 1]++;
+    const uint32_t *tv = m->tris;
+    for (size_t t = 0; t < nt; t++, tv += 3)
+        for (int k = 0; k < 3; k++) {
+            uint32_t a = tv[k], b = tv[k == 2 ? 0 : k + 1];
+            first[(a < b ? a : b) + 1]++;
+        }
     for (size_t v = 0; v < nv; v++) first[v + 1] += first[v];
-    for (size_t i = 0; i < nh; i++) he[first[he_lo(m, i)]++] = (uint32_t)i;
+    tv = m->tris;
+    for (size_t t = 0; t < nt; t++, tv += 3)
+        for (int k = 0; k < 3; k++) {
+            uint32_t a = tv[k], b = tv[k == 2 ? 0 : k + 1];
+            uint32_t at = first[a < b ? a : b]++;
+            he[at] = (uint32_t)(3 * t + (size_t)k);
+            hh[at] = a < b ? b : a;
+        }
     for (size_t v = nv; v > 0; v--) first[v] = first[v - 1];
     first[0] = 0;
     size_t n = 0;
@@ -82,9 +86,10 @@ static int build_edges(const lam_mesh *m, lam_edges *e, lam_error *err)
             if (!key) {
                 free(first);
                 free(he);
+                free(hh);
                 return oom(err);
             }
-            for (uint32_t j = s; j < z; j++) key[j - s] = (uint64_t)he_hi(m, he[j]) << 32 | he[j];
+            for (uint32_t j = s; j < z; j++) key[j - s] = (uint64_t)hh[j] << 32 | he[j];
             qsort(key, z - s, sizeof *key, cmp_u64);
             for (uint32_t j = 0; j < z - s; j++) {
                 if (j == 0 || key[j] >> 32 != key[j - 1] >> 32) {
@@ -98,9 +103,9 @@ static int build_edges(const lam_mesh *m, lam_edges *e, lam_error *err)
             continue;
         }
         for (uint32_t j = s; j < z; j++) {
-            uint32_t hi = he_hi(m, he[j]), id = NONE;
+            uint32_t hi = hh[j], id = NONE;
             for (uint32_t k = s; k < j && id == NONE; k++)
-                if (he_hi(m, he[k]) == hi) id = e->tri_edge[he[k]];
+                if (hh[k] == hi) id = e->tri_edge[he[k]];
             if (id == NONE) {
                 id = (uint32_t)n++;
                 e->v[2 * id] = (uint32_t)v;
@@ -111,6 +116,7 @@ static int build_edges(const lam_mesh *m, lam_edges *e, lam_error *err)
     }
     free(first);
     free(he);
+    free(hh);
     e->n = n;
     uint32_t *shrunk = realloc(e->v, 2 * n * sizeof *e->v + 1); /* ~1.5 edges per triangle, not 3 */
     if (shrunk) e->v = shrunk;

@@ -55,6 +55,8 @@ typedef struct lam_sink {
     /* move the stage to xyz (absolute, output frame); deposit: laser on */
     int (*move)(void *ctx, int deposit, const double xyz[3]);
     int (*contour)(void *ctx, const lam_contour_info *c);
+    /* a sink may buffer its output: it is complete (and write errors are
+     * reported) only when end returns */
     int (*end)(void *ctx);
     /* release ctx; called exactly once, after end or instead of it */
     void (*destroy)(void *ctx);

@@ -10,6 +10,12 @@
 
 #define NONE UINT32_MAX
 
+#if defined(__GNUC__) || defined(__clang__)
+#define PREFETCH(p) __builtin_prefetch(p)
+#else
+#define PREFETCH(p) ((void)(p))
+#endif
+
 static int nomem(lam_error *err)
 {
     return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory while slicing");
@@ -119,6 +125,7 @@ struct lam_slicer {
     size_t *layer_first;   /* order[layer_first[i] ..] enter at layer i */
     size_t norder, ins;
     uint32_t *active;
+    double *active_hi;     /* upper height of each active edge */
     size_t nactive;
     uint32_t *local;       /* per edge: slot in active (valid while active) */
     /* per-layer scratch, grown as needed */
@@ -335,6 +342,7 @@ void lam_slicer_free(lam_slicer *s)
     free(s->cuts);
     free(s->layer_first);
     free(s->active);
+    free(s->active_hi);
     free(s->local);
     free(s->pts);
     free(s->seg_in);
@@ -374,6 +382,9 @@ static int reserve_active(lam_slicer *s, size_t n, lam_error *err)
     double *np = realloc(s->pts, 2 * cap * sizeof *np);
     if (!np) return nomem(err);
     s->pts = np;
+    np = realloc(s->active_hi, cap * sizeof *np);
+    if (!np) return nomem(err);
+    s->active_hi = np;
     s->cap_active = cap;
     return LAM_OK;
 }
@@ -499,12 +510,19 @@ static int section(lam_slicer *s, size_t layer, chains *ch, lam_error *err)
     const lam_edges *E = &m->edges;
 #define BELOW(h) (up ? (h) <= c : (h) < c)
     if (reserve_active(s, s->nactive + (s->layer_first[layer + 1] - s->ins) + 1, err)) return LAM_ENOMEM;
-    while (s->ins < s->layer_first[layer + 1]) s->active[s->nactive++] = s->order[s->ins++];
+    while (s->ins < s->layer_first[layer + 1]) {
+        uint32_t e = s->order[s->ins++];
+        s->active_hi[s->nactive] = edge_hi(s, e);
+        s->active[s->nactive++] = e;
+    }
     size_t na = 0;
     for (size_t i = 0; i < s->nactive; i++) {
         uint32_t e = s->active[i];
-        if (BELOW(edge_hi(s, e))) continue; /* passed for good: heights only rise */
+        double ehi = s->active_hi[i];
+        if (i + 8 < s->nactive) PREFETCH(E->v + 2 * (size_t)s->active[i + 8]);
+        if (BELOW(ehi)) continue; /* passed for good: heights only rise */
         s->active[na] = e;
+        s->active_hi[na] = ehi;
         s->local[e] = (uint32_t)na;
         /* the point, from the lower end to the upper end, exact at both */
         const uint32_t *ev = E->v + 2 * (size_t)e;
@@ -513,6 +531,7 @@ static int section(lam_slicer *s, size_t layer, chains *ch, lam_error *err)
         double t = (c - s->vw[lo]) / (s->vw[hi] - s->vw[lo]);
         s->pts[2 * na] = lerp(s->vuv[2 * lo], s->vuv[2 * hi], t);
         s->pts[2 * na + 1] = lerp(s->vuv[2 * lo + 1], s->vuv[2 * hi + 1], t);
+        PREFETCH(E->first + e);
         na++;
     }
     s->nactive = na;
@@ -525,6 +544,16 @@ static int section(lam_slicer *s, size_t layer, chains *ch, lam_error *err)
     size_t nseg = 0;
     for (size_t k = 0; k < na; k++) {
         uint32_t e = s->active[k];
+        /* The crossing triangles lie all over the mesh: fetch what the
+         * edges a little ahead will read while this one is worked on. */
+        if (k + 16 < na) PREFETCH(E->tris + E->first[s->active[k + 16]]);
+        if (k + 8 < na) {
+            uint32_t ahead = s->active[k + 8];
+            for (uint32_t i = E->first[ahead]; i < E->first[ahead + 1] && i < E->first[ahead] + 2; i++) {
+                PREFETCH(m->mesh.tris + 3 * (size_t)E->tris[i]);
+                PREFETCH(E->tri_edge + 3 * (size_t)E->tris[i]);
+            }
+        }
         for (uint32_t i = E->first[e]; i < E->first[e + 1]; i++) {
             uint32_t t = E->tris[i];
             const uint32_t *tv = m->mesh.tris + 3 * (size_t)t;

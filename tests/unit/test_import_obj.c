@@ -10,7 +10,9 @@
 #include "util.h"
 
 #include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
+#include <unistd.h>
 
 static const char *CUBE_V =
     "v -1 -1 -1\n"
@@ -360,6 +362,54 @@ static void test_robustness(void)
     free(s);
 }
 
+/* lam_model_load maps a file whose size is not a multiple of the page size
+ * and reads any other: the same cube (its last face line without a newline,
+ * so a reader that runs past the end would see it) loads the same way at
+ * one byte under, exactly at and one byte over a page. */
+static void test_file_sizes(void)
+{
+    long page = sysconf(_SC_PAGESIZE);
+    if (page <= 0) page = 4096;
+    for (long delta = -1; delta <= 1; delta++) {
+        sbuf b = { 0 };
+        sb_add(&b, "%s", CUBE_V);
+        char faces[256] = "";
+        size_t fl = 0;
+        for (int i = 0; i < 6; i++)
+            fl += (size_t)snprintf(faces + fl, sizeof faces - fl, "f %d %d %d %d%s", Q[i][0], Q[i][1], Q[i][2],
+                                   Q[i][3], i < 5 ? "\n" : "");
+        /* pad with a comment line so the file has exactly page + delta bytes */
+        long pad = page + delta - (long)b.n - (long)fl - 2;
+        sb_add(&b, "#");
+        for (long k = 0; k < pad; k++) sb_add(&b, "x");
+        sb_add(&b, "\n%s", faces);
+        char dir[] = "/tmp/lamina-obj-size-XXXXXX", path[64];
+        FILE *f = NULL;
+        if (mkdtemp(dir)) {
+            snprintf(path, sizeof path, "%s/cube.obj", dir);
+            f = fopen(path, "wb");
+        }
+        if (!f) {
+            ok(0, "temporary file");
+            free(b.s);
+            return;
+        }
+        fwrite(b.s, 1, b.n, f);
+        fclose(f);
+        lam_model *m = NULL;
+        lam_error err;
+        lam_error_clear(&err);
+        int rc = lam_model_load(path, &m, &err);
+        ok(rc == LAM_OK && (long)b.n == page + delta && m && m->stats.triangles == 12 && m->stats.volume == 8 &&
+               m->stats.boundary_edges == 0,
+           "a %ld-byte OBJ (page %+ld) loads the whole cube: %s", (long)b.n, delta, rc ? err.msg : "ok");
+        lam_model_free(m);
+        unlink(path);
+        rmdir(dir);
+        free(b.s);
+    }
+}
+
 int main(void)
 {
     lam_mesh ref;
@@ -369,5 +419,6 @@ int main(void)
     test_polygon_and_names();
     test_errors();
     test_robustness();
+    test_file_sizes();
     return done_testing();
 }
