@@ -376,21 +376,29 @@ typedef struct buf {
     int oom;
 } buf;
 
-static void put(buf *b, const char *s, size_t n)
+/* Room for n more bytes and a NUL at the end of b; NULL when out of memory. */
+static char *room(buf *b, size_t n)
 {
-    if (b->oom) return;
+    if (b->oom) return NULL;
     if (b->len + n + 1 > b->cap) {
         size_t nc = b->cap ? b->cap : 256;
         while (nc < b->len + n + 1) nc *= 2;
         char *ns = realloc(b->s, nc);
         if (!ns) {
             b->oom = 1;
-            return;
+            return NULL;
         }
         b->s = ns;
         b->cap = nc;
     }
-    memcpy(b->s + b->len, s, n);
+    return b->s + b->len;
+}
+
+static void put(buf *b, const char *s, size_t n)
+{
+    char *at = room(b, n);
+    if (!at) return;
+    memcpy(at, s, n);
     b->len += n;
     b->s[b->len] = '\0';
 }
@@ -465,11 +473,35 @@ typedef struct vals {
     int close;
 } vals;
 
-/* Render t into b; for travel/deposit also the text of dx dy dz
- * (rel[k] set to the value the machine reads, has_rel[k] to 1). */
-static void render(const lam_template *t, const vals *v, buf *b, double rel[3], int has_rel[3])
+/* The last text of one number field: a vertex line repeats the layer's
+ * height, and a number already written is copied instead of formatted. */
+typedef struct memo {
+    double x;
+    unsigned char len;       /* 0: nothing remembered */
+    char s[31];
+} memo;
+
+static size_t fmt_memo(char *out, const lam_tseg *s, double x, enum ftype ty, memo *mo)
 {
-    char num[LAM_FMT_MAX + 8];
+    if (mo && mo->len && memcmp(&mo->x, &x, sizeof x) == 0) {
+        memcpy(out, mo->s, mo->len);
+        out[mo->len] = '\0';
+        return mo->len;
+    }
+    size_t n = fmt_number(out, s, x, ty);
+    if (mo && n < sizeof mo->s) {
+        mo->x = x;
+        mo->len = (unsigned char)n;
+        memcpy(mo->s, out, n);
+    }
+    return n;
+}
+
+/* Render t into b; for travel/deposit also the text of dx dy dz
+ * (rel[k] set to the value the machine reads, has_rel[k] to 1). memos
+ * (NULL, or one per segment of t) remember the last text of each field. */
+static void render(const lam_template *t, const vals *v, buf *b, double rel[3], int has_rel[3], memo *memos)
+{
     for (size_t i = 0; i < t->nsegs; i++) {
         const lam_tseg *s = &t->segs[i];
         if (s->field < 0) {
@@ -498,17 +530,21 @@ static void render(const lam_template *t, const vals *v, buf *b, double rel[3], 
                 const double *p = v->uv + (k % v->npts) * v->uv_stride;
                 for (int j = 0; j < 2; j++) {
                     if (k || j) put(b, ",", 1);
-                    put(b, num, fmt_number(num, s, p[j], T_NUM));
+                    char *at = room(b, LAM_FMT_MAX);
+                    if (!at) return;
+                    b->len += fmt_number(at, s, p[j], T_NUM);
                 }
             }
         } else {
-            size_t n = fmt_number(num, s, v->num[s->field], ty);
-            put(b, num, n);
+            char *at = room(b, LAM_FMT_MAX);
+            if (!at) return;
+            size_t n = fmt_memo(at, s, v->num[s->field], ty, memos ? memos + i : NULL);
+            b->len += n;
             int k = s->field == F_DX ? 0 : s->field == F_DY ? 1 : s->field == F_DZ ? 2 : -1;
             if (rel && k >= 0 && !has_rel[k]) {
                 double back;
                 has_rel[k] = 1;
-                rel[k] = lam_parse_number((const unsigned char *)num, n, &back) == LAM_OK && isfinite(back)
+                rel[k] = lam_parse_number((const unsigned char *)at, n, &back) == LAM_OK && isfinite(back)
                              ? back
                              : v->num[s->field];
             }
@@ -528,6 +564,7 @@ typedef struct dsink {
     size_t blocks;                  /* contour blocks written */
     size_t layer_index, in_layer;   /* contours seen in the current layer */
     buf b;
+    memo *memos[LAM_CMD_COUNT];     /* per command, one per template segment */
 } dsink;
 
 /* Commands collect in s->b and go to the writer in blocks of about this
@@ -547,7 +584,7 @@ static int emit(dsink *s, lam_cmd c, const vals *v, double rel[3], int has_rel[3
 {
     const lam_template *t = &s->d->cmd[c];
     if (!t->present) return LAM_OK;
-    render(t, v, &s->b, rel, has_rel);
+    render(t, v, &s->b, rel, has_rel, s->memos[c]);
     put(&s->b, "\n", 1);
     if (s->b.oom) return lam_error_set(s->err, LAM_ENOMEM, NULL, 0, 0, "out of memory writing the %s command",
                                        cmd_names[c]);
@@ -725,6 +762,7 @@ static void d_destroy(void *ctx)
     free(s->process);
     free(s->units);
     free(s->b.s);
+    for (int c = 0; c < LAM_CMD_COUNT; c++) free(s->memos[c]);
     free(s);
 }
 
@@ -736,6 +774,11 @@ int lam_dialect_sink(const lam_dialect *d, lam_writer *w, lam_error *err, lam_si
     s->d = d;
     s->w = w;
     s->err = err;
+    for (int c = 0; c < LAM_CMD_COUNT; c++)
+        if (d->cmd[c].present && d->cmd[c].nsegs && !(s->memos[c] = calloc(d->cmd[c].nsegs, sizeof(memo)))) {
+            d_destroy(s);
+            return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory");
+        }
     out->ctx = s;
     out->begin = d_begin;
     out->layer = d_layer;

@@ -5,6 +5,10 @@
 #include <stdio.h>
 #include <string.h>
 
+static const char pairs[] = "00010203040506070809101112131415161718192021222324252627282930313233343536373839"
+                            "40414243444546474849505152535455565758596061626364656667686970717273747576777879"
+                            "8081828384858687888990919293949596979899";
+
 static const double pow10_tab[] = { 1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9,
                                     1e10, 1e11, 1e12, 1e13, 1e14, 1e15 };
 
@@ -24,38 +28,54 @@ size_t lam_fmt_fixed(char *buf, double x, int d)
     unsigned long long q = (unsigned long long)fl;
     double r = t + e;                   /* its sign is the exact sum's sign */
     if (r > 0 || (r == 0 && (q & 1))) q++;
-    static const char pairs[] = "00010203040506070809101112131415161718192021222324252627282930313233343536373839"
-                                "40414243444546474849505152535455565758596061626364656667686970717273747576777879"
-                                "8081828384858687888990919293949596979899";
-    char tmp[32];
-    int n = 0;
-    while (q >= 100000000) { /* 64-bit divisions only for the high part */
-        unsigned lo2 = (unsigned)(q % 100);
-        q /= 100;
-        tmp[n++] = pairs[2 * lo2 + 1];
-        tmp[n++] = pairs[2 * lo2];
+    /* Digits from the right into the end of tmp: the d decimals, the point,
+     * then the integer part. The split divides by a constant per case, so
+     * the compiler turns it into a multiplication. */
+    uint64_t ip, fp;
+    switch (d) {
+    case 0: ip = q; fp = 0; break;
+    case 1: ip = q / 10u; fp = q % 10u; break;
+    case 2: ip = q / 100u; fp = q % 100u; break;
+    case 3: ip = q / 1000u; fp = q % 1000u; break;
+    case 4: ip = q / 10000u; fp = q % 10000u; break;
+    case 5: ip = q / 100000u; fp = q % 100000u; break;
+    case 6: ip = q / 1000000u; fp = q % 1000000u; break;
+    case 7: ip = q / 10000000u; fp = q % 10000000u; break;
+    case 8: ip = q / 100000000u; fp = q % 100000000u; break;
+    case 9: ip = q / 1000000000u; fp = q % 1000000000u; break;
+    default: {
+        uint64_t p10 = (uint64_t)s;
+        ip = q / p10;
+        fp = q % p10;
     }
-    uint32_t q32 = (uint32_t)q;
-    while (q32 >= 10) {
-        unsigned lo2 = q32 % 100;
-        if (q32 < 100) {
-            tmp[n++] = pairs[2 * lo2 + 1];
-            tmp[n++] = pairs[2 * lo2];
-            q32 = 0;
-            break;
-        }
-        q32 /= 100;
-        tmp[n++] = pairs[2 * lo2 + 1];
-        tmp[n++] = pairs[2 * lo2];
     }
-    if (q32 || n == 0) tmp[n++] = (char)('0' + q32);
-    while (n <= d) tmp[n++] = '0';    /* at least one digit before the point */
+    char tmp[48];
+    char *end = tmp + sizeof tmp, *w = end;
+    int k = d;
+    for (; k >= 2; k -= 2) {
+        unsigned two = (unsigned)(fp % 100u);
+        fp /= 100u;
+        w -= 2;
+        memcpy(w, pairs + 2 * two, 2);
+    }
+    if (k) *--w = (char)('0' + fp);
+    if (d > 0) *--w = '.';
+    while (ip >= 100u) {
+        unsigned two = (unsigned)(ip % 100u);
+        ip /= 100u;
+        w -= 2;
+        memcpy(w, pairs + 2 * two, 2);
+    }
+    if (ip >= 10u) {
+        w -= 2;
+        memcpy(w, pairs + 2 * ip, 2);
+    } else {
+        *--w = (char)('0' + ip);
+    }
     size_t len = 0;
     if (signbit(x)) buf[len++] = '-';
-    for (int i = n - 1; i >= 0; i--) {
-        buf[len++] = tmp[i];
-        if (i == d && d > 0) buf[len++] = '.';
-    }
+    memcpy(buf + len, w, (size_t)(end - w));
+    len += (size_t)(end - w);
     buf[len] = '\0';
     return len;
 }

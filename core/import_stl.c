@@ -82,6 +82,19 @@ static int stl_binary(const char *path, const unsigned char *data, uint32_t coun
     uint32_t *t = m->tris + 3 * m->ntris;
     const unsigned char *p = data + 84 + 12; /* first vertex of facet 1 */
     for (uint32_t i = 0; i < count; i++, p += 50) {
+        if (i + 4 < count) {
+            /* the welder's table is big and read at random: ask for the
+             * slots of a facet a few records ahead */
+            const unsigned char *q = p + 4 * 50;
+            for (int k = 0; k < 3; k++) {
+                float c[3];
+                for (int j = 0; j < 3; j++) {
+                    uint32_t u = rd_u32(q + 12 * k + 4 * j);
+                    memcpy(&c[j], &u, sizeof c[j]);
+                }
+                lam_welder_prefetch(&wd, c[0], c[1], c[2]);
+            }
+        }
         uint32_t bad = 0;
         double xyz[9];
         for (int k = 0; k < 9; k++) {

@@ -1,8 +1,10 @@
 #include "mesh.h"
+#include "prefetch.h"
 
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
 
 void lam_mesh_init(lam_mesh *m)
 {
@@ -284,6 +286,14 @@ int lam_welder_reserve(lam_welder *w, const lam_mesh *m, size_t n, lam_error *er
         }
     free(old);
     return LAM_OK;
+}
+
+void lam_welder_prefetch(const lam_welder *w, double x, double y, double z)
+{
+    if (!w->cap) return;
+    double p[3] = { x + 0.0, y + 0.0, z + 0.0 };
+    uint64_t h = hash_xyz(p);
+    LAM_PREFETCH(w->table + ((size_t)h & (w->cap - 1)));
 }
 
 int lam_mesh_add_vertex_welded(lam_mesh *m, lam_welder *w, double x, double y, double z,

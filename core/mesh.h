@@ -100,6 +100,10 @@ void lam_welder_free(lam_welder *w);
  * vertices the welder indexes). */
 int lam_welder_reserve(lam_welder *w, const lam_mesh *m, size_t n, lam_error *err);
 
+/* A hint: the vertex at (x, y, z) will be added soon, so start fetching
+ * its slot of the table. Changes nothing. */
+void lam_welder_prefetch(const lam_welder *w, double x, double y, double z);
+
 /* Like lam_mesh_add_vertex, but returns the index of an earlier vertex
  * added through the same welder at bitwise the same position (-0.0 counts
  * as 0.0). */

@@ -7,14 +7,10 @@
 
 #include "contour.h"
 #include "fill.h"
+#include "prefetch.h"
 
 #define NONE UINT32_MAX
 
-#if defined(__GNUC__) || defined(__clang__)
-#define PREFETCH(p) __builtin_prefetch(p)
-#else
-#define PREFETCH(p) ((void)(p))
-#endif
 
 static int nomem(lam_error *err)
 {
@@ -519,7 +515,7 @@ static int section(lam_slicer *s, size_t layer, chains *ch, lam_error *err)
     for (size_t i = 0; i < s->nactive; i++) {
         uint32_t e = s->active[i];
         double ehi = s->active_hi[i];
-        if (i + 8 < s->nactive) PREFETCH(E->v + 2 * (size_t)s->active[i + 8]);
+        if (i + 8 < s->nactive) LAM_PREFETCH(E->v + 2 * (size_t)s->active[i + 8]);
         if (BELOW(ehi)) continue; /* passed for good: heights only rise */
         s->active[na] = e;
         s->active_hi[na] = ehi;
@@ -531,7 +527,7 @@ static int section(lam_slicer *s, size_t layer, chains *ch, lam_error *err)
         double t = (c - s->vw[lo]) / (s->vw[hi] - s->vw[lo]);
         s->pts[2 * na] = lerp(s->vuv[2 * lo], s->vuv[2 * hi], t);
         s->pts[2 * na + 1] = lerp(s->vuv[2 * lo + 1], s->vuv[2 * hi + 1], t);
-        PREFETCH(E->first + e);
+        LAM_PREFETCH(E->first + e);
         na++;
     }
     s->nactive = na;
@@ -546,12 +542,12 @@ static int section(lam_slicer *s, size_t layer, chains *ch, lam_error *err)
         uint32_t e = s->active[k];
         /* The crossing triangles lie all over the mesh: fetch what the
          * edges a little ahead will read while this one is worked on. */
-        if (k + 16 < na) PREFETCH(E->tris + E->first[s->active[k + 16]]);
+        if (k + 16 < na) LAM_PREFETCH(E->tris + E->first[s->active[k + 16]]);
         if (k + 8 < na) {
             uint32_t ahead = s->active[k + 8];
             for (uint32_t i = E->first[ahead]; i < E->first[ahead + 1] && i < E->first[ahead] + 2; i++) {
-                PREFETCH(m->mesh.tris + 3 * (size_t)E->tris[i]);
-                PREFETCH(E->tri_edge + 3 * (size_t)E->tris[i]);
+                LAM_PREFETCH(m->mesh.tris + 3 * (size_t)E->tris[i]);
+                LAM_PREFETCH(E->tri_edge + 3 * (size_t)E->tris[i]);
             }
         }
         for (uint32_t i = E->first[e]; i < E->first[e + 1]; i++) {
