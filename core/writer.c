@@ -147,7 +147,6 @@ int lam_writer_commit(lam_writer *w, lam_error *err)
     if (w->kind == W_FILE) {
         int bad = w->failed;
         if (fflush(w->f) != 0 && !bad) bad = errno ? errno : EIO;
-        if (fsync(fileno(w->f)) != 0 && !bad && errno != EINVAL) bad = errno;
         if (fclose(w->f) != 0 && !bad) bad = errno ? errno : EIO;
         w->f = NULL;
         if (!bad && rename(w->tmp, w->path) != 0) bad = errno;

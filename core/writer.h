@@ -3,7 +3,10 @@
  * A file writer writes to a temporary file in the target's directory and
  * renames it over the target only on lam_writer_commit, so a run that fails
  * leaves no partial output. Write errors are sticky: the first one is kept
- * and reported by commit. */
+ * and reported by commit. There is no fsync: like compilers and other
+ * slicers, lamina leaves durability across a power cut to the file system
+ * (ext4 and others flush a file renamed over an old one); the rename makes
+ * the output whole-or-absent for every other process and every failed run. */
 #ifndef LAM_WRITER_H
 #define LAM_WRITER_H
 

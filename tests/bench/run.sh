@@ -32,9 +32,13 @@ make_mesh sphere 'sphere(r=20, $fn=400);'
 make_mesh torus 'rotate_extrude($fn=425) translate([20,0,0]) circle(r=8, $fn=425);'
 
 measure() { # prints "seconds kilobytes"
-    /usr/bin/time -f '%e %M' -o "$work/time.txt" "$@" >/dev/null 2>"$work/stderr.txt" || {
+    # wall time from bash's microsecond clock: /usr/bin/time's %e has only
+    # 10 ms steps, too coarse for runs of a few tens of milliseconds
+    local t0=$EPOCHREALTIME
+    /usr/bin/time -f '%M' -o "$work/time.txt" "$@" >/dev/null 2>"$work/stderr.txt" || {
         echo "bench: command failed: $*" >&2; cat "$work/stderr.txt" >&2; exit 1; }
-    cat "$work/time.txt"
+    local t1=$EPOCHREALTIME
+    awk -v a="$t0" -v b="$t1" -v m="$(cat "$work/time.txt")" 'BEGIN { printf "%.4f %d\n", b - a, m }'
 }
 median() { sort -g | awk '{a[NR]=$1} END {print (NR % 2) ? a[(NR+1)/2] : (a[NR/2] + a[NR/2+1]) / 2}'; }
 
