@@ -483,8 +483,10 @@ typedef struct memo {
 
 static size_t fmt_memo(char *out, const lam_tseg *s, double x, enum ftype ty, memo *mo)
 {
+    /* whole-array copies: a fixed size compiles to a few moves, where a
+     * copy of n bytes is a library call (out has LAM_FMT_MAX bytes) */
     if (mo && mo->len && memcmp(&mo->x, &x, sizeof x) == 0) {
-        memcpy(out, mo->s, mo->len);
+        memcpy(out, mo->s, sizeof mo->s);
         out[mo->len] = '\0';
         return mo->len;
     }
@@ -492,7 +494,7 @@ static size_t fmt_memo(char *out, const lam_tseg *s, double x, enum ftype ty, me
     if (mo && n < sizeof mo->s) {
         mo->x = x;
         mo->len = (unsigned char)n;
-        memcpy(mo->s, out, n);
+        memcpy(mo->s, out, sizeof mo->s);
     }
     return n;
 }

@@ -49,8 +49,13 @@ size_t lam_fmt_fixed(char *buf, double x, int d)
         fp = q % p10;
     }
     }
-    char tmp[48];
-    char *end = tmp + sizeof tmp, *w = end;
+    /* The length is known before the first digit, so the digits go
+     * straight to their places, right to left. */
+    int nint = 1;
+    for (uint64_t v = ip; v >= 10u; v /= 10u) nint++;
+    size_t len = (size_t)(signbit(x) ? 1 : 0) + (size_t)nint + (d > 0 ? 1 + (size_t)d : 0);
+    char *w = buf + len;
+    if (signbit(x)) buf[0] = '-';
     int k = d;
     for (; k >= 2; k -= 2) {
         unsigned two = (unsigned)(fp % 100u);
@@ -72,10 +77,6 @@ size_t lam_fmt_fixed(char *buf, double x, int d)
     } else {
         *--w = (char)('0' + ip);
     }
-    size_t len = 0;
-    if (signbit(x)) buf[len++] = '-';
-    memcpy(buf + len, w, (size_t)(end - w));
-    len += (size_t)(end - w);
     buf[len] = '\0';
     return len;
 }
