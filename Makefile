@@ -132,7 +132,7 @@ fuzz:
 	  -o build-fuzz/fuzz_inputs tests/fuzz/fuzz_inputs.c build-fuzz/liblamina.a $(LDLIBS)
 	@echo "run: build-fuzz/fuzz_inputs CORPUS_DIR (first byte of an input: 0 ug, 1 stl, 2 obj, 3 yaml)"
 
-$(BUILD)/tests/plugins/%.so: tests/plugins/%.c core/lamina_plugin.h
+$(BUILD)/tests/plugins/%.so: tests/plugins/%.c core/lamina_plugin.h tests/plugins/noop_writer.h
 	@mkdir -p $(dir $@)
 	$(CC) $(CPPFLAGS) $(CFLAGS) -fPIC -shared -o $@ $< $(LDFLAGS)
 
