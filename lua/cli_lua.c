@@ -91,11 +91,18 @@ static void laction(int sig)
     lua_sethook(globalL, lstop, LUA_MASKCALL | LUA_MASKRET | LUA_MASKLINE | LUA_MASKCOUNT, 1);
 }
 
+/* As lua.c: a string gets a traceback; an object with __tostring is a
+ * message already (a recipe's option error from lamina.args): it is kept
+ * as it is, so the reporter can read its exit code too. */
 static int msghandler(lua_State *L)
 {
     const char *msg = lua_tostring(L, 1);
     if (msg == NULL) {
-        if (luaL_callmeta(L, 1, "__tostring") && lua_type(L, -1) == LUA_TSTRING) return 1;
+        if (luaL_getmetafield(L, 1, "__tostring") != LUA_TNIL) {
+            lua_pop(L, 1);
+            lua_settop(L, 1);
+            return 1;
+        }
         msg = lua_pushfstring(L, "(error object is a %s value)", luaL_typename(L, 1));
     }
     luaL_traceback(L, L, msg, 1);
@@ -123,13 +130,34 @@ int lam_cli_docall(lua_State *L, int narg, int nres)
     return status;
 }
 
-void lam_cli_report(lua_State *L, int prefix)
+static int tostring_protected(lua_State *L)
 {
+    luaL_tolstring(L, 1, NULL);
+    return 1;
+}
+
+int lam_cli_report(lua_State *L, int prefix)
+{
+    int code = EXIT_INPUT, top = lua_gettop(L);
+    if (lua_type(L, -1) == LUA_TTABLE) {
+        lua_getfield(L, -1, "exit");
+        int isint = 0;
+        lua_Integer e = lua_tointegerx(L, -1, &isint);
+        if (isint && e > 0 && e < 126) code = (int)e;
+        lua_pop(L, 1);
+    }
     const char *msg = lua_tostring(L, -1);
+    if (!msg) {
+        /* __tostring runs protected: a failing one is not our crash */
+        lua_pushcfunction(L, tostring_protected);
+        lua_pushvalue(L, -2);
+        if (lua_pcall(L, 1, 1, 0) == LUA_OK) msg = lua_tostring(L, -1);
+    }
     if (!msg) msg = "(error object is not a string)";
     fprintf(stderr, "%s%s\n", prefix ? "lamina: " : "", msg);
     fflush(stderr);
-    lua_pop(L, 1);
+    lua_settop(L, top - 1);
+    return code;
 }
 
 /* arg = { [-2] = "lamina", [-1] = cmd, [0] = script, args... } as lua.c does. */
@@ -177,10 +205,7 @@ static int run_main(lua_State *L)
     }
     luaL_checkstack(L, a->argc + 5, "too many arguments to the recipe");
     for (int i = 0; i < a->argc; i++) lua_pushstring(L, a->argv[i]);
-    if (lam_cli_docall(L, a->argc, 0) != LUA_OK) {
-        lam_cli_report(L, 1);
-        a->status = EXIT_INPUT;
-    }
+    if (lam_cli_docall(L, a->argc, 0) != LUA_OK) a->status = lam_cli_report(L, 1);
     return 0;
 }
 
@@ -221,8 +246,7 @@ static int eval_main(lua_State *L)
         const char *code = a->argv[i];
         if (luaL_loadbuffer(L, code, strlen(code), "=(command line)") != LUA_OK ||
             lam_cli_docall(L, 0, 0) != LUA_OK) {
-            lam_cli_report(L, 1);
-            a->status = EXIT_INPUT;
+            a->status = lam_cli_report(L, 1);
             return 0;
         }
     }

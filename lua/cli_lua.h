@@ -32,9 +32,11 @@ lua_State *lam_cli_newstate(void);
  * Ctrl-C before Lua notices kills the process, as in lua.c). */
 int lam_cli_docall(lua_State *L, int narg, int nres);
 
-/* Print the error message on top of the stack to stderr (with prefix
- * "lamina: " unless prefix is 0) and pop it. */
-void lam_cli_report(lua_State *L, int prefix);
+/* Print the error object on top of the stack to stderr (with prefix
+ * "lamina: " unless prefix is 0) and pop it. Returns the exit code it
+ * asks for: a table's integer field `exit` (1..125, as lamina.args sets
+ * for option errors), else 1. */
+int lam_cli_report(lua_State *L, int prefix);
 
 /* The read-eval-print loop on standard input until end of file (repl.c).
  * Returns an exit code. */

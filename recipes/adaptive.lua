@@ -15,7 +15,7 @@ local args = require "lamina.args"
 local axes = require "lamina.axes"
 local adaptive = require "lamina.adaptive"
 
-local o, fail = args.parse(arg, {
+local o, fail, die = args.parse(arg, {
   usage = "lamina run recipes/adaptive.lua [--cusp H] [--min W] [--max W] [--axis A]"
     .. " [--list] [MODEL]",
   options = { cusp = 0.05, min = 0.02, max = 0.5, axis = "z", list = false,
@@ -27,7 +27,7 @@ if o.min > o.max then fail("--min (%g) is greater than --max (%g)", o.min, o.max
 local axis, why = axes.parse(o.axis)
 if not axis then fail("--axis: %s", why) end
 local model, err = lamina.load(o.model)
-if not model then fail("%s", err) end
+if not model then die("%s", err) end
 
 local facets = axes.facets(model, axis)
 local widths = adaptive.cusp_widths(facets, o)

@@ -14,7 +14,7 @@ local args = require "lamina.args"
 local axes = require "lamina.axes"
 local adaptive = require "lamina.adaptive"
 
-local o, fail = args.parse(arg, {
+local o, fail, die = args.parse(arg, {
   usage = "lamina run recipes/aligned.lua [--min W] [--max W] [--axis A] [MODEL]",
   options = { min = 0.1, max = 0.5, axis = "z",
               model = args.beside(arg, "parts/terrace.ug") },
@@ -25,7 +25,7 @@ if o.min > o.max then fail("--min (%g) is greater than --max (%g)", o.min, o.max
 local axis, why = axes.parse(o.axis)
 if not axis then fail("--axis: %s", why) end
 local model, err = lamina.load(o.model)
-if not model then fail("%s", err) end
+if not model then die("%s", err) end
 
 local facets = axes.facets(model, axis)
 local flats = adaptive.flat_heights(facets)

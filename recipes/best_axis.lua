@@ -20,7 +20,7 @@
 local args = require "lamina.args"
 local axes = require "lamina.axes"
 
-local o, fail = args.parse(arg, {
+local o, fail, die = args.parse(arg, {
   usage = "lamina run recipes/best_axis.lua [--width W] [--more] [--overhang-deg D]"
     .. " [--w-layers A] [--w-stair B] [--w-overhang C] [MODEL]",
   options = { width = 0.1, more = false, overhang_deg = 45,
@@ -36,7 +36,7 @@ if o.overhang_deg < 0 or o.overhang_deg > 90 then
   fail("--overhang-deg must be between 0 and 90, got %g", o.overhang_deg)
 end
 local model, err = lamina.load(o.model)
-if not model then fail("%s", err) end
+if not model then die("%s", err) end
 
 local rows, top = {}, { layers = 0, stair = 0, overhang = 0 }
 for i, axis in ipairs(axes.candidates(o.more)) do

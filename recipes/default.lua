@@ -12,7 +12,7 @@
 -- and prints the layers, contours, program sizes and paths.
 local args = require "lamina.args"
 
-local o, fail = args.parse(arg, {
+local o, _, die = args.parse(arg, {
   usage = "lamina run recipes/default.lua [--out DIR] [--sls-width W] [MODEL]",
   options = { out = "out", sls_width = 0.25,
               model = args.beside(arg, "parts/thesis_cube_hole.ug") },
@@ -20,7 +20,7 @@ local o, fail = args.parse(arg, {
   positional = { "model" },
 })
 local model, err = lamina.load(o.model)
-if not model then fail("%s", err) end
+if not model then die("%s", err) end
 local name = o.model:match("([^/]+)$"):gsub("%.[^.]*$", "")
 os.execute(("mkdir -p '%s'"):format((o.out:gsub("'", "'\\''"))))
 

@@ -13,19 +13,19 @@
 -- lines).
 local args = require "lamina.args"
 
-local o, fail = args.parse(arg, {
+local o, fail, die = args.parse(arg, {
   usage = "lamina run recipes/scan_orders.lua [--machine NAME] [--width W] [MODEL]",
   options = { machine = "creol-ladrp", width = 0, model = args.beside(arg, "parts/pillars.ug") },
   positional = { "model" },
 })
 local machine, err = lamina.machine(o.machine)
-if not machine then fail("%s", err) end
+if not machine then die("%s", err) end
 if machine.process ~= "ladrp" then
   fail("%s is an %s machine, not ladrp", o.machine, machine.process)
 end
 if o.width < 0 then fail("--width must be 0 (the machine's) or more, got %g", o.width) end
 local model, merr = lamina.load(o.model)
-if not model then fail("%s", merr) end
+if not model then die("%s", merr) end
 local layers = assert(model:slice{machine = machine, width = o.width > 0 and o.width or nil})
 
 -- raster angles: the first layer's is 0, each next one turns by the step

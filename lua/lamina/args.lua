@@ -1,7 +1,7 @@
 -- lamina.args: the command-line options of a recipe.
 --
 --   local args = require "lamina.args"
---   local o, fail = args.parse(arg, {
+--   local o, fail, die = args.parse(arg, {
 --     usage = "lamina run recipes/adaptive.lua [--cusp H] [--axis A] [--list] [MODEL]",
 --     options = { cusp = 0.05, axis = "z", list = false, model = "recipes/parts/x.ug" },
 --     positive = { "cusp" },     -- numbers that must be > 0
@@ -17,9 +17,13 @@
 -- `--`) fill the positional names; a positional name is an option too
 -- (`--model FILE`). `--help` prints the usage and exits with 0.
 --
--- Every mistake raises an error without a position, "RECIPE: MESSAGE" and
--- the usage, which `lamina run` prints before exiting with 1; `fail` raises
--- one for the recipe's own checks.
+-- Every mistake raises an error object (a table printing as "RECIPE:
+-- MESSAGE" and the usage, with `exit = 2`): `lamina run` prints it without
+-- a traceback and exits with 2, as for the command line's own usage
+-- errors. `fail` (the second result) raises one for the recipe's own checks
+-- of its options; `die` (the third) raises "RECIPE: MESSAGE" without the
+-- usage and exits with 1, for inputs that do not load. A stock `lua` prints
+-- both without a traceback too.
 --
 -- args.beside(arg, "parts/x.ug") is a path beside the running recipe
 -- ("recipes/parts/x.ug" for `lamina run recipes/y.lua`): default models
@@ -31,6 +35,13 @@ function args.beside(argv, rel)
   return dir and dir .. "/" .. rel or rel
 end
 
+-- An error object: prints as its message; `lamina run` exits with `exit`.
+local Failure = { __tostring = function(e) return e.message end }
+
+local function raise(message, exit)
+  error(setmetatable({ message = message, exit = exit }, Failure), 0)
+end
+
 local function script_name(argv)
   local s = argv and argv[0] or "recipe"
   return (tostring(s):match("[^/]+$"))
@@ -40,7 +51,11 @@ function args.parse(argv, spec)
   local name, usage = script_name(argv), spec.usage or ""
   local function fail(fmt, ...)
     local msg = select("#", ...) > 0 and fmt:format(...) or fmt
-    error(("%s: %s\nusage: %s"):format(name, msg, usage), 0)
+    raise(("%s: %s\nusage: %s"):format(name, msg, usage), 2)
+  end
+  local function die(fmt, ...)
+    local msg = select("#", ...) > 0 and fmt:format(...) or fmt
+    raise(("%s: %s"):format(name, msg), 1)
   end
   local o = {}
   for k, v in pairs(spec.options or {}) do o[k] = v end
@@ -101,7 +116,7 @@ function args.parse(argv, spec)
   for _, key in ipairs(spec.positive or {}) do
     if o[key] <= 0 then fail("--%s must be greater than 0, got %g", key:gsub("_", "-"), o[key]) end
   end
-  return o, fail
+  return o, fail, die
 end
 
 return args

@@ -17,9 +17,12 @@ is() { # is GOT EXPECTED DESCRIPTION
     if [ "$1" = "$2" ]; then echo "ok $T_N - $3"
     else echo "not ok $T_N - $3"; echo "#   got:      '$1'"; echo "#   expected: '$2'"; T_FAILED=$((T_FAILED + 1)); fi
 }
-like() { # like TEXT EXTENDED-REGEX DESCRIPTION
+like() { # like TEXT REGEX DESCRIPTION
+    # The whole text against one Perl regex, ^ and $ at every line: a
+    # pattern may span lines (grep would take each of its lines as a
+    # separate alternative and pass when any one of them matched).
     T_N=$((T_N + 1))
-    if printf '%s' "$1" | grep -Eq -- "$2"; then echo "ok $T_N - $3"
+    if printf '%s' "$1" | RE="$2" perl -0777 -ne 'exit(/$ENV{RE}/m ? 0 : 1)'; then echo "ok $T_N - $3"
     else echo "not ok $T_N - $3"; echo "#   '$1'"; echo "#   does not match /$2/"; T_FAILED=$((T_FAILED + 1)); fi
 }
 # run CMD...: sets OUT, ERR, RC

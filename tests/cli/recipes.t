@@ -27,10 +27,13 @@ for r in default adaptive aligned best_axis scan_orders; do
     run "$LAMINA" run "$R/$r.lua" --help
     like "$RC $OUT" "^0 usage: lamina run recipes/$r\.lua" "$r --help prints the usage"
     run "$LAMINA" run "$R/$r.lua" --bogus 1
-    like "$RC $ERR" "^1 lamina: $r\.lua: unknown option --bogus
-usage: lamina run recipes/$r\.lua" "$r: an unknown option is an error with the usage, exit 1"
+    like "$RC $ERR" "^2 lamina: $r\.lua: unknown option --bogus
+usage: lamina run recipes/$r\.lua" "$r: an unknown option is an error with the usage, exit 2"
+    case "$ERR" in *traceback*) ok 1 "$r: an option error is a message, not a traceback" ;;
+                   *) ok 0 "$r: an option error is a message, not a traceback" ;; esac
     run "$LAMINA" run "$R/$r.lua" "$TMP/missing.stl"
     like "$RC $ERR" "^1 lamina: $r\.lua: .*missing\.stl" "$r: a model that does not load, exit 1"
+    like "$ERR" "\A[^\n]*missing\.stl[^\n]*\z" "$r: that message is one line: no usage, no traceback"
 done
 
 # ---- default.lua -------------------------------------------------------------
@@ -63,7 +66,7 @@ ok $([ "$RC" -eq 0 ] && [ -s "$TMP/res2/deeper/pillars.ladrp" ] && [ -s "$TMP/re
     "default: another model, a new output directory"
 like "$OUT" "sls-contours +16 layers +64 contours" "default: four pillars, 16 SLS layers"
 run "$LAMINA" run "$R/default.lua" --sls-width 0
-like "$RC $ERR" "^1 lamina: default\.lua: --sls-width must be greater than 0, got 0" "default: --sls-width 0 is an error"
+like "$RC $ERR" "^2 lamina: default\.lua: --sls-width must be greater than 0, got 0" "default: --sls-width 0 is an error"
 
 # ---- adaptive.lua ------------------------------------------------------------
 "$LAMINA" run "$MR/uv_sphere.lua" "$TMP/sphere.obj" 10 48 24
@@ -97,15 +100,15 @@ cmp_ok "$na" "<=" "$(awk -v u="$nu" 'BEGIN { print 0.75 * u }')" "adaptive: alon
 run "$LAMINA" run "$R/adaptive.lua" "$R/parts/thesis_cube_hole.ug"
 like "$OUT" "adaptive: 4 layers, worst cusp 0, widths 0.5 \.\. 0.5" "adaptive: walls and flat faces only: max-wide layers, no cusp"
 run "$LAMINA" run "$R/adaptive.lua" --min 0.6 --max 0.5
-like "$RC $ERR" "^1 lamina: adaptive\.lua: --min \(0\.6\) is greater than --max \(0\.5\)" "adaptive: min > max is an error"
+like "$RC $ERR" "^2 lamina: adaptive\.lua: --min \(0\.6\) is greater than --max \(0\.5\)" "adaptive: min > max is an error"
 run "$LAMINA" run "$R/adaptive.lua" --cusp abc
-like "$RC $ERR" "^1 lamina: adaptive\.lua: --cusp expects a number, got 'abc'" "adaptive: a bad number"
+like "$RC $ERR" "^2 lamina: adaptive\.lua: --cusp expects a number, got 'abc'" "adaptive: a bad number"
 run "$LAMINA" run "$R/adaptive.lua" --cusp -0.1
-like "$RC $ERR" "^1 lamina: adaptive\.lua: --cusp must be greater than 0, got -0\.1" "adaptive: a negative cusp"
+like "$RC $ERR" "^2 lamina: adaptive\.lua: --cusp must be greater than 0, got -0\.1" "adaptive: a negative cusp"
 run "$LAMINA" run "$R/adaptive.lua" --axis w
-like "$RC $ERR" "^1 lamina: adaptive\.lua: --axis: axis must be x, y, z" "adaptive: a bad axis"
+like "$RC $ERR" "^2 lamina: adaptive\.lua: --axis: axis must be x, y, z" "adaptive: a bad axis"
 run "$LAMINA" run "$R/adaptive.lua" a.stl b.stl
-like "$RC $ERR" "^1 lamina: adaptive\.lua: unexpected argument 'b\.stl'" "adaptive: two models"
+like "$RC $ERR" "^2 lamina: adaptive\.lua: unexpected argument 'b\.stl'" "adaptive: two models"
 
 # ---- aligned.lua -------------------------------------------------------------
 # every flat height among the planes (as numbers), printed and checked by slicing
@@ -137,7 +140,7 @@ like "$OUT" "flat heights: 4: -1 -0\.5 0\.5 1" "aligned: along x the cavity's wa
 flats_in_planes; ok $? "aligned: along x every flat height is a plane"
 like "$OUT" "layers: 8, every flat height on a boundary: yes" "aligned: along x, 8 layers"
 run "$LAMINA" run "$R/aligned.lua" --max 0
-like "$RC $ERR" "^1 lamina: aligned\.lua: --max must be greater than 0, got 0" "aligned: --max 0 is an error"
+like "$RC $ERR" "^2 lamina: aligned\.lua: --max must be greater than 0, got 0" "aligned: --max 0 is an error"
 
 # ---- best_axis.lua -----------------------------------------------------------
 row() { printf '%s\n' "$OUT" | awk -v a="$1" '$1 == a { print $2, $3, $4, $5 }'; }
@@ -160,9 +163,9 @@ like "$OUT" "1,1,-1 " "best_axis --more: the body diagonals"
 run "$LAMINA" run "$R/best_axis.lua" --w-overhang 0 "$MR/tee.ug"
 like "$OUT" "best: z$" "best_axis: overhang weight 0: a tie, the first candidate"
 run "$LAMINA" run "$R/best_axis.lua" --w-stair -1
-like "$RC $ERR" "^1 lamina: best_axis\.lua: --w-stair must be 0 or more, got -1" "best_axis: a negative weight"
+like "$RC $ERR" "^2 lamina: best_axis\.lua: --w-stair must be 0 or more, got -1" "best_axis: a negative weight"
 run "$LAMINA" run "$R/best_axis.lua" --overhang-deg 100
-like "$RC $ERR" "^1 lamina: best_axis\.lua: --overhang-deg must be between 0 and 90" "best_axis: a bad angle"
+like "$RC $ERR" "^2 lamina: best_axis\.lua: --overhang-deg must be between 0 and 90" "best_axis: a bad angle"
 
 # ---- scan_orders.lua ---------------------------------------------------------
 run "$LAMINA" run "$R/scan_orders.lua" --width 0.5 "$MR/pillars.ug"
@@ -180,7 +183,7 @@ like "$OUT" "islands +[0-9.]+ +1600\.0000 +800 +[0-9.]+%" "scan_orders: the same
 like "$OUT" "0/90 +boustrophedon" "scan_orders: alternating 0/90"
 like "$OUT" "\+67\.5 +islands" "scan_orders: turning 67.5 per layer"
 run "$LAMINA" run "$R/scan_orders.lua" --machine sls-contours
-like "$RC $ERR" "^1 lamina: scan_orders\.lua: sls-contours is an sls machine, not ladrp" "scan_orders: an SLS machine is an error"
+like "$RC $ERR" "^2 lamina: scan_orders\.lua: sls-contours is an sls machine, not ladrp" "scan_orders: an SLS machine is an error"
 run "$LAMINA" run "$R/scan_orders.lua" --machine no-such-machine
 like "$RC $ERR" "^1 lamina: scan_orders\.lua: .*unknown machine" "scan_orders: an unknown machine"
 

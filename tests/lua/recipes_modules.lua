@@ -21,9 +21,17 @@ o = args.parse({ [0] = "r.lua" }, spec)
 T.ok(o.cusp == 0.05 and o.list == false and o.model == "m.ug", "args: defaults")
 o = args.parse({ [0] = "r.lua", "--", "--odd-name.stl" }, spec)
 T.is(o.model, "--odd-name.stl", "args: -- ends the options")
+-- Option errors are objects: they print as the message (no traceback from
+-- `lamina run` or a stock lua) and carry the exit code.
+local function raises_object(msg, exit, desc, f, ...)
+  local ok, err = pcall(f, ...)
+  T.ok(not ok and type(err) == "table" and tostring(err):find(msg, 1, true) ~= nil and err.exit == exit, desc,
+       ok and "no error" or ("error: %s, exit %s (expected '%s', exit %d)"):format(tostring(err),
+         tostring(type(err) == "table" and err.exit), msg, exit))
+end
 local function bad(argv, msg, desc)
   argv[0] = "dir/r.lua"
-  T.raises(msg, "args: " .. desc, args.parse, argv, spec)
+  raises_object(msg, 2, "args: " .. desc, args.parse, argv, spec)
 end
 bad({ "--bogus" }, "r.lua: unknown option --bogus\nusage: r.lua [--cusp H]", "unknown option, with the usage")
 bad({ "-x" }, "r.lua: unknown option -x", "unknown short option")
@@ -33,8 +41,13 @@ bad({ "--cusp", "nan" }, "--cusp expects a number, got 'nan'", "nan is not a num
 bad({ "--cusp", "-1" }, "r.lua: --cusp must be greater than 0, got -1", "positive")
 bad({ "--list=maybe" }, "--list is a flag (true or false), got 'maybe'", "flag value")
 bad({ "a", "b" }, "r.lua: unexpected argument 'b'", "too many positionals")
-local _, fail = args.parse({ [0] = "r.lua" }, spec)
-T.raises("r.lua: min 2 > max 1\nusage: r.lua", "args: fail() for the recipe's own checks", fail, "min %g > max %g", 2, 1)
+local _, fail, die = args.parse({ [0] = "r.lua" }, spec)
+raises_object("r.lua: min 2 > max 1\nusage: r.lua", 2, "args: fail() for the recipe's own checks, exit 2", fail,
+              "min %g > max %g", 2, 1)
+raises_object("r.lua: m.ug: cannot open", 1, "args: die() for an input that does not load, exit 1", die,
+              "%s: cannot open", "m.ug")
+local _, derr = pcall(die, "gone")
+T.ok(not tostring(derr):find("usage", 1, true), "args: die() leaves the usage out")
 T.is(args.beside({ [0] = "recipes/x.lua" }, "parts/a.ug"), "recipes/parts/a.ug", "args.beside")
 T.is(args.beside({ [0] = "x.lua" }, "parts/a.ug"), "parts/a.ug", "args.beside in the current directory")
 
