@@ -114,7 +114,12 @@ struct lam_slicer {
     lam_slice_opts o;
     double *planes;        /* S + 1 boundaries */
     size_t nlayers, next;
-    double *vw, *vuv;      /* per vertex: height and layer-frame (u, v) */
+    /* per vertex v: height W(v) and layer-frame coordinates U(v), V(v), all
+     * with stride 3. For the axis frames they point into the mesh's own
+     * xyz (the exact same numbers, one cache line per vertex, no copy);
+     * for any other direction into wuv, computed once. */
+    const double *pw, *pu, *pv;
+    double *wuv;
     double *cuts;          /* cut height of each layer, nondecreasing */
     int up;                /* vertices on a plane count as below it */
     uint32_t *order;       /* edges that cross some cut, by first layer crossed */
@@ -130,6 +135,18 @@ struct lam_slicer {
     unsigned char *used;
     size_t cap_active, cap_seg;
 };
+
+#define W(s, v) ((s)->pw[3 * (size_t)(v)])
+#define U(s, v) ((s)->pu[3 * (size_t)(v)])
+#define V(s, v) ((s)->pv[3 * (size_t)(v)])
+
+/* k when a is exactly the unit vector along axis k, else -1. */
+static int unit_axis(const double a[3])
+{
+    for (int k = 0; k < 3; k++)
+        if (a[k] == 1 && a[(k + 1) % 3] == 0 && a[(k + 2) % 3] == 0) return k;
+    return -1;
+}
 
 static int make_planes(lam_slicer *s, double wmin, double wmax, lam_error *err)
 {
@@ -192,14 +209,14 @@ static int make_planes(lam_slicer *s, double wmin, double wmax, lam_error *err)
 static double edge_lo(const lam_slicer *s, uint32_t e)
 {
     const uint32_t *v = s->m->edges.v + 2 * (size_t)e;
-    double a = s->vw[v[0]], b = s->vw[v[1]];
+    double a = W(s, v[0]), b = W(s, v[1]);
     return a < b ? a : b;
 }
 
 static double edge_hi(const lam_slicer *s, uint32_t e)
 {
     const uint32_t *v = s->m->edges.v + 2 * (size_t)e;
-    double a = s->vw[v[0]], b = s->vw[v[1]];
+    double a = W(s, v[0]), b = W(s, v[1]);
     return a < b ? b : a;
 }
 
@@ -214,21 +231,32 @@ int lam_slicer_new(const lam_model *m, const lam_slice_opts *opts, lam_slicer **
     s->o.widths = NULL;
     int rc = LAM_OK;
     size_t nv = m->mesh.nverts, ne = m->edges.n;
-    s->vw = malloc(nv * sizeof *s->vw + 1);
-    s->vuv = malloc(2 * nv * sizeof *s->vuv + 1);
     s->local = malloc(ne * sizeof *s->local + 1);
-    if (!s->vw || !s->vuv || !s->local) {
+    int ku = unit_axis(opts->frame.u), kv = unit_axis(opts->frame.v), kw = unit_axis(opts->frame.w);
+    if (ku >= 0 && kv >= 0 && kw >= 0) {
+        s->pu = m->mesh.xyz + ku;
+        s->pv = m->mesh.xyz + kv;
+        s->pw = m->mesh.xyz + kw;
+    } else if ((s->wuv = malloc(3 * nv * sizeof *s->wuv + 1))) {
+        s->pw = s->wuv;
+        s->pu = s->wuv + 1;
+        s->pv = s->wuv + 2;
+        for (size_t v = 0; v < nv; v++) {
+            const double *p = m->mesh.xyz + 3 * v;
+            s->wuv[3 * v] = dot_exact(p, opts->frame.w);
+            s->wuv[3 * v + 1] = dot_exact(p, opts->frame.u);
+            s->wuv[3 * v + 2] = dot_exact(p, opts->frame.v);
+        }
+    }
+    if (!s->pw || !s->local) {
         rc = nomem(err);
         goto fail;
     }
     double wmin = INFINITY, wmax = -INFINITY;
     for (size_t v = 0; v < nv; v++) {
-        const double *p = m->mesh.xyz + 3 * v;
-        s->vw[v] = dot_exact(p, opts->frame.w);
-        s->vuv[2 * v] = dot_exact(p, opts->frame.u);
-        s->vuv[2 * v + 1] = dot_exact(p, opts->frame.v);
-        if (s->vw[v] < wmin) wmin = s->vw[v];
-        if (s->vw[v] > wmax) wmax = s->vw[v];
+        double h = W(s, v);
+        if (h < wmin) wmin = h;
+        if (h > wmax) wmax = h;
     }
     s->o.planes = opts->planes;
     s->o.widths = opts->widths;
@@ -318,7 +346,7 @@ void lam_slicer_uv_bounds(const lam_slicer *s, double box[4])
     box[0] = box[1] = INFINITY;
     box[2] = box[3] = -INFINITY;
     for (size_t v = 0; v < s->m->mesh.nverts; v++) {
-        double u = s->vuv[2 * v], w = s->vuv[2 * v + 1];
+        double u = U(s, v), w = V(s, v);
         if (u < box[0]) box[0] = u;
         if (u > box[2]) box[2] = u;
         if (w < box[1]) box[1] = w;
@@ -332,8 +360,7 @@ void lam_slicer_free(lam_slicer *s)
 {
     if (!s) return;
     free(s->planes);
-    free(s->vw);
-    free(s->vuv);
+    free(s->wuv);
     free(s->order);
     free(s->cuts);
     free(s->layer_first);
@@ -523,10 +550,10 @@ static int section(lam_slicer *s, size_t layer, chains *ch, lam_error *err)
         /* the point, from the lower end to the upper end, exact at both */
         const uint32_t *ev = E->v + 2 * (size_t)e;
         uint32_t lo = ev[0], hi = ev[1];
-        if (s->vw[lo] > s->vw[hi]) { uint32_t t = lo; lo = hi; hi = t; }
-        double t = (c - s->vw[lo]) / (s->vw[hi] - s->vw[lo]);
-        s->pts[2 * na] = lerp(s->vuv[2 * lo], s->vuv[2 * hi], t);
-        s->pts[2 * na + 1] = lerp(s->vuv[2 * lo + 1], s->vuv[2 * hi + 1], t);
+        if (W(s, lo) > W(s, hi)) { uint32_t t = lo; lo = hi; hi = t; }
+        double t = (c - W(s, lo)) / (W(s, hi) - W(s, lo));
+        s->pts[2 * na] = lerp(U(s, lo), U(s, hi), t);
+        s->pts[2 * na + 1] = lerp(V(s, lo), V(s, hi), t);
         LAM_PREFETCH(E->first + e);
         na++;
     }
@@ -554,7 +581,7 @@ static int section(lam_slicer *s, size_t layer, chains *ch, lam_error *err)
             uint32_t t = E->tris[i];
             const uint32_t *tv = m->mesh.tris + 3 * (size_t)t;
             int above[3];
-            for (int j = 0; j < 3; j++) above[j] = !BELOW(s->vw[tv[j]]);
+            for (int j = 0; j < 3; j++) above[j] = !BELOW(W(s, tv[j]));
             int lone = above[0] == above[1] ? 2 : above[0] == above[2] ? 1 : 0;
             int entry = above[lone] ? lone : (lone + 2) % 3;
             int exit = above[lone] ? (lone + 2) % 3 : lone;
