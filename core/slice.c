@@ -128,7 +128,11 @@ struct lam_slicer {
     uint32_t *active;
     double *active_hi;     /* upper height of each active edge */
     size_t nactive;
-    uint32_t *local;       /* per edge: slot in active (valid while active) */
+    /* edge id -> slot in active, for this layer's edges only: a small
+     * open-addressing table (2 to 4 cells per active edge) stays in cache,
+     * where an array over all edges would be read and written at random */
+    uint32_t *slot_edge, *slot_at;
+    size_t slot_cap;
     /* per-layer scratch, grown as needed */
     double *pts;           /* point of each active edge */
     uint32_t *seg_in, *seg_out, *in_first, *in_seg, *indeg;
@@ -231,7 +235,6 @@ int lam_slicer_new(const lam_model *m, const lam_slice_opts *opts, lam_slicer **
     s->o.widths = NULL;
     int rc = LAM_OK;
     size_t nv = m->mesh.nverts, ne = m->edges.n;
-    s->local = malloc(ne * sizeof *s->local + 1);
     int ku = unit_axis(opts->frame.u), kv = unit_axis(opts->frame.v), kw = unit_axis(opts->frame.w);
     if (ku >= 0 && kv >= 0 && kw >= 0) {
         s->pu = m->mesh.xyz + ku;
@@ -248,7 +251,7 @@ int lam_slicer_new(const lam_model *m, const lam_slice_opts *opts, lam_slicer **
             s->wuv[3 * v + 2] = dot_exact(p, opts->frame.v);
         }
     }
-    if (!s->pw || !s->local) {
+    if (!s->pw) {
         rc = nomem(err);
         goto fail;
     }
@@ -366,7 +369,8 @@ void lam_slicer_free(lam_slicer *s)
     free(s->layer_first);
     free(s->active);
     free(s->active_hi);
-    free(s->local);
+    free(s->slot_edge);
+    free(s->slot_at);
     free(s->pts);
     free(s->seg_in);
     free(s->seg_out);
@@ -523,6 +527,45 @@ static double lerp(double a, double b, double t)
     return a == b ? a : (1 - t) * a + t * b;
 }
 
+static uint32_t slot_hash(const lam_slicer *s, uint32_t e)
+{
+    return (uint32_t)((e * 0x9e3779b1u) & (s->slot_cap - 1));
+}
+
+/* Fill the edge -> slot table for the active edges of this layer. */
+static int index_slots(lam_slicer *s, lam_error *err)
+{
+    size_t need = 16;
+    while (need < 2 * s->nactive) need *= 2;
+    if (need > s->slot_cap) {
+        uint32_t *ne = realloc(s->slot_edge, need * sizeof *ne);
+        if (ne) s->slot_edge = ne;
+        uint32_t *na = ne ? realloc(s->slot_at, need * sizeof *na) : NULL;
+        if (na) s->slot_at = na;
+        if (!ne || !na) return nomem(err);
+        s->slot_cap = need;
+    }
+    memset(s->slot_edge, 0xff, s->slot_cap * sizeof *s->slot_edge);
+    for (size_t k = 0; k < s->nactive; k++) {
+        uint32_t e = s->active[k], h = slot_hash(s, e);
+        while (s->slot_edge[h] != NONE) h = (h + 1) & (uint32_t)(s->slot_cap - 1);
+        s->slot_edge[h] = e;
+        s->slot_at[h] = (uint32_t)k;
+    }
+    return LAM_OK;
+}
+
+/* The slot of active edge e, NONE if it is not active. (Every edge a
+ * crossing triangle leaves by crosses the plane too, so it is active;
+ * NONE would only drop a segment, never index out of bounds.) */
+static uint32_t slot_of(const lam_slicer *s, uint32_t e)
+{
+    for (uint32_t h = slot_hash(s, e);; h = (h + 1) & (uint32_t)(s->slot_cap - 1)) {
+        if (s->slot_edge[h] == e) return s->slot_at[h];
+        if (s->slot_edge[h] == NONE) return NONE;
+    }
+}
+
 /* Cut at height c: the active edges' points and the directed segments of
  * the triangles crossing the plane, chained into polylines by edge. */
 static int section(lam_slicer *s, size_t layer, chains *ch, lam_error *err)
@@ -546,7 +589,6 @@ static int section(lam_slicer *s, size_t layer, chains *ch, lam_error *err)
         if (BELOW(ehi)) continue; /* passed for good: heights only rise */
         s->active[na] = e;
         s->active_hi[na] = ehi;
-        s->local[e] = (uint32_t)na;
         /* the point, from the lower end to the upper end, exact at both */
         const uint32_t *ev = E->v + 2 * (size_t)e;
         uint32_t lo = ev[0], hi = ev[1];
@@ -558,6 +600,7 @@ static int section(lam_slicer *s, size_t layer, chains *ch, lam_error *err)
         na++;
     }
     s->nactive = na;
+    if (index_slots(s, err)) return LAM_ENOMEM;
 
     /* Directed segments: with outward triangles (a, b, c) and a lone vertex
      * above the plane, the section runs from edge (lone, next) to edge
@@ -586,9 +629,11 @@ static int section(lam_slicer *s, size_t layer, chains *ch, lam_error *err)
             int entry = above[lone] ? lone : (lone + 2) % 3;
             int exit = above[lone] ? (lone + 2) % 3 : lone;
             if (E->tri_edge[3 * (size_t)t + entry] != e) continue;
+            uint32_t out = slot_of(s, E->tri_edge[3 * (size_t)t + exit]);
+            if (out == NONE) continue;
             if (reserve_segs(s, nseg + 1, err)) return LAM_ENOMEM;
             s->seg_in[nseg] = (uint32_t)k;
-            s->seg_out[nseg] = s->local[E->tri_edge[3 * (size_t)t + exit]];
+            s->seg_out[nseg] = out;
             nseg++;
         }
     }
