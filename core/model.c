@@ -45,7 +45,7 @@ static int cmp_u64(const void *x, const void *y)
  * The bucket keeps each half-edge's upper vertex beside it, so matching
  * reads one array in order instead of jumping back into the triangles.
  * Edge ids follow the lower vertex, then first appearance. */
-static int build_edges(const lam_mesh *m, lam_edges *e, lam_error *err)
+static int build_edges(const lam_mesh *m, lam_edges *e, unsigned char *hdir, lam_error *err)
 {
     size_t nt = m->ntris, nv = m->nverts, nh = 3 * nt;
     uint32_t *first = calloc(nv + 1, sizeof *first);
@@ -128,7 +128,12 @@ static int build_edges(const lam_mesh *m, lam_edges *e, lam_error *err)
     uint32_t *fill = malloc((n + 1) * sizeof *fill);
     if (!fill) return oom(err);
     memcpy(fill, e->first, (n + 1) * sizeof *fill);
-    for (size_t i = 0; i < nh; i++) e->tris[fill[e->tri_edge[i]]++] = (uint32_t)(i / 3);
+    for (size_t i = 0; i < nh; i++) {
+        uint32_t at = fill[e->tri_edge[i]]++;
+        e->tris[at] = (uint32_t)(i / 3);
+        /* hdir[at]: the triangle runs along the edge from its lower vertex */
+        if (hdir) hdir[at] = m->tris[i] < m->tris[i % 3 == 2 ? i - 2 : i + 1];
+    }
     free(fill);
     return LAM_OK;
 }
@@ -152,11 +157,54 @@ static void flip_tri(lam_mesh *m, lam_edges *e, size_t t)
     e->tri_edge[3 * t + 2] = tmp;
 }
 
+static uint32_t uf_find(uint32_t *parent, uint32_t x)
+{
+    while (parent[x] != x) {
+        parent[x] = parent[parent[x]]; /* path halving */
+        x = parent[x];
+    }
+    return x;
+}
+
+/* The usual case, done without a search: when the two triangles of every
+ * manifold edge already run along it in opposite directions (hdir, from
+ * build_edges), nothing is flipped, and the shells are the components of
+ * a union-find over the edges in order. A root is always its component's
+ * lowest triangle, so shells are numbered by their first triangle, as the
+ * search numbers them. Returns 0, changing nothing, when some edge is
+ * inconsistent: the search then decides the flips. */
+static int consistent_shells(lam_model *md, const unsigned char *hdir, uint32_t *parent)
+{
+    const lam_edges *e = &md->edges;
+    size_t nt = md->mesh.ntris;
+    for (size_t t = 0; t < nt; t++) parent[t] = (uint32_t)t;
+    for (size_t i = 0; i < e->n; i++) {
+        uint32_t f = e->first[i];
+        if (e->first[i + 1] - f != 2) continue;
+        if (hdir[f] == hdir[f + 1]) return 0;
+        uint32_t a = uf_find(parent, e->tris[f]), b = uf_find(parent, e->tris[f + 1]);
+        if (a < b) parent[b] = a;
+        else if (b < a) parent[a] = b;
+    }
+    /* parent[t] <= t throughout, so one pass upward flattens every path
+     * (a parent below t already points at its root) and labels */
+    size_t nshells = 0;
+    for (size_t t = 0; t < nt; t++) {
+        uint32_t r = parent[parent[t]];
+        parent[t] = r;
+        md->tri_shell[t] = r == t ? (uint32_t)nshells++ : md->tri_shell[r];
+    }
+    md->nshells = nshells;
+    md->stats.orientation_conflicts = 0;
+    return 1;
+}
+
 /* Shells are the components through manifold edges (exactly two triangles):
  * two solids that only touch along a non-manifold edge stay two shells, each
- * with its own orientation. One breadth-first pass both labels the shell and
- * makes its winding consistent. */
-static int build_shells(lam_model *md, lam_error *err)
+ * with its own orientation. Unless the file's orientation is already
+ * consistent (consistent_shells), one breadth-first pass both labels the
+ * shell and makes its winding consistent. */
+static int build_shells(lam_model *md, const unsigned char *hdir, lam_error *err)
 {
     lam_mesh *m = &md->mesh;
     lam_edges *e = &md->edges;
@@ -166,6 +214,11 @@ static int build_shells(lam_model *md, lam_error *err)
     if (!md->tri_shell || !queue) {
         free(queue);
         return oom(err);
+    }
+    if (hdir && consistent_shells(md, hdir, queue)) {
+        free(queue);
+        md->shells = calloc(md->nshells ? md->nshells : 1, sizeof *md->shells);
+        return md->shells ? LAM_OK : oom(err);
     }
     for (size_t t = 0; t < nt; t++) md->tri_shell[t] = NONE;
     size_t nshells = 0, conflicts = 0;
@@ -387,8 +440,13 @@ int lam_model_from_mesh(lam_mesh *mesh, const char *path, const char *format,
         m->welded = 0;
         if ((rc = lam_mesh_weld(m, err))) goto fail; /* drop vertices only they used */
     }
-    if ((rc = build_edges(m, &md->edges, err))) goto fail;
-    if ((rc = build_shells(md, err))) goto fail;
+    /* hdir is only a shortcut: without the memory for it the search runs */
+    unsigned char *hdir = malloc(3 * m->ntris + 1);
+    if ((rc = build_edges(m, &md->edges, hdir, err)) || (rc = build_shells(md, hdir, err))) {
+        free(hdir);
+        goto fail;
+    }
+    free(hdir);
     if ((rc = index_shells(md, err))) goto fail;
 
     double *ref = malloc(3 * md->nshells * sizeof *ref);

@@ -171,5 +171,42 @@ int main(void)
     md = build_model_quiet(&m, "test");
     is_num(md->stats.volume, 8, 0, "volume exact far from the origin");
     lam_model_free(md);
+    /* Shells by union-find (consistent input) and by the search (input
+     * with flipped triangles) must agree: three boxes as separate shells,
+     * the middle one a cavity of the first, the third apart; once wound
+     * consistently (inward cavity included, as a file would have it), once
+     * with triangles flipped in each box, the first one in the very first
+     * triangle (the search's seed). Same shells, labels, cavities, volume
+     * and, triangle by triangle, the same winding. */
+    {
+        lam_mesh a, b;
+        lam_mesh_init(&a);
+        lam_mesh_init(&b);
+        add_box(&a, 0, 0, 0, 4, 4, 4, 0, -1);
+        add_box(&a, 1, 1, 1, 2, 2, 2, BOX_INWARD, -1);
+        add_box(&a, 10, 0, 0, 11, 1, 1, 0, -1);
+        add_box(&b, 0, 0, 0, 4, 4, 4, 0x001, -1);
+        add_box(&b, 1, 1, 1, 2, 2, 2, BOX_INWARD ^ 0x0f0, -1);
+        add_box(&b, 10, 0, 0, 11, 1, 1, 0xa00, -1);
+        lam_model *ma = build_model_quiet(&a, "consistent"), *mb = build_model_quiet(&b, "flipped");
+        ok(ma && mb, "three boxes build, consistent and with flipped triangles");
+        if (ma && mb) {
+            is_int(ma->stats.shells, 3, "three shells");
+            is_int(ma->stats.cavities, 1, "one cavity");
+            is_num(ma->stats.volume, 64 - 1 + 1, 0, "volume 64 - 1 + 1");
+            is_int(mb->stats.shells, ma->stats.shells, "flipped input: the same shells");
+            is_int(mb->stats.cavities, ma->stats.cavities, "flipped input: the same cavity");
+            is_num(mb->stats.volume, ma->stats.volume, 0, "flipped input: the same volume");
+            int same = ma->mesh.ntris == mb->mesh.ntris;
+            for (size_t t = 0; same && t < ma->mesh.ntris; t++)
+                same = ma->tri_shell[t] == mb->tri_shell[t] &&
+                       memcmp(ma->mesh.tris + 3 * t, mb->mesh.tris + 3 * t, 3 * sizeof(uint32_t)) == 0;
+            ok(same, "flipped input: every triangle in the same shell, wound the same way");
+            ok(ma->tri_shell[0] == 0 && ma->tri_shell[12] == 1 && ma->tri_shell[24] == 2,
+               "shells numbered by their first triangle");
+        }
+        lam_model_free(ma);
+        lam_model_free(mb);
+    }
     return done_testing();
 }
