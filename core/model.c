@@ -260,26 +260,25 @@ static int build_shells(lam_model *md, const unsigned char *hdir, lam_error *err
     return LAM_OK;
 }
 
-static double tri_area(const double *a, const double *b, const double *c)
+/* Twice the area of triangle abc, and whether it is exactly zero (every
+ * component of the cross product 0: a degenerate triangle). The test is
+ * the same for either winding: swapping b and c negates each component
+ * exactly (ISO C mode: no fused multiply-add contraction). */
+static double tri_area2(const double *a, const double *b, const double *c, int *degenerate)
 {
     double u[3] = { b[0] - a[0], b[1] - a[1], b[2] - a[2] };
     double v[3] = { c[0] - a[0], c[1] - a[1], c[2] - a[2] };
     double n[3] = { u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0] };
-    return 0.5 * sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-}
-
-static int is_degenerate(const double *a, const double *b, const double *c)
-{
-    double u[3] = { b[0] - a[0], b[1] - a[1], b[2] - a[2] };
-    double v[3] = { c[0] - a[0], c[1] - a[1], c[2] - a[2] };
-    return u[1] * v[2] - u[2] * v[1] == 0 && u[2] * v[0] - u[0] * v[2] == 0 &&
-           u[0] * v[1] - u[1] * v[0] == 0;
+    *degenerate = n[0] == 0 && n[1] == 0 && n[2] == 0;
+    return sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
 }
 
 /* Per shell: bbox, area and signed volume measured from a point of the
- * shell (keeps the sum well conditioned far from the origin). */
-static void measure_shells(lam_model *md, double *ref, double *comp)
+ * shell (keeps the sum well conditioned far from the origin). Returns how
+ * many triangles have zero area. */
+static size_t measure_shells(lam_model *md, double *ref, double *comp)
 {
+    size_t degenerate = 0;
     lam_mesh *m = &md->mesh;
     for (size_t s = 0; s < md->nshells; s++) {
         lam_shell *sh = &md->shells[s];
@@ -313,11 +312,14 @@ static void measure_shells(lam_model *md, double *ref, double *comp)
         double s6 = sh->volume + d;
         comp[md->tri_shell[t]] += fabs(sh->volume) >= fabs(d) ? (sh->volume - s6) + d : (d - s6) + sh->volume;
         sh->volume = s6;
-        sh->area += tri_area(p[0], p[1], p[2]);
+        int zero;
+        sh->area += 0.5 * tri_area2(p[0], p[1], p[2], &zero);
+        degenerate += (size_t)zero;
         sh->ntris++;
     }
     for (size_t s = 0; s < md->nshells; s++)
         md->shells[s].volume = (md->shells[s].volume + comp[s]) / 6.0;
+    return degenerate;
 }
 
 static void flip_shell(lam_model *md, size_t s)
@@ -457,7 +459,7 @@ int lam_model_from_mesh(lam_mesh *mesh, const char *path, const char *format,
         rc = oom(err);
         goto fail;
     }
-    measure_shells(md, ref, comp);
+    size_t zero_area = measure_shells(md, ref, comp);
     free(ref);
     free(comp);
     for (size_t s = 0; s < md->nshells; s++)
@@ -485,11 +487,7 @@ int lam_model_from_mesh(lam_mesh *mesh, const char *path, const char *format,
     st->edges = md->edges.n;
     st->shells = md->nshells;
     st->wires = m->nwires;
-    st->degenerate_tris = collapsed;
-    for (size_t t = 0; t < m->ntris; t++)
-        if (is_degenerate(m->xyz + 3 * (size_t)m->tris[3 * t], m->xyz + 3 * (size_t)m->tris[3 * t + 1],
-                          m->xyz + 3 * (size_t)m->tris[3 * t + 2]))
-            st->degenerate_tris++;
+    st->degenerate_tris = collapsed + zero_area;
     for (size_t i = 0; i < md->edges.n; i++) {
         uint32_t k = md->edges.first[i + 1] - md->edges.first[i];
         if (k == 1) st->boundary_edges++;
