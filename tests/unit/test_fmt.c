@@ -55,5 +55,17 @@ int main(void)
         good &= same(x, 6) && same(x, 5) && same(x, 3);
     }
     ok(good, "decimal inputs match printf");
+
+    /* every precision of the fast path (0..15) and past it, at every
+     * integer length: 1 digit up to the fast path's limit near 4e15 */
+    good = 1;
+    for (int i = 0; i < 200000 && good; i++) {
+        uint64_t r = next();
+        int d = (int)(r % 18);
+        double mag = (double)(1ull << (r >> 8) % 52);
+        double x = (double)(next() >> 11) / (double)(1ull << 53) * mag * ((r >> 7) & 1 ? -1 : 1);
+        good &= same(x, d);
+    }
+    ok(good, "precisions 0 to 17 and integer parts of every length match printf");
     return done_testing();
 }
