@@ -1,4 +1,5 @@
 #include "contour.h"
+#include "nest.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -126,155 +127,6 @@ static void inner_point(const double *uv, size_t n, size_t a, double q[2])
     q[1] = A[1] + eps * dv / dl;
 }
 
-typedef struct seg {
-    double vmin, vmax;
-    uint32_t loop, i; /* edge from point i to i+1 of its loop */
-} seg;
-
-typedef struct query {
-    double u, v;
-    uint32_t loop;
-} query;
-
-static int cmp_seg(const void *a, const void *b)
-{
-    const seg *p = a, *q = b;
-    if (p->vmin != q->vmin) return p->vmin < q->vmin ? -1 : 1;
-    if (p->loop != q->loop) return p->loop < q->loop ? -1 : 1;
-    return p->i < q->i ? -1 : p->i > q->i;
-}
-
-static int cmp_query(const void *a, const void *b)
-{
-    const query *p = a, *q = b;
-    if (p->v != q->v) return p->v < q->v ? -1 : 1;
-    return p->loop < q->loop ? -1 : p->loop > q->loop;
-}
-
-typedef struct loopinfo {
-    size_t first, n, start;   /* start: lowest-leftmost point */
-    double q[2];              /* a point just inside the loop, next to start */
-    double area;
-    int depth;
-    long parent;
-} loopinfo;
-
-/* For every loop: depth and smallest container, by a sweep over v with
- * ray casting toward -u from the loop's lowest-leftmost point. */
-/* Parity of the crossings of loop o's edges with the ray from (u, v)
- * toward -u (half-open rule on v, as in the sweep). */
-static int crossings_left(const lam_loops *L, const loopinfo *o, double u, double v)
-{
-    const double *uv = L->uv + 2 * o->first;
-    int par = 0;
-    for (size_t i = 0; i < o->n; i++) {
-        size_t j = (i + 1) % o->n;
-        double vi = uv[2 * i + 1], vj = uv[2 * j + 1];
-        double lo = vi < vj ? vi : vj, hi = vi < vj ? vj : vi;
-        if (!(lo <= v && v < hi)) continue;
-        double x = uv[2 * i] + (v - vi) * (uv[2 * j] - uv[2 * i]) / (vj - vi);
-        if (x < u) par ^= 1;
-    }
-    return par;
-}
-
-/* A few loops (the usual layer): test each against the others directly,
- * with the same ray and crossing rule as the sweep. */
-static void nest_few(const lam_loops *L, loopinfo *li)
-{
-    size_t nl = L->nloops;
-    for (size_t l = 0; l < nl; l++) {
-        const double *q = li[l].q;
-        li[l].depth = 0;
-        li[l].parent = -1;
-        double best = INFINITY;
-        for (size_t o = 0; o < nl; o++) {
-            if (o == l || !crossings_left(L, &li[o], q[0], q[1])) continue;
-            li[l].depth++;
-            double a = fabs(li[o].area);
-            if (a < best) {
-                best = a;
-                li[l].parent = (long)o;
-            }
-        }
-    }
-}
-
-static int nest(const lam_loops *L, loopinfo *li, lam_error *err)
-{
-    size_t nl = L->nloops, ns = L->npoints;
-    if (nl <= 8) {
-        nest_few(L, li);
-        return LAM_OK;
-    }
-    seg *segs = malloc(ns * sizeof *segs + 1);
-    query *qs = malloc(nl * sizeof *qs + 1);
-    uint32_t *active = malloc(ns * sizeof *active + 1);
-    unsigned char *parity = calloc(nl, 1);
-    uint32_t *touched = malloc(nl * sizeof *touched + 1);
-    if (!segs || !qs || !active || !parity || !touched) {
-        free(segs); free(qs); free(active); free(parity); free(touched);
-        return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory classifying contours");
-    }
-    for (size_t l = 0; l < nl; l++) {
-        const double *uv = L->uv + 2 * li[l].first;
-        for (size_t i = 0; i < li[l].n; i++) {
-            size_t j = (i + 1) % li[l].n;
-            seg *s = &segs[li[l].first + i];
-            double a = uv[2 * i + 1], b = uv[2 * j + 1];
-            s->vmin = a < b ? a : b;
-            s->vmax = a < b ? b : a;
-            s->loop = (uint32_t)l;
-            s->i = (uint32_t)i;
-        }
-        qs[l].u = li[l].q[0];
-        qs[l].v = li[l].q[1];
-        qs[l].loop = (uint32_t)l;
-    }
-    qsort(segs, ns, sizeof *segs, cmp_seg);
-    qsort(qs, nl, sizeof *qs, cmp_query);
-    size_t ins = 0, nact = 0;
-    for (size_t k = 0; k < nl; k++) {
-        const query *q = &qs[k];
-        /* half-open rule: an edge spans q.v when vmin <= v < vmax */
-        while (ins < ns && segs[ins].vmin <= q->v) active[nact++] = (uint32_t)ins++;
-        size_t keep = 0, ntouched = 0;
-        for (size_t a = 0; a < nact; a++) {
-            const seg *s = &segs[active[a]];
-            if (s->vmax <= q->v) continue; /* below every later query too */
-            active[keep++] = active[a];
-            if (s->loop == q->loop || s->vmin == s->vmax) continue;
-            const double *uv = L->uv + 2 * li[s->loop].first;
-            size_t i = s->i, j = (i + 1) % li[s->loop].n;
-            double ui = uv[2 * i], vi = uv[2 * i + 1], uj = uv[2 * j], vj = uv[2 * j + 1];
-            double x = ui + (q->v - vi) * (uj - ui) / (vj - vi);
-            if (x < q->u) {
-                if (!parity[s->loop]) touched[ntouched++] = s->loop;
-                parity[s->loop] ^= 1;
-            }
-        }
-        nact = keep;
-        loopinfo *me = &li[q->loop];
-        me->depth = 0;
-        me->parent = -1;
-        double best = INFINITY;
-        for (size_t t = 0; t < ntouched; t++) {
-            uint32_t o = touched[t];
-            if (parity[o]) {
-                me->depth++;
-                double a = fabs(li[o].area);
-                if (a < best || (a == best && (long)o < me->parent)) {
-                    best = a;
-                    me->parent = (long)o;
-                }
-            }
-            parity[o] = 0;
-        }
-    }
-    free(segs); free(qs); free(active); free(parity); free(touched);
-    return LAM_OK;
-}
-
 /* ---- assembly ----------------------------------------------------------- */
 
 typedef struct order_key {
@@ -302,7 +154,8 @@ int lam_contours_assign(lam_layer *layer, const lam_loops *L, lam_error *err)
     size_t nl = L->nloops;
     if (nl == 0) return LAM_OK;
 
-    loopinfo *li = malloc(nl * sizeof *li);
+    lam_nest_loop *li = malloc(nl * sizeof *li);
+    size_t *start = malloc(nl * sizeof *start);
     order_key *keys = malloc(nl * sizeof *keys);
     size_t *order = malloc(nl * sizeof *order);
     long *newidx = malloc(nl * sizeof *newidx);
@@ -310,7 +163,7 @@ int lam_contours_assign(lam_layer *layer, const lam_loops *L, lam_error *err)
     layer->uv = malloc(2 * L->npoints * sizeof *layer->uv);
     layer->contours = calloc(nl, sizeof *layer->contours);
     int rc = LAM_OK;
-    if (!li || !keys || !order || !newidx || !stack || !layer->uv || !layer->contours) {
+    if (!li || !start || !keys || !order || !newidx || !stack || !layer->uv || !layer->contours) {
         rc = lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory assembling contours");
         goto done;
     }
@@ -318,19 +171,19 @@ int lam_contours_assign(lam_layer *layer, const lam_loops *L, lam_error *err)
     for (size_t l = 0; l < nl; l++) {
         li[l].first = off;
         li[l].n = L->len[l];
-        li[l].start = lowest_leftmost(L->uv + 2 * off, L->len[l]);
+        start[l] = lowest_leftmost(L->uv + 2 * off, L->len[l]);
         li[l].area = lam_loop_area(L->uv + 2 * off, L->len[l]);
-        inner_point(L->uv + 2 * off, L->len[l], li[l].start, li[l].q);
+        inner_point(L->uv + 2 * off, L->len[l], start[l], li[l].q);
         off += L->len[l];
     }
-    if ((rc = nest(L, li, err))) goto done;
+    if ((rc = lam_nest(L->uv, li, nl, err))) goto done;
 
     /* Depth-first order: each parent followed by its children, siblings by
      * their start point (lowest, then leftmost). */
     for (size_t l = 0; l < nl; l++) {
         keys[l].parent = li[l].parent;
-        keys[l].v = L->uv[2 * (li[l].first + li[l].start) + 1];
-        keys[l].u = L->uv[2 * (li[l].first + li[l].start)];
+        keys[l].v = L->uv[2 * (li[l].first + start[l]) + 1];
+        keys[l].u = L->uv[2 * (li[l].first + start[l])];
         keys[l].loop = (uint32_t)l;
     }
     qsort(keys, nl, sizeof *keys, cmp_order);
@@ -367,7 +220,8 @@ int lam_contours_assign(lam_layer *layer, const lam_loops *L, lam_error *err)
 
     size_t pos = 0;
     for (size_t k = 0; k < nl; k++) {
-        const loopinfo *in = &li[order[k]];
+        const lam_nest_loop *in = &li[order[k]];
+        size_t in_start = start[order[k]];
         lam_contour *c = &layer->contours[k];
         const double *src = L->uv + 2 * in->first;
         size_t n = in->n;
@@ -378,13 +232,13 @@ int lam_contours_assign(lam_layer *layer, const lam_loops *L, lam_error *err)
         c->parent = in->parent >= 0 ? newidx[in->parent] : -1;
         /* the thesis's test at the lowest-leftmost vertex; the signed area
          * decides only when that vertex is degenerate */
-        double turn = turn_at(src, n, in->start);
+        double turn = turn_at(src, n, in_start);
         int ccw = turn > 0 || (turn == 0 && in->area > 0);
         int want_ccw = c->kind == LAM_SOLID;
         double *dst = layer->uv + 2 * pos;
         for (size_t i = 0; i < n; i++) {
             /* start at the lowest-leftmost point, walk forward or backward */
-            size_t j = ccw == want_ccw ? (in->start + i) % n : (in->start + n - i) % n;
+            size_t j = ccw == want_ccw ? (in_start + i) % n : (in_start + n - i) % n;
             dst[2 * i] = src[2 * j];
             dst[2 * i + 1] = src[2 * j + 1];
         }
@@ -406,6 +260,7 @@ int lam_contours_assign(lam_layer *layer, const lam_loops *L, lam_error *err)
     layer->ncontours = nl;
 done:
     free(li);
+    free(start);
     free(keys);
     free(order);
     free(newidx);

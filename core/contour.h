@@ -1,10 +1,11 @@
 /* Contours of a layer: assembly into lam_layer, nesting (solid/hole by
  * depth), orientation, canonical start, measures (thesis 4.2.2).
  *
- * Classification is geometric, never from the mesh's winding: each loop's
- * lowest-leftmost vertex casts a ray towards -u, and the loops it crosses an
- * odd number of times contain it. A sweep over v keeps only the loop edges
- * spanning the query height active. Depth 0 is solid, 1 hole, 2 solid...
+ * Classification is geometric, never from the mesh's winding: from a point
+ * just inside each loop at its lowest-leftmost vertex a ray goes towards
+ * -u, and the loops it crosses an odd number of times contain it (nest.h:
+ * a sweep over v with the active edges in a search tree, O(N log N) for a
+ * layer of N points). Depth 0 is solid, 1 hole, 2 solid...
  * and the parent is the smallest containing loop. Solids are then turned
  * counter-clockwise and holes clockwise, decided at the lowest-leftmost
  * vertex by the cross product of its two neighbours (the thesis's test),

@@ -59,6 +59,20 @@ for mesh in sphere torus; do
 done
 echo "(medians of $RUNS alternating runs; speedup = slic3r time / lamina time; mem_ratio = lamina peak RSS / slic3r peak RSS)"
 
+# A comb: 1000 separate teeth side by side, so every layer holds 1000
+# contours all spanning the same heights (contour classification must stay
+# O(N log N) per layer); the same comparison, three runs each.
+comb="$work/comb.stl"
+[ -s "$comb" ] || python3 "$here/comb.py" 1000 "$comb"
+: >"$work/l.txt"; : >"$work/s.txt"
+for ((r = 0; r < 3; r++)); do
+    measure "$LAMINA" slice "$comb" -w 0.1 --cut middle -o "$work/comb.sls" >>"$work/l.txt"
+    measure slic3r --export-svg --layer-height 0.1 "$comb" -o "$work/comb.slic3r.svg" >>"$work/s.txt"
+done
+lt=$(cut -d' ' -f1 "$work/l.txt" | median); st=$(cut -d' ' -f1 "$work/s.txt" | median)
+awk -v lt="$lt" -v st="$st" 'BEGIN {
+    printf "comb (1000 teeth, 100 layers of 1000 contours): lamina %.3f s, slic3r %.3f s (%.1fx)\n", lt, st, st / lt }'
+
 # Embree validation of every label: the sphere at 0.1 layers, and the model
 # load + slice alone for comparison.
 : >"$work/v.txt"; : >"$work/s.txt"
