@@ -157,6 +157,25 @@ typedef struct tedge {
     int s;
 } tedge;
 
+/* Edge i of a loop of n points p (area: its signed area) as a tedge;
+ * 0 for a horizontal edge, which never counts. */
+static int make_tedge(const double *p, size_t n, size_t i, uint32_t loop, double area, tedge *t)
+{
+    size_t j = (i + 1) % n;
+    double vi = p[2 * i + 1], vj = p[2 * j + 1];
+    if (vi == vj) return 0;
+    int down = vj < vi;
+    t->u0 = down ? p[2 * j] : p[2 * i];
+    t->v0 = down ? vj : vi;
+    t->u1 = down ? p[2 * i] : p[2 * j];
+    t->v1 = down ? vi : vj;
+    t->loop = loop;
+    /* counter-clockwise: the inside is left of the way round, so +u of an
+     * edge going down */
+    t->s = (down != (area < 0)) ? 1 : -1;
+    return 1;
+}
+
 /* > 0: point (u, v) lies on the -u side of e's line, < 0 the +u side. */
 static double side(const tedge *e, double u, double v)
 {
@@ -323,19 +342,8 @@ static int nest_tree(const double *uv, lam_nest_loop *li, size_t nl, int *agreed
     for (size_t l = 0; l < nl; l++) {
         const double *p = uv + 2 * li[l].first;
         for (size_t i = 0; i < li[l].n; i++) {
-            size_t j = (i + 1) % li[l].n;
-            double vi = p[2 * i + 1], vj = p[2 * j + 1];
-            if (vi == vj) continue; /* a horizontal edge never counts */
             tedge *t = &e[ne];
-            int down = vj < vi;
-            t->u0 = down ? p[2 * j] : p[2 * i];
-            t->v0 = down ? vj : vi;
-            t->u1 = down ? p[2 * i] : p[2 * j];
-            t->v1 = down ? vi : vj;
-            t->loop = (uint32_t)l;
-            /* counter-clockwise: the inside is left of the way round, so
-             * +u of an edge going down */
-            t->s = (down != (li[l].area < 0)) ? 1 : -1;
+            if (!make_tedge(p, li[l].n, i, (uint32_t)l, li[l].area, t)) continue;
             ev[nev++] = (event){ t->v1, (uint32_t)ne };
             ev[nev++] = (event){ t->v0, 1u << 30 | (uint32_t)ne };
             ne++;
@@ -360,13 +368,10 @@ static int nest_tree(const double *uv, lam_nest_loop *li, size_t nl, int *agreed
             int32_t own = 0;
             const double *p = uv + 2 * me->first;
             for (size_t i = 0; i < me->n; i++) {
-                size_t j = (i + 1) % me->n;
-                double vi = p[2 * i + 1], vj = p[2 * j + 1];
-                if (vi == vj) continue;
-                int down = vj < vi;
-                tedge one = { down ? p[2 * j] : p[2 * i], down ? vj : vi, down ? p[2 * i] : p[2 * j],
-                              down ? vi : vj, (uint32_t)id, (down != (me->area < 0)) ? 1 : -1 };
-                if (one.v0 <= me->q[1] && me->q[1] < one.v1 && side(&one, me->q[0], me->q[1]) < 0) own += one.s;
+                tedge one;
+                if (make_tedge(p, me->n, i, id, me->area, &one) && one.v0 <= me->q[1] && me->q[1] < one.v1 &&
+                    side(&one, me->q[0], me->q[1]) < 0)
+                    own += one.s;
             }
             me->depth = all - own;
             while (nearest >= 0 && e[nearest].loop == id) nearest = before(&t, nearest);
