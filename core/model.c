@@ -6,6 +6,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "enclose.h"
+
 #define NONE UINT32_MAX
 #define PI 3.14159265358979323846
 
@@ -406,6 +408,39 @@ static int shell_encloses(const lam_model *md, size_t outer, size_t inner)
     return in > out;
 }
 
+/* Past this many winding-number terms (samples times triangles of the
+ * shells around them) the pairwise test gives way to rays (enclose.h):
+ * some tens of milliseconds. */
+#define PAIRWISE_WORK 4e6
+
+/* shells[s].enclosing for every shell: how many other shells enclose it. */
+static int count_enclosing(lam_model *md, lam_error *err)
+{
+    size_t ns = md->nshells;
+    if (ns < 2) return LAM_OK;
+    unsigned char *cand = calloc(ns, 1);
+    if (!cand) return oom(err);
+    double work = 0;
+    for (size_t s = 0; s < ns; s++)
+        for (size_t o = 0; o < ns; o++) {
+            if (o == s || !bbox_inside(md->shells[s].bbox, md->shells[o].bbox)) continue;
+            cand[s] = 1;
+            size_t n = md->shells[s].ntris;
+            work += (double)(n < 9 ? n : 9) * (double)md->shells[o].ntris;
+        }
+    int done = 0, rc = LAM_OK;
+    if (work > PAIRWISE_WORK) rc = lam_enclosing_by_rays(md, cand, &done, err);
+    for (size_t s = 0; s < ns && !rc && !done; s++) {
+        if (!cand[s]) continue;
+        for (size_t o = 0; o < ns; o++) {
+            if (o == s || !bbox_inside(md->shells[s].bbox, md->shells[o].bbox)) continue;
+            if (shell_encloses(md, o, s)) md->shells[s].enclosing++;
+        }
+    }
+    free(cand);
+    return rc;
+}
+
 int lam_model_from_mesh(lam_mesh *mesh, const char *path, const char *format,
                         lam_model **out, lam_error *err)
 {
@@ -464,12 +499,7 @@ int lam_model_from_mesh(lam_mesh *mesh, const char *path, const char *format,
     free(comp);
     for (size_t s = 0; s < md->nshells; s++)
         if (md->shells[s].volume < 0) flip_shell(md, s);
-    for (size_t s = 0; s < md->nshells; s++) {
-        for (size_t o = 0; o < md->nshells; o++) {
-            if (o == s || !bbox_inside(md->shells[s].bbox, md->shells[o].bbox)) continue;
-            if (shell_encloses(md, o, s)) md->shells[s].enclosing++;
-        }
-    }
+    if ((rc = count_enclosing(md, err))) goto fail;
     lam_model_stats *st = &md->stats;
     for (size_t s = 0; s < md->nshells; s++) {
         lam_shell *sh = &md->shells[s];
