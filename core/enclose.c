@@ -1,18 +1,187 @@
-/* Enclosing counts of shells by Embree rays; see enclose.h. */
+/* Which shells enclose which; see enclose.h. */
 #include "enclose.h"
 
 #include <float.h>
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 
 #include "validate.h"
 
-/* Samples per shell: spread over its triangles, as model.c samples. */
+/* Samples per inner shell. */
 #define SAMPLES 9
 
-int lam_enclosing_by_rays(lam_model *md, const unsigned char *candidates, int *done, lam_error *err)
+/* Past this many winding-number terms (samples times triangles of the
+ * shells around them) the pairwise test gives way to rays: some tens of
+ * milliseconds. */
+#define PAIRWISE_WORK 4e6
+
+static int oom(lam_error *err)
 {
-    *done = 0;
+    return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory building the model");
+}
+
+static int bbox_inside(const double *in, const double *out)
+{
+    for (int j = 0; j < 3; j++)
+        if (in[j] < out[j] || in[j + 3] > out[j + 3]) return 0;
+    return 1;
+}
+
+/* ---- candidate pairs ------------------------------------------------------ */
+
+typedef struct pairs {
+    uint32_t *in, *out; /* s = in[k] may lie in o = out[k], by s first */
+    size_t n, cap;
+} pairs;
+
+static int pair_add(pairs *p, uint32_t s, uint32_t o)
+{
+    if (p->n == p->cap) {
+        size_t cap = p->cap ? 2 * p->cap : 64;
+        uint32_t *a = realloc(p->in, cap * sizeof *a);
+        if (a) p->in = a;
+        uint32_t *b = a ? realloc(p->out, cap * sizeof *b) : NULL;
+        if (b) p->out = b;
+        if (!a || !b) return LAM_ENOMEM;
+        p->cap = cap;
+    }
+    p->in[p->n] = s;
+    p->out[p->n] = o;
+    p->n++;
+    return LAM_OK;
+}
+
+typedef struct grid {
+    double lo[3], size[3];
+    int n[3];
+} grid;
+
+static int cell_of(const grid *g, int k, double x)
+{
+    double c = floor((x - g->lo[k]) / g->size[k]);
+    return c < 0 ? 0 : c >= g->n[k] ? g->n[k] - 1 : (int)c;
+}
+
+/* Every (s, o) with s's box in o's, s != o, by s then o. */
+static int candidates(const lam_model *md, pairs *out)
+{
+    size_t ns = md->nshells;
+    grid g;
+    int per = (int)ceil(cbrt((double)ns));
+    if (per < 1) per = 1;
+    if (per > 64) per = 64;
+    for (int k = 0; k < 3; k++) {
+        double lo = INFINITY, hi = -INFINITY;
+        for (size_t s = 0; s < ns; s++) {
+            if (md->shells[s].bbox[k] < lo) lo = md->shells[s].bbox[k];
+            if (md->shells[s].bbox[k + 3] > hi) hi = md->shells[s].bbox[k + 3];
+        }
+        g.lo[k] = lo;
+        g.n[k] = hi > lo ? per : 1;
+        g.size[k] = hi > lo ? (hi - lo) / per : 1;
+    }
+    size_t ncells = (size_t)g.n[0] * (size_t)g.n[1] * (size_t)g.n[2];
+    /* a box over more cells than this goes on the list every shell checks */
+    size_t wide = ncells / 8 > 8 ? ncells / 8 : 8;
+    uint32_t *first = calloc(ncells + 1, sizeof *first);
+    int *range = malloc(6 * ns * sizeof *range + 1);
+    unsigned char *big = calloc(ns + 1, 1);
+    uint32_t *list = NULL, *bigs = NULL;
+    size_t nbig = 0;
+    int rc = LAM_ENOMEM;
+    if (!first || !range || !big) goto done;
+    for (size_t s = 0; s < ns; s++) {
+        int *r = range + 6 * s;
+        size_t cells = 1;
+        for (int k = 0; k < 3; k++) {
+            r[k] = cell_of(&g, k, md->shells[s].bbox[k]);
+            r[k + 3] = cell_of(&g, k, md->shells[s].bbox[k + 3]);
+            cells *= (size_t)(r[k + 3] - r[k] + 1);
+        }
+        if (cells > wide) {
+            big[s] = 1;
+            nbig++;
+            continue;
+        }
+        for (int i = r[0]; i <= r[3]; i++)
+            for (int j = r[1]; j <= r[4]; j++)
+                for (int k = r[2]; k <= r[5]; k++)
+                    first[((size_t)i * (size_t)g.n[1] + (size_t)j) * (size_t)g.n[2] + (size_t)k + 1]++;
+    }
+    for (size_t c = 0; c < ncells; c++) first[c + 1] += first[c];
+    list = malloc(first[ncells] * sizeof *list + 1);
+    bigs = malloc(nbig * sizeof *bigs + 1);
+    uint32_t *fill = malloc((ncells + 1) * sizeof *fill);
+    if (!list || !bigs || !fill) {
+        free(fill);
+        goto done;
+    }
+    for (size_t c = 0; c <= ncells; c++) fill[c] = first[c];
+    nbig = 0;
+    for (size_t s = 0; s < ns; s++) {
+        const int *r = range + 6 * s;
+        if (big[s]) {
+            bigs[nbig++] = (uint32_t)s;
+            continue;
+        }
+        for (int i = r[0]; i <= r[3]; i++)
+            for (int j = r[1]; j <= r[4]; j++)
+                for (int k = r[2]; k <= r[5]; k++)
+                    list[fill[((size_t)i * (size_t)g.n[1] + (size_t)j) * (size_t)g.n[2] + (size_t)k]++] = (uint32_t)s;
+    }
+    free(fill);
+    rc = LAM_OK;
+    for (size_t s = 0; s < ns && !rc; s++) {
+        const double *b = md->shells[s].bbox;
+        int ci[3];
+        for (int k = 0; k < 3; k++) ci[k] = cell_of(&g, k, (b[k] + b[k + 3]) / 2);
+        size_t c = ((size_t)ci[0] * (size_t)g.n[1] + (size_t)ci[1]) * (size_t)g.n[2] + (size_t)ci[2];
+        /* both lists hold shells in increasing order: merge them, so the
+         * pairs come out by o as well */
+        size_t a = first[c], az = first[c + 1], z = 0;
+        while (!rc && (a < az || z < nbig)) {
+            uint32_t o = z >= nbig || (a < az && list[a] < bigs[z]) ? list[a++] : bigs[z++];
+            if (o != s && bbox_inside(b, md->shells[o].bbox)) rc = pair_add(out, (uint32_t)s, o);
+        }
+    }
+done:
+    free(first);
+    free(range);
+    free(big);
+    free(list);
+    free(bigs);
+    return rc;
+}
+
+/* ---- pairwise ---------------------------------------------------------------- */
+
+/* Does shell `outer` enclose shell `inner`? (See enclose.h.) */
+static int shell_encloses(const lam_model *md, size_t outer, size_t inner)
+{
+    const lam_mesh *m = &md->mesh;
+    size_t n = md->shells[inner].ntris, want = n < SAMPLES ? n : SAMPLES, seen = 0, step = n / want;
+    int in = 0, out = 0;
+    for (uint32_t i = md->shell_first[inner]; i < md->shell_first[inner + 1] && seen < want; i += step) {
+        size_t t = md->shell_tris[i];
+        seen++;
+        double c[3];
+        for (int j = 0; j < 3; j++)
+            c[j] = (m->xyz[3 * (size_t)m->tris[3 * t] + j] + m->xyz[3 * (size_t)m->tris[3 * t + 1] + j] +
+                    m->xyz[3 * (size_t)m->tris[3 * t + 2] + j]) / 3.0;
+        double w = fabs(lam_model_shell_winding(md, outer, c));
+        if (w > 0.75) in++;
+        else if (w < 0.25) out++;
+    }
+    return in > out;
+}
+
+/* ---- by rays ------------------------------------------------------------------- */
+
+/* Set enclosing for every shell that is the inner one of some pair; 1 when
+ * all were decided, else 0 with nothing changed. */
+static int by_rays(lam_model *md, const pairs *p, lam_error *err)
+{
     const lam_mesh *m = &md->mesh;
     /* the offset: well clear of Embree's float32 tolerance, tiny against
      * the model (the validator's inset for its test points) */
@@ -26,19 +195,18 @@ int lam_enclosing_by_rays(lam_model *md, const unsigned char *candidates, int *d
         }
     double delta = fmax(1e-5 * scale, 1e3 * FLT_EPSILON * maxabs);
     int *found = malloc((md->nshells + 1) * sizeof *found);
-    if (!found) return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory building the model");
+    if (!found) return -oom(err);
     lam_validator *v = NULL;
     lam_error verr;
     lam_error_clear(&verr);
     if (lam_validator_new(md, &v, &verr)) {
         free(found);
-        if (verr.code == LAM_ENOMEM) return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "%s", verr.msg);
-        return LAM_OK; /* no Embree here: the pairwise test decides */
+        return 0; /* no Embree here: the pairwise test decides */
     }
     int good = 1;
-    for (size_t s = 0; s < md->nshells && good; s++) {
-        found[s] = 0;
-        if (!candidates[s]) continue;
+    for (size_t k = 0; k < p->n && good; k++) {
+        uint32_t s = p->in[k];
+        if (k > 0 && p->in[k - 1] == s) continue; /* pairs come by s: one vote per shell */
         size_t n = md->shell_first[s + 1] - md->shell_first[s], want = n < SAMPLES ? n : SAMPLES;
         size_t step = n / want, seen = 0;
         int w[SAMPLES], nw = 0;
@@ -50,16 +218,14 @@ int lam_enclosing_by_rays(lam_model *md, const unsigned char *candidates, int *d
             double nrm[3] = { u[1] * q[2] - u[2] * q[1], u[2] * q[0] - u[0] * q[2], u[0] * q[1] - u[1] * q[0] };
             double len = sqrt(nrm[0] * nrm[0] + nrm[1] * nrm[1] + nrm[2] * nrm[2]);
             if (!(len > 0)) continue;
-            double p[3];
-            for (int k = 0; k < 3; k++) p[k] = (a[k] + b[k] + c[k]) / 3 + delta * nrm[k] / len;
+            double pt[3];
+            for (int j = 0; j < 3; j++) pt[j] = (a[j] + b[j] + c[j]) / 3 + delta * nrm[j] / len;
             int wind;
             lam_error_clear(&verr);
-            if (lam_validator_winding(v, p, &wind, &verr) == LAM_OK) w[nw++] = wind;
-            else if (verr.code == LAM_ENOMEM) good = 0;
+            if (lam_validator_winding(v, pt, &wind, &verr) == LAM_OK) w[nw++] = wind;
         }
-        /* the most frequent answer, if it has a strict majority of the
-         * decisive samples (a sample on another shell's surface says
-         * nothing) */
+        /* the most frequent answer, with a strict majority of the decisive
+         * samples (a sample on another shell's surface says nothing) */
         int best = -1, best_count = 0;
         for (int i = 0; i < nw; i++) {
             int count = 0;
@@ -73,11 +239,33 @@ int lam_enclosing_by_rays(lam_model *md, const unsigned char *candidates, int *d
         found[s] = best;
     }
     lam_validator_free(v);
-    if (good) {
-        for (size_t s = 0; s < md->nshells; s++)
-            if (candidates[s]) md->shells[s].enclosing = found[s];
-        *done = 1;
-    }
+    if (good)
+        for (size_t k = 0; k < p->n; k++) md->shells[p->in[k]].enclosing = found[p->in[k]];
     free(found);
-    return LAM_OK;
+    return good;
+}
+
+int lam_count_enclosing(lam_model *md, lam_error *err)
+{
+    for (size_t s = 0; s < md->nshells; s++) md->shells[s].enclosing = 0;
+    if (md->nshells < 2) return LAM_OK;
+    pairs p = { 0 };
+    if (candidates(md, &p)) {
+        free(p.in);
+        free(p.out);
+        return oom(err);
+    }
+    double work = 0;
+    for (size_t k = 0; k < p.n; k++) {
+        size_t n = md->shells[p.in[k]].ntris;
+        work += (double)(n < SAMPLES ? n : SAMPLES) * (double)md->shells[p.out[k]].ntris;
+    }
+    int done = 0;
+    if (work > PAIRWISE_WORK) done = by_rays(md, &p, err);
+    if (done >= 0 && !done)
+        for (size_t k = 0; k < p.n; k++)
+            if (shell_encloses(md, p.out[k], p.in[k])) md->shells[p.in[k]].enclosing++;
+    free(p.in);
+    free(p.out);
+    return done < 0 ? LAM_ENOMEM : LAM_OK;
 }

@@ -1,27 +1,34 @@
-/* Which shells enclose which, for models with many shells inside others
- * (a part with hundreds of internal voids). Internal to core/: model.c
- * uses it while it builds a model.
+/* Which shells enclose which: the count behind the cavity rule (a shell
+ * inside an odd number of others is a cavity). Internal to core/: model.c
+ * calls it while it builds a model.
  *
- * model.c's own test, pairwise, takes the generalized winding number of
- * the outer shell at sample points of the inner one: O(triangles of the
- * outer shell) per sample, which for hundreds of voids in a large part
- * runs into seconds. Here one Embree scene of all shells answers every
- * sample with a few rays: a point just outside a sample triangle of shell
- * s (offset along its outward normal) has as winding number the count of
- * the shells around it, all shells being oriented outward at this stage. */
+ * Candidates first: shell s can only lie in shell o when s's bounding box
+ * lies in o's. The pairs come from a grid over the model: each shell is
+ * listed in the cells its box covers (a box covering many cells goes on
+ * one list that every shell checks), and s looks only in the cell of its
+ * box's centre, which any box containing s's box covers. A triangle soup
+ * of 160k one-triangle shells thus costs milliseconds, not all 160k^2
+ * pairs.
+ *
+ * Then each candidate pair is decided. Pairwise: the generalized winding
+ * number of the outer shell at up to nine sample points of the inner one
+ * (triangle centroids), the decisive samples voting (a centroid on the
+ * outer surface, as with the thesis's through hole, has winding 1/2 and
+ * says nothing). That costs O(triangles of the outer shell) per sample;
+ * when the pairs would need millions of such terms (hundreds of voids in a
+ * large part) one Embree scene of all shells answers instead: a point just
+ * outside a sample triangle of s (offset along its outward normal) has as
+ * winding number the count of shells around it, all shells being oriented
+ * outward at this stage; the samples vote again, and should any shell stay
+ * undecided the pairwise test decides after all. */
 #ifndef LAM_ENCLOSE_H
 #define LAM_ENCLOSE_H
 
 #include "model.h"
 
-/* Set md->shells[s].enclosing for every shell s marked in candidates
- * (shells that lie in some other shell's bounding box; the others enclose
- * nothing and keep 0). md's triangles must be oriented outward per shell
- * and md->tri_shell, shell_first/shell_tris and the shells' bboxes set.
- * *done = 1 when every candidate was decided by a majority of decisive
- * samples; 0 when Embree could not be used or some shell stayed
- * undecided (then nothing is changed and the caller tests pairwise).
- * Errors: LAM_ENOMEM. */
-int lam_enclosing_by_rays(lam_model *md, const unsigned char *candidates, int *done, lam_error *err);
+/* Set md->shells[s].enclosing for every shell. md's triangles must be
+ * oriented outward per shell, and tri_shell, shell_first/shell_tris and
+ * the shells' bboxes and triangle counts set. Errors: LAM_ENOMEM. */
+int lam_count_enclosing(lam_model *md, lam_error *err);
 
 #endif

@@ -378,69 +378,6 @@ double lam_model_shell_winding(const lam_model *md, size_t s, const double p[3])
     return sum / (4.0 * PI);
 }
 
-static int bbox_inside(const double *in, const double *out)
-{
-    for (int j = 0; j < 3; j++)
-        if (in[j] < out[j] || in[j + 3] > out[j + 3]) return 0;
-    return 1;
-}
-
-/* Does shell `outer` enclose shell `inner`? Sample centroids of some of the
- * inner shell's triangles: a centroid lying on the outer shell's surface
- * (coplanar faces, as in the thesis's cube with a through hole) has winding
- * 1/2 and says nothing, so the decisive samples vote. */
-static int shell_encloses(const lam_model *md, size_t outer, size_t inner)
-{
-    const lam_mesh *m = &md->mesh;
-    size_t n = md->shells[inner].ntris, want = n < 9 ? n : 9, seen = 0, step = n / want;
-    int in = 0, out = 0;
-    for (uint32_t i = md->shell_first[inner]; i < md->shell_first[inner + 1] && seen < want; i += step) {
-        size_t t = md->shell_tris[i];
-        seen++;
-        double c[3];
-        for (int j = 0; j < 3; j++)
-            c[j] = (m->xyz[3 * (size_t)m->tris[3 * t] + j] + m->xyz[3 * (size_t)m->tris[3 * t + 1] + j] +
-                    m->xyz[3 * (size_t)m->tris[3 * t + 2] + j]) / 3.0;
-        double w = fabs(lam_model_shell_winding(md, outer, c));
-        if (w > 0.75) in++;
-        else if (w < 0.25) out++;
-    }
-    return in > out;
-}
-
-/* Past this many winding-number terms (samples times triangles of the
- * shells around them) the pairwise test gives way to rays (enclose.h):
- * some tens of milliseconds. */
-#define PAIRWISE_WORK 4e6
-
-/* shells[s].enclosing for every shell: how many other shells enclose it. */
-static int count_enclosing(lam_model *md, lam_error *err)
-{
-    size_t ns = md->nshells;
-    if (ns < 2) return LAM_OK;
-    unsigned char *cand = calloc(ns, 1);
-    if (!cand) return oom(err);
-    double work = 0;
-    for (size_t s = 0; s < ns; s++)
-        for (size_t o = 0; o < ns; o++) {
-            if (o == s || !bbox_inside(md->shells[s].bbox, md->shells[o].bbox)) continue;
-            cand[s] = 1;
-            size_t n = md->shells[s].ntris;
-            work += (double)(n < 9 ? n : 9) * (double)md->shells[o].ntris;
-        }
-    int done = 0, rc = LAM_OK;
-    if (work > PAIRWISE_WORK) rc = lam_enclosing_by_rays(md, cand, &done, err);
-    for (size_t s = 0; s < ns && !rc && !done; s++) {
-        if (!cand[s]) continue;
-        for (size_t o = 0; o < ns; o++) {
-            if (o == s || !bbox_inside(md->shells[s].bbox, md->shells[o].bbox)) continue;
-            if (shell_encloses(md, o, s)) md->shells[s].enclosing++;
-        }
-    }
-    free(cand);
-    return rc;
-}
-
 int lam_model_from_mesh(lam_mesh *mesh, const char *path, const char *format,
                         lam_model **out, lam_error *err)
 {
@@ -499,7 +436,7 @@ int lam_model_from_mesh(lam_mesh *mesh, const char *path, const char *format,
     free(comp);
     for (size_t s = 0; s < md->nshells; s++)
         if (md->shells[s].volume < 0) flip_shell(md, s);
-    if ((rc = count_enclosing(md, err))) goto fail;
+    if ((rc = lam_count_enclosing(md, err))) goto fail;
     lam_model_stats *st = &md->stats;
     for (size_t s = 0; s < md->nshells; s++) {
         lam_shell *sh = &md->shells[s];
