@@ -5,6 +5,7 @@
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "validate.h"
 
@@ -30,31 +31,13 @@ static int bbox_inside(const double *in, const double *out)
 
 /* ---- candidate pairs ------------------------------------------------------ */
 
-typedef struct pairs {
-    uint32_t *in, *out; /* s = in[k] may lie in o = out[k], by s first */
-    size_t n, cap;
-} pairs;
-
-static int pair_add(pairs *p, uint32_t s, uint32_t o)
-{
-    if (p->n == p->cap) {
-        size_t cap = p->cap ? 2 * p->cap : 64;
-        uint32_t *a = realloc(p->in, cap * sizeof *a);
-        if (a) p->in = a;
-        uint32_t *b = a ? realloc(p->out, cap * sizeof *b) : NULL;
-        if (b) p->out = b;
-        if (!a || !b) return LAM_ENOMEM;
-        p->cap = cap;
-    }
-    p->in[p->n] = s;
-    p->out[p->n] = o;
-    p->n++;
-    return LAM_OK;
-}
-
+/* Shells listed by grid cell (cells over more than `wide` cells of the
+ * grid go on the list `bigs` instead). */
 typedef struct grid {
     double lo[3], size[3];
     int n[3];
+    uint32_t *first, *list, *bigs;
+    size_t nbig;
 } grid;
 
 static int cell_of(const grid *g, int k, double x)
@@ -63,11 +46,22 @@ static int cell_of(const grid *g, int k, double x)
     return c < 0 ? 0 : c >= g->n[k] ? g->n[k] - 1 : (int)c;
 }
 
-/* Every (s, o) with s's box in o's, s != o, by s then o. */
-static int candidates(const lam_model *md, pairs *out)
+static size_t cell_index(const grid *g, int i, int j, int k)
 {
+    return ((size_t)i * (size_t)g->n[1] + (size_t)j) * (size_t)g->n[2] + (size_t)k;
+}
+
+static void grid_free(grid *g)
+{
+    free(g->first);
+    free(g->list);
+    free(g->bigs);
+}
+
+static int grid_build(const lam_model *md, grid *g)
+{
+    memset(g, 0, sizeof *g);
     size_t ns = md->nshells;
-    grid g;
     int per = (int)ceil(cbrt((double)ns));
     if (per < 1) per = 1;
     if (per > 64) per = 64;
@@ -77,81 +71,79 @@ static int candidates(const lam_model *md, pairs *out)
             if (md->shells[s].bbox[k] < lo) lo = md->shells[s].bbox[k];
             if (md->shells[s].bbox[k + 3] > hi) hi = md->shells[s].bbox[k + 3];
         }
-        g.lo[k] = lo;
-        g.n[k] = hi > lo ? per : 1;
-        g.size[k] = hi > lo ? (hi - lo) / per : 1;
+        g->lo[k] = lo;
+        g->n[k] = hi > lo ? per : 1;
+        g->size[k] = hi > lo ? (hi - lo) / per : 1;
     }
-    size_t ncells = (size_t)g.n[0] * (size_t)g.n[1] * (size_t)g.n[2];
+    size_t ncells = (size_t)g->n[0] * (size_t)g->n[1] * (size_t)g->n[2];
     /* a box over more cells than this goes on the list every shell checks */
     size_t wide = ncells / 8 > 8 ? ncells / 8 : 8;
-    uint32_t *first = calloc(ncells + 1, sizeof *first);
     int *range = malloc(6 * ns * sizeof *range + 1);
-    unsigned char *big = calloc(ns + 1, 1);
-    uint32_t *list = NULL, *bigs = NULL;
-    size_t nbig = 0;
-    int rc = LAM_ENOMEM;
-    if (!first || !range || !big) goto done;
+    uint32_t *fill = NULL;
+    g->first = calloc(ncells + 1, sizeof *g->first);
+    if (!range || !g->first) goto fail;
     for (size_t s = 0; s < ns; s++) {
         int *r = range + 6 * s;
         size_t cells = 1;
         for (int k = 0; k < 3; k++) {
-            r[k] = cell_of(&g, k, md->shells[s].bbox[k]);
-            r[k + 3] = cell_of(&g, k, md->shells[s].bbox[k + 3]);
+            r[k] = cell_of(g, k, md->shells[s].bbox[k]);
+            r[k + 3] = cell_of(g, k, md->shells[s].bbox[k + 3]);
             cells *= (size_t)(r[k + 3] - r[k] + 1);
         }
         if (cells > wide) {
-            big[s] = 1;
-            nbig++;
+            r[0] = -1; /* big */
+            g->nbig++;
             continue;
         }
         for (int i = r[0]; i <= r[3]; i++)
             for (int j = r[1]; j <= r[4]; j++)
-                for (int k = r[2]; k <= r[5]; k++)
-                    first[((size_t)i * (size_t)g.n[1] + (size_t)j) * (size_t)g.n[2] + (size_t)k + 1]++;
+                for (int k = r[2]; k <= r[5]; k++) g->first[cell_index(g, i, j, k) + 1]++;
     }
-    for (size_t c = 0; c < ncells; c++) first[c + 1] += first[c];
-    list = malloc(first[ncells] * sizeof *list + 1);
-    bigs = malloc(nbig * sizeof *bigs + 1);
-    uint32_t *fill = malloc((ncells + 1) * sizeof *fill);
-    if (!list || !bigs || !fill) {
-        free(fill);
-        goto done;
-    }
-    for (size_t c = 0; c <= ncells; c++) fill[c] = first[c];
-    nbig = 0;
+    for (size_t c = 0; c < ncells; c++) g->first[c + 1] += g->first[c];
+    g->list = malloc(g->first[ncells] * sizeof *g->list + 1);
+    g->bigs = malloc(g->nbig * sizeof *g->bigs + 1);
+    fill = malloc((ncells + 1) * sizeof *fill);
+    if (!g->list || !g->bigs || !fill) goto fail;
+    memcpy(fill, g->first, (ncells + 1) * sizeof *fill);
+    g->nbig = 0;
     for (size_t s = 0; s < ns; s++) {
         const int *r = range + 6 * s;
-        if (big[s]) {
-            bigs[nbig++] = (uint32_t)s;
+        if (r[0] < 0) {
+            g->bigs[g->nbig++] = (uint32_t)s;
             continue;
         }
         for (int i = r[0]; i <= r[3]; i++)
             for (int j = r[1]; j <= r[4]; j++)
-                for (int k = r[2]; k <= r[5]; k++)
-                    list[fill[((size_t)i * (size_t)g.n[1] + (size_t)j) * (size_t)g.n[2] + (size_t)k]++] = (uint32_t)s;
+                for (int k = r[2]; k <= r[5]; k++) g->list[fill[cell_index(g, i, j, k)]++] = (uint32_t)s;
     }
     free(fill);
-    rc = LAM_OK;
-    for (size_t s = 0; s < ns && !rc; s++) {
-        const double *b = md->shells[s].bbox;
-        int ci[3];
-        for (int k = 0; k < 3; k++) ci[k] = cell_of(&g, k, (b[k] + b[k + 3]) / 2);
-        size_t c = ((size_t)ci[0] * (size_t)g.n[1] + (size_t)ci[1]) * (size_t)g.n[2] + (size_t)ci[2];
-        /* both lists hold shells in increasing order: merge them, so the
-         * pairs come out by o as well */
-        size_t a = first[c], az = first[c + 1], z = 0;
-        while (!rc && (a < az || z < nbig)) {
-            uint32_t o = z >= nbig || (a < az && list[a] < bigs[z]) ? list[a++] : bigs[z++];
-            if (o != s && bbox_inside(b, md->shells[o].bbox)) rc = pair_add(out, (uint32_t)s, o);
-        }
-    }
-done:
-    free(first);
     free(range);
-    free(big);
-    free(list);
-    free(bigs);
-    return rc;
+    return LAM_OK;
+fail:
+    free(fill);
+    free(range);
+    grid_free(g);
+    return LAM_ENOMEM;
+}
+
+/* The candidates for shell s, in increasing order, one by one: *cursor
+ * starts at 0; returns the next o whose box holds s's box, or -1. Both
+ * lists hold shells in increasing order and are merged. */
+static long next_candidate(const lam_model *md, const grid *g, size_t s, size_t cursor[2])
+{
+    const double *b = md->shells[s].bbox;
+    int ci[3];
+    for (int k = 0; k < 3; k++) ci[k] = cell_of(g, k, (b[k] + b[k + 3]) / 2);
+    size_t c = cell_index(g, ci[0], ci[1], ci[2]);
+    size_t az = g->first[c + 1] - g->first[c];
+    const uint32_t *cl = g->list + g->first[c];
+    while (cursor[0] < az || cursor[1] < g->nbig) {
+        uint32_t o = cursor[1] >= g->nbig || (cursor[0] < az && cl[cursor[0]] < g->bigs[cursor[1]])
+                         ? cl[cursor[0]++]
+                         : g->bigs[cursor[1]++];
+        if (o != s && bbox_inside(b, md->shells[o].bbox)) return (long)o;
+    }
+    return -1;
 }
 
 /* ---- pairwise ---------------------------------------------------------------- */
@@ -178,9 +170,9 @@ static int shell_encloses(const lam_model *md, size_t outer, size_t inner)
 
 /* ---- by rays ------------------------------------------------------------------- */
 
-/* Set enclosing for every shell that is the inner one of some pair; 1 when
- * all were decided, else 0 with nothing changed. */
-static int by_rays(lam_model *md, const pairs *p, lam_error *err)
+/* Set enclosing for every shell marked in cand; 1 when all were decided,
+ * else 0 with nothing changed, -LAM_ENOMEM when out of memory. */
+static int by_rays(lam_model *md, const unsigned char *cand, lam_error *err)
 {
     const lam_mesh *m = &md->mesh;
     /* the offset: well clear of Embree's float32 tolerance, tiny against
@@ -204,9 +196,8 @@ static int by_rays(lam_model *md, const pairs *p, lam_error *err)
         return 0; /* no Embree here: the pairwise test decides */
     }
     int good = 1;
-    for (size_t k = 0; k < p->n && good; k++) {
-        uint32_t s = p->in[k];
-        if (k > 0 && p->in[k - 1] == s) continue; /* pairs come by s: one vote per shell */
+    for (size_t s = 0; s < md->nshells && good; s++) {
+        if (!cand[s]) continue;
         size_t n = md->shell_first[s + 1] - md->shell_first[s], want = n < SAMPLES ? n : SAMPLES;
         size_t step = n / want, seen = 0;
         int w[SAMPLES], nw = 0;
@@ -240,32 +231,41 @@ static int by_rays(lam_model *md, const pairs *p, lam_error *err)
     }
     lam_validator_free(v);
     if (good)
-        for (size_t k = 0; k < p->n; k++) md->shells[p->in[k]].enclosing = found[p->in[k]];
+        for (size_t s = 0; s < md->nshells; s++)
+            if (cand[s]) md->shells[s].enclosing = found[s];
     free(found);
     return good;
 }
 
 int lam_count_enclosing(lam_model *md, lam_error *err)
 {
-    for (size_t s = 0; s < md->nshells; s++) md->shells[s].enclosing = 0;
-    if (md->nshells < 2) return LAM_OK;
-    pairs p = { 0 };
-    if (candidates(md, &p)) {
-        free(p.in);
-        free(p.out);
+    size_t ns = md->nshells;
+    for (size_t s = 0; s < ns; s++) md->shells[s].enclosing = 0;
+    if (ns < 2) return LAM_OK;
+    grid g;
+    unsigned char *cand = calloc(ns, 1);
+    if (!cand || grid_build(md, &g)) {
+        free(cand);
         return oom(err);
     }
+    /* the work the pairwise test would do, and who has a candidate at all */
     double work = 0;
-    for (size_t k = 0; k < p.n; k++) {
-        size_t n = md->shells[p.in[k]].ntris;
-        work += (double)(n < SAMPLES ? n : SAMPLES) * (double)md->shells[p.out[k]].ntris;
+    for (size_t s = 0; s < ns; s++) {
+        size_t cur[2] = { 0, 0 }, n = md->shells[s].ntris;
+        for (long o; (o = next_candidate(md, &g, s, cur)) >= 0;) {
+            cand[s] = 1;
+            work += (double)(n < SAMPLES ? n : SAMPLES) * (double)md->shells[o].ntris;
+        }
     }
     int done = 0;
-    if (work > PAIRWISE_WORK) done = by_rays(md, &p, err);
-    if (done >= 0 && !done)
-        for (size_t k = 0; k < p.n; k++)
-            if (shell_encloses(md, p.out[k], p.in[k])) md->shells[p.in[k]].enclosing++;
-    free(p.in);
-    free(p.out);
+    if (work > PAIRWISE_WORK) done = by_rays(md, cand, err);
+    for (size_t s = 0; s < ns && done == 0; s++) {
+        if (!cand[s]) continue;
+        size_t cur[2] = { 0, 0 };
+        for (long o; (o = next_candidate(md, &g, s, cur)) >= 0;)
+            if (shell_encloses(md, (size_t)o, s)) md->shells[s].enclosing++;
+    }
+    grid_free(&g);
+    free(cand);
     return done < 0 ? LAM_ENOMEM : LAM_OK;
 }
