@@ -40,6 +40,11 @@ measure() { # prints "seconds kilobytes"
     local t1=$EPOCHREALTIME
     awk -v a="$t0" -v b="$t1" -v m="$(cat "$work/time.txt")" 'BEGIN { printf "%.4f %d\n", b - a, m }'
 }
+# Each measured run writes a new file: an output left by the previous run
+# is removed first (untimed), for both tools. Replacing an existing file
+# costs the writer's file system work (ext4 starts writing back a file
+# renamed or truncated over an old one), not slicing.
+fresh() { rm -f "$@"; }
 median() { sort -g | awk '{a[NR]=$1} END {print (NR % 2) ? a[(NR+1)/2] : (a[NR/2] + a[NR/2+1]) / 2}'; }
 
 printf '%-8s %10s %10s %10s %10s %10s %10s %8s\n' mesh triangles lamina_s slic3r_s speedup lamina_MB slic3r_MB mem_ratio
@@ -48,7 +53,9 @@ for mesh in sphere torus; do
     tris=$(( ($(stat -c %s "$stl") - 84) / 50 ))
     : >"$work/l.txt"; : >"$work/s.txt"
     for ((r = 0; r < RUNS; r++)); do
+        fresh "$work/$mesh.sls"
         measure "$LAMINA" slice "$stl" -w 0.1 --cut middle -o "$work/$mesh.sls" >>"$work/l.txt"
+        fresh "$work/$mesh.slic3r.svg"
         measure slic3r --export-svg --layer-height 0.1 "$stl" -o "$work/$mesh.slic3r.svg" >>"$work/s.txt"
     done
     lt=$(cut -d' ' -f1 "$work/l.txt" | median); lm=$(cut -d' ' -f2 "$work/l.txt" | median)
@@ -66,7 +73,9 @@ comb="$work/comb.stl"
 [ -s "$comb" ] || python3 "$here/comb.py" 1000 "$comb"
 : >"$work/l.txt"; : >"$work/s.txt"
 for ((r = 0; r < 3; r++)); do
+    fresh "$work/comb.sls"
     measure "$LAMINA" slice "$comb" -w 0.1 --cut middle -o "$work/comb.sls" >>"$work/l.txt"
+    fresh "$work/comb.slic3r.svg"
     measure slic3r --export-svg --layer-height 0.1 "$comb" -o "$work/comb.slic3r.svg" >>"$work/s.txt"
 done
 lt=$(cut -d' ' -f1 "$work/l.txt" | median); st=$(cut -d' ' -f1 "$work/s.txt" | median)
@@ -78,6 +87,7 @@ awk -v lt="$lt" -v st="$st" 'BEGIN {
 : >"$work/v.txt"; : >"$work/s.txt"
 for ((r = 0; r < RUNS; r++)); do
     measure "$LAMINA" validate "$work/sphere.stl" -w 0.1 >>"$work/v.txt"
+    fresh "$work/sphere.sls"
     measure "$LAMINA" slice "$work/sphere.stl" -w 0.1 -o "$work/sphere.sls" >>"$work/s.txt"
 done
 vt=$(cut -d' ' -f1 "$work/v.txt" | median); vm=$(cut -d' ' -f2 "$work/v.txt" | median)
