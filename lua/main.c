@@ -11,7 +11,9 @@
 /* A run allocates and frees arrays of megabytes as it goes from the file
  * to the mesh, the edges and the layers. With glibc, big blocks come from
  * the heap and stay there, so freed memory is reused instead of handed back
- * to the kernel and faulted in afresh. (Transparent huge pages for the heap
+ * to the kernel and faulted in afresh. Only for the commands that run once
+ * and exit: an interactive session keeps the default, which gives memory
+ * back between commands. (Transparent huge pages for the heap
  * were tried too: a fifth faster alone, but twice as slow when the kernel
  * had to compact memory for them first, as after another big process.) */
 static void heap_setup(void)
@@ -45,9 +47,9 @@ static int help(void)
 
 int main(int argc, char **argv)
 {
-    heap_setup();
     if (argc < 2) return lua_main_default();
     const char *cmd = argv[1];
+    if (strcmp(cmd, "repl") != 0) heap_setup();
     if (strcmp(cmd, "--help") == 0 || strcmp(cmd, "-h") == 0 || strcmp(cmd, "help") == 0) return help();
     if (strcmp(cmd, "--version") == 0) {
         printf("lamina " LAMINA_VERSION "\n");
