@@ -1,6 +1,7 @@
 /* Nesting of a layer's loops; see nest.h for the rule and the methods. */
 #include "nest.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
@@ -182,6 +183,16 @@ static double side(const tedge *e, double u, double v)
     return (e->u1 - e->u0) * (v - e->v0) - (e->v1 - e->v0) * (u - e->u0);
 }
 
+/* side(), but 0 for a point on the line up to rounding: a vertex of one
+ * loop lying on another loop's edge (touching loops, collinear sides) must
+ * not be put on a side by the last bit of a product. */
+static double side_tol(const tedge *e, double u, double v)
+{
+    double a = (e->u1 - e->u0) * (v - e->v0), b = (e->v1 - e->v0) * (u - e->u0);
+    double c = a - b;
+    return fabs(c) <= 64 * DBL_EPSILON * (fabs(a) + fabs(b)) ? 0 : c;
+}
+
 /* The active edges as a treap ordered along u (edges of a section do not
  * cross, so the order holds while both are active), each node with the sum
  * of s over its subtree. Nodes are edge indices; -1 is none. */
@@ -226,8 +237,8 @@ static void rotate_up(treap *t, int32_t x)
 static int left_of(const treap *t, int32_t a, int32_t b)
 {
     const tedge *ea = &t->e[a], *eb = &t->e[b];
-    double c = side(eb, ea->u0, ea->v0);
-    if (c == 0) c = side(eb, ea->u1, ea->v1);
+    double c = side_tol(eb, ea->u0, ea->v0);
+    if (c == 0) c = side_tol(eb, ea->u1, ea->v1);
     if (c == 0) return a < b;
     return c > 0;
 }
@@ -276,6 +287,28 @@ static int32_t before(const treap *t, int32_t x)
     }
     while (t->up[x] >= 0 && t->left[t->up[x]] == x) x = t->up[x];
     return t->up[x];
+}
+
+/* In-order successor of x, -1 if none. */
+static int32_t after(const treap *t, int32_t x)
+{
+    if (t->right[x] >= 0) {
+        x = t->right[x];
+        while (t->left[x] >= 0) x = t->left[x];
+        return x;
+    }
+    while (t->up[x] >= 0 && t->right[t->up[x]] == x) x = t->up[x];
+    return t->up[x];
+}
+
+/* Do edges a and b cross properly (each strictly on both sides of the
+ * other)? Touching at a point or along a line is not crossing. */
+static int crosses(const treap *t, int32_t a, int32_t b)
+{
+    const tedge *ea = &t->e[a], *eb = &t->e[b];
+    double s1 = side_tol(eb, ea->u0, ea->v0), s2 = side_tol(eb, ea->u1, ea->v1);
+    double s3 = side_tol(ea, eb->u0, eb->v0), s4 = side_tol(ea, eb->u1, eb->v1);
+    return ((s1 < 0 && s2 > 0) || (s1 > 0 && s2 < 0)) && ((s3 < 0 && s4 > 0) || (s3 > 0 && s4 < 0));
 }
 
 /* Sum of s over the edges strictly left of (u, v) (an edge through the
@@ -356,10 +389,19 @@ static int nest_tree(const double *uv, lam_nest_loop *li, size_t nl, int *agreed
     int good = 1;
     for (size_t k = 0; k < nev && good; k++) {
         uint32_t kind = ev[k].what >> 30, id = ev[k].what & ((1u << 30) - 1);
+        /* The order along u holds only while no two edges cross: loops of
+         * overlapping bodies (even-odd fill) do. Edges that cross are next
+         * to each other just before they do (Shamos and Hoey), so every
+         * pair made neighbours is tested; a crossing hands the layer to
+         * the scan, which needs no order. */
         if (kind == 0) {
+            int32_t p = before(&t, (int32_t)id), n = after(&t, (int32_t)id);
             erase(&t, (int32_t)id);
+            if (p >= 0 && n >= 0 && crosses(&t, p, n)) good = 0;
         } else if (kind == 1) {
             insert(&t, (int32_t)id);
+            int32_t p = before(&t, (int32_t)id), n = after(&t, (int32_t)id);
+            if ((p >= 0 && crosses(&t, p, (int32_t)id)) || (n >= 0 && crosses(&t, (int32_t)id, n))) good = 0;
         } else {
             lam_nest_loop *me = &li[id];
             int32_t nearest;
