@@ -1,3 +1,5 @@
+/* realpath (XSI) */
+#define _XOPEN_SOURCE 700
 #include "writer.h"
 
 #include <errno.h>
@@ -7,7 +9,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-enum kind { W_FILE, W_STREAM, W_MEMORY };
+enum kind { W_FILE, W_DEVICE, W_STREAM, W_MEMORY };
 
 struct lam_writer {
     enum kind kind;
@@ -18,15 +20,48 @@ struct lam_writer {
     int failed;            /* errno of the first failure, 0 if none */
 };
 
+/* An existing target that is not a regular file (a terminal, /dev/null, a
+ * pipe): written to directly, since renaming over it would replace the
+ * device or pipe with a plain file. */
+static int open_device(const char *path, lam_writer **out, lam_error *err)
+{
+    lam_writer *w = calloc(1, sizeof *w);
+    if (!w || !(w->path = strdup(path))) {
+        free(w);
+        return lam_error_set(err, LAM_ENOMEM, path, 0, 0, "out of memory");
+    }
+    w->kind = W_DEVICE;
+    if (!(w->f = fopen(path, "wb"))) {
+        int e = errno;
+        free(w->path);
+        free(w);
+        return lam_error_set(err, LAM_EIO, path, 0, 0, "cannot open output: %s", strerror(e));
+    }
+    *out = w;
+    return LAM_OK;
+}
+
 int lam_writer_file(const char *path, lam_writer **out, lam_error *err)
 {
     *out = NULL;
+    struct stat st;
+    if (stat(path, &st) == 0) {
+        if (S_ISDIR(st.st_mode)) return lam_error_set(err, LAM_EIO, path, 0, 0, "cannot write output: is a directory");
+        if (!S_ISREG(st.st_mode)) return open_device(path, out, err);
+    }
+    /* through a symbolic link to the file it names, so the link stays a
+     * link (a dangling link is replaced); messages name the path given */
+    char *real = NULL;
+    struct stat lst;
+    if (lstat(path, &lst) == 0 && S_ISLNK(lst.st_mode)) real = realpath(path, NULL);
+    const char *target = real ? real : path;
+    size_t n = strlen(target);
     lam_writer *w = calloc(1, sizeof *w);
-    size_t n = strlen(path);
     if (w) {
-        w->path = strdup(path);
+        w->path = strdup(target);
         w->tmp = malloc(n + 32);
     }
+    free(real);
     if (!w || !w->path || !w->tmp) {
         if (w) {
             free(w->path);
@@ -37,7 +72,7 @@ int lam_writer_file(const char *path, lam_writer **out, lam_error *err)
     }
     w->kind = W_FILE;
     /* same directory as the target, so the final rename is atomic */
-    snprintf(w->tmp, n + 32, "%s.tmp-XXXXXX", path);
+    snprintf(w->tmp, n + 32, "%s.tmp-XXXXXX", w->path);
     int fd = mkstemp(w->tmp);
     if (fd >= 0) {
         /* mkstemp makes the file private; the output gets the usual mode */
@@ -154,9 +189,10 @@ int lam_writer_commit(lam_writer *w, lam_error *err)
             unlink(w->tmp);
             rc = lam_error_set(err, LAM_EIO, w->path, 0, 0, "cannot write output: %s", strerror(bad));
         }
-    } else if (w->kind == W_STREAM) {
+    } else if (w->kind == W_STREAM || w->kind == W_DEVICE) {
         int bad = w->failed;
         if (fflush(w->f) != 0 && !bad) bad = errno ? errno : EIO;
+        if (w->kind == W_DEVICE && fclose(w->f) != 0 && !bad) bad = errno ? errno : EIO;
         if (bad) rc = lam_error_set(err, LAM_EIO, w->path, 0, 0, "cannot write output: %s", strerror(bad));
     } else if (w->failed) {
         rc = lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory writing output");
@@ -173,6 +209,8 @@ void lam_writer_abort(lam_writer *w)
         unlink(w->tmp);
     } else if (w->kind == W_STREAM) {
         fflush(w->f);
+    } else if (w->kind == W_DEVICE) {
+        fclose(w->f); /* what went out is out: a device cannot be unwritten */
     }
     release(w);
 }

@@ -17,7 +17,11 @@
 
 typedef struct lam_writer lam_writer;
 
-/* Output to `path`, created atomically on commit. */
+/* Output to `path`, created atomically on commit. A symbolic link is
+ * followed (the file it names is replaced, the link stays). An existing
+ * target that is not a regular file (/dev/null, a terminal, a pipe) is
+ * written to directly, as it comes: renaming over it would replace the
+ * device with a plain file. A directory is an error (LAM_EIO). */
 int lam_writer_file(const char *path, lam_writer **out, lam_error *err);
 
 /* Output to an open stream the caller owns (e.g. stdout); commit flushes. */

@@ -92,4 +92,26 @@ is "$px" "background material background" "hole is background, material filled, 
 run "$LAMINA" slice "$M/thesis_cube.ug" -w 0.01 --svg "$TMP/many.svg" -o "$TMP/many.sls"
 like "$(cat "$TMP/many.svg")" '100 of 200 layers shown' "at most 100 panels"
 is "$(grep -c '<path' "$TMP/many.svg")" 100 "100 panels drawn"
+# Targets that are not plain files. The atomic rename must not replace a
+# device or a pipe with a plain file (it once turned -o /dev/null into a
+# plain file; a FIFO stands in for devices here, so that a regression
+# cannot break the machine's /dev/null), nor a symbolic link with a file.
+"$LAMINA" slice "$M/thesis_cube_hole.ug" -w 1 --cut floor -o "$TMP/plain.sls"
+mkfifo "$TMP/fifo"
+timeout 20 cat "$TMP/fifo" >"$TMP/from-fifo" &  # a bounded wait, should the FIFO be replaced
+reader=$!
+run "$LAMINA" slice "$M/thesis_cube_hole.ug" -w 1 --cut floor -o "$TMP/fifo"
+wait "$reader"
+is "$RC" 0 "-o FIFO: exit 0"
+ok "$([ -p "$TMP/fifo" ]; echo $?)" "the FIFO is still a FIFO"
+ok "$(cmp -s "$TMP/plain.sls" "$TMP/from-fifo"; echo $?)" "the program came out of the FIFO whole"
+echo old >"$TMP/real.sls"
+ln -s real.sls "$TMP/link.sls"
+run "$LAMINA" slice "$M/thesis_cube_hole.ug" -w 1 --cut floor -o "$TMP/link.sls"
+is "$RC" 0 "-o SYMLINK: exit 0"
+ok "$([ -L "$TMP/link.sls" ]; echo $?)" "the link is still a link"
+ok "$(cmp -s "$TMP/plain.sls" "$TMP/real.sls"; echo $?)" "the file it names holds the program"
+mkdir "$TMP/adir"
+run "$LAMINA" slice "$M/thesis_cube_hole.ug" -w 1 --cut floor -o "$TMP/adir"
+like "$RC $ERR" "^1 .*adir: cannot write output: is a directory" "-o DIRECTORY: exit 1, said so"
 done_testing
