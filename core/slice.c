@@ -195,7 +195,7 @@ static int make_planes(lam_slicer *s, double wmin, double wmax, lam_error *err)
             return lam_error_set(err, LAM_EUSAGE, NULL, 0, 0, "layer width must be a positive number (got %g)", o->width);
         double q = (wmax - wmin) / w;
         if (q > 1e8)
-            return lam_error_set(err, LAM_EUSAGE, NULL, 0, 0, "width %g makes %.0f layers (more than 10^8)", w, q);
+            return lam_error_set(err, LAM_EUSAGE, NULL, 0, 0, "width %g makes %.3g layers (more than 10^8)", w, q);
         /* an extent that is a whole number of layers up to rounding gets
          * exactly that many, not one more nearly empty layer */
         double layers = floor(q);
