@@ -58,7 +58,12 @@ struct lam_validator {
     float dirf[NDIRS][3];   /* directions as Embree gets them */
     double dird[NDIRS][3];  /* the same values in double */
     double scale;           /* largest extent of the model */
-    double maxabs;          /* largest |coordinate| */
+    double maxabs;          /* largest |coordinate - center| */
+    /* Embree gets the model centred and scaled to a unit box, (x - center)
+     * / unit, before the float conversion: a part far from the origin, or
+     * of kilometres or nanometres, keeps float32's full precision, and its
+     * products stay far from float overflow and underflow. */
+    double center[3], unit;
     double tol;             /* same-distance and on-surface tolerance */
     double dmin, dtarget;   /* smallest and preferred inset of layer test points */
     hit *hits;              /* hits of the ray being cast (filled by the filter) */
@@ -159,11 +164,20 @@ int lam_validator_new(const lam_model *m, lam_validator **out, lam_error *err)
         }
     for (int k = 0; k < 3; k++) {
         if (!mesh->nverts) lo[k] = hi[k] = 0;
+        v->center[k] = lo[k] + (hi[k] - lo[k]) / 2;
         if (hi[k] - lo[k] > v->scale) v->scale = hi[k] - lo[k];
-        if (fabs(lo[k]) > v->maxabs) v->maxabs = fabs(lo[k]);
-        if (fabs(hi[k]) > v->maxabs) v->maxabs = fabs(hi[k]);
+        if (hi[k] - v->center[k] > v->maxabs) v->maxabs = hi[k] - v->center[k];
+        if (v->center[k] - lo[k] > v->maxabs) v->maxabs = v->center[k] - lo[k];
     }
-    if (!(v->scale > 0)) v->scale = v->maxabs > 0 ? v->maxabs : 1;
+    if (!(v->scale > 0) || !isfinite(v->scale)) {
+        if (!isfinite(v->scale)) {
+            free(v);
+            return lam_error_set(err, LAM_EGEOM, NULL, 0, 0,
+                                 "the model spans more than a double can measure: nothing to check");
+        }
+        v->scale = 1;
+    }
+    v->unit = v->scale;
     /* Embree works in float: vertices, ray origins and hit distances are
      * good to a few ulps of the largest coordinate. */
     v->tol = fmax(1e-6 * v->scale, 16 * FLT_EPSILON * v->maxabs);
@@ -196,7 +210,8 @@ int lam_validator_new(const lam_model *m, lam_validator **out, lam_error *err)
             unsigned *ib = rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
                                                    3 * sizeof(unsigned), mesh->ntris);
             if (vb && ib) {
-                for (size_t i = 0; i < 3 * mesh->nverts; i++) vb[i] = (float)mesh->xyz[i];
+                for (size_t i = 0; i < 3 * mesh->nverts; i++)
+                    vb[i] = (float)((mesh->xyz[i] - v->center[i % 3]) / v->unit);
                 for (size_t i = 0; i < 3 * mesh->ntris; i++) ib[i] = mesh->tris[i];
                 rtcSetGeometryBuildQuality(g, RTC_BUILD_QUALITY_HIGH);
                 rtcSetGeometryIntersectFilterFunction(g, gather);
@@ -306,16 +321,21 @@ static int cast_dir(lam_validator *v, const double p[3], int k, int *w)
      * every direction and not lost to the float rounding of the origin */
     double back = 4 * v->tol;
     float o[3];
-    for (int j = 0; j < 3; j++) o[j] = (float)(p[j] - back * d[j]);
+    double om[3]; /* the origin Embree gets, back in model units */
+    for (int j = 0; j < 3; j++) {
+        o[j] = (float)((p[j] - back * d[j] - v->center[j]) / v->unit);
+        om[j] = (double)o[j] * v->unit + v->center[j];
+    }
     double dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-    double sp = ((p[0] - o[0]) * d[0] + (p[1] - o[1]) * d[1] + (p[2] - o[2]) * d[2]) / dd;
+    double sp = ((p[0] - om[0]) * d[0] + (p[1] - om[1]) * d[1] + (p[2] - om[2]) * d[2]) / dd;
 
     if (trace(v, o, v->dirf[k])) return CAST_NOMEM;
 
     size_t n = v->nhits;
     hit *h = v->hits;
     double len = sqrt(dd);
-    for (size_t i = 0; i < n; i++) h[i].s = ((double)h[i].t - sp) * len;
+    /* t is in unit-box lengths of the (float) direction */
+    for (size_t i = 0; i < n; i++) h[i].s = ((double)h[i].t * v->unit - sp) * len;
     /* a primitive may be reported more than once (spatial splits): keep one */
     if (n > 1) qsort(h, n, sizeof *h, by_prim);
     size_t u = 0;
@@ -368,11 +388,12 @@ int lam_validator_ray(lam_validator *v, const double p[3], const double d[3], do
 {
     *t = INFINITY;
     if (tri) *tri = UINT32_MAX;
-    float o[3] = { (float)p[0], (float)p[1], (float)p[2] }, df[3] = { (float)d[0], (float)d[1], (float)d[2] };
+    float o[3], df[3] = { (float)d[0], (float)d[1], (float)d[2] };
+    for (int j = 0; j < 3; j++) o[j] = (float)((p[j] - v->center[j]) / v->unit);
     if (trace(v, o, df)) return nomem(err);
     /* every hit was gathered (and rejected): the nearest past tmin wins */
     for (size_t i = 0; i < v->nhits; i++) {
-        double ti = v->hits[i].t;
+        double ti = (double)v->hits[i].t * v->unit;
         if (ti > tmin && ti < *t) {
             *t = ti;
             if (tri) *tri = v->hits[i].prim;

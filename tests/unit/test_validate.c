@@ -662,6 +662,33 @@ static void test_sphere(void)
     lam_model_free(m);
 }
 
+/* A box with a box-shaped hole through it, at scales and places float32
+ * alone could not hold: kilometres and nanometres, 1e7 from the origin
+ * with millimetre walls, 1e30 away. The validator centres and scales the
+ * model before Embree sees it, so every layer is confirmed everywhere. */
+static void test_scales(void)
+{
+    static const struct { double scale, offset; const char *name; } cases[] = {
+        { 1e6, 0, "kilometre box" }, { 1e-9, 0, "nanometre box" },
+        { 1e-2, 1e7, "centimetre box 1e7 from the origin" }, { 1e23, 1e30, "box 1e30 away" },
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
+        double k = cases[i].scale, o = cases[i].offset;
+        lam_mesh mesh;
+        lam_mesh_init(&mesh);
+        add_box(&mesh, o, o, o, o + 4 * k, o + 4 * k, o + 4 * k, 0, -1);
+        add_box(&mesh, o + k, o + k, o + k, o + 3 * k, o + 3 * k, o + 3 * k, BOX_INWARD, -1);
+        lam_model *m = build_model_quiet(&mesh, cases[i].name);
+        lam_validator *v = validator(m, cases[i].name);
+        /* widths whose planes do not come within an ulp of a face (see
+         * the note on near-coincident cuts in README) */
+        double widths[] = { 0.5 * k, 0.35 * k };
+        all_layers_confirmed(m, v, widths, 2, 0, cases[i].name);
+        lam_validator_free(v);
+        lam_model_free(m);
+    }
+}
+
 int main(void)
 {
     test_unit_cube();
@@ -669,5 +696,6 @@ int main(void)
     test_cavity_and_thin_wall();
     test_overlap();
     test_sphere();
+    test_scales();
     return done_testing();
 }
