@@ -1,6 +1,7 @@
 /* The plane sweep; see slice.h for the rules it keeps. */
 #include "slice.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -224,6 +225,69 @@ static double edge_hi(const lam_slicer *s, uint32_t e)
     return a < b ? b : a;
 }
 
+/* A cut meant to lie on a vertex height but missing it by rounding (a plane
+ * wmin + i * width computed an ulp off a flat face) is put on it, so that
+ * the symbolic perturbation decides the section there, as it does for a
+ * cut that hits the face exactly, and not the last bit of a product. "By
+ * rounding": within 8 DBL_EPSILON of the magnitudes the cut came from. A
+ * cut that some vertex lies on exactly stays. Non-zero when out of memory. */
+static int snap_cuts(lam_slicer *s, size_t nv)
+{
+    size_t S = s->nlayers;
+    double *best = malloc(S * sizeof *best + 1);
+    unsigned char *exact = calloc(S + 1, 1);
+    if (!best || !exact) {
+        free(best);
+        free(exact);
+        return 1;
+    }
+    for (size_t j = 0; j < S; j++) best[j] = NAN;
+    double base = fabs(s->planes[0]);
+    double c0 = s->cuts[0], step = S > 1 ? (s->cuts[S - 1] - c0) / (double)(S - 1) : 0;
+    for (size_t v = 0; v < nv; v++) {
+        double h = W(s, v);
+        /* the first cut at or above h: guessed for uniform layers, checked,
+         * else found by binary search (cuts are sorted) */
+        double g = step > 0 ? ceil((h - c0) / step) : 0;
+        size_t a = g <= 0 ? 0 : g >= (double)S ? S : (size_t)g;
+        if (!((a == S || s->cuts[a] >= h) && (a == 0 || s->cuts[a - 1] < h))) {
+            size_t z = S;
+            a = 0;
+            while (a < z) {
+                size_t mid = (a + z) / 2;
+                if (s->cuts[mid] >= h) z = mid;
+                else a = mid + 1;
+            }
+        }
+        for (size_t j = a ? a - 1 : 0; j <= a && j < S; j++) {
+            double c = s->cuts[j], d = fabs(c - h);
+            if (d == 0) {
+                exact[j] = 1;
+                continue;
+            }
+            if (d > 8 * DBL_EPSILON * (base + fabs(c))) continue;
+            if (isnan(best[j]) || d < fabs(c - best[j]) || (d == fabs(c - best[j]) && h < best[j])) best[j] = h;
+        }
+    }
+    /* a floor or ceiling cut is a plane: the plane moves with it, so the
+     * slab bounds stay the cut and shared, bit for bit, with the slab next
+     * to it */
+    int floor_cut = s->o.cut == LAM_CUT_FLOOR, ceiling_cut = s->o.cut == LAM_CUT_CEILING;
+    for (size_t j = 0; j < S; j++) {
+        if (exact[j] || isnan(best[j])) continue;
+        double b = best[j];
+        size_t pl = floor_cut ? j : j + 1;
+        if ((floor_cut || ceiling_cut) && !(b > s->planes[pl - (pl > 0)] || pl == 0)) continue;
+        if ((floor_cut || ceiling_cut) && !(pl == S || b < s->planes[pl + 1])) continue;
+        if (!((j == 0 || b >= s->cuts[j - 1]) && (j + 1 == S || b <= s->cuts[j + 1]))) continue;
+        s->cuts[j] = b;
+        if (floor_cut || ceiling_cut) s->planes[pl] = b;
+    }
+    free(best);
+    free(exact);
+    return 0;
+}
+
 int lam_slicer_new(const lam_model *m, const lam_slice_opts *opts, lam_slicer **out, lam_error *err)
 {
     *out = NULL;
@@ -285,6 +349,11 @@ int lam_slicer_new(const lam_model *m, const lam_slice_opts *opts, lam_slicer **
     for (size_t i = 0; i < S; i++) {
         double lo = s->planes[i], hi = s->planes[i + 1];
         s->cuts[i] = opts->cut == LAM_CUT_FLOOR ? lo : opts->cut == LAM_CUT_CEILING ? hi : lo + (hi - lo) / 2;
+    }
+    if (snap_cuts(s, nv)) {
+        free(bucket);
+        rc = nomem(err);
+        goto fail;
     }
     /* uniform layers let the layer be guessed from the height; the guess is
      * checked against the cuts themselves, and binary search takes over

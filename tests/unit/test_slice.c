@@ -1227,6 +1227,38 @@ static void group(const char *name, void (*fn)(void))
         ok(0, "%s: the group exited cleanly (status %d: a sanitizer report?)", name, WIFEXITED(st) ? WEXITSTATUS(st) : -1);
 }
 
+/* A plane that misses a flat face by rounding is put on it. A 4 nm cube
+ * with a cavity whose top face is at 3 * 1e-9 = 3.0000000000000004e-09;
+ * floor cuts every 0.3 nm put plane 10 at 10 * 3e-10 = 3e-09, an ulp under
+ * that face. Put on the face (plane and cut), the cut gives the section
+ * just above it, the solid square alone, as a cut exactly on the face
+ * would. */
+static void test_snapped_planes(void)
+{
+    const double k = 1e-9;
+    lam_mesh mesh;
+    lam_mesh_init(&mesh);
+    add_box(&mesh, 0, 0, 0, 4 * k, 4 * k, 4 * k, 0, -1);
+    add_box(&mesh, 1 * k, 1 * k, 1 * k, 3 * k, 3 * k, 3 * k, BOX_INWARD, -1);
+    lam_model *m = build_model_quiet(&mesh, "nanometre box with a cavity");
+    lam_slice_opts o;
+    lam_slice_opts_init(&o);
+    o.width = 3e-10;
+    o.cut = LAM_CUT_FLOOR;
+    run r = slice_all(m, &o, "nanometre box, floor cuts every 0.3 nm");
+    ok(10 * 3e-10 < 3 * k, "(plane 10 as computed, %.17g, lies under the face at %.17g)", 10 * 3e-10, 3 * k);
+    if (r.n > 10) {
+        ok(r.L[10]->cut == 3 * k, "the cut of layer 10 is put on the face: %.17g", r.L[10]->cut);
+        ok(r.L[10]->ncontours == 1 && r.L[9]->ncontours == 2,
+           "layer 10 is the solid square alone (%zu contours), layer 9 still has the hole (%zu)",
+           r.L[10]->ncontours, r.L[9]->ncontours);
+        ok(r.L[10]->floor == 3 * k && r.L[9]->ceiling == r.L[10]->floor,
+           "the plane moves with the cut: floor of layer 10 and ceiling of layer 9, bit for bit");
+    }
+    run_free(&r);
+    lam_model_free(m);
+}
+
 int main(void)
 {
     group("cube with hole", group_cube_hole);
@@ -1237,5 +1269,6 @@ int main(void)
     group("shells", test_shells);
     group("layers outside the model", test_outside);
     group("options and frames", group_options);
+    group("planes put on faces they miss by rounding", test_snapped_planes);
     return done_testing();
 }
