@@ -473,36 +473,10 @@ typedef struct vals {
     int close;
 } vals;
 
-/* The last text of one number field: a vertex line repeats the layer's
- * height, and a number already written is copied instead of formatted. */
-typedef struct memo {
-    double x;
-    unsigned char len;       /* 0: nothing remembered */
-    char s[31];
-} memo;
-
-static size_t fmt_memo(char *out, const lam_tseg *s, double x, enum ftype ty, memo *mo)
-{
-    /* whole-array copies: a fixed size compiles to a few moves, where a
-     * copy of n bytes is a library call (out has LAM_FMT_MAX bytes) */
-    if (mo && mo->len && memcmp(&mo->x, &x, sizeof x) == 0) {
-        memcpy(out, mo->s, sizeof mo->s);
-        out[mo->len] = '\0';
-        return mo->len;
-    }
-    size_t n = fmt_number(out, s, x, ty);
-    if (mo && n < sizeof mo->s) {
-        mo->x = x;
-        mo->len = (unsigned char)n;
-        memcpy(mo->s, out, sizeof mo->s);
-    }
-    return n;
-}
-
 /* Render t into b; for travel/deposit also the text of dx dy dz
- * (rel[k] set to the value the machine reads, has_rel[k] to 1). memos
- * (NULL, or one per segment of t) remember the last text of each field. */
-static void render(const lam_template *t, const vals *v, buf *b, double rel[3], int has_rel[3], memo *memos)
+ * (rel[k] set to the value the machine reads, has_rel[k] to 1). Numbers
+ * are formatted straight into b. */
+static void render(const lam_template *t, const vals *v, buf *b, double rel[3], int has_rel[3])
 {
     for (size_t i = 0; i < t->nsegs; i++) {
         const lam_tseg *s = &t->segs[i];
@@ -540,7 +514,7 @@ static void render(const lam_template *t, const vals *v, buf *b, double rel[3], 
         } else {
             char *at = room(b, LAM_FMT_MAX);
             if (!at) return;
-            size_t n = fmt_memo(at, s, v->num[s->field], ty, memos ? memos + i : NULL);
+            size_t n = fmt_number(at, s, v->num[s->field], ty);
             b->len += n;
             int k = s->field == F_DX ? 0 : s->field == F_DY ? 1 : s->field == F_DZ ? 2 : -1;
             if (rel && k >= 0 && !has_rel[k]) {
@@ -566,7 +540,6 @@ typedef struct dsink {
     size_t blocks;                  /* contour blocks written */
     size_t layer_index, in_layer;   /* contours seen in the current layer */
     buf b;
-    memo *memos[LAM_CMD_COUNT];     /* per command, one per template segment */
 } dsink;
 
 /* Commands collect in s->b and go to the writer in blocks of about this
@@ -586,7 +559,7 @@ static int emit(dsink *s, lam_cmd c, const vals *v, double rel[3], int has_rel[3
 {
     const lam_template *t = &s->d->cmd[c];
     if (!t->present) return LAM_OK;
-    render(t, v, &s->b, rel, has_rel, s->memos[c]);
+    render(t, v, &s->b, rel, has_rel);
     put(&s->b, "\n", 1);
     if (s->b.oom) return lam_error_set(s->err, LAM_ENOMEM, NULL, 0, 0, "out of memory writing the %s command",
                                        cmd_names[c]);
@@ -757,14 +730,10 @@ static void d_destroy(void *ctx)
 {
     dsink *s = ctx;
     if (!s) return;
-    /* best effort for callers that stop without end(); after a failure the
-     * writer is aborted and these bytes go nowhere */
-    if (s->b.len && !s->b.oom) lam_writer_write(s->w, s->b.s, s->b.len);
     free(s->name);
     free(s->process);
     free(s->units);
     free(s->b.s);
-    for (int c = 0; c < LAM_CMD_COUNT; c++) free(s->memos[c]);
     free(s);
 }
 
@@ -776,11 +745,6 @@ int lam_dialect_sink(const lam_dialect *d, lam_writer *w, lam_error *err, lam_si
     s->d = d;
     s->w = w;
     s->err = err;
-    for (int c = 0; c < LAM_CMD_COUNT; c++)
-        if (d->cmd[c].present && d->cmd[c].nsegs && !(s->memos[c] = calloc(d->cmd[c].nsegs, sizeof(memo)))) {
-            d_destroy(s);
-            return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory");
-        }
     out->ctx = s;
     out->begin = d_begin;
     out->layer = d_layer;

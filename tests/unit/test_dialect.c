@@ -79,6 +79,7 @@ typedef struct run {
     lam_writer *w;
     lam_error err;
     lam_sink sink;
+    int end_rc; /* what end returned */
 } run;
 
 static void run_start(run *r)
@@ -87,9 +88,11 @@ static void run_start(run *r)
     if (lam_writer_memory(&r->w, &r->err) || lam_dialect_sink(&r->d, r->w, &r->err, &r->sink)) abort();
 }
 
-/* Finish: destroy the sink, return the output (caller frees). */
+/* Finish as a planner does (end, then destroy: the sink's output is
+ * complete when end returns) and return the output (caller frees). */
 static char *run_take(run *r)
 {
+    r->end_rc = r->sink.end(r->sink.ctx);
     r->sink.destroy(r->sink.ctx);
     char *out;
     size_t len;
@@ -294,8 +297,8 @@ static void test_render_numbers(void)
     run_start(&r);
     lam_job_info j = job();
     ok(r.sink.begin(r.sink.ctx, &j) == LAM_OK, "begin");
-    ok(r.sink.end(r.sink.ctx) == LAM_OK, "end");
     char *out = run_take(&r);
+    ok(r.end_rc == LAM_OK, "end");
     is_str(out,
            "{test-cell} [test-cell ] [   test-cell] ladrp mm 7 3 0.08 0.15 30\n-1 -2 -3 1 2 3.50\n"
            "; end of test-cell (007 layers)\n",
@@ -331,7 +334,6 @@ static void test_moves(void)
     r.sink.move(r.sink.ctx, 1, (double[]){ 0, 0, 4 });
     r.sink.move(r.sink.ctx, 0, (double[]){ 0.5, -1.5, 4 });
     r.sink.layer_end(r.sink.ctx, &L);
-    r.sink.end(r.sink.ctx);
     char *out = run_take(&r);
     is_str(out,
            "layer 4 5 3.25 0.5 3 3.5\n"
@@ -411,7 +413,6 @@ static void test_contours(void)
     r.sink.layer(r.sink.ctx, &L1);
     r.sink.contour(r.sink.ctx, &c);
     r.sink.layer_end(r.sink.ctx, &L1);
-    r.sink.end(r.sink.ctx);
     char *out = run_take(&r);
     is_str(out,
            "contour 0.500000 #1 [0] solid d0 dir1\nloop 4\n"
