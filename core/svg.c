@@ -185,3 +185,12 @@ void lam_svg_free(lam_svg *s)
     free(s->title);
     free(s);
 }
+
+int lam_svg_save(const lam_svg *svg, const char *path, lam_error *err)
+{
+    lam_writer *w;
+    int rc = lam_writer_file(path, &w, err);
+    if (rc) return rc;
+    lam_svg_write(svg, w);
+    return lam_writer_commit(w, err);
+}

@@ -30,6 +30,10 @@ int lam_svg_mark(lam_svg *svg, size_t index, double u, double v, lam_error *err)
 /* Write the whole sheet. */
 int lam_svg_write(const lam_svg *svg, lam_writer *w);
 
+/* Write the whole sheet to the file `path` (lam_writer_file: whole or not
+ * at all). Errors: the writer's, in err. */
+int lam_svg_save(const lam_svg *svg, const char *path, lam_error *err);
+
 void lam_svg_free(lam_svg *svg);
 
 #endif

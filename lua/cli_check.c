@@ -24,7 +24,6 @@ static int draw(const args *a, lam_model *m, const lam_drc_result *res, lam_erro
 {
     lam_slicer *s = NULL;
     lam_svg *svg = NULL;
-    lam_writer *w = NULL;
     int rc = lam_slicer_new(m, &a->so, &s, err);
     if (!rc) {
         double box[4];
@@ -53,11 +52,7 @@ static int draw(const args *a, lam_model *m, const lam_drc_result *res, lam_erro
         rc = lam_svg_add(svg, L, err);
         lam_layer_free(L);
     }
-    if (!rc) rc = lam_writer_file(a->svg, &w, err);
-    if (!rc) {
-        lam_svg_write(svg, w);
-        rc = lam_writer_commit(w, err);
-    }
+    if (!rc) rc = lam_svg_save(svg, a->svg, err);
     lam_svg_free(svg);
     lam_slicer_free(s);
     return rc;

@@ -166,17 +166,9 @@ int cmd_slice(int argc, char **argv)
             goto done;
         }
     }
-    if (rep.svg) {
-        lam_writer *sw;
-        if (lam_writer_file(a.svg, &sw, &err)) {
-            rc = cli_fail(&err);
-            goto done;
-        }
-        lam_svg_write(rep.svg, sw);
-        if (lam_writer_commit(sw, &err)) {
-            rc = cli_fail(&err);
-            goto done;
-        }
+    if (rep.svg && lam_svg_save(rep.svg, a.svg, &err)) {
+        rc = cli_fail(&err);
+        goto done;
     }
     {
         lam_writer *tmp = w;

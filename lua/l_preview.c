@@ -2,25 +2,17 @@
  * `lamina slice --svg` (core/svg.c) for layers of one slicing run. */
 #include "l_common.h"
 #include "svg.h"
-#include "writer.h"
 
 #include <string.h>
 
-/* A run's sheet state, released by __gc should Lua raise half-way. */
+/* The sheet, released by __gc should Lua raise half-way. */
 #define LAM_PREVIEWJOB "lamina.previewjob"
-
-typedef struct pjob {
-    lam_svg *svg;
-    lam_writer *w;
-} pjob;
 
 static int pjob_gc(lua_State *L)
 {
-    pjob *j = luaL_checkudata(L, 1, LAM_PREVIEWJOB);
-    lam_svg_free(j->svg);
-    lam_writer_abort(j->w);
-    j->svg = NULL;
-    j->w = NULL;
+    lam_svg **j = luaL_checkudata(L, 1, LAM_PREVIEWJOB);
+    lam_svg_free(*j);
+    *j = NULL;
     return 0;
 }
 
@@ -42,8 +34,8 @@ int lam_lua_preview(lua_State *L)
         run = r;
         lua_pop(L, 1);
     }
-    pjob *j = lua_newuserdatauv(L, sizeof *j, 0);
-    memset(j, 0, sizeof *j);
+    lam_svg **j = lua_newuserdatauv(L, sizeof *j, 0);
+    *j = NULL;
     if (luaL_newmetatable(L, LAM_PREVIEWJOB)) {
         lua_pushcfunction(L, pjob_gc);
         lua_setfield(L, -2, "__gc");
@@ -52,20 +44,17 @@ int lam_lua_preview(lua_State *L)
     lam_error err;
     lam_error_clear(&err);
     /* panels for the run's layer count, so the given layers keep their place */
-    if (lam_svg_new(run->nlayers, run->uvbox, title, &j->svg, &err)) return lam_lua_fail(L, &err);
+    if (lam_svg_new(run->nlayers, run->uvbox, title, j, &err)) return lam_lua_fail(L, &err);
     for (lua_Unsigned i = 1; i <= n; i++) {
         lua_rawgeti(L, 1, (lua_Integer)i);
-        int rc = lam_svg_add(j->svg, lam_lua_checklayer(L, -1), &err);
+        int rc = lam_svg_add(*j, lam_lua_checklayer(L, -1), &err);
         lua_pop(L, 1);
         if (rc) return lam_lua_fail(L, &err);
     }
-    if (lam_writer_file(path, &j->w, &err)) return lam_lua_fail(L, &err);
-    lam_svg_write(j->svg, j->w);
-    lam_writer *w = j->w;
-    j->w = NULL;
-    if (lam_writer_commit(w, &err)) return lam_lua_fail(L, &err);
-    lam_svg_free(j->svg);
-    j->svg = NULL;
+    int rc = lam_svg_save(*j, path, &err);
+    lam_svg_free(*j);
+    *j = NULL;
+    if (rc) return lam_lua_fail(L, &err);
     lua_pushboolean(L, 1);
     return 1;
 }
