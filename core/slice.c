@@ -127,7 +127,6 @@ struct lam_slicer {
     size_t *layer_first;   /* order[layer_first[i] ..] enter at layer i */
     size_t norder, ins;
     uint32_t *active;
-    double *active_hi;     /* upper height of each active edge */
     size_t nactive;
     /* edge id -> slot in active, for this layer's edges only: a small
      * open-addressing table (2 to 4 cells per active edge) stays in cache,
@@ -225,6 +224,37 @@ static double edge_hi(const lam_slicer *s, uint32_t e)
     return a < b ? b : a;
 }
 
+/* The first layer whose cut is at or above h (strictly above when
+ * strict), S when none. Uniform layers (c0 the first cut, step the mean
+ * spacing) let it be guessed from the height; the guess is checked against
+ * the cuts themselves, and binary search takes over where it is off
+ * (adaptive widths). */
+static size_t first_cut(const lam_slicer *s, double c0, double step, double h, int strict)
+{
+    size_t S = s->nlayers;
+#define AT_OR_ABOVE(i) (strict ? s->cuts[i] > h : s->cuts[i] >= h)
+    double g = step > 0 ? ceil((h - c0) / step) : 0;
+    size_t guess = g <= 0 ? 0 : g >= (double)S ? S : (size_t)g;
+    if (guess < S && AT_OR_ABOVE(guess) && (guess == 0 || !AT_OR_ABOVE(guess - 1))) return guess;
+    if (guess + 1 < S && AT_OR_ABOVE(guess + 1) && !AT_OR_ABOVE(guess)) return guess + 1;
+    if (guess == S && !AT_OR_ABOVE(S - 1)) return S;
+    size_t a = 0, z = S;
+    while (a < z) {
+        size_t mid = (a + z) / 2;
+        if (AT_OR_ABOVE(mid)) z = mid;
+        else a = mid + 1;
+    }
+#undef AT_OR_ABOVE
+    return a;
+}
+
+/* Mean spacing of the cuts, for first_cut's guess. */
+static double cut_step(const lam_slicer *s)
+{
+    size_t S = s->nlayers;
+    return S > 1 ? (s->cuts[S - 1] - s->cuts[0]) / (double)(S - 1) : 0;
+}
+
 /* A cut meant to lie on a vertex height but missing it by rounding (a plane
  * wmin + i * width computed an ulp off a flat face) is put on it, so that
  * the symbolic perturbation decides the section there, as it does for a
@@ -242,23 +272,11 @@ static int snap_cuts(lam_slicer *s, size_t nv)
         return 1;
     }
     for (size_t j = 0; j < S; j++) best[j] = NAN;
-    double base = fabs(s->planes[0]);
-    double c0 = s->cuts[0], step = S > 1 ? (s->cuts[S - 1] - c0) / (double)(S - 1) : 0;
+    double base = fabs(s->planes[0]), c0 = s->cuts[0], step = cut_step(s);
     for (size_t v = 0; v < nv; v++) {
         double h = W(s, v);
-        /* the first cut at or above h: guessed for uniform layers, checked,
-         * else found by binary search (cuts are sorted) */
-        double g = step > 0 ? ceil((h - c0) / step) : 0;
-        size_t a = g <= 0 ? 0 : g >= (double)S ? S : (size_t)g;
-        if (!((a == S || s->cuts[a] >= h) && (a == 0 || s->cuts[a - 1] < h))) {
-            size_t z = S;
-            a = 0;
-            while (a < z) {
-                size_t mid = (a + z) / 2;
-                if (s->cuts[mid] >= h) z = mid;
-                else a = mid + 1;
-            }
-        }
+        /* the cuts either side of h */
+        size_t a = first_cut(s, c0, step, h, 0);
         for (size_t j = a ? a - 1 : 0; j <= a && j < S; j++) {
             double c = s->cuts[j], d = fabs(c - h);
             if (d == 0) {
@@ -272,16 +290,16 @@ static int snap_cuts(lam_slicer *s, size_t nv)
     /* a floor or ceiling cut is a plane: the plane moves with it, so the
      * slab bounds stay the cut and shared, bit for bit, with the slab next
      * to it */
-    int floor_cut = s->o.cut == LAM_CUT_FLOOR, ceiling_cut = s->o.cut == LAM_CUT_CEILING;
+    int on_plane = s->o.cut != LAM_CUT_MIDDLE;
     for (size_t j = 0; j < S; j++) {
         if (exact[j] || isnan(best[j])) continue;
         double b = best[j];
-        size_t pl = floor_cut ? j : j + 1;
-        if ((floor_cut || ceiling_cut) && !(b > s->planes[pl - (pl > 0)] || pl == 0)) continue;
-        if ((floor_cut || ceiling_cut) && !(pl == S || b < s->planes[pl + 1])) continue;
-        if (!((j == 0 || b >= s->cuts[j - 1]) && (j + 1 == S || b <= s->cuts[j + 1]))) continue;
+        size_t pl = s->o.cut == LAM_CUT_FLOOR ? j : j + 1; /* planes 0 .. S */
+        /* an ulp never passes a neighbour, unless layers are an ulp thin */
+        if (on_plane && ((pl > 0 && !(b > s->planes[pl - 1])) || (pl < S && !(b < s->planes[pl + 1])))) continue;
+        if ((j > 0 && b < s->cuts[j - 1]) || (j + 1 < S && b > s->cuts[j + 1])) continue;
         s->cuts[j] = b;
-        if (floor_cut || ceiling_cut) s->planes[pl] = b;
+        if (on_plane) s->planes[pl] = b;
     }
     free(best);
     free(exact);
@@ -355,33 +373,11 @@ int lam_slicer_new(const lam_model *m, const lam_slice_opts *opts, lam_slicer **
         rc = nomem(err);
         goto fail;
     }
-    /* uniform layers let the layer be guessed from the height; the guess is
-     * checked against the cuts themselves, and binary search takes over
-     * where it is off (adaptive widths) */
-    double c0 = s->cuts[0], step = S > 1 ? (s->cuts[S - 1] - c0) / (double)(S - 1) : 0;
-#define AT_OR_ABOVE(i) (s->up ? s->cuts[i] >= lo : s->cuts[i] > lo)
+    double c0 = s->cuts[0], step = cut_step(s);
     for (size_t e = 0; e < ne; e++) {
         double lo = edge_lo(s, (uint32_t)e), hi = edge_hi(s, (uint32_t)e);
         /* first layer with lo below its cut: cut >= lo (up) or cut > lo */
-        size_t a;
-        double g = step > 0 ? ceil((lo - c0) / step) : 0;
-        size_t guess = g <= 0 ? 0 : g >= (double)S ? S : (size_t)g;
-        if (guess < S && AT_OR_ABOVE(guess) && (guess == 0 || !AT_OR_ABOVE(guess - 1))) {
-            a = guess;
-        } else if (guess + 1 < S && AT_OR_ABOVE(guess + 1) && !AT_OR_ABOVE(guess)) {
-            a = guess + 1;
-        } else if (guess == S && !AT_OR_ABOVE(S - 1)) {
-            a = S;
-        } else {
-            size_t z = S;
-            a = 0;
-            while (a < z) {
-                size_t mid = (a + z) / 2;
-                if (AT_OR_ABOVE(mid)) z = mid;
-                else a = mid + 1;
-            }
-        }
-#undef AT_OR_ABOVE
+        size_t a = first_cut(s, c0, step, lo, !s->up);
         int crosses = a < S && (s->up ? hi > s->cuts[a] : hi >= s->cuts[a]);
         bucket[e] = crosses ? (uint32_t)a : NONE;
         if (crosses) s->layer_first[a + 1]++;
@@ -437,7 +433,6 @@ void lam_slicer_free(lam_slicer *s)
     free(s->cuts);
     free(s->layer_first);
     free(s->active);
-    free(s->active_hi);
     free(s->slot_edge);
     free(s->slot_at);
     free(s->pts);
@@ -478,9 +473,6 @@ static int reserve_active(lam_slicer *s, size_t n, lam_error *err)
     double *np = realloc(s->pts, 2 * cap * sizeof *np);
     if (!np) return nomem(err);
     s->pts = np;
-    np = realloc(s->active_hi, cap * sizeof *np);
-    if (!np) return nomem(err);
-    s->active_hi = np;
     s->cap_active = cap;
     return LAM_OK;
 }
@@ -645,19 +637,13 @@ static int section(lam_slicer *s, size_t layer, chains *ch, lam_error *err)
     const lam_edges *E = &m->edges;
 #define BELOW(h) (up ? (h) <= c : (h) < c)
     if (reserve_active(s, s->nactive + (s->layer_first[layer + 1] - s->ins) + 1, err)) return LAM_ENOMEM;
-    while (s->ins < s->layer_first[layer + 1]) {
-        uint32_t e = s->order[s->ins++];
-        s->active_hi[s->nactive] = edge_hi(s, e);
-        s->active[s->nactive++] = e;
-    }
+    while (s->ins < s->layer_first[layer + 1]) s->active[s->nactive++] = s->order[s->ins++];
     size_t na = 0;
     for (size_t i = 0; i < s->nactive; i++) {
         uint32_t e = s->active[i];
-        double ehi = s->active_hi[i];
         if (i + 8 < s->nactive) LAM_PREFETCH(E->v + 2 * (size_t)s->active[i + 8]);
-        if (BELOW(ehi)) continue; /* passed for good: heights only rise */
+        if (BELOW(edge_hi(s, e))) continue; /* passed for good: heights only rise */
         s->active[na] = e;
-        s->active_hi[na] = ehi;
         /* the point, from the lower end to the upper end, exact at both */
         const uint32_t *ev = E->v + 2 * (size_t)e;
         uint32_t lo = ev[0], hi = ev[1];
