@@ -177,21 +177,18 @@ static int make_tedge(const double *p, size_t n, size_t i, uint32_t loop, double
     return 1;
 }
 
-/* > 0: point (u, v) lies on the -u side of e's line, < 0 the +u side. */
-static double side(const tedge *e, double u, double v)
-{
-    return (e->u1 - e->u0) * (v - e->v0) - (e->v1 - e->v0) * (u - e->u0);
-}
-
-/* side(), but 0 for a point on the line up to rounding: a vertex of one
- * loop lying on another loop's edge (touching loops, collinear sides) must
- * not be put on a side by the last bit of a product. */
-static double side_tol(const tedge *e, double u, double v)
+/* > 0: point (u, v) lies on the -u side of e's line, < 0 the +u side.
+ * With `tolerant`, 0 for a point on the line up to rounding: a vertex of
+ * one loop lying on another loop's edge (touching loops, collinear sides)
+ * must not be put on a side by the last bit of a product. */
+static double side(const tedge *e, double u, double v, int tolerant)
 {
     double a = (e->u1 - e->u0) * (v - e->v0), b = (e->v1 - e->v0) * (u - e->u0);
     double c = a - b;
-    return fabs(c) <= 64 * DBL_EPSILON * (fabs(a) + fabs(b)) ? 0 : c;
+    return tolerant && fabs(c) <= 64 * DBL_EPSILON * (fabs(a) + fabs(b)) ? 0 : c;
 }
+
+static double side_tol(const tedge *e, double u, double v) { return side(e, u, v, 1); }
 
 /* The active edges as a treap ordered along u (edges of a section do not
  * cross, so the order holds while both are active), each node with the sum
@@ -277,29 +274,21 @@ static void erase(treap *t, int32_t x)
     for (int32_t a = p; a >= 0; a = t->up[a]) t->sum[a] -= t->e[x].s;
 }
 
-/* In-order predecessor of x, -1 if none. */
-static int32_t before(const treap *t, int32_t x)
+/* In-order neighbour of x on the `near` side (left: predecessor, right:
+ * successor), -1 if none. */
+static int32_t neighbour(const treap *t, int32_t x, const int32_t *near, const int32_t *far)
 {
-    if (t->left[x] >= 0) {
-        x = t->left[x];
-        while (t->right[x] >= 0) x = t->right[x];
+    if (near[x] >= 0) {
+        x = near[x];
+        while (far[x] >= 0) x = far[x];
         return x;
     }
-    while (t->up[x] >= 0 && t->left[t->up[x]] == x) x = t->up[x];
+    while (t->up[x] >= 0 && near[t->up[x]] == x) x = t->up[x];
     return t->up[x];
 }
 
-/* In-order successor of x, -1 if none. */
-static int32_t after(const treap *t, int32_t x)
-{
-    if (t->right[x] >= 0) {
-        x = t->right[x];
-        while (t->left[x] >= 0) x = t->left[x];
-        return x;
-    }
-    while (t->up[x] >= 0 && t->right[t->up[x]] == x) x = t->up[x];
-    return t->up[x];
-}
+static int32_t before(const treap *t, int32_t x) { return neighbour(t, x, t->left, t->right); }
+static int32_t after(const treap *t, int32_t x) { return neighbour(t, x, t->right, t->left); }
 
 /* Do edges a and b cross properly (each strictly on both sides of the
  * other)? Touching at a point or along a line is not crossing. */
@@ -318,7 +307,7 @@ static int32_t left_sum(const treap *t, double u, double v, int32_t *nearest)
     int32_t acc = 0, at = t->root;
     *nearest = -1;
     while (at >= 0) {
-        if (side(&t->e[at], u, v) >= 0) {
+        if (side(&t->e[at], u, v, 0) >= 0) {
             at = t->left[at];
         } else {
             acc += tsum(t, t->left[at]) + t->e[at].s;
@@ -367,12 +356,14 @@ static int nest_tree(const double *uv, lam_nest_loop *li, size_t nl, int *agreed
     unsigned char *opens = malloc(nl + 1);              /* ... whose inside begins there */
     unsigned char *state = calloc(nl + 1, 1);
     long *stack = malloc(nl * sizeof *stack + 1);
-    if (!e || !ev || !arr || !prio || !link || !opens || !state || !stack) {
-        free(e); free(ev); free(arr); free(prio); free(link); free(opens); free(state); free(stack);
+    size_t *efirst = malloc((nl + 1) * sizeof *efirst); /* loop l's edges: e[efirst[l] .. efirst[l + 1]) */
+    if (!e || !ev || !arr || !prio || !link || !opens || !state || !stack || !efirst) {
+        free(e); free(ev); free(arr); free(prio); free(link); free(opens); free(state); free(stack); free(efirst);
         return oom(err);
     }
     size_t ne = 0, nev = 0;
     for (size_t l = 0; l < nl; l++) {
+        efirst[l] = ne;
         const double *p = uv + 2 * li[l].first;
         for (size_t i = 0; i < li[l].n; i++) {
             tedge *t = &e[ne];
@@ -383,6 +374,7 @@ static int nest_tree(const double *uv, lam_nest_loop *li, size_t nl, int *agreed
         }
         ev[nev++] = (event){ li[l].q[1], 2u << 30 | (uint32_t)l };
     }
+    efirst[nl] = ne;
     qsort(ev, nev, sizeof *ev, cmp_event);
     treap t = { e, arr, arr + np, arr + 2 * np, arr + 3 * np, prio, -1 };
     for (size_t k = 0; k < ne; k++) prio[k] = mix((uint32_t)k + 1);
@@ -408,13 +400,8 @@ static int nest_tree(const double *uv, lam_nest_loop *li, size_t nl, int *agreed
             int32_t all = left_sum(&t, me->q[0], me->q[1], &nearest);
             /* its own edges left of the point, counted the same way */
             int32_t own = 0;
-            const double *p = uv + 2 * me->first;
-            for (size_t i = 0; i < me->n; i++) {
-                tedge one;
-                if (make_tedge(p, me->n, i, id, me->area, &one) && one.v0 <= me->q[1] && me->q[1] < one.v1 &&
-                    side(&one, me->q[0], me->q[1]) < 0)
-                    own += one.s;
-            }
+            for (size_t x = efirst[id]; x < efirst[id + 1]; x++)
+                if (e[x].v0 <= me->q[1] && me->q[1] < e[x].v1 && side(&e[x], me->q[0], me->q[1], 0) < 0) own += e[x].s;
             me->depth = all - own;
             while (nearest >= 0 && e[nearest].loop == id) nearest = before(&t, nearest);
             link[id] = nearest >= 0 ? (long)e[nearest].loop : -1;
@@ -436,13 +423,11 @@ static int nest_tree(const double *uv, lam_nest_loop *li, size_t nl, int *agreed
             good = 0; /* a cycle of loops beside each other */
             break;
         }
-        long parent = state[at] == 2 ? li[at].parent : link[at];
-        if (state[at] == 0) {
-            li[at].parent = parent;
+        if (state[at] == 0) { /* a root, or inside the loop it links to */
+            li[at].parent = link[at];
             state[at] = 2;
-        } else {
-            parent = li[at].parent;
         }
+        long parent = li[at].parent;
         while (sp) {
             long x = stack[--sp];
             li[x].parent = parent;
@@ -454,7 +439,7 @@ static int nest_tree(const double *uv, lam_nest_loop *li, size_t nl, int *agreed
         good = p < 0 ? li[l].depth == 0 : li[l].depth == li[p].depth + 1;
     }
     *agreed = good;
-    free(e); free(ev); free(arr); free(prio); free(link); free(opens); free(state); free(stack);
+    free(e); free(ev); free(arr); free(prio); free(link); free(opens); free(state); free(stack); free(efirst);
     return LAM_OK;
 }
 
