@@ -1,7 +1,6 @@
 /* Which shells enclose which; see enclose.h. */
 #include "enclose.h"
 
-#include <float.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
@@ -148,19 +147,27 @@ static long next_candidate(const lam_model *md, const grid *g, size_t s, size_t 
 
 /* ---- pairwise ---------------------------------------------------------------- */
 
+/* The sample triangles of shell s: up to SAMPLES, spread evenly over its
+ * triangles. Returns how many. */
+static int samples(const lam_model *md, size_t s, uint32_t tri[SAMPLES])
+{
+    size_t n = md->shell_first[s + 1] - md->shell_first[s], want = n < SAMPLES ? n : SAMPLES;
+    size_t step = want ? n / want : 1;
+    for (size_t k = 0; k < want; k++) tri[k] = md->shell_tris[md->shell_first[s] + k * step];
+    return (int)want;
+}
+
 /* Does shell `outer` enclose shell `inner`? (See enclose.h.) */
 static int shell_encloses(const lam_model *md, size_t outer, size_t inner)
 {
     const lam_mesh *m = &md->mesh;
-    size_t n = md->shells[inner].ntris, want = n < SAMPLES ? n : SAMPLES, seen = 0, step = n / want;
-    int in = 0, out = 0;
-    for (uint32_t i = md->shell_first[inner]; i < md->shell_first[inner + 1] && seen < want; i += step) {
-        size_t t = md->shell_tris[i];
-        seen++;
+    uint32_t tri[SAMPLES];
+    int ns = samples(md, inner, tri), in = 0, out = 0;
+    for (int k = 0; k < ns; k++) {
+        const uint32_t *tv = m->tris + 3 * (size_t)tri[k];
         double c[3];
         for (int j = 0; j < 3; j++)
-            c[j] = (m->xyz[3 * (size_t)m->tris[3 * t] + j] + m->xyz[3 * (size_t)m->tris[3 * t + 1] + j] +
-                    m->xyz[3 * (size_t)m->tris[3 * t + 2] + j]) / 3.0;
+            c[j] = (m->xyz[3 * (size_t)tv[0] + j] + m->xyz[3 * (size_t)tv[1] + j] + m->xyz[3 * (size_t)tv[2] + j]) / 3.0;
         double w = fabs(lam_model_shell_winding(md, outer, c));
         if (w > 0.75) in++;
         else if (w < 0.25) out++;
@@ -175,17 +182,6 @@ static int shell_encloses(const lam_model *md, size_t outer, size_t inner)
 static int by_rays(lam_model *md, const unsigned char *cand, lam_error *err)
 {
     const lam_mesh *m = &md->mesh;
-    /* the offset: well clear of Embree's float32 tolerance, tiny against
-     * the model (the validator's inset for its test points) */
-    double scale = 0, maxabs = 0;
-    for (size_t s = 0; s < md->nshells; s++)
-        for (int k = 0; k < 3; k++) {
-            double lo = md->shells[s].bbox[k], hi = md->shells[s].bbox[k + 3];
-            if (hi - lo > scale) scale = hi - lo;
-            if (fabs(lo) > maxabs) maxabs = fabs(lo);
-            if (fabs(hi) > maxabs) maxabs = fabs(hi);
-        }
-    double delta = fmax(1e-5 * scale, 1e3 * FLT_EPSILON * maxabs);
     int *found = malloc((md->nshells + 1) * sizeof *found);
     if (!found) return -oom(err);
     lam_validator *v = NULL;
@@ -195,15 +191,16 @@ static int by_rays(lam_model *md, const unsigned char *cand, lam_error *err)
         free(found);
         return 0; /* no Embree here: the pairwise test decides */
     }
+    /* the offset: the validator's own inset for its test points, well clear
+     * of its float32 tolerance and tiny against the model */
+    double delta = lam_validator_min_inset(v);
     int good = 1;
     for (size_t s = 0; s < md->nshells && good; s++) {
         if (!cand[s]) continue;
-        size_t n = md->shell_first[s + 1] - md->shell_first[s], want = n < SAMPLES ? n : SAMPLES;
-        size_t step = n / want, seen = 0;
-        int w[SAMPLES], nw = 0;
-        for (uint32_t i = md->shell_first[s]; i < md->shell_first[s + 1] && seen < want; i += (uint32_t)step) {
-            seen++;
-            const uint32_t *t = m->tris + 3 * (size_t)md->shell_tris[i];
+        uint32_t tri[SAMPLES];
+        int ns = samples(md, s, tri), w[SAMPLES], nw = 0;
+        for (int k = 0; k < ns; k++) {
+            const uint32_t *t = m->tris + 3 * (size_t)tri[k];
             const double *a = m->xyz + 3 * (size_t)t[0], *b = m->xyz + 3 * (size_t)t[1], *c = m->xyz + 3 * (size_t)t[2];
             double u[3] = { b[0] - a[0], b[1] - a[1], b[2] - a[2] }, q[3] = { c[0] - a[0], c[1] - a[1], c[2] - a[2] };
             double nrm[3] = { u[1] * q[2] - u[2] * q[1], u[2] * q[0] - u[0] * q[2], u[0] * q[1] - u[1] * q[0] };

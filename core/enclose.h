@@ -20,7 +20,11 @@
  * outside a sample triangle of s (offset along its outward normal) has as
  * winding number the count of shells around it, all shells being oriented
  * outward at this stage; the samples vote again, and should any shell stay
- * undecided the pairwise test decides after all. */
+ * undecided the pairwise test decides after all. The two agree for shells
+ * wholly inside others, which is what the cavity rule is about; a body that
+ * only partly overlaps another counts there by rays (the winding sees it)
+ * but not pairwise (its box is not inside): such models want --fill
+ * nonzero either way. */
 #ifndef LAM_ENCLOSE_H
 #define LAM_ENCLOSE_H
 
