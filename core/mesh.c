@@ -1,10 +1,10 @@
 #include "mesh.h"
-#include "prefetch.h"
 
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "prefetch.h"
 
 void lam_mesh_init(lam_mesh *m)
 {

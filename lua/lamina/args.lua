@@ -49,14 +49,11 @@ end
 
 function args.parse(argv, spec)
   local name, usage = script_name(argv), spec.usage or ""
-  local function fail(fmt, ...)
-    local msg = select("#", ...) > 0 and fmt:format(...) or fmt
-    raise(("%s: %s\nusage: %s"):format(name, msg, usage), 2)
+  local function message(fmt, ...)
+    return name .. ": " .. (select("#", ...) > 0 and fmt:format(...) or fmt)
   end
-  local function die(fmt, ...)
-    local msg = select("#", ...) > 0 and fmt:format(...) or fmt
-    raise(("%s: %s"):format(name, msg), 1)
-  end
+  local function fail(fmt, ...) raise(message(fmt, ...) .. "\nusage: " .. usage, 2) end
+  local function die(fmt, ...) raise(message(fmt, ...), 1) end
   local o = {}
   for k, v in pairs(spec.options or {}) do o[k] = v end
   local function set(key, value, shown)

@@ -47,19 +47,26 @@ measure() { # prints "seconds kilobytes"
 fresh() { rm -f "$@"; }
 median() { sort -g | awk '{a[NR]=$1} END {print (NR % 2) ? a[(NR+1)/2] : (a[NR/2] + a[NR/2+1]) / 2}'; }
 
+# compare NAME STL RUNS: lamina slice against slic3r on STL, alternating
+# runs; sets lt st (median seconds) and lm sm (median peak KB).
+compare() {
+    local name=$1 stl=$2 runs=$3
+    : >"$work/l.txt"; : >"$work/s.txt"
+    for ((r = 0; r < runs; r++)); do
+        fresh "$work/$name.sls"
+        measure "$LAMINA" slice "$stl" -w 0.1 --cut middle -o "$work/$name.sls" >>"$work/l.txt"
+        fresh "$work/$name.slic3r.svg"
+        measure slic3r --export-svg --layer-height 0.1 "$stl" -o "$work/$name.slic3r.svg" >>"$work/s.txt"
+    done
+    lt=$(cut -d' ' -f1 "$work/l.txt" | median); lm=$(cut -d' ' -f2 "$work/l.txt" | median)
+    st=$(cut -d' ' -f1 "$work/s.txt" | median); sm=$(cut -d' ' -f2 "$work/s.txt" | median)
+}
+
 printf '%-8s %10s %10s %10s %10s %10s %10s %8s\n' mesh triangles lamina_s slic3r_s speedup lamina_MB slic3r_MB mem_ratio
 for mesh in sphere torus; do
     stl="$work/$mesh.stl"
     tris=$(( ($(stat -c %s "$stl") - 84) / 50 ))
-    : >"$work/l.txt"; : >"$work/s.txt"
-    for ((r = 0; r < RUNS; r++)); do
-        fresh "$work/$mesh.sls"
-        measure "$LAMINA" slice "$stl" -w 0.1 --cut middle -o "$work/$mesh.sls" >>"$work/l.txt"
-        fresh "$work/$mesh.slic3r.svg"
-        measure slic3r --export-svg --layer-height 0.1 "$stl" -o "$work/$mesh.slic3r.svg" >>"$work/s.txt"
-    done
-    lt=$(cut -d' ' -f1 "$work/l.txt" | median); lm=$(cut -d' ' -f2 "$work/l.txt" | median)
-    st=$(cut -d' ' -f1 "$work/s.txt" | median); sm=$(cut -d' ' -f2 "$work/s.txt" | median)
+    compare "$mesh" "$stl" "$RUNS"
     awk -v m="$mesh" -v n="$tris" -v lt="$lt" -v st="$st" -v lm="$lm" -v sm="$sm" 'BEGIN {
         printf "%-8s %10d %10.3f %10.3f %9.1fx %10.1f %10.1f %8.2f\n", m, n, lt, st, st / (lt > 0 ? lt : 0.001),
                lm / 1024, sm / 1024, lm / sm }'
@@ -71,14 +78,7 @@ echo "(medians of $RUNS alternating runs; speedup = slic3r time / lamina time; m
 # O(N log N) per layer); the same comparison, three runs each.
 comb="$work/comb.stl"
 [ -s "$comb" ] || python3 "$here/comb.py" 1000 "$comb"
-: >"$work/l.txt"; : >"$work/s.txt"
-for ((r = 0; r < 3; r++)); do
-    fresh "$work/comb.sls"
-    measure "$LAMINA" slice "$comb" -w 0.1 --cut middle -o "$work/comb.sls" >>"$work/l.txt"
-    fresh "$work/comb.slic3r.svg"
-    measure slic3r --export-svg --layer-height 0.1 "$comb" -o "$work/comb.slic3r.svg" >>"$work/s.txt"
-done
-lt=$(cut -d' ' -f1 "$work/l.txt" | median); st=$(cut -d' ' -f1 "$work/s.txt" | median)
+compare comb "$comb" 3
 awk -v lt="$lt" -v st="$st" 'BEGIN {
     printf "comb (1000 teeth, 100 layers of 1000 contours): lamina %.3f s, slic3r %.3f s (%.1fx)\n", lt, st, st / lt }'
 
