@@ -4,6 +4,14 @@
 # bare expressions, continued statements, line editing and history
 # (readline), Ctrl-C interrupting a Lua loop and a long slice and
 # abandoning a line, errors, Ctrl-D, and plain `lamina` on a terminal.
+#
+# Independent of the checkout's path and of line wrapping: every program
+# runs in the test's own folder, where `models` is a link to the test
+# models, so what it prints holds a short relative path whatever the
+# checkout's path; the pane is 200 columns wide; and the screen is read
+# with `capture-pane -J`, which joins lines the terminal wrapped, so a
+# long line still matches as one. tests/cli/long_path.t runs this file
+# from a checkout path of over 150 characters.
 . "$(dirname "$0")/lib.sh"
 
 if ! command -v tmux >/dev/null; then
@@ -15,17 +23,24 @@ SOCK="lamina-repl-test-$$"
 tm() { tmux -L "$SOCK" "$@"; }
 trap 'tm kill-server 2>/dev/null; sleep 0.2; rm -rf "$TMP"' EXIT
 mkdir -p "$TMP/home"
+ln -s "$TESTS/models" "$TMP/models"
 
-# start NAME CMD...: a 100x50 terminal running CMD; the pane stays after
-# exit, and CMD's exit status goes to $TMP/NAME.status (from the shell:
-# tmux does not always reap a sanitizer build's exit in time to show it)
+# start NAME CMD...: a 200x50 terminal running CMD in $TMP; the pane stays
+# after exit, and CMD's exit status goes to $TMP/NAME.status (from the
+# shell: tmux does not always reap a sanitizer build's exit in time to
+# show it). Every word is quoted for the pane's shell (%q), so paths with
+# spaces or shell characters pass through.
 start() {
     local name=$1; shift
-    tm -f /dev/null new-session -d -s "$name" -x 100 -y 50 \
-        "env HOME=$TMP/home LAMINA_HISTORY=$TMP/history TESTS=$TESTS $*; echo \$? >$TMP/$name.status" \; \
+    local cmd
+    cmd=$(printf '%q ' env HOME="$TMP/home" LAMINA_HISTORY="$TMP/history" "$@")
+    tm -f /dev/null new-session -d -s "$name" -x 200 -y 50 -c "$TMP" \
+        "$cmd; echo \$? >$(printf '%q' "$TMP/$name.status")" \; \
         set-option -t "$name" remain-on-exit on
 }
-screen() { tm capture-pane -p -t "$1" -S -200; }
+# the screen and its scroll-back, wrapped lines joined (-J keeps trailing
+# blanks, which are cut here: a fresh prompt "> " reads ">")
+screen() { tm capture-pane -p -J -t "$1" -S -200 | sed 's/[[:space:]]*$//'; }
 dead() { [ "$(tm display-message -p -t "$1" '#{pane_dead}')" = 1 ]; }
 # wait_for NAME REGEX [SECONDS]: until the screen matches; 0 if it did
 # (gives up at once when the program has exited)
@@ -39,7 +54,7 @@ wait_for() {
     done
     return 1
 }
-# the last non-empty line of the screen (tmux trims trailing blanks: "> " is ">")
+# the last non-empty line of the screen
 last_line() { screen "$1" | sed '/^[[:space:]]*$/d' | tail -1; }
 prompt() { # prompt NAME: wait for a fresh "> " prompt
     local t=0
@@ -85,10 +100,10 @@ wait_for r '^row +30$'
 rc=$?; ok $rc "the continued statement runs"; show_on_failure $rc r
 prompt r
 
-type_line r 'm = lamina.load(os.getenv("TESTS") .. "/models/thesis_cube_hole.ug")'
+type_line r 'm = lamina.load("models/thesis_cube_hole.ug")'
 prompt r
 type_line r 'm'
-wait_for r 'lamina\.model \(.*thesis_cube_hole\.ug: 24 triangles, 2 shells\)'
+wait_for r '^lamina\.model \(models/thesis_cube_hole\.ug: 24 triangles, 2 shells\)$'
 ok $? "objects print through __tostring"
 prompt r
 
@@ -109,7 +124,7 @@ ok $? "prompt after the interrupt"
 tm send-keys -t r C-l 2>/dev/null; tm clear-history -t r
 
 # Ctrl-C: a long slice (the binding stops between layers)
-type_line r 'c = lamina.load(os.getenv("TESTS") .. "/models/thesis_cube.ug")'
+type_line r 'c = lamina.load("models/thesis_cube.ug")'
 prompt r
 type_line r 'for i = 1, 1000 do layers = c:slice{width = 2e-5} end'
 sleep 1
@@ -186,7 +201,7 @@ start p "$LAMINA"
 wait_for p 'the lamina module is loaded' 20
 ok $? "plain lamina on a terminal starts the prompt"
 prompt p
-type_line p '=#lamina.load(os.getenv("TESTS") .. "/models/thesis_cube.ug")'
+type_line p '=#lamina.load("models/thesis_cube.ug")'
 wait_for p '^12$'
 ok $? "with lamina loaded"
 prompt p

@@ -1,0 +1,42 @@
+#!/usr/bin/env bash
+# The command-line tests from a checkout whose path is over 150
+# characters: a link to the checkout inside a deliberately deep folder,
+# with LAMINA and TESTS named through it. A test that matches a path on a
+# wrapped terminal line, or that builds names from the current directory,
+# fails here and not from a short checkout (CI clones into a folder of its
+# own choosing). Each script is one test; its failing lines are shown.
+. "$(dirname "$0")/lib.sh"
+
+ROOT=$(cd "$TESTS/.." && pwd)
+LONG="$TMP/$(printf 'a%.0s' $(seq 1 70))/$(printf 'b%.0s' $(seq 1 70))"
+mkdir -p "$LONG"
+ln -s "$ROOT" "$LONG/lamina-checkout"
+R="$LONG/lamina-checkout"
+[ ${#R} -ge 150 ]; ok $? "the checkout's path is ${#R} characters"
+
+# the executable through the link when it lies in the checkout
+case "$LAMINA" in
+    "$ROOT"/*) L="$R/${LAMINA#"$ROOT"/}" ;;
+    *) L=$LAMINA ;;
+esac
+case "${BUILD:-}" in
+    "$ROOT"/*) B="$R/${BUILD#"$ROOT"/}" ;;
+    *) B=${BUILD:-} ;;
+esac
+
+self=$(basename "$0")
+for t in "$R"/tests/cli/*.t; do
+    name=$(basename "$t")
+    [ "$name" = "$self" ] && continue
+    (cd "$LONG" && LAMINA="$L" TESTS="$R/tests" BUILD="$B" bash "$t") >"$TMP/tap" 2>&1
+    rc=$?
+    failed=$(grep -c '^not ok' "$TMP/tap")
+    plan=$(grep -c '^1\.\.[1-9]' "$TMP/tap")
+    [ $rc -eq 0 ] && [ "$failed" -eq 0 ] && [ "$plan" -eq 1 ]
+    ok $? "$name from a ${#R}-character path"
+    if [ $rc -ne 0 ] || [ "$failed" -ne 0 ]; then
+        grep -A6 '^not ok' "$TMP/tap" | sed 's/^/#   /' | head -40
+    fi
+done
+
+done_testing
