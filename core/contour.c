@@ -1,58 +1,74 @@
 #include "contour.h"
 #include "nest.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
+/* Signed area by the shoelace formula, measured from the first point (which
+ * keeps the terms small) and summed with Neumaier's compensation: a thin
+ * loop's terms cancel almost entirely, and its sign must not come from
+ * the rounding of the sum. */
 double lam_loop_area(const double *uv, size_t n)
 {
     if (n < 3) return 0;
-    /* measured from the first point: keeps the sum well conditioned */
-    double u0 = uv[0], v0 = uv[1], s = 0;
-    for (size_t i = 1; i + 1 < n; i++) {
-        double au = uv[2 * i] - u0, av = uv[2 * i + 1] - v0;
-        double bu = uv[2 * i + 2] - u0, bv = uv[2 * i + 3] - v0;
-        s += au * bv - av * bu;
+    double u0 = uv[0], v0 = uv[1], s = 0, comp = 0;
+    double au = uv[2] - u0, av = uv[3] - v0;
+    for (size_t i = 2; i < n; i++) {
+        double bu = uv[2 * i] - u0, bv = uv[2 * i + 1] - v0;
+        double d = au * bv - av * bu, t = s + d;
+        comp += fabs(s) >= fabs(d) ? (s - t) + d : (d - t) + s;
+        s = t;
+        au = bu;
+        av = bv;
     }
-    return s / 2;
+    return (s + comp) / 2;
 }
 
-/* b lies on the straight run from a to c (exactly, and going forward). */
-static int straight(const double *a, const double *b, const double *c)
+/* The cross product of the edges a->b and b->c, or 0 when it is within
+ * rounding of 0: b is then in line with a and c, on a straight run or at
+ * the tip of a spike (the edges fold back onto each other). */
+static double turn3(const double *a, const double *b, const double *c)
 {
     double e1u = b[0] - a[0], e1v = b[1] - a[1], e2u = c[0] - b[0], e2v = c[1] - b[1];
-    return e1u * e2v - e1v * e2u == 0 && e1u * e2u + e1v * e2v > 0;
+    double x = e1u * e2v, y = e1v * e2u;
+    return fabs(x - y) <= 8 * DBL_EPSILON * (fabs(x) + fabs(y)) ? 0 : x - y;
+}
+
+/* b can go: a repeat of a, or in line with a and c (a straight run or a
+ * spike). */
+static int removable(const double *a, const double *b, const double *c)
+{
+    return (a[0] == b[0] && a[1] == b[1]) || turn3(a, b, c) == 0;
 }
 
 size_t lam_loop_simplify(double *uv, size_t n)
 {
+    /* a stack of kept points; each new point first removes the points it
+     * makes removable behind it */
     size_t m = 0;
     for (size_t i = 0; i < n; i++) {
         const double *p = uv + 2 * i;
         if (m && uv[2 * m - 2] == p[0] && uv[2 * m - 1] == p[1]) continue;
-        while (m >= 2 && straight(uv + 2 * (m - 2), uv + 2 * (m - 1), p)) m--;
+        while (m >= 2 && removable(uv + 2 * (m - 2), uv + 2 * (m - 1), p)) m--;
+        if (m && uv[2 * m - 2] == p[0] && uv[2 * m - 1] == p[1]) continue; /* a spike's base */
         uv[2 * m] = p[0];
         uv[2 * m + 1] = p[1];
         m++;
     }
-    /* the closing edge: repeated first point, then straight runs through
-     * the seam in either direction */
-    for (int changed = 1; changed && m >= 3;) {
-        changed = 0;
-        if (uv[0] == uv[2 * m - 2] && uv[1] == uv[2 * m - 1]) {
-            m--;
-            changed = 1;
-        } else if (straight(uv + 2 * (m - 2), uv + 2 * (m - 1), uv)) {
-            m--;
-            changed = 1;
-        } else if (straight(uv + 2 * (m - 1), uv, uv + 2)) {
-            memmove(uv, uv + 2, 2 * (m - 1) * sizeof *uv);
-            m--;
-            changed = 1;
-        }
+    /* the seam: the last point against the first two, the first against
+     * the last and the second, until neither goes; h is the new start */
+    size_t h = 0;
+    while (m - h >= 3) {
+        const double *first = uv + 2 * h, *second = uv + 2 * (h + 1);
+        const double *last = uv + 2 * (m - 1), *before = uv + 2 * (m - 2);
+        if ((last[0] == first[0] && last[1] == first[1]) || removable(before, last, first)) m--;
+        else if (removable(last, first, second)) h++;
+        else break;
     }
-    return m;
+    if (h) memmove(uv, uv + 2 * h, 2 * (m - h) * sizeof *uv);
+    return m - h;
 }
 
 /* Lowest, then leftmost, point. */
@@ -92,6 +108,115 @@ int lam_contour_contains(const lam_layer *layer, const lam_contour *c, double u,
         }
     }
     return in;
+}
+
+/* ---- degenerate loops ------------------------------------------------- */
+
+/* A loop's box and size: coincident loops have the same of both. */
+typedef struct twin_key {
+    double box[4];
+    size_t n, first, loop;
+} twin_key;
+
+static int cmp_twin_key(const void *a, const void *b)
+{
+    const twin_key *p = a, *q = b;
+    if (p->n != q->n) return p->n < q->n ? -1 : 1;
+    for (int k = 0; k < 4; k++)
+        if (p->box[k] != q->box[k]) return p->box[k] < q->box[k] ? -1 : 1;
+    return p->loop < q->loop ? -1 : p->loop > q->loop;
+}
+
+static int same_key(const twin_key *p, const twin_key *q)
+{
+    return p->n == q->n && !memcmp(p->box, q->box, sizeof p->box);
+}
+
+/* Do loops a and b (n points each) go through the same points in the same
+ * cyclic order, forwards or backwards? */
+static int coincident(const double *a, const double *b, size_t n)
+{
+    for (size_t j = 0; j < n; j++) {
+        if (b[2 * j] != a[0] || b[2 * j + 1] != a[1]) continue;
+        int fwd = 1, bwd = 1;
+        for (size_t i = 1; i < n && (fwd || bwd); i++) {
+            const double *p = a + 2 * i, *f = b + 2 * ((j + i) % n), *r = b + 2 * ((j + n - i) % n);
+            fwd = fwd && f[0] == p[0] && f[1] == p[1];
+            bwd = bwd && r[0] == p[0] && r[1] == p[1];
+        }
+        if (fwd || bwd) return 1;
+    }
+    return 0;
+}
+
+int lam_loops_tidy(lam_loops *L, double min_area, int cancel_twins, size_t *slivers, size_t *twins,
+                   lam_error *err)
+{
+    size_t nl = L->nloops;
+    if (nl == 0) return LAM_OK;
+    twin_key *keys = malloc(nl * sizeof *keys);
+    unsigned char *drop = calloc(nl, 1);
+    if (!keys || !drop) {
+        free(keys);
+        free(drop);
+        return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory assembling contours");
+    }
+    size_t nk = 0;
+    for (size_t l = 0, off = 0; l < nl; off += L->len[l], l++) {
+        const double *p = L->uv + 2 * off;
+        size_t n = L->len[l];
+        if (n < 3 || !(fabs(lam_loop_area(p, n)) > min_area)) {
+            drop[l] = 1;
+            (*slivers)++;
+            continue;
+        }
+        if (!cancel_twins) continue;
+        twin_key *k = &keys[nk++];
+        k->box[0] = k->box[2] = p[0];
+        k->box[1] = k->box[3] = p[1];
+        for (size_t i = 1; i < n; i++) {
+            if (p[2 * i] < k->box[0]) k->box[0] = p[2 * i];
+            if (p[2 * i] > k->box[2]) k->box[2] = p[2 * i];
+            if (p[2 * i + 1] < k->box[1]) k->box[1] = p[2 * i + 1];
+            if (p[2 * i + 1] > k->box[3]) k->box[3] = p[2 * i + 1];
+        }
+        k->n = n;
+        k->first = off;
+        k->loop = l;
+    }
+    /* Coincident loops cancel in pairs (see contour.h): candidates share
+     * their point count and box, so sorting by those brings them together */
+    if (nk > 1) {
+        qsort(keys, nk, sizeof *keys, cmp_twin_key);
+        for (size_t g = 0, e; g < nk; g = e) {
+            for (e = g + 1; e < nk && same_key(&keys[g], &keys[e]);) e++;
+            for (size_t i = g; i < e; i++) {
+                if (drop[keys[i].loop]) continue;
+                for (size_t j = i + 1; j < e; j++) {
+                    if (drop[keys[j].loop] ||
+                        !coincident(L->uv + 2 * keys[i].first, L->uv + 2 * keys[j].first, keys[i].n))
+                        continue;
+                    drop[keys[i].loop] = drop[keys[j].loop] = 1;
+                    *twins += 2;
+                    break;
+                }
+            }
+        }
+    }
+    /* compact: kept loops move forward */
+    size_t kept = 0, at = 0;
+    for (size_t l = 0, off = 0; l < nl; off += L->len[l], l++) {
+        if (drop[l]) continue;
+        size_t n = L->len[l];
+        if (at != off) memmove(L->uv + 2 * at, L->uv + 2 * off, 2 * n * sizeof *L->uv);
+        L->len[kept++] = n;
+        at += n;
+    }
+    L->nloops = kept;
+    L->npoints = at;
+    free(keys);
+    free(drop);
+    return LAM_OK;
 }
 
 /* ---- nesting ------------------------------------------------------------ */
@@ -177,6 +302,18 @@ int lam_contours_assign(lam_layer *layer, const lam_loops *L, lam_error *err)
         off += L->len[l];
     }
     if ((rc = lam_nest(L->uv, li, nl, err))) goto done;
+    /* The invariant: a parent is larger than its child (lam_nest_larger),
+     * so following parents always ends, and no contour is its own
+     * ancestor. Checked here for every loop, whichever method nested. */
+    for (size_t l = 0; l < nl; l++) {
+        long p = li[l].parent;
+        if (p < -1 || p >= (long)nl || (p >= 0 && !lam_nest_larger(li, (size_t)p, l))) {
+            rc = lam_error_set(err, LAM_EGEOM, NULL, 0, 0,
+                               "contour %zu of %zu has contour %ld as its parent, which is not larger "
+                               "(nesting would loop)", l, nl, p);
+            goto done;
+        }
+    }
 
     /* Depth-first order: each parent followed by its children, siblings by
      * their start point (lowest, then leftmost). */
@@ -209,13 +346,6 @@ int lam_contours_assign(lam_layer *layer, const lam_loops *L, lam_error *err)
     }
     free(run_first);
     free(run_len);
-    /* nout < nl only if parent links formed a cycle, which containment by
-     * strictly smaller area rules out; keep any stragglers regardless */
-    for (size_t l = 0; l < nl && nout < nl; l++) {
-        int seen = 0;
-        for (size_t k = 0; k < nout && !seen; k++) seen = order[k] == l;
-        if (!seen) order[nout++] = l;
-    }
     for (size_t k = 0; k < nl; k++) newidx[order[k]] = (long)k;
 
     size_t pos = 0;
@@ -230,10 +360,11 @@ int lam_contours_assign(lam_layer *layer, const lam_loops *L, lam_error *err)
         c->depth = in->depth;
         c->kind = in->depth % 2 ? LAM_HOLE : LAM_SOLID;
         c->parent = in->parent >= 0 ? newidx[in->parent] : -1;
-        /* the thesis's test at the lowest-leftmost vertex; the signed area
-         * decides only when that vertex is degenerate */
-        double turn = turn_at(src, n, in_start);
-        int ccw = turn > 0 || (turn == 0 && in->area > 0);
+        /* The signed area decides the direction (SPEC 3.3). The thesis's
+         * turn at the lowest-leftmost vertex agrees on a clean simple loop,
+         * but one vertex sees only its two neighbours: a zigzag or
+         * near-repeated point there turns the wrong way. */
+        int ccw = in->area > 0;
         int want_ccw = c->kind == LAM_SOLID;
         double *dst = layer->uv + 2 * pos;
         for (size_t i = 0; i < n; i++) {
@@ -242,7 +373,7 @@ int lam_contours_assign(lam_layer *layer, const lam_loops *L, lam_error *err)
             dst[2 * i] = src[2 * j];
             dst[2 * i + 1] = src[2 * j + 1];
         }
-        c->area = lam_loop_area(dst, n);
+        c->area = ccw == want_ccw ? in->area : -in->area;
         c->perimeter = 0;
         c->bbox[0] = c->bbox[2] = dst[0];
         c->bbox[1] = c->bbox[3] = dst[1];

@@ -39,7 +39,7 @@ static void nest_few(const double *uv, lam_nest_loop *li, size_t nl)
         li[l].parent = -1;
         double best = INFINITY;
         for (size_t o = 0; o < nl; o++) {
-            if (o == l || !crossings_left(uv, &li[o], q[0], q[1])) continue;
+            if (o == l || !lam_nest_larger(li, o, l) || !crossings_left(uv, &li[o], q[0], q[1])) continue;
             li[l].depth++;
             double a = fabs(li[o].area);
             if (a < best) {
@@ -133,7 +133,7 @@ static int nest_scan(const double *uv, lam_nest_loop *li, size_t nl, lam_error *
         double best = INFINITY;
         for (size_t t = 0; t < ntouched; t++) {
             uint32_t o = touched[t];
-            if (parity[o]) {
+            if (parity[o] && lam_nest_larger(li, o, q->loop)) {
                 me->depth++;
                 double a = fabs(li[o].area);
                 if (a < best || (a == best && (long)o < me->parent)) {
@@ -436,7 +436,7 @@ static int nest_tree(const double *uv, lam_nest_loop *li, size_t nl, int *agreed
     }
     for (size_t l = 0; l < nl && good; l++) {
         long p = li[l].parent;
-        good = p < 0 ? li[l].depth == 0 : li[l].depth == li[p].depth + 1;
+        good = p < 0 ? li[l].depth == 0 : li[l].depth == li[p].depth + 1 && lam_nest_larger(li, (size_t)p, l);
     }
     *agreed = good;
     free(e); free(ev); free(arr); free(prio); free(link); free(opens); free(state); free(stack); free(efirst);

@@ -17,12 +17,14 @@
  *     -1 where it ends), the parent follows from the nearest edge of
  *     another loop to the left;
  *   - should the sweep's answers not agree with each other (a depth that
- *     is not its parent's plus one: rounding at touching loops), the layer
+ *     is not its parent's plus one: rounding at touching loops; or a
+ *     parent that is not larger, lam_nest_larger), the layer
  *     is done again by a sweep that tests every active edge, as exact as
  *     the few-loops method but O(N) per loop in the worst case. */
 #ifndef LAM_NEST_H
 #define LAM_NEST_H
 
+#include <math.h>
 #include <stddef.h>
 
 #include "error.h"
@@ -36,6 +38,17 @@ typedef struct lam_nest_loop {
     int depth;        /* out */
     long parent;      /* out: index of the smallest containing loop, -1 */
 } lam_nest_loop;
+
+/* Containment is an order: a loop can only lie inside a larger one, larger
+ * meaning a greater |area|, or the same |area| and a lower index. Loops of
+ * equal area that take each other's inner point (overlapping, or nearly
+ * coincident) then nest one way, never both: no loop is its own ancestor.
+ * Every method counts only larger loops. */
+static inline int lam_nest_larger(const lam_nest_loop *loops, size_t a, size_t b)
+{
+    double x = fabs(loops[a].area), y = fabs(loops[b].area);
+    return x > y || (x == y && a < b);
+}
 
 /* Set depth and parent of loops[0 .. nloops) whose points are in uv.
  * Errors: LAM_ENOMEM. */

@@ -228,7 +228,8 @@ static lam_layer *island(const lam_layer *L, size_t r)
     I->contours = calloc(n + 1, sizeof *I->contours);
     I->uv = malloc((2 * pts + 1) * sizeof *I->uv);
     if (!I->contours || !I->uv) goto fail;
-    *I = (lam_layer){ L->index, L->floor, L->ceiling, L->width, L->cut, I->uv, 0, I->contours, n, 0, 0, NULL, 0 };
+    *I = (lam_layer){ .index = L->index, .floor = L->floor, .ceiling = L->ceiling, .width = L->width,
+                      .cut = L->cut, .uv = I->uv, .contours = I->contours, .ncontours = n, .gap = L->gap };
     for (size_t k = 0; k < L->ncontours; k++) {
         if (map[k] < 0) continue;
         lam_contour *c = &I->contours[map[k]];

@@ -720,7 +720,12 @@ static int apply(ldr *L, const src *s, const yaml_node_t *root)
             if (!(rc = get_number(s, v, key, &x)) && !(rc = nonneg(s, v, key, x))) p->travel_rate = x;
             break;
         case K_GAP:
-            if (!(rc = get_number(s, v, key, &x)) && !(rc = nonneg(s, v, key, x))) p->gap = x;
+            /* `auto`: the slicer's default, which scales with the model */
+            if (v->type == YAML_SCALAR_NODE && v->data.scalar.style == YAML_PLAIN_SCALAR_STYLE &&
+                !strcmp((const char *)v->data.scalar.value, "auto"))
+                p->gap = LAM_GAP_AUTO;
+            else if (!(rc = get_number(s, v, key, &x)) && !(rc = nonneg(s, v, key, x)))
+                p->gap = x;
             break;
         case K_FRAME:
             if (!(rc = get_choice(s, v, key, frame_names, &i))) p->frame_machine = i;
@@ -944,13 +949,25 @@ out:
 
 /* ---- public ---------------------------------------------------------------- */
 
+double lam_profile_gap_limit(const lam_profile *p)
+{
+    static const struct { const char *name; double mm; } units[] = {
+        { "mm", 1 }, { "cm", 10 }, { "m", 1000 }, { "um", 1e-3 }, { "\xc2\xb5m", 1e-3 },
+        { "in", 25.4 }, { "inch", 25.4 }, { "ft", 304.8 },
+    };
+    const char *u = p->units ? p->units : "mm";
+    for (size_t i = 0; i < sizeof units / sizeof units[0]; i++)
+        if (!strcmp(u, units[i].name)) return LAM_GAP_MM / units[i].mm;
+    return 0;
+}
+
 static lam_profile *new_profile(void)
 {
     lam_profile *p = calloc(1, sizeof *p);
     if (!p) return NULL;
     p->process = LAM_PROCESS_LADRP;
     p->cut = LAM_CUT_MIDDLE;
-    p->gap = LAM_DEFAULT_GAP;
+    p->gap = LAM_GAP_AUTO;
     p->first_line = LAM_FIRST_EDGE;
     p->alternate = 1;
     return p;
@@ -1097,7 +1114,8 @@ int lam_profile_dump(const lam_profile *p, lam_writer *w)
     lam_writer_printf(w, "cut: %s\n", cut_names[p->cut >= 0 && p->cut <= 2 ? p->cut : 1]);
     kv_num(w, "", "feed_rate", p->feed_rate);
     kv_num(w, "", "travel_rate", p->travel_rate);
-    kv_num(w, "", "gap", p->gap);
+    if (p->gap < 0) lam_writer_printf(w, "gap: auto\n");
+    else kv_num(w, "", "gap", p->gap);
     lam_writer_printf(w, "frame: %s\n", frame_names[p->frame_machine ? 1 : 0]);
     lam_writer_printf(w, "raster:\n  first_line: %s\n", first_line_names[p->first_line == LAM_FIRST_CENTER]);
     kv_num(w, "  ", "angle", p->angle);

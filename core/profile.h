@@ -32,7 +32,8 @@ typedef struct lam_profile {
     int cut;                 /* lam_cut (slice.h); default LAM_CUT_MIDDLE */
     double feed_rate;        /* >= 0, deposit feed, default 0 */
     double travel_rate;      /* >= 0, default feed_rate */
-    double gap;              /* gap-closing tolerance, >= 0, default LAM_DEFAULT_GAP */
+    double gap;              /* gap-closing tolerance, >= 0; LAM_GAP_AUTO (`gap: auto`, the
+                                default): the slicer's, scaled with the model */
     int frame_machine;       /* `frame: machine` -> 1, `model` (default) -> 0 */
     /* raster (LADRP) */
     lam_first_line first_line;   /* default edge */
@@ -80,6 +81,11 @@ void lam_profile_free(lam_profile *p);
  * <dir of the executable>/../share/lamina/machines. Returns the number of
  * directories stored into dirs (each malloc'd; caller frees). */
 size_t lam_machine_dirs(char **dirs, size_t max);
+
+/* The most the automatic gap-closing tolerance may be on this machine:
+ * LAM_GAP_MM (0.05 mm) in the profile's units (mm, cm, m, um, in, inch,
+ * ft); 0 (no limit) for other units. */
+double lam_profile_gap_limit(const lam_profile *p);
 
 /* Write the resolved profile as YAML (what `lamina machines --show` prints). */
 int lam_profile_dump(const lam_profile *p, lam_writer *w);

@@ -94,7 +94,23 @@ void lam_slice_opts_init(lam_slice_opts *o)
     memset(o, 0, sizeof *o);
     lam_frame_axis('z', &o->frame, NULL);
     o->cut = LAM_CUT_MIDDLE;
-    o->gap = LAM_DEFAULT_GAP;
+    o->gap = LAM_GAP_AUTO;
+}
+
+double lam_default_gap(double size, double limit)
+{
+    if (!(size > 0) || !isfinite(size)) return 0;
+    double g = LAM_GAP_REL * size;
+    return limit > 0 && limit < g ? limit : g;
+}
+
+/* The diagonal of the model's bounding box (0 for an empty model). */
+static double model_size(const lam_model *m)
+{
+    const double *b = m->stats.bbox;
+    double dx = b[3] - b[0], dy = b[4] - b[1], dz = b[5] - b[2];
+    double d = sqrt(dx * dx + dy * dy + dz * dz);
+    return isfinite(d) ? d : 0;
 }
 
 double lam_default_width(double extent)
@@ -122,6 +138,7 @@ struct lam_slicer {
     const double *pw, *pu, *pv;
     double *wuv;
     double *cuts;          /* cut height of each layer, nondecreasing */
+    double min_area;       /* loops of no more area are slivers */
     int up;                /* vertices on a plane count as below it */
     uint32_t *order;       /* edges that cross some cut, by first layer crossed */
     size_t *layer_first;   /* order[layer_first[i] ..] enter at layer i */
@@ -315,6 +332,9 @@ int lam_slicer_new(const lam_model *m, const lam_slice_opts *opts, lam_slicer **
     s->o = *opts;
     s->o.planes = NULL; /* the copy must not point at the caller's arrays */
     s->o.widths = NULL;
+    double size = model_size(m);
+    if (!(s->o.gap >= 0)) s->o.gap = lam_default_gap(size, s->o.gap_limit);
+    s->min_area = (LAM_SLIVER_REL * size) * (LAM_SLIVER_REL * size);
     int rc = LAM_OK;
     size_t nv = m->mesh.nverts, ne = m->edges.n;
     int ku = unit_axis(opts->frame.u), kv = unit_axis(opts->frame.v), kw = unit_axis(opts->frame.w);
@@ -423,6 +443,8 @@ void lam_slicer_uv_bounds(const lam_slicer *s, double box[4])
 }
 
 const lam_frame *lam_slicer_frame(const lam_slicer *s) { return &s->o.frame; }
+
+double lam_slicer_gap(const lam_slicer *s) { return s->o.gap; }
 
 void lam_slicer_free(lam_slicer *s)
 {
@@ -859,11 +881,7 @@ static int close_gaps(const chains *c, double gap, lam_layer *L, lam_loops *out,
         } while (!c->closed[i] && j != i);
         size_t len = lam_loop_simplify(out->uv + 2 * first, out->npoints - first);
         out->npoints = first + len;
-        if (len < 3 || lam_loop_area(out->uv + 2 * first, len) == 0) {
-            out->npoints = first; /* a point or a sliver: no area to build */
-            continue;
-        }
-        out->len[out->nloops++] = len;
+        out->len[out->nloops++] = len; /* a point or a line: lam_loops_tidy drops and counts it */
     }
     for (size_t i = 0; i < n; i++) {
         if (done[i] || c->closed[i] || pred[i] != NONE || c->len[i] == 0) continue;
@@ -907,9 +925,19 @@ int lam_slicer_next(lam_slicer *s, lam_layer **out, lam_error *err)
     L->cut = s->cuts[i];
     chains ch = { 0 };
     lam_loops loops = { 0 };
+    L->gap = s->o.gap;
     int rc = section(s, i, &ch, err);
     if (!rc) rc = close_gaps(&ch, s->o.gap, L, &loops, err);
-    if (!rc && s->o.fill_nonzero) rc = lam_fill_nonzero(&loops, err);
+    /* Degenerate loops go before anything else sees them. Under the
+     * non-zero rule the winding decides what coincident loops bound (a pair
+     * in opposite directions nothing, in the same direction material), so
+     * only the even-odd rule cancels them here; the union's own outlines
+     * are tidied again. */
+    if (!rc) rc = lam_loops_tidy(&loops, s->min_area, !s->o.fill_nonzero, &L->slivers, &L->twins, err);
+    if (!rc && s->o.fill_nonzero) {
+        rc = lam_fill_nonzero(&loops, err);
+        if (!rc) rc = lam_loops_tidy(&loops, s->min_area, 0, &L->slivers, &L->twins, err);
+    }
     if (!rc) rc = lam_contours_assign(L, &loops, err);
     chains_free(&ch);
     free(loops.uv);

@@ -41,16 +41,29 @@ int lam_frame_axis(char axis, lam_frame *f, lam_error *err);
  * aligned with w (ties: x, y, z), v = w x u. +x, +y, +z give the axis frames. */
 int lam_frame_direction(const double d[3], lam_frame *f, lam_error *err);
 
-/* Default gap-closing tolerance in model units (PrusaSlicer closes gaps of
- * about 0.05 mm by default; lamina uses the same order of magnitude). */
-#define LAM_DEFAULT_GAP 0.05
+/* The default gap-closing tolerance scales with the model: gap < 0
+ * (LAM_GAP_AUTO) means LAM_GAP_REL times the model's size, the diagonal of
+ * its bounding box (0.05 for a part of 100 units across, PrusaSlicer's
+ * closing radius in millimetres), so the same open scan in metres and in
+ * millimetres gives the same sections; at most gap_limit when that is > 0
+ * (a machine's 0.05 mm in its own units, lam_profile_gap_limit). */
+#define LAM_GAP_AUTO (-1.0)
+#define LAM_GAP_REL 5e-4
+#define LAM_GAP_MM 0.05
+
+/* A loop whose |area| is at most (LAM_SLIVER_REL * the model's size)^2 is a
+ * sliver (SPEC 3.3: dropped and counted): far above the rounding of an
+ * area (DBL_EPSILON * size^2), far below any feature a machine builds. */
+#define LAM_SLIVER_REL 1e-6
 
 typedef struct lam_slice_opts {
     lam_frame frame;
     lam_cut cut;
-    double gap;              /* close open polylines whose ends are this close; 0 disables.
+    double gap;              /* close open polylines whose ends are this close; 0 disables;
+                                LAM_GAP_AUTO (< 0): lam_default_gap of the model.
                                 Polylines still open are dropped from the layer and listed
                                 in lam_layer.open: the caller decides whether that fails. */
+    double gap_limit;        /* > 0: the automatic gap is at most this */
     int fill_nonzero;        /* 0: even-odd (the thesis's nesting parity); 1: non-zero
                                 winding, overlapping shells merge (fill.h) */
     /* Layer boundaries, one of: */
@@ -68,6 +81,11 @@ void lam_slice_opts_init(lam_slice_opts *o);
 
 /* 1/100 of the extent, rounded down to 1, 2, 2.5 or 5 times a power of ten. */
 double lam_default_width(double extent);
+
+/* The automatic gap-closing tolerance for a model of this size (the
+ * diagonal of its bounding box): LAM_GAP_REL * size, at most limit when
+ * limit > 0. */
+double lam_default_gap(double size, double limit);
 
 typedef enum lam_kind { LAM_SOLID = 0, LAM_HOLE = 1 } lam_kind;
 
@@ -94,8 +112,11 @@ typedef struct lam_layer {
     size_t npoints;
     lam_contour *contours;   /* parents before children; owned */
     size_t ncontours;
+    double gap;              /* the gap-closing tolerance used */
     size_t gaps_closed;      /* gaps bridged by the gap-closing pass */
     double max_gap;          /* largest bridged gap */
+    size_t slivers;          /* loops dropped for (nearly) no area (contour.h) */
+    size_t twins;            /* coincident loops cancelled in pairs (contour.h) */
     lam_open_end *open;      /* polylines left open (dropped from contours) */
     size_t nopen;
 } lam_layer;
@@ -120,6 +141,9 @@ double lam_slicer_cut(const lam_slicer *s, size_t i);
 
 /* The model's extent in the layer frame: umin vmin umax vmax. */
 void lam_slicer_uv_bounds(const lam_slicer *s, double box[4]);
+
+/* The gap-closing tolerance of the run (the automatic one resolved). */
+double lam_slicer_gap(const lam_slicer *s);
 
 /* The slicer's frame. */
 const lam_frame *lam_slicer_frame(const lam_slicer *s);

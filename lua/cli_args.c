@@ -139,8 +139,9 @@ int cli_parse_args(const char *cmd, const char *usage_text, unsigned groups, int
             a->set_cut = 1;
         } else if (!strcmp(o, "--gap")) {
             NEED();
-            if (!parse_number(argv[++i], &a->so.gap) || a->so.gap < 0)
-                return cli_usage(cmd, "--gap takes a tolerance >= 0 (got '%s')", argv[i]);
+            if (!strcmp(argv[++i], "auto")) a->so.gap = LAM_GAP_AUTO;
+            else if (!parse_number(argv[i], &a->so.gap) || a->so.gap < 0)
+                return cli_usage(cmd, "--gap takes a tolerance >= 0 or auto (got '%s')", argv[i]);
             a->set_gap = 1;
         } else if (!strcmp(o, "--allow-open")) {
             a->allow_open = 1;
@@ -207,6 +208,9 @@ void cli_apply_profile(args *a, const lam_profile *p, lam_plan_opts *po)
     if (!a->set_width && !a->so.widths && !a->so.planes && p->layer_width > 0) a->so.width = p->layer_width;
     if (!a->set_cut) a->so.cut = (lam_cut)p->cut;
     if (!a->set_gap) a->so.gap = p->gap;
+    /* a machine's units say what the automatic gap may be at most; the
+     * built-in profile stands for no machine, and model units for nothing */
+    if (a->machine) a->so.gap_limit = lam_profile_gap_limit(p);
     lam_plan_opts_from_profile(po, p);
     apply_overrides(a, po);
 }

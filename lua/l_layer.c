@@ -149,6 +149,7 @@ int lam_lua_slice(lua_State *L)
         if (mc->p.layer_width > 0) o.width = mc->p.layer_width;
         o.cut = (lam_cut)mc->p.cut;
         o.gap = mc->p.gap;
+        o.gap_limit = lam_profile_gap_limit(&mc->p);
     }
     lua_pop(L, 1);
     int i, given = 0;
@@ -223,7 +224,7 @@ int lam_lua_slice(lua_State *L)
             lua_pushfstring(L,
                             "%s: layer %I (z=%f): open outline from (%f, %f) to (%f, %f) could not be closed "
                             "(gap tolerance %f); raise gap or pass allow_open=true to drop open outlines",
-                            m->path, k, lu->L->cut, e->start[0], e->start[1], e->end[0], e->end[1], o.gap);
+                            m->path, k, lu->L->cut, e->start[0], e->start[1], e->end[0], e->end[1], lu->L->gap);
             return 2;
         }
         lua_rawseti(L, result, k);
@@ -317,6 +318,9 @@ static int l_fields(lua_State *L)
     else if (strcmp(k, "points") == 0) lua_pushinteger(L, (lua_Integer)ly->npoints);
     else if (strcmp(k, "gaps_closed") == 0) lua_pushinteger(L, (lua_Integer)ly->gaps_closed);
     else if (strcmp(k, "max_gap") == 0) lua_pushnumber(L, ly->max_gap);
+    else if (strcmp(k, "gap") == 0) lua_pushnumber(L, ly->gap);
+    else if (strcmp(k, "slivers") == 0) lua_pushinteger(L, (lua_Integer)ly->slivers);
+    else if (strcmp(k, "twins") == 0) lua_pushinteger(L, (lua_Integer)ly->twins);
     else if (strcmp(k, "open") == 0) lua_pushinteger(L, (lua_Integer)ly->nopen);
     else if (strcmp(k, "area") == 0) {
         double a = 0;

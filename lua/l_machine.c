@@ -155,7 +155,10 @@ static int mc_fields(lua_State *L)
     else if (strcmp(k, "cut") == 0) lua_pushstring(L, cut_names[p->cut >= 0 && p->cut <= 2 ? p->cut : 1]);
     else if (strcmp(k, "feed_rate") == 0) lua_pushnumber(L, p->feed_rate);
     else if (strcmp(k, "travel_rate") == 0) lua_pushnumber(L, p->travel_rate);
-    else if (strcmp(k, "gap") == 0) lua_pushnumber(L, p->gap);
+    else if (strcmp(k, "gap") == 0) {
+        if (p->gap < 0) lua_pushliteral(L, "auto");
+        else lua_pushnumber(L, p->gap);
+    }
     else if (strcmp(k, "frame") == 0) lua_pushstring(L, frame_names[p->frame_machine ? 1 : 0]);
     else if (strcmp(k, "first_line") == 0) lua_pushstring(L, first_line_names[p->first_line == LAM_FIRST_CENTER]);
     else if (strcmp(k, "angle") == 0) lua_pushnumber(L, p->angle);

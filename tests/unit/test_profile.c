@@ -520,7 +520,7 @@ static void test_errors(void)
         is_str(src(p, LAM_CMD_POSTAMBLE), "M30\n", "'|+' block: one kept line break is an empty line");
         is_str(src(p, LAM_CMD_LAYER), "", "\"\": present, an empty line");
         ok(!p->dialect.cmd[LAM_CMD_FEED].present, "~: absent");
-        is_num(p->gap, LAM_DEFAULT_GAP, 0, "default gap");
+        is_num(p->gap, LAM_GAP_AUTO, 0, "default gap: auto");
         is_int(p->cut, LAM_CUT_MIDDLE, "default cut middle");
         lam_profile_free(p);
     }

@@ -820,7 +820,7 @@ static void test_open(void)
     if (!m) return;
     is_int(m->stats.boundary_edges, 4, "open cube: 4 boundary edges");
     static const double square[8] = { -1, -1, 1, -1, 1, 1, -1, 1 };
-    double gaps[3] = { LAM_DEFAULT_GAP, 0, 1.99 };
+    double gaps[3] = { LAM_GAP_AUTO, 0, 1.99 }; /* auto: 5e-4 of the diagonal, 0.0017 */
     for (int g = 0; g < 3; g++) {
         lam_slice_opts o = opts_axis('z', LAM_CUT_MIDDLE, 0.5);
         o.gap = gaps[g];
