@@ -223,19 +223,19 @@ int lam_loops_tidy(lam_loops *L, double min_area, int cancel_twins, size_t *sliv
 
 /* The loop's nesting is decided at a point strictly inside it, a hair into
  * the corner at its lowest-leftmost vertex (always convex), along the sum
- * of the unit vectors to its two neighbours. A vertex itself may lie on
+ * of the unit vectors to its neighbours. A vertex itself may lie on
  * another loop: a hole whose sides run along the outline around it (the
- * thesis's through hole cut lengthwise) would then miss the crossing. */
+ * thesis's through hole cut lengthwise) would then miss the crossing.
+ * The hair is a millionth of the loop's size, and the neighbours that set
+ * the direction are the first points beyond four hairs either way: a
+ * zigzag or a near-repeated point at the vertex (unwelded meshes, two
+ * shells touching at a corner up to rounding) must not put the point
+ * within rounding of the vertex, where a touching loop may be. */
 static void inner_point(const double *uv, size_t n, size_t a, double q[2])
 {
-    const double *A = uv + 2 * a, *P = uv + 2 * ((a + n - 1) % n), *N = uv + 2 * ((a + 1) % n);
-    double pu = P[0] - A[0], pv = P[1] - A[1], nu = N[0] - A[0], nv = N[1] - A[1];
-    double lp = hypot(pu, pv), ln = hypot(nu, nv);
+    const double *A = uv + 2 * a;
     q[0] = A[0];
     q[1] = A[1];
-    if (!(lp > 0) || !(ln > 0)) return;
-    double du = pu / lp + nu / ln, dv = pv / lp + nv / ln, dl = hypot(du, dv);
-    if (!(dl > 0)) return;
     double umin = A[0], umax = A[0], vmin = A[1], vmax = A[1];
     for (size_t i = 0; i < n; i++) {
         if (uv[2 * i] < umin) umin = uv[2 * i];
@@ -245,9 +245,26 @@ static void inner_point(const double *uv, size_t n, size_t a, double q[2])
     }
     double size = umax - umin > vmax - vmin ? umax - umin : vmax - vmin;
     /* small against the loop, large against rounding of its coordinates */
-    double eps = 1e-6 * (lp < ln ? lp : ln);
-    double floor_eps = 1e-12 * (fabs(A[0]) + fabs(A[1]) + size);
+    double eps = 1e-6 * size, floor_eps = 1e-12 * (fabs(A[0]) + fabs(A[1]) + size);
     if (eps < floor_eps) eps = floor_eps;
+    double lp = 0, ln = 0, pu = 0, pv = 0, nu = 0, nv = 0;
+    for (size_t k = 1; k < n && lp <= 4 * eps; k++) {
+        const double *P = uv + 2 * ((a + n - k) % n);
+        pu = P[0] - A[0];
+        pv = P[1] - A[1];
+        lp = hypot(pu, pv);
+    }
+    for (size_t k = 1; k < n && ln <= 4 * eps; k++) {
+        const double *N = uv + 2 * ((a + k) % n);
+        nu = N[0] - A[0];
+        nv = N[1] - A[1];
+        ln = hypot(nu, nv);
+    }
+    if (!(lp > 0) || !(ln > 0)) return;
+    double du = pu / lp + nu / ln, dv = pv / lp + nv / ln, dl = hypot(du, dv);
+    if (!(dl > 0)) return;
+    double most = (lp < ln ? lp : ln) / 4;
+    if (eps > most) eps = most;
     q[0] = A[0] + eps * du / dl;
     q[1] = A[1] + eps * dv / dl;
 }
