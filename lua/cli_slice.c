@@ -35,7 +35,9 @@ static const char usage_text[] =
     "      --widths     layer widths from the model's minimum; must cover the model\n"
     "      --planes     explicit layer boundaries, strictly increasing\n"
     "      --cut        where each layer's section is taken (default: profile, else middle)\n"
-    "      --gap        close open outlines whose ends are at most TOL apart (default 0.05)\n"
+    "      --gap        close open outlines whose ends are at most TOL apart (default: the\n"
+    "                   profile's, else auto: 1/2000 of the model's size, with -m at most\n"
+    "                   0.05 mm in the machine's units)\n"
     "      --allow-open drop outlines that stay open instead of failing\n"
     "      --first-line, --angle, --angle-step, --min-deposit, --no-alternate, --perimeters\n"
     "                   LADRP raster options (override the profile)\n"
@@ -57,6 +59,7 @@ typedef struct report {
     vreport vr;
     size_t open_total, gaps_total, gap_layers;
     double gap_max;
+    size_t degenerate_layers, slivers, twins;
 } report;
 
 static int on_layer(void *ctx, const lam_layer *L, lam_error *err)
@@ -69,10 +72,22 @@ static int on_layer(void *ctx, const lam_layer *L, lam_error *err)
                     L->open[k].end[1]);
     if (L->gaps_closed) {
         if (r->gap_layers++ < 20)
-            fprintf(stderr, "lamina: %s: layer %zu (h=%g): closed %zu gap%s, largest %g\n", r->path, L->index, L->cut,
-                    L->gaps_closed, L->gaps_closed == 1 ? "" : "s", L->max_gap);
+            fprintf(stderr, "lamina: %s: layer %zu (h=%g): closed %zu gap%s, largest %g (gap tolerance %g)\n", r->path,
+                    L->index, L->cut, L->gaps_closed, L->gaps_closed == 1 ? "" : "s", L->max_gap, L->gap);
         r->gaps_total += L->gaps_closed;
         if (L->max_gap > r->gap_max) r->gap_max = L->max_gap;
+    }
+    /* degenerate loops (contour.h): reported like bridged gaps */
+    if (L->slivers || L->twins) {
+        if (r->degenerate_layers++ < 20) {
+            fprintf(stderr, "lamina: %s: layer %zu (h=%g):", r->path, L->index, L->cut);
+            if (L->slivers) fprintf(stderr, " dropped %zu loop%s of no area%s", L->slivers, L->slivers == 1 ? "" : "s",
+                                    L->twins ? "," : "");
+            if (L->twins) fprintf(stderr, " cancelled %zu coincident loops", L->twins);
+            fputc('\n', stderr);
+        }
+        r->slivers += L->slivers;
+        r->twins += L->twins;
     }
     if (r->v) {
         int rc = vreport_layer(&r->vr, r->v, L, r->frame, r->fill_nonzero, err);
@@ -149,8 +164,11 @@ int cmd_slice(int argc, char **argv)
         goto done;
     }
     if (rep.gap_layers > 20)
-        fprintf(stderr, "lamina: %s: closed %zu gaps in %zu layers, largest %g\n", a.path, rep.gaps_total,
-                rep.gap_layers, rep.gap_max);
+        fprintf(stderr, "lamina: %s: closed %zu gaps in %zu layers, largest %g (gap tolerance %g)\n", a.path,
+                rep.gaps_total, rep.gap_layers, rep.gap_max, lam_slicer_gap(s));
+    if (rep.degenerate_layers > 20)
+        fprintf(stderr, "lamina: %s: dropped %zu loops of no area, cancelled %zu coincident loops, in %zu layers\n",
+                a.path, rep.slivers, rep.twins, rep.degenerate_layers);
     if (rep.vr.disagreeing) {
         fprintf(stderr, "lamina: %s: %zu contour label%s disagree%s with the model; nothing written\n", a.path,
                 rep.vr.disagreeing, rep.vr.disagreeing == 1 ? "" : "s", rep.vr.disagreeing == 1 ? "s" : "");
@@ -159,7 +177,7 @@ int cmd_slice(int argc, char **argv)
     }
     if (rep.open_total) {
         fprintf(stderr, "lamina: %s: %zu outline%s stayed open (gap tolerance %g)%s\n", a.path, rep.open_total,
-                rep.open_total == 1 ? "" : "s", a.so.gap,
+                rep.open_total == 1 ? "" : "s", lam_slicer_gap(s),
                 a.allow_open ? "; dropped (--allow-open)" : "; use --gap to close larger gaps or --allow-open to drop them");
         if (!a.allow_open) {
             rc = EXIT_INPUT;

@@ -68,14 +68,50 @@ is "$(jq .boundary_edges <<<"$OUT")" 4 "the open cube has 4 boundary edges"
 run "$LAMINA" slice "$TMP/open.stl" -w 0.5 -o "$TMP/open.sls"
 is "$RC" 1 "open outlines: exit 1"
 like "$ERR" 'layer 0 .*open outline from \(1, 1\) to \(1, -1\)' "open outline reported with layer and position"
+# the default gap is 1/2000 of the diagonal of the 2 x 2 x 2 box: 0.00173205
+like "$ERR" 'stayed open \(gap tolerance 0.00173205\)' "the automatic gap tolerance is reported"
 ok "$([ ! -e "$TMP/open.sls" ]; echo $?)" "failed run leaves no output file"
 run "$LAMINA" slice "$TMP/open.stl" -w 0.5 --gap 2.5 -o "$TMP/open.sls"
 is "$RC" 0 "--gap 2.5 closes the gap"
-like "$ERR" 'layer 0 .*closed 1 gap, largest 2' "gap closing reported per layer"
+like "$ERR" 'layer 0 .*closed 1 gap, largest 2 \(gap tolerance 2.5\)' "gap closing reported per layer, with the tolerance"
+run "$LAMINA" slice "$TMP/open.stl" -w 0.5 --gap auto -o "$TMP/open.sls"
+is "$RC" 1 "--gap auto: still open"
+like "$ERR" 'stayed open \(gap tolerance 0.00173205\)' "--gap auto: the default tolerance"
+usage --gap -1
+usage --gap big
 is "$(grep -c '^loop 4' "$TMP/open.sls")" 4 "closed outlines are 4-point squares"
 run "$LAMINA" slice "$TMP/open.stl" -w 0.5 --allow-open -o "$TMP/open2.sls"
 is "$RC" 0 "--allow-open: exit 0"
 like "$ERR" 'dropped' "--allow-open says what it dropped"
+
+# Twin loops: a torus (tube radius 2 around radius 6, 24 x 12 facets) has a
+# ring of vertices at its bottom, z = -2. A floor cut there is taken just
+# above it: a band of no width, whose two outlines are the same points in
+# opposite directions. They cancel (reported); the layer has no contour.
+python3 - "$TMP/torus.stl" <<'PY'
+import math, sys
+R, r, n, m = 6.0, 2.0, 24, 12
+P = [[((R + r * math.cos(2 * math.pi * j / m - math.pi / 2)) * math.cos(2 * math.pi * i / n),
+       (R + r * math.cos(2 * math.pi * j / m - math.pi / 2)) * math.sin(2 * math.pi * i / n),
+       r * math.sin(2 * math.pi * j / m - math.pi / 2)) for j in range(m)] for i in range(n)]
+with open(sys.argv[1], "w") as f:
+    f.write("solid torus\n")
+    for i in range(n):
+        for j in range(m):
+            a, b = P[i][j], P[(i + 1) % n][j]
+            c, d = P[(i + 1) % n][(j + 1) % m], P[i][(j + 1) % m]
+            for t in ((a, b, c), (a, c, d)):
+                f.write("facet normal 0 0 0\nouter loop\n")
+                for p in t:
+                    f.write("vertex %.17g %.17g %.17g\n" % p)
+                f.write("endloop\nendfacet\n")
+    f.write("endsolid torus\n")
+PY
+run "$LAMINA" slice "$TMP/torus.stl" -w 0.5 --cut floor -o "$TMP/torus.sls"
+is "$RC" 0 "torus, floor cut on its bottom ring: exit 0"
+like "$ERR" 'layer 0 \(h=-2\): cancelled 2 coincident loops' "the two coincident loops cancel, reported"
+is "$(grep -c '^contour -2.000000' "$TMP/torus.sls")" 0 "no contour at the bottom ring"
+is "$(head -1 "$TMP/torus.sls")" "contour -1.500000" "the program starts with the next layer"
 
 # SVG contact sheet, rendered by rsvg-convert and checked pixel by pixel.
 run "$LAMINA" slice "$M/thesis_cube_hole.ug" -w 1 --cut floor --svg "$TMP/sheet.svg" -o "$TMP/s.sls"
