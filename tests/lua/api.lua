@@ -119,6 +119,9 @@ T.ok(ceil[1].z == 1 and ceil[2].z == 2 and #ceil[2] == 2, "ceiling cut: top face
 local mid = m:slice{}
 T.is(#mid, 100, "default width: 1/100 of the extent")
 T.is(mid[1].cut, "middle", "default cut middle")
+T.ok(math.abs(mid[1].gap - 5e-4 * math.sqrt(12)) < 1e-15 and mid[1].slivers == 0 and mid[1].twins == 0,
+     "default gap: 1/2000 of the diagonal of the 2 x 2 x 2 box; no degenerate loops")
+T.is(m:slice{width = 1, gap = 0.25}[1].gap, 0.25, "gap as given")
 local w = m:slice{widths = {0.5, 0.5, 1}}
 T.ok(#w == 3 and w[3].floor == 1 and w[3].width == 1, "widths")
 local p = m:slice{planes = {0, 0.5, 2}}
@@ -189,6 +192,7 @@ T.ok(ladrp.angle == 0 and ladrp.angle_step == 0 and ladrp.alternate and ladrp.fi
      and ladrp.min_deposit == 0 and ladrp.perimeters == 0 and not ladrp.beam_offset and ladrp.frame == "model",
      "raster defaults")
 T.is(ladrp.travel_rate, 0.15, "travel rate follows the feed rate")
+T.is(ladrp.gap, "auto", "gap: auto unless the profile sets one")
 T.fails("unknown machine 'nope'", "machine: unknown name", lamina.machine, "nope")
 T.fails("bad_process%.yaml:%d+:%d+", "machine: error with position", lamina.machine, M .. "machines/bad_process.yaml")
 local byp = assert(lamina.machine(T.ROOT .. "/machines/sls-contours.yaml"))
