@@ -459,7 +459,7 @@ static void test_errors(void)
          "dialect.preamble must be a template (text) or null, got a list", "a template that is a list");
     CASE("dialect: start_plot\n", LAM_EINVAL, 4, 10, "dialect must be a mapping", "dialect as text");
     CASE("dialect:\n  penup: \"0 penup\"\n", LAM_EINVAL, 5, 3,
-         "unknown key 'penup' in dialect (allowed: preamble, postamble,", "unknown command");
+         "unknown key 'penup' in dialect (allowed: close_polylines, preamble, postamble,", "unknown command");
     CASE("raster:\n  alternate: maybe\ndialect: {}\n", LAM_EINVAL, 5, 14,
          "raster.alternate must be true or false, got 'maybe'", "not a boolean");
     CASE("raster:\n  perimeters: 1.5\ndialect: {}\n", LAM_EINVAL, 5, 15, "raster.perimeters must be a whole number",
