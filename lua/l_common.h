@@ -148,6 +148,7 @@ int lam_lua_load(lua_State *L);            /* lamina.load (l_model.c) */
 int lam_lua_slice(lua_State *L);           /* model:slice (l_layer.c) */
 int lam_lua_machine(lua_State *L);         /* lamina.machine (l_machine.c) */
 int lam_lua_machines(lua_State *L);        /* lamina.machines (l_machine.c) */
+int lam_lua_machine_keys(lua_State *L);    /* lamina.machine_keys (l_machine.c) */
 int lam_lua_plan(lua_State *L);            /* machine:plan (l_plan.c) */
 
 /* Fill plan options from a machine profile's values. */

@@ -109,6 +109,57 @@ int lam_lua_machines(lua_State *L)
     return 1;
 }
 
+/* lamina.machine_keys() -> { {name=, lua=, type=, ...}, ... }: the rows of
+ * the profile key table, in its order */
+int lam_lua_machine_keys(lua_State *L)
+{
+    static const char *const types[] = { "number", "integer", "boolean", "choice", "string", "template" };
+    lua_createtable(L, (int)lam_profile_nkeys, 0);
+    for (size_t i = 0; i < lam_profile_nkeys; i++) {
+        const lam_key *k = &lam_profile_keys[i];
+        lua_createtable(L, 0, 16);
+        lua_pushstring(L, k->name);
+        lua_setfield(L, -2, "name");
+        lua_pushstring(L, lam_key_lua_name(k));
+        lua_setfield(L, -2, "lua");
+        lua_pushstring(L, types[k->type]);
+        lua_setfield(L, -2, "type");
+        if (k->type == LAM_KEY_NUMBER || k->type == LAM_KEY_INTEGER) {
+            lua_pushnumber(L, k->lo);
+            lua_setfield(L, -2, "min");
+            lua_pushnumber(L, k->hi);
+            lua_setfield(L, -2, "max");
+            lua_pushboolean(L, k->flags & LAM_KEY_ABOVE);
+            lua_setfield(L, -2, "above_min");
+        }
+        if (k->choices) {
+            lua_newtable(L);
+            for (int c = 0; k->choices[c]; c++) {
+                lua_pushstring(L, k->choices[c]);
+                lua_rawseti(L, -2, c + 1);
+            }
+            lua_setfield(L, -2, "choices");
+        }
+        const char *text[][2] = { { "default", k->def }, { "follows", k->follows }, { "option", k->option },
+                                  { "doc", k->doc } };
+        for (size_t t = 0; t < sizeof text / sizeof text[0]; t++)
+            if (text[t][1]) {
+                lua_pushstring(L, text[t][1]);
+                lua_setfield(L, -2, text[t][0]);
+            }
+        const struct { const char *field; unsigned flag; } flags[] = {
+            { "optional", LAM_KEY_OPTIONAL }, { "fixed", LAM_KEY_FIXED | LAM_KEY_LOADER }, { "plan", LAM_KEY_PLAN },
+            { "loader", LAM_KEY_LOADER },
+        };
+        for (size_t f = 0; f < sizeof flags / sizeof flags[0]; f++) {
+            lua_pushboolean(L, (k->flags & flags[f].flag) != 0);
+            lua_setfield(L, -2, flags[f].field);
+        }
+        lua_rawseti(L, -2, (lua_Integer)i + 1);
+    }
+    return 1;
+}
+
 static int mc_gc(lua_State *L)
 {
     lmachine *u = LAM_CHECKUD(L, 1, lmachine, LAM_MACHINE, LAM_TAG_MACHINE);

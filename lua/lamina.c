@@ -277,6 +277,7 @@ static const luaL_Reg lamina_funcs[] = {
     { "load", lam_lua_load },
     { "machine", lam_lua_machine },
     { "machines", lam_lua_machines },
+    { "machine_keys", lam_lua_machine_keys },
     { "plugin", l_plugin },
     { "writers", l_writers },
     { "preview", lam_lua_preview },
