@@ -80,6 +80,11 @@ static const char *const cmd_field_text[LAM_CMD_COUNT] = {
     [LAM_CMD_SEPARATOR] = "",
 };
 
+const char *lam_cmd_fields(lam_cmd c)
+{
+    return (unsigned)c < LAM_CMD_COUNT ? cmd_field_text[c] : "";
+}
+
 static int field_id(const char *name, size_t len)
 {
     for (int f = 0; f < F_COUNT; f++)

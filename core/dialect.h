@@ -66,6 +66,10 @@ typedef enum lam_cmd {
 /* The YAML key of a command ("preamble", "laser_on", ...). */
 const char *lam_cmd_name(lam_cmd c);
 
+/* The fields a command's template may use, separated by spaces (static;
+ * "" for none). */
+const char *lam_cmd_fields(lam_cmd c);
+
 typedef struct lam_tseg lam_tseg; /* private */
 
 typedef struct lam_template {

@@ -23,33 +23,32 @@
 #include "fmt.h"
 #include "lexnum.h"
 #include "paths.h"
+#include "profile_keys.h"
 #include "slice.h"
 
 #define MAX_PROFILE_BYTES (4L << 20) /* a profile is a page of text */
 #define MAX_CHAIN 32                 /* inherits depth */
 #define MAX_DIRS 16
 
-/* ---- keys --------------------------------------------------------------- */
+/* The keys are the rows of profile_keys.c; the loader keeps which rows
+ * some file of the chain gave. */
+static size_t key_index(const lam_key *k) { return (size_t)(k - lam_profile_keys); }
 
-enum key {
-    K_NAME, K_DESCRIPTION, K_PROCESS, K_UNITS, K_BEAD_WIDTH, K_SPOT_WIDTH, K_LAYER_WIDTH, K_CUT, K_FEED_RATE,
-    K_TRAVEL_RATE, K_GAP, K_FRAME, K_RASTER, K_BEAM_OFFSET, K_MAX_OVERHANG, K_WRITER, K_INHERITS, K_DIALECT,
-    K_COUNT
-};
-static const char *const key_names[K_COUNT] = {
-    "name", "description", "process", "units", "bead_width", "spot_width", "layer_width", "cut", "feed_rate",
-    "travel_rate", "gap", "frame", "raster", "beam_offset", "max_overhang_deg", "writer", "inherits", "dialect",
-};
+/* The row named exactly `name` (no flat short names here: a YAML key is
+ * written where it lives). */
+static const lam_key *exact_key(const char *name)
+{
+    const lam_key *k = lam_key_find(name);
+    return k && !strcmp(k->name, name) ? k : NULL;
+}
 
-enum rkey { R_FIRST_LINE, R_ANGLE, R_ANGLE_STEP, R_ALTERNATE, R_MIN_DEPOSIT, R_PERIMETERS, R_ISLANDS, R_COUNT };
-static const char *const raster_names[R_COUNT] = {
-    "first_line", "angle", "angle_step", "alternate", "min_deposit", "perimeters", "islands",
-};
-
-static const char *const process_names[] = { "ladrp", "sls", NULL };
-static const char *const cut_names[] = { "floor", "middle", "ceiling", NULL };
-static const char *const frame_names[] = { "model", "machine", NULL };
-static const char *const first_line_names[] = { "edge", "center", NULL };
+/* The loader's own row (inherits). */
+static const lam_key *inherits_key(void)
+{
+    for (size_t i = 0; i < lam_profile_nkeys; i++)
+        if (lam_profile_keys[i].flags & LAM_KEY_LOADER) return &lam_profile_keys[i];
+    return NULL;
+}
 
 /* ---- one source file ---------------------------------------------------- */
 
@@ -65,7 +64,8 @@ typedef struct src {
 /* The loader's state across an inherits chain. */
 typedef struct ldr {
     lam_profile *p;
-    uint32_t set;            /* keys set by some file of the chain (1 << K_*) */
+    unsigned char set[LAM_KEYS_MAX]; /* rows given by some file of the chain */
+    int templates_given;     /* a section of templates (dialect:) was given */
     lam_error *err;
     dev_t dev[MAX_CHAIN];    /* identity of the files being loaded */
     ino_t ino[MAX_CHAIN];
@@ -333,6 +333,14 @@ static const char *describe(const yaml_node_t *n, char *buf, size_t size)
     return buf;
 }
 
+/* "KEY must be WHAT, got GOT" at node n. */
+static int at_key(const src *s, const yaml_node_t *n, const lam_key *k, const char *got)
+{
+    lam_error e;
+    lam_key_expected(k, NULL, got, &e);
+    return at(s, n->start_mark, LAM_EINVAL, "%s", e.msg);
+}
+
 static int want_scalar(const src *s, const yaml_node_t *n, const char *key, const char *what)
 {
     char b[64];
@@ -354,75 +362,34 @@ static int get_text(const src *s, const yaml_node_t *n, const char *key, char **
     return LAM_OK;
 }
 
-static int get_number(const src *s, const yaml_node_t *n, const char *key, double *out)
-{
-    char b[64];
-    int rc = want_scalar(s, n, key, "a number");
-    if (rc) return rc;
-    if (n->data.scalar.style != YAML_PLAIN_SCALAR_STYLE)
-        return at(s, n->start_mark, LAM_EINVAL, "%s must be a number, got the quoted string %s", key,
-                  describe(n, b, sizeof b));
-    double x;
-    rc = lam_parse_number(n->data.scalar.value, n->data.scalar.length, &x);
-    if (rc == LAM_ENOMEM) return oom();
-    if (rc) return at(s, n->start_mark, LAM_EINVAL, "%s must be a number, got %s", key, describe(n, b, sizeof b));
-    if (!isfinite(x))
-        return at(s, n->start_mark, LAM_EINVAL, "%s must be a finite number, got %s", key, describe(n, b, sizeof b));
-    *out = x;
-    return LAM_OK;
-}
+/* The names a mapping may hold: at the top level ("" section) the keys
+ * without a section and the sections' names, in a section its keys' short
+ * names; in table order. */
+typedef struct keyset {
+    const char *names[LAM_KEYS_MAX];
+    char sections[16][32];
+    size_t n, nsec;
+} keyset;
 
-static int get_bool(const src *s, const yaml_node_t *n, const char *key, int *out)
+static void keys_in(const char *section, keyset *ks)
 {
-    static const char *const yes[] = { "true", "True", "TRUE", "yes", "Yes", "YES", NULL };
-    static const char *const no[] = { "false", "False", "FALSE", "no", "No", "NO", NULL };
-    char b[64];
-    int rc = want_scalar(s, n, key, "true or false");
-    if (rc) return rc;
-    const char *v = (const char *)n->data.scalar.value;
-    if (n->data.scalar.style == YAML_PLAIN_SCALAR_STYLE) {
-        for (int i = 0; yes[i]; i++)
-            if (!strcmp(v, yes[i])) return *out = 1, LAM_OK;
-        for (int i = 0; no[i]; i++)
-            if (!strcmp(v, no[i])) return *out = 0, LAM_OK;
-    }
-    return at(s, n->start_mark, LAM_EINVAL, "%s must be true or false, got %s", key, describe(n, b, sizeof b));
-}
-
-static int get_choice(const src *s, const yaml_node_t *n, const char *key, const char *const *names, int *out)
-{
-    char b[64], list[128] = "";
-    for (int i = 0; names[i]; i++) {
-        strcat(list, i ? (names[i + 1] ? ", " : " or ") : "");
-        strcat(list, names[i]);
-    }
-    int rc = want_scalar(s, n, key, list);
-    if (rc) return rc;
-    for (int i = 0; names[i]; i++)
-        if (!strcmp((const char *)n->data.scalar.value, names[i])) return *out = i, LAM_OK;
-    return at(s, n->start_mark, LAM_EINVAL, "%s must be %s, got %s", key, list, describe(n, b, sizeof b));
-}
-
-/* Edit distance, for "did you mean". */
-static size_t distance(const char *a, const char *b)
-{
-    size_t la = strlen(a), lb = strlen(b);
-    if (la > 40 || lb > 40) return 99;
-    size_t row[41];
-    for (size_t j = 0; j <= lb; j++) row[j] = j;
-    for (size_t i = 1; i <= la; i++) {
-        size_t diag = row[0];
-        row[0] = i;
-        for (size_t j = 1; j <= lb; j++) {
-            size_t up = row[j];
-            size_t best = diag + (a[i - 1] != b[j - 1]);
-            if (up + 1 < best) best = up + 1;
-            if (row[j - 1] + 1 < best) best = row[j - 1] + 1;
-            row[j] = best;
-            diag = up;
+    ks->n = ks->nsec = 0;
+    size_t sl = strlen(section);
+    for (size_t i = 0; i < lam_profile_nkeys; i++) {
+        const lam_key *k = &lam_profile_keys[i];
+        size_t kl = lam_key_section_len(k);
+        if (sl) {
+            if (kl == sl && !strncmp(k->name, section, sl)) ks->names[ks->n++] = lam_key_short(k);
+        } else if (!kl) {
+            ks->names[ks->n++] = k->name;
+        } else if (!ks->nsec || strncmp(ks->sections[ks->nsec - 1], k->name, kl) != 0 ||
+                   ks->sections[ks->nsec - 1][kl] != '\0') {
+            if (ks->nsec == 16 || kl >= 32) continue; /* the unit test keeps the table within these */
+            memcpy(ks->sections[ks->nsec], k->name, kl);
+            ks->sections[ks->nsec][kl] = '\0';
+            ks->names[ks->n++] = ks->sections[ks->nsec++];
         }
     }
-    return row[lb];
 }
 
 /* Check the keys of mapping m: scalars, known (names[0..n)), no duplicates.
@@ -438,15 +405,12 @@ static int check_keys(const src *s, const yaml_node_t *m, const char *where, con
         size_t i = 0;
         while (i < nn && strcmp(names[i], key) != 0) i++;
         if (i == nn) {
-            char allowed[600] = "";
-            const char *best = NULL;
-            size_t bd = 3;
-            for (size_t j = 0; j < nn; j++) {
+            char allowed[1200] = "";
+            for (size_t j = 0; j < nn && strlen(allowed) + strlen(names[j]) + 3 < sizeof allowed; j++) {
                 if (j) strcat(allowed, ", ");
                 strcat(allowed, names[j]);
-                size_t d = distance(key, names[j]);
-                if (d < bd) bd = d, best = names[j];
             }
+            const char *best = lam_key_nearest(key, names, nn);
             char hint[80] = "";
             if (best) snprintf(hint, sizeof hint, "did you mean '%s'? ", best);
             return at(s, k->start_mark, LAM_EINVAL, "unknown key %s%s%s (%sallowed: %s)", describe(k, b, sizeof b),
@@ -550,212 +514,109 @@ out:
 
 /* ---- apply keys --------------------------------------------------------- */
 
-static int positive(const src *s, const yaml_node_t *n, const char *key, double x)
-{
-    if (x > 0) return LAM_OK;
-    char b[64];
-    return at(s, n->start_mark, LAM_EINVAL, "%s must be greater than 0, got %s", key, describe(n, b, sizeof b));
-}
-
-static int nonneg(const src *s, const yaml_node_t *n, const char *key, double x)
-{
-    if (x >= 0) return LAM_OK;
-    char b[64];
-    return at(s, n->start_mark, LAM_EINVAL, "%s must be 0 or more, got %s", key, describe(n, b, sizeof b));
-}
-
-static int apply_raster(const src *s, const yaml_node_t *m, lam_profile *p)
+/* A dialect command's template (null: the command writes nothing). */
+static int apply_template(const src *s, const lam_key *k, const yaml_node_t *v, lam_profile *p)
 {
     char b[64];
-    if (m->type != YAML_MAPPING_NODE)
-        return at(s, m->start_mark, LAM_EINVAL, "raster must be a mapping (first_line, angle, ...), got %s",
-                  describe(m, b, sizeof b));
-    int rc = check_keys(s, m, "raster", raster_names, R_COUNT);
-    for (yaml_node_pair_t *pr = m->data.mapping.pairs.start; !rc && pr < m->data.mapping.pairs.top; pr++) {
-        const char *key = (const char *)node(s, pr->key)->data.scalar.value;
-        const yaml_node_t *v = node(s, pr->value);
-        int k = 0;
-        while (strcmp(raster_names[k], key) != 0) k++;
-        char full[64];
-        snprintf(full, sizeof full, "raster.%s", key);
-        double x;
-        int i;
-        switch (k) {
-        case R_FIRST_LINE:
-            if (!(rc = get_choice(s, v, full, first_line_names, &i))) p->first_line = (lam_first_line)i;
-            break;
-        case R_ANGLE:
-            rc = get_number(s, v, full, &p->angle);
-            break;
-        case R_ANGLE_STEP:
-            rc = get_number(s, v, full, &p->angle_step);
-            break;
-        case R_ALTERNATE:
-            rc = get_bool(s, v, full, &p->alternate);
-            break;
-        case R_ISLANDS:
-            rc = get_bool(s, v, full, &p->islands);
-            break;
-        case R_MIN_DEPOSIT:
-            if (!(rc = get_number(s, v, full, &x)) && !(rc = nonneg(s, v, full, x))) p->min_deposit = x;
-            break;
-        case R_PERIMETERS:
-            if (!(rc = get_number(s, v, full, &x))) {
-                if (x != floor(x) || x < 0 || x > 1000)
-                    rc = at(s, v->start_mark, LAM_EINVAL, "%s must be a whole number from 0 to 1000, got %s", full,
-                            describe(v, b, sizeof b));
-                else
-                    p->perimeters = (int)x;
-            }
-            break;
-        }
+    lam_template *t = (lam_template *)(void *)((char *)p + k->offset);
+    if (is_null(v)) {
+        lam_template_free(t);
+        return LAM_OK;
     }
+    if (v->type != YAML_SCALAR_NODE) return at_key(s, v, k, describe(v, b, sizeof b));
+    size_t len = v->data.scalar.length;
+    if (strlen((const char *)v->data.scalar.value) != len)
+        return at(s, v->start_mark, LAM_EINVAL, "%s contains a NUL character", k->name);
+    char *text = strdup((const char *)v->data.scalar.value);
+    if (!text) return oom();
+    /* a block scalar's final line break ends the template, it is not an
+     * empty last line (`|` and `|-` mean the same here) */
+    yaml_scalar_style_t style = v->data.scalar.style;
+    int block = style == YAML_LITERAL_SCALAR_STYLE || style == YAML_FOLDED_SCALAR_STYLE;
+    if (block && len && text[len - 1] == '\n') text[len - 1] = '\0';
+    lam_template nt;
+    size_t off = 0;
+    int rc = lam_template_parse((lam_cmd)k->cmd, text, &nt, &off, s->err);
+    free(text);
+    if (rc == LAM_ENOMEM) return rc;
+    if (rc) {
+        char msg[sizeof s->err->msg];
+        snprintf(msg, sizeof msg, "%s", s->err->msg);
+        long line, col;
+        scalar_pos(s, v, off, &line, &col);
+        return lam_error_set(s->err, LAM_EINVAL, s->path, line, col, "%s: %s", k->name, msg);
+    }
+    lam_template_free(t);
+    *t = nt;
+    return LAM_OK;
+}
+
+/* The value v of row k into L's profile, with the row's checks. */
+static int apply_value(ldr *L, const src *s, const lam_key *k, const yaml_node_t *v)
+{
+    lam_profile *p = L->p;
+    char b[128];
+    int rc;
+    lam_error e;
+    lam_error_clear(&e);
+    if (k->type == LAM_KEY_TEMPLATE) {
+        rc = apply_template(s, k, v, p);
+    } else if (k->type == LAM_KEY_STRING) {
+        char **field = (char **)(void *)((char *)p + k->offset);
+        if (v->type != YAML_SCALAR_NODE || is_null(v)) return at_key(s, v, k, describe(v, b, sizeof b));
+        if (!(rc = get_text(s, v, k->name, field)) && k->flags & LAM_KEY_NONEMPTY && !**field)
+            rc = at(s, v->start_mark, LAM_EINVAL, "%s must not be empty", k->name);
+    } else {
+        if (v->type != YAML_SCALAR_NODE || is_null(v)) return at_key(s, v, k, describe(v, b, sizeof b));
+        if (v->data.scalar.style != YAML_PLAIN_SCALAR_STYLE && k->type != LAM_KEY_CHOICE) {
+            /* "0.08" and "true" in quotes are text, not a number or a boolean */
+            char q[64];
+            snprintf(b, sizeof b, "%s%s", k->type == LAM_KEY_BOOLEAN ? "" : "the quoted string ",
+                     describe(v, q, sizeof q));
+            return at_key(s, v, k, b);
+        }
+        double x;
+        rc = lam_key_scan(k, NULL, (const char *)v->data.scalar.value, v->data.scalar.length, &x, &e);
+        if (rc) return e.code == LAM_ENOMEM ? oom() : at(s, v->start_mark, e.code, "%s", e.msg);
+        lam_key_store(p, k, x);
+    }
+    if (!rc) L->set[key_index(k)] = 1;
     return rc;
 }
 
-static int apply_dialect(const src *s, const yaml_node_t *m, lam_profile *p)
+/* A section's mapping (raster:, dialect:): its keys merge into the profile. */
+static int apply_section(ldr *L, const src *s, const char *section, const yaml_node_t *m)
 {
-    const char *names[LAM_CMD_COUNT + 1];
-    for (int c = 0; c < LAM_CMD_COUNT; c++) names[c] = lam_cmd_name((lam_cmd)c);
-    names[LAM_CMD_COUNT] = "close_polylines";
+    keyset ks;
+    keys_in(section, &ks);
     char b[64];
     if (m->type != YAML_MAPPING_NODE)
-        return at(s, m->start_mark, LAM_EINVAL,
-                  "dialect must be a mapping of commands (preamble, deposit, ...), got %s", describe(m, b, sizeof b));
-    int rc = check_keys(s, m, "dialect", names, LAM_CMD_COUNT + 1);
+        return at(s, m->start_mark, LAM_EINVAL, "%s must be a mapping (%s, %s, ...), got %s", section, ks.names[0],
+                  ks.n > 1 ? ks.names[1] : "", describe(m, b, sizeof b));
+    int rc = check_keys(s, m, section, ks.names, ks.n);
     for (yaml_node_pair_t *pr = m->data.mapping.pairs.start; !rc && pr < m->data.mapping.pairs.top; pr++) {
-        const char *key = (const char *)node(s, pr->key)->data.scalar.value;
-        const yaml_node_t *v = node(s, pr->value);
-        int c = 0;
-        while (strcmp(names[c], key) != 0) c++;
-        char full[64];
-        snprintf(full, sizeof full, "dialect.%s", key);
-        if (c == LAM_CMD_COUNT) {
-            rc = get_bool(s, v, full, &p->dialect.close_polylines);
-            continue;
-        }
-        lam_template *t = &p->dialect.cmd[c];
-        if (is_null(v)) { /* null: the command emits nothing */
-            lam_template_free(t);
-            continue;
-        }
-        if (v->type != YAML_SCALAR_NODE) {
-            rc = at(s, v->start_mark, LAM_EINVAL, "%s must be a template (text) or null, got %s", full,
-                    describe(v, b, sizeof b));
-            break;
-        }
-        size_t len = v->data.scalar.length;
-        if (strlen((const char *)v->data.scalar.value) != len) {
-            rc = at(s, v->start_mark, LAM_EINVAL, "%s contains a NUL character", full);
-            break;
-        }
-        char *text = strdup((const char *)v->data.scalar.value);
-        if (!text) return oom();
-        /* a block scalar's final line break ends the template, it is not an
-         * empty last line (`|` and `|-` mean the same here) */
-        yaml_scalar_style_t style = v->data.scalar.style;
-        int block = style == YAML_LITERAL_SCALAR_STYLE || style == YAML_FOLDED_SCALAR_STYLE;
-        if (block && len && text[len - 1] == '\n') text[len - 1] = '\0';
-        lam_template nt;
-        size_t off = 0;
-        rc = lam_template_parse((lam_cmd)c, text, &nt, &off, s->err);
-        free(text);
-        if (rc == LAM_ENOMEM) return rc;
-        if (rc) {
-            char msg[sizeof s->err->msg];
-            snprintf(msg, sizeof msg, "%s", s->err->msg);
-            long line, col;
-            scalar_pos(s, v, off, &line, &col);
-            return lam_error_set(s->err, LAM_EINVAL, s->path, line, col, "%s: %s", full, msg);
-        }
-        lam_template_free(t);
-        *t = nt;
+        char full[128];
+        snprintf(full, sizeof full, "%s.%s", section, (const char *)node(s, pr->key)->data.scalar.value);
+        rc = apply_value(L, s, exact_key(full), node(s, pr->value));
+    }
+    /* `dialect: {}` gives a dialect that writes nothing */
+    for (size_t i = 0; i < ks.n; i++) {
+        char full[128];
+        snprintf(full, sizeof full, "%s.%s", section, ks.names[i]);
+        if (exact_key(full)->type == LAM_KEY_TEMPLATE) L->templates_given = 1;
     }
     return rc;
 }
 
 static int apply(ldr *L, const src *s, const yaml_node_t *root)
 {
-    lam_profile *p = L->p;
     int rc = LAM_OK;
     for (yaml_node_pair_t *pr = root->data.mapping.pairs.start; !rc && pr < root->data.mapping.pairs.top; pr++) {
         const char *key = (const char *)node(s, pr->key)->data.scalar.value;
         const yaml_node_t *v = node(s, pr->value);
-        int k = 0;
-        while (strcmp(key_names[k], key) != 0) k++;
-        double x;
-        int i;
-        char b[64];
-        switch (k) {
-        case K_NAME:
-            if (!(rc = get_text(s, v, key, &p->name)) && !*p->name)
-                rc = at(s, v->start_mark, LAM_EINVAL, "name must not be empty");
-            break;
-        case K_DESCRIPTION:
-            rc = get_text(s, v, key, &p->description);
-            break;
-        case K_PROCESS:
-            if (!(rc = get_choice(s, v, key, process_names, &i))) p->process = (lam_process)i;
-            break;
-        case K_UNITS:
-            if (!(rc = get_text(s, v, key, &p->units)) && !*p->units)
-                rc = at(s, v->start_mark, LAM_EINVAL, "units must not be empty");
-            break;
-        case K_BEAD_WIDTH:
-            if (!(rc = get_number(s, v, key, &x)) && !(rc = positive(s, v, key, x))) p->bead_width = x;
-            break;
-        case K_SPOT_WIDTH:
-            if (!(rc = get_number(s, v, key, &x)) && !(rc = positive(s, v, key, x))) p->spot_width = x;
-            break;
-        case K_LAYER_WIDTH:
-            if (!(rc = get_number(s, v, key, &x)) && !(rc = positive(s, v, key, x))) p->layer_width = x;
-            break;
-        case K_CUT:
-            if (!(rc = get_choice(s, v, key, cut_names, &i))) p->cut = i;
-            break;
-        case K_FEED_RATE:
-            if (!(rc = get_number(s, v, key, &x)) && !(rc = nonneg(s, v, key, x))) p->feed_rate = x;
-            break;
-        case K_TRAVEL_RATE:
-            if (!(rc = get_number(s, v, key, &x)) && !(rc = nonneg(s, v, key, x))) p->travel_rate = x;
-            break;
-        case K_GAP:
-            /* `auto`: the slicer's default, which scales with the model */
-            if (v->type == YAML_SCALAR_NODE && v->data.scalar.style == YAML_PLAIN_SCALAR_STYLE &&
-                !strcmp((const char *)v->data.scalar.value, "auto"))
-                p->gap = LAM_GAP_AUTO;
-            else if (!(rc = get_number(s, v, key, &x)) && !(rc = nonneg(s, v, key, x)))
-                p->gap = x;
-            break;
-        case K_FRAME:
-            if (!(rc = get_choice(s, v, key, frame_names, &i))) p->frame_machine = i;
-            break;
-        case K_RASTER:
-            rc = apply_raster(s, v, p);
-            break;
-        case K_BEAM_OFFSET:
-            rc = get_bool(s, v, key, &p->beam_offset);
-            break;
-        case K_MAX_OVERHANG:
-            if (!(rc = get_number(s, v, key, &x))) {
-                if (x < 0 || x > 90)
-                    rc = at(s, v->start_mark, LAM_EINVAL, "max_overhang_deg must be from 0 to 90 (degrees), got %s",
-                            describe(v, b, sizeof b));
-                else
-                    p->max_overhang_deg = x;
-            }
-            break;
-        case K_WRITER:
-            if (!(rc = get_text(s, v, key, &p->writer)) && !*p->writer)
-                rc = at(s, v->start_mark, LAM_EINVAL, "writer must not be empty (\"text\" writes the dialect)");
-            break;
-        case K_INHERITS:
-            break; /* resolved before */
-        case K_DIALECT:
-            rc = apply_dialect(s, v, p);
-            break;
-        }
-        if (!rc) L->set |= 1u << k;
+        const lam_key *k = exact_key(key);
+        if (!k) rc = apply_section(L, s, key, v); /* check_keys let only rows and sections through */
+        else if (!(k->flags & LAM_KEY_LOADER)) rc = apply_value(L, s, k, v); /* inherits: resolved before */
     }
     return rc;
 }
@@ -819,7 +680,7 @@ static int load_file(ldr *L, const char *path, int top);
 static int resolve_parent(ldr *L, const src *s, const yaml_node_t *v)
 {
     char *name = NULL;
-    int rc = get_text(s, v, "inherits", &name);
+    int rc = get_text(s, v, inherits_key()->name, &name);
     if (rc) return rc;
     char *parent = NULL;
     if (!*name) {
@@ -874,25 +735,32 @@ static int resolve_parent(ldr *L, const src *s, const yaml_node_t *v)
     return rc;
 }
 
+/* Required keys, and the values that follow others, once the whole chain
+ * is read. */
 static int finish(ldr *L, const src *s, const yaml_node_t *root)
 {
     lam_profile *p = L->p;
-    const char *missing = NULL;
-    if (!(L->set & (1u << K_NAME))) missing = "name";
-    else if (!(L->set & (1u << K_PROCESS))) missing = "process";
-    else if (!(L->set & (1u << K_DIALECT)) && !(p->writer && strcmp(p->writer, "text") != 0))
-        missing = "dialect";
-    else if (p->process == LAM_PROCESS_LADRP && !(L->set & (1u << K_BEAD_WIDTH))) missing = "bead_width";
-    else if (p->process == LAM_PROCESS_SLS && !(L->set & (1u << K_SPOT_WIDTH))) missing = "spot_width";
-    if (missing)
-        return at(s, root->start_mark, LAM_EINVAL,
-                  "missing key '%s' (required: name, process, dialect or writer, and bead_width for ladrp or "
-                  "spot_width for sls)",
-                  missing);
-    if (!p->units && !(p->units = strdup("mm"))) return oom();
-    if (!p->writer && !(p->writer = strdup("text"))) return oom();
-    if (!(L->set & (1u << K_TRAVEL_RATE))) p->travel_rate = p->feed_rate;
-    if (p->process == LAM_PROCESS_SLS) p->bead_width = p->spot_width;
+    int sls = p->process == LAM_PROCESS_SLS;
+    const char *missing = NULL, *why = "";
+    char section[32];
+    for (size_t i = 0; i < lam_profile_nkeys && !missing; i++)
+        if (lam_profile_keys[i].flags & LAM_KEY_NEED && !L->set[i])
+            missing = lam_profile_keys[i].name, why = "every profile needs it";
+    for (size_t i = 0; i < lam_profile_nkeys && !missing && !L->templates_given && !strcmp(p->writer, "text"); i++)
+        if (lam_profile_keys[i].type == LAM_KEY_TEMPLATE) {
+            snprintf(section, sizeof section, "%.*s", (int)lam_key_section_len(&lam_profile_keys[i]),
+                     lam_profile_keys[i].name);
+            missing = section, why = "the command templates, unless a plugin writer writes the program";
+        }
+    for (size_t i = 0; i < lam_profile_nkeys && !missing; i++)
+        if (lam_profile_keys[i].flags & (sls ? LAM_KEY_NEED_SLS : LAM_KEY_NEED_LADRP) && !L->set[i])
+            missing = lam_profile_keys[i].name, why = sls ? "an sls profile needs it" : "a ladrp profile needs it";
+    if (missing) return at(s, root->start_mark, LAM_EINVAL, "missing key '%s' (%s)", missing, why);
+    for (size_t i = 0; i < lam_profile_nkeys; i++) {
+        const lam_key *k = &lam_profile_keys[i];
+        if (k->follows && !L->set[i]) lam_key_store(p, k, lam_key_get(p, lam_key_find(k->follows)));
+    }
+    if (sls) p->bead_width = p->spot_width;
     return LAM_OK;
 }
 
@@ -923,8 +791,10 @@ static int load_text(ldr *L, src *s, const char *path, int top)
                 describe(root, b, sizeof b));
         goto out;
     }
-    if ((rc = check_keys(s, root, "", key_names, K_COUNT))) goto out;
-    const yaml_node_t *inh = lookup(s, root, "inherits");
+    keyset ks;
+    keys_in("", &ks);
+    if ((rc = check_keys(s, root, "", ks.names, ks.n))) goto out;
+    const yaml_node_t *inh = lookup(s, root, inherits_key()->name);
     if (inh) {
         struct stat st;
         if (stat(path, &st) != 0) {
@@ -961,26 +831,39 @@ double lam_profile_gap_limit(const lam_profile *p)
     return 0;
 }
 
+static char **string_at(lam_profile *p, const lam_key *k)
+{
+    return (char **)(void *)((char *)p + k->offset);
+}
+
+/* A profile holding every row's default. */
 static lam_profile *new_profile(void)
 {
     lam_profile *p = calloc(1, sizeof *p);
     if (!p) return NULL;
-    p->process = LAM_PROCESS_LADRP;
-    p->cut = LAM_CUT_MIDDLE;
-    p->gap = LAM_GAP_AUTO;
-    p->first_line = LAM_FIRST_EDGE;
-    p->alternate = 1;
+    for (size_t i = 0; i < lam_profile_nkeys; i++) {
+        const lam_key *k = &lam_profile_keys[i];
+        double x;
+        if (!k->def) continue;
+        if (k->type == LAM_KEY_STRING) {
+            if (!(*string_at(p, k) = strdup(k->def))) {
+                lam_profile_free(p);
+                return NULL;
+            }
+        } else if (lam_key_scan(k, NULL, k->def, strlen(k->def), &x, NULL) == LAM_OK) {
+            lam_key_store(p, k, x); /* test_profile checks that every default reads */
+        }
+    }
     return p;
 }
 
 void lam_profile_free(lam_profile *p)
 {
     if (!p) return;
-    free(p->name);
+    for (size_t i = 0; i < lam_profile_nkeys; i++)
+        if (lam_profile_keys[i].type == LAM_KEY_STRING && !(lam_profile_keys[i].flags & LAM_KEY_LOADER))
+            free(*string_at(p, &lam_profile_keys[i]));
     free(p->path);
-    free(p->description);
-    free(p->units);
-    free(p->writer);
     lam_dialect_free(&p->dialect);
     free(p);
 }
@@ -1071,26 +954,6 @@ static void put_string(lam_writer *w, const char *s)
     lam_writer_write(w, "\"", 1);
 }
 
-static void put_number(lam_writer *w, double x)
-{
-    char buf[LAM_FMT_MAX];
-    lam_writer_write(w, buf, lam_dialect_number(buf, x));
-}
-
-static void kv_num(lam_writer *w, const char *indent, const char *key, double x)
-{
-    lam_writer_printf(w, "%s%s: ", indent, key);
-    put_number(w, x);
-    lam_writer_write(w, "\n", 1);
-}
-
-static void kv_str(lam_writer *w, const char *indent, const char *key, const char *s)
-{
-    lam_writer_printf(w, "%s%s: ", indent, key);
-    put_string(w, s);
-    lam_writer_write(w, "\n", 1);
-}
-
 /* A comment line: control characters shown as '?'. */
 static void put_comment(lam_writer *w, const char *label, const char *text)
 {
@@ -1100,35 +963,57 @@ static void put_comment(lam_writer *w, const char *label, const char *text)
     lam_writer_write(w, "\n", 1);
 }
 
+/* Values derived from another key are not written: an sls profile's bead
+ * width is its spot width. */
+static int derived(const lam_profile *p, const lam_key *k)
+{
+    return p->process == LAM_PROCESS_SLS && k->offset == offsetof(lam_profile, bead_width);
+}
+
 int lam_profile_dump(const lam_profile *p, lam_writer *w)
 {
     put_comment(w, "lamina machine profile ", p->name ? p->name : "");
     if (p->path) put_comment(w, "resolved from ", p->path);
-    kv_str(w, "", "name", p->name ? p->name : "");
-    if (p->description) kv_str(w, "", "description", p->description);
-    lam_writer_printf(w, "process: %s\n", process_names[p->process == LAM_PROCESS_SLS]);
-    kv_str(w, "", "units", p->units ? p->units : "mm");
-    if (p->process == LAM_PROCESS_LADRP && p->bead_width > 0) kv_num(w, "", "bead_width", p->bead_width);
-    if (p->spot_width > 0) kv_num(w, "", "spot_width", p->spot_width);
-    if (p->layer_width > 0) kv_num(w, "", "layer_width", p->layer_width);
-    lam_writer_printf(w, "cut: %s\n", cut_names[p->cut >= 0 && p->cut <= 2 ? p->cut : 1]);
-    kv_num(w, "", "feed_rate", p->feed_rate);
-    kv_num(w, "", "travel_rate", p->travel_rate);
-    if (p->gap < 0) lam_writer_printf(w, "gap: auto\n");
-    else kv_num(w, "", "gap", p->gap);
-    lam_writer_printf(w, "frame: %s\n", frame_names[p->frame_machine ? 1 : 0]);
-    lam_writer_printf(w, "raster:\n  first_line: %s\n", first_line_names[p->first_line == LAM_FIRST_CENTER]);
-    kv_num(w, "  ", "angle", p->angle);
-    kv_num(w, "  ", "angle_step", p->angle_step);
-    lam_writer_printf(w, "  alternate: %s\n", p->alternate ? "true" : "false");
-    kv_num(w, "  ", "min_deposit", p->min_deposit);
-    lam_writer_printf(w, "  perimeters: %d\n", p->perimeters);
-    lam_writer_printf(w, "  islands: %s\n", p->islands ? "true" : "false");
-    lam_writer_printf(w, "beam_offset: %s\n", p->beam_offset ? "true" : "false");
-    if (p->max_overhang_deg > 0) kv_num(w, "", "max_overhang_deg", p->max_overhang_deg);
-    kv_str(w, "", "writer", p->writer ? p->writer : "text");
-    lam_writer_printf(w, "dialect:\n  close_polylines: %s\n", p->dialect.close_polylines ? "true" : "false");
-    for (int c = 0; c < LAM_CMD_COUNT; c++)
-        if (p->dialect.cmd[c].present) kv_str(w, "  ", lam_cmd_name((lam_cmd)c), p->dialect.cmd[c].source);
+    const char *section = "";
+    size_t sl = 0;
+    for (size_t i = 0; i < lam_profile_nkeys; i++) {
+        const lam_key *k = &lam_profile_keys[i];
+        const char *at = (const char *)p + k->offset;
+        const lam_template *t = (const lam_template *)(const void *)at;
+        const char *str = k->type == LAM_KEY_STRING ? *(char *const *)(const void *)at : NULL;
+        if (k->flags & LAM_KEY_LOADER || derived(p, k)) continue;
+        if (k->flags & LAM_KEY_OPTIONAL) {
+            if (k->type == LAM_KEY_TEMPLATE ? !t->present
+                : k->type == LAM_KEY_STRING ? !str
+                                            : !(lam_key_get(p, k) != 0))
+                continue;
+        }
+        size_t kl = lam_key_section_len(k);
+        if (kl && (kl != sl || strncmp(k->name, section, kl) != 0)) {
+            lam_writer_printf(w, "%.*s:\n", (int)kl, k->name);
+            section = k->name;
+            sl = kl;
+        }
+        lam_writer_printf(w, "%s%s: ", kl ? "  " : "", lam_key_short(k));
+        char buf[LAM_FMT_MAX];
+        double x = lam_key_get(p, k);
+        switch (k->type) {
+        case LAM_KEY_NUMBER:
+            if (k->flags & LAM_KEY_AUTO && x < 0) lam_writer_printf(w, "auto");
+            else lam_writer_write(w, buf, lam_dialect_number(buf, x));
+            break;
+        case LAM_KEY_INTEGER: lam_writer_printf(w, "%d", (int)x); break;
+        case LAM_KEY_BOOLEAN: lam_writer_printf(w, "%s", x ? "true" : "false"); break;
+        case LAM_KEY_CHOICE: {
+            int n = 0;
+            while (k->choices[n]) n++;
+            lam_writer_printf(w, "%s", k->choices[x >= 0 && x < n ? (int)x : 0]);
+            break;
+        }
+        case LAM_KEY_STRING: put_string(w, str ? str : ""); break;
+        case LAM_KEY_TEMPLATE: put_string(w, t->source); break;
+        }
+        lam_writer_write(w, "\n", 1);
+    }
     return lam_writer_write(w, "", 0);
 }

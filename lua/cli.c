@@ -19,7 +19,7 @@ int cli_usage(const char *cmd, const char *fmt, ...)
     va_start(ap, fmt);
     vfprintf(stderr, fmt, ap);
     va_end(ap);
-    fprintf(stderr, "\n(try 'lamina --help')\n");
+    fprintf(stderr, "\n(try 'lamina%s%s --help')\n", cmd ? " " : "", cmd ? cmd : "");
     return EXIT_USAGE;
 }
 

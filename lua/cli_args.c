@@ -1,4 +1,5 @@
-/* The option parser shared by slice, validate and check. */
+/* The option parser shared by the commands: a table of options (below) and
+ * the profile keys' own options (core/profile_keys.c). */
 #include "cli_args.h"
 
 #include "cli.h"
@@ -44,197 +45,331 @@ static long parse_list(const char *s, double **out)
     return (long)n;
 }
 
-static int parse_number(const char *s, double *x)
+/* ---- the options that are not profile keys -------------------------------- */
+
+/* An option's action: val is its value (NULL for a flag), opt the option
+ * as given (for messages). Returns 0 or EXIT_USAGE after printing. */
+struct cli_opt;
+typedef int (*opt_fn)(const char *cmd, args *a, const struct cli_opt *o, const char *opt, const char *val);
+
+typedef struct cli_opt {
+    const char *name;        /* long name, without "--" */
+    char letter;             /* short form, or 0 */
+    unsigned group;          /* OPT_* */
+    const char *arg;         /* its value in messages, NULL: a flag */
+    opt_fn fn;
+    size_t field;            /* o_flag, o_text: the member of args it sets */
+} cli_opt;
+
+/* A flag: sets its int member of args to 1. */
+static int o_flag(const char *cmd, args *a, const cli_opt *o, const char *opt, const char *val)
 {
-    char *end;
-    errno = 0;
-    *x = strtod(s, &end);
-    return end != s && *end == '\0' && errno != ERANGE && isfinite(*x);
+    (void)cmd, (void)opt, (void)val;
+    *(int *)(void *)((char *)a + o->field) = 1;
+    return 0;
 }
 
-/* Which group an option belongs to (0: not a known option). */
-static unsigned group_of(const char *o)
+/* A value kept as given (a path, a name): its const char * member of args. */
+static int o_text(const char *cmd, args *a, const cli_opt *o, const char *opt, const char *val)
 {
-    static const char *const slice_opts[] = { "-m", "--machine", "-a", "--axis", "-w", "--width", "--widths",
-                                              "--planes", "--cut", "--gap", "--allow-open", "--fill", NULL };
-    static const char *const plan_opts[] = { "--first-line", "--angle", "--angle-step", "--min-deposit",
-                                             "--no-alternate", "--perimeters", "--beam-offset", "--frame", "--islands",
-                                             "-o", "--output", "--validate", NULL };
-    for (int i = 0; slice_opts[i]; i++)
-        if (!strcmp(o, slice_opts[i])) return OPT_SLICE;
-    for (int i = 0; plan_opts[i]; i++)
-        if (!strcmp(o, plan_opts[i])) return OPT_PLAN;
-    if (!strcmp(o, "--json")) return OPT_JSON;
-    if (!strcmp(o, "--svg")) return OPT_SVG;
+    (void)cmd, (void)opt;
+    *(const char **)(void *)((char *)a + o->field) = val;
     return 0;
+}
+
+static int o_axis(const char *cmd, args *a, const cli_opt *o, const char *opt, const char *val)
+{
+    (void)o, (void)opt;
+    lam_error err;
+    lam_error_clear(&err);
+    if (strlen(val) == 1 && strchr("xyzXYZ", val[0])) return lam_frame_axis(val[0], &a->so.frame, &err), 0;
+    double *d = NULL;
+    long n = parse_list(val, &d);
+    int bad = n != 3 || lam_frame_direction(d, &a->so.frame, &err) != LAM_OK;
+    free(d);
+    return bad ? cli_usage(cmd, "unknown axis '%s' (x, y, z or a direction DX,DY,DZ)", val) : 0;
+}
+
+/* --widths and --planes: o->field says which */
+static int o_layers(const char *cmd, args *a, const cli_opt *o, const char *opt, const char *val)
+{
+    free(a->list);
+    a->list = NULL;
+    long n = parse_list(val, &a->list);
+    if (n < 1) return cli_usage(cmd, "%s takes numbers separated by commas (got '%s')", opt, val);
+    int widths = o->field == offsetof(args, so.widths);
+    a->so.widths = widths ? a->list : NULL;
+    a->so.nwidths = widths ? (size_t)n : 0;
+    a->so.planes = widths ? NULL : a->list;
+    a->so.nplanes = widths ? 0 : (size_t)n;
+    return 0;
+}
+
+static int o_fill(const char *cmd, args *a, const cli_opt *o, const char *opt, const char *val)
+{
+    (void)o, (void)opt;
+    if (strcmp(val, "evenodd") && strcmp(val, "nonzero"))
+        return cli_usage(cmd, "--fill takes evenodd or nonzero (got '%s')", val);
+    a->so.fill_nonzero = !strcmp(val, "nonzero");
+    return 0;
+}
+
+static int o_show(const char *cmd, args *a, const cli_opt *o, const char *opt, const char *val)
+{
+    (void)o, (void)opt;
+    if (a->show) return cli_usage(cmd, "--show given twice");
+    if (!*val) return cli_usage(cmd, "--show needs a profile name or path");
+    a->show = val;
+    return 0;
+}
+
+static int add_set(const char *cmd, args *a, const char *shown, const char *name, const char *value);
+
+static int o_set(const char *cmd, args *a, const cli_opt *o, const char *opt, const char *val)
+{
+    (void)o;
+    char shown[160], name[128];
+    snprintf(shown, sizeof shown, "%s %s", opt, val);
+    const char *eq = strchr(val, '=');
+    if (!eq || eq == val || (size_t)(eq - val) >= sizeof name)
+        return cli_usage(cmd, "%s: expected KEY=VALUE ('lamina machines --keys' lists the keys)", shown);
+    memcpy(name, val, (size_t)(eq - val));
+    name[eq - val] = '\0';
+    return add_set(cmd, a, shown, name, eq + 1);
+}
+
+#define F(member) offsetof(args, member)
+static const cli_opt options[] = {
+    { "machine", 'm', OPT_SLICE, "MACHINE", o_text, F(machine) },
+    { "axis", 'a', OPT_SLICE, "AXIS", o_axis, 0 },
+    { "widths", 0, OPT_SLICE, "W1,W2,...", o_layers, F(so.widths) },
+    { "planes", 0, OPT_SLICE, "P1,P2,...", o_layers, F(so.planes) },
+    { "fill", 0, OPT_SLICE, "RULE", o_fill, 0 },
+    { "allow-open", 0, OPT_SLICE, NULL, o_flag, F(allow_open) },
+    { "set", 's', OPT_SET, "KEY=VALUE", o_set, 0 },
+    { "validate", 0, OPT_PLAN, NULL, o_flag, F(validate) },
+    { "output", 'o', OPT_PLAN, "FILE", o_text, F(out) },
+    { "svg", 0, OPT_SVG, "FILE", o_text, F(svg) },
+    { "json", 0, OPT_JSON, NULL, o_flag, F(json) },
+    { "show", 0, OPT_SHOW, "NAME|PATH", o_show, 0 },
+    { "keys", 0, OPT_SHOW, NULL, o_flag, F(keys) },
+};
+#undef F
+#define NOPTIONS (sizeof options / sizeof options[0])
+
+/* ---- profile keys -------------------------------------------------------- */
+
+/* The group of a key's own option: planning values with the planning
+ * options, the rest (layer width, cut, gap) with the slicing ones. */
+static unsigned key_group(const lam_key *k)
+{
+    return k->flags & LAM_KEY_PLAN ? OPT_PLAN : OPT_SLICE;
+}
+
+/* Check name=value on a scratch profile with the loader's rules, and keep it. */
+static int add_set(const char *cmd, args *a, const char *shown, const char *name, const char *value)
+{
+    lam_profile *tmp = calloc(1, sizeof *tmp);
+    cli_set *ns = realloc(a->sets, (a->nsets + 1) * sizeof *ns);
+    if (!tmp || !ns) {
+        free(tmp);
+        if (ns) a->sets = ns;
+        fprintf(stderr, "lamina %s: out of memory\n", cmd);
+        return EXIT_INPUT;
+    }
+    a->sets = ns;
+    lam_error err;
+    lam_error_clear(&err);
+    int rc = lam_profile_set(tmp, name, value, &err);
+    lam_profile_free(tmp);
+    if (rc) return cli_usage(cmd, "%s: %s", shown, err.msg);
+    cli_set *s = &a->sets[a->nsets++];
+    s->key = lam_key_find(name);
+    s->value = value;
+    snprintf(s->shown, sizeof s->shown, "%s", shown);
+    return 0;
+}
+
+/* ---- parsing ------------------------------------------------------------- */
+
+/* One option found: a row of options[], or a key's own option. */
+typedef struct found {
+    const cli_opt *o;
+    const lam_key *k;
+} found;
+
+static const char *found_arg(const found *f)
+{
+    if (f->o) return f->o->arg;
+    return f->k->type == LAM_KEY_BOOLEAN ? NULL : "VALUE";
+}
+
+static unsigned found_group(const found *f)
+{
+    return f->o ? f->o->group : key_group(f->k);
+}
+
+/* By long name (len bytes of name) or by letter (len 0). */
+static int find_option(const char *name, size_t len, char letter, found *f)
+{
+    f->o = NULL;
+    f->k = NULL;
+    for (size_t i = 0; i < NOPTIONS; i++)
+        if (len ? strlen(options[i].name) == len && !strncmp(options[i].name, name, len) : options[i].letter == letter)
+            return f->o = &options[i], 1;
+    for (size_t i = 0; i < lam_profile_nkeys; i++) {
+        const lam_key *k = &lam_profile_keys[i];
+        if (k->option && (len ? strlen(k->option) == len && !strncmp(k->option, name, len) : k->letter == letter))
+            return f->k = k, 1;
+    }
+    return 0;
+}
+
+static int unknown_option(const char *cmd, unsigned groups, const char *opt)
+{
+    const char *names[LAM_KEYS_MAX + NOPTIONS];
+    char bufs[LAM_KEYS_MAX + NOPTIONS][64];
+    size_t n = 0;
+    for (size_t i = 0; i < NOPTIONS; i++)
+        if (options[i].group & groups) snprintf(bufs[n], sizeof bufs[n], "--%s", options[i].name), names[n] = bufs[n], n++;
+    for (size_t i = 0; i < lam_profile_nkeys; i++)
+        if (lam_profile_keys[i].option && key_group(&lam_profile_keys[i]) & groups)
+            snprintf(bufs[n], sizeof bufs[n], "--%s", lam_profile_keys[i].option), names[n] = bufs[n], n++;
+    char word[64];
+    snprintf(word, sizeof word, "%.*s", (int)strcspn(opt, "="), opt);
+    const char *best = lam_key_nearest(word, names, n);
+    if (best) return cli_usage(cmd, "unknown option '%s' (did you mean '%s'?)", opt, best);
+    /* --bead-width: a profile key spelt as an option */
+    char key[64];
+    size_t j = 0;
+    for (const char *c = word + strspn(word, "-"); *c && j + 1 < sizeof key; c++) key[j++] = *c == '-' ? '_' : *c;
+    key[j] = '\0';
+    const lam_key *k = j ? lam_key_find(key) : NULL;
+    if (k && !(k->flags & LAM_KEY_LOADER) && groups & OPT_SET)
+        return cli_usage(cmd, "unknown option '%s' (did you mean '--set %s=...'?)", opt, k->name);
+    return cli_usage(cmd, "unknown option '%s'", opt);
+}
+
+/* The command's help: its usage text, then its profile-key options. */
+static void help(const char *usage, unsigned groups)
+{
+    fputs(usage, stdout);
+    int head = 0;
+    for (size_t i = 0; i < lam_profile_nkeys; i++) {
+        const lam_key *k = &lam_profile_keys[i];
+        if (!k->option || !(key_group(k) & groups)) continue;
+        if (!head++)
+            printf("Profile values (each option is short for --set KEY=VALUE; 'lamina machines --keys'\n"
+                   "lists every key):\n");
+        char left[64];
+        const char *arg = k->type == LAM_KEY_BOOLEAN ? "" : k->type == LAM_KEY_INTEGER ? " N"
+                                                         : k->type == LAM_KEY_NUMBER  ? " X"
+                                                                                      : " VALUE";
+        if (k->letter) snprintf(left, sizeof left, "-%c, --%s%s", k->letter, k->option, arg);
+        else snprintf(left, sizeof left, "    --%s%s", k->option, arg);
+        if (k->type == LAM_KEY_BOOLEAN)
+            printf("  %-24s --set %s=%s\n", left, k->name, strncmp(k->option, "no-", 3) ? "true" : "false");
+        else
+            printf("  %-24s --set %s=%s\n", left, k->name, arg + 1);
+    }
 }
 
 int cli_parse_args(const char *cmd, const char *usage_text, unsigned groups, int argc, char **argv, args *a)
 {
     memset(a, 0, sizeof *a);
     lam_slice_opts_init(&a->so);
-    lam_error err;
-    lam_error_clear(&err);
-#define NEED() do { if (i + 1 >= argc) return cli_usage(cmd, "option %s needs a value", argv[i]); } while (0)
-    for (int i = 1; i < argc; i++) {
+    int only_args = 0, rc = 0;
+    for (int i = 1; i < argc && !rc; i++) {
         const char *o = argv[i];
-        unsigned g = o[0] == '-' && o[1] ? group_of(o) : 0;
-        if (!strcmp(o, "-h") || !strcmp(o, "--help")) {
-            fputs(usage_text, stdout);
-            return -1;
-        } else if (g && !(g & groups)) {
-            return cli_usage(cmd, "option %s does not apply to '%s'", o, cmd);
-        } else if (!strcmp(o, "--json")) {
-            a->json = 1;
-        } else if (!strcmp(o, "--validate")) {
-            a->validate = 1;
-        } else if (!strcmp(o, "--fill")) {
-            NEED();
-            const char *v = argv[++i];
-            if (strcmp(v, "evenodd") && strcmp(v, "nonzero"))
-                return cli_usage(cmd, "--fill takes evenodd or nonzero (got '%s')", v);
-            a->so.fill_nonzero = !strcmp(v, "nonzero");
-        } else if (!strcmp(o, "-m") || !strcmp(o, "--machine")) {
-            NEED();
-            a->machine = argv[++i];
-        } else if (!strcmp(o, "-a") || !strcmp(o, "--axis")) {
-            NEED();
-            const char *v = argv[++i];
-            if (strlen(v) == 1 && strchr("xyzXYZ", v[0])) {
-                lam_frame_axis(v[0], &a->so.frame, &err);
-            } else {
-                double *d = NULL;
-                long n = parse_list(v, &d);
-                int bad = n != 3 || lam_frame_direction(d, &a->so.frame, &err) != LAM_OK;
-                free(d);
-                if (bad) return cli_usage(cmd, "unknown axis '%s' (x, y, z or a direction DX,DY,DZ)", v);
-            }
-        } else if (!strcmp(o, "-w") || !strcmp(o, "--width")) {
-            NEED();
-            if (!parse_number(argv[++i], &a->so.width) || !(a->so.width > 0))
-                return cli_usage(cmd, "layer width must be a positive number (got '%s')", argv[i]);
-            a->set_width = 1;
-        } else if (!strcmp(o, "--widths") || !strcmp(o, "--planes")) {
-            NEED();
-            free(a->list);
-            a->list = NULL;
-            long n = parse_list(argv[++i], &a->list);
-            if (n < 1) return cli_usage(cmd, "%s takes numbers separated by commas (got '%s')", o, argv[i]);
-            a->so.widths = a->so.planes = NULL;
-            a->so.nwidths = a->so.nplanes = 0;
-            if (!strcmp(o, "--widths")) {
-                a->so.widths = a->list;
-                a->so.nwidths = (size_t)n;
-            } else {
-                a->so.planes = a->list;
-                a->so.nplanes = (size_t)n;
-            }
-        } else if (!strcmp(o, "--cut")) {
-            NEED();
-            const char *v = argv[++i];
-            if (!strcmp(v, "floor")) a->so.cut = LAM_CUT_FLOOR;
-            else if (!strcmp(v, "middle")) a->so.cut = LAM_CUT_MIDDLE;
-            else if (!strcmp(v, "ceiling")) a->so.cut = LAM_CUT_CEILING;
-            else return cli_usage(cmd, "--cut takes floor, middle or ceiling (got '%s')", v);
-            a->set_cut = 1;
-        } else if (!strcmp(o, "--gap")) {
-            NEED();
-            if (!strcmp(argv[++i], "auto")) a->so.gap = LAM_GAP_AUTO;
-            else if (!parse_number(argv[i], &a->so.gap) || a->so.gap < 0)
-                return cli_usage(cmd, "--gap takes a tolerance >= 0 or auto (got '%s')", argv[i]);
-            a->set_gap = 1;
-        } else if (!strcmp(o, "--allow-open")) {
-            a->allow_open = 1;
-        } else if (!strcmp(o, "--first-line")) {
-            NEED();
-            const char *v = argv[++i];
-            if (strcmp(v, "edge") && strcmp(v, "center"))
-                return cli_usage(cmd, "--first-line takes edge or center (got '%s')", v);
-            a->set_first = 1;
-            a->first_center = !strcmp(v, "center");
-        } else if (!strcmp(o, "--angle") || !strcmp(o, "--angle-step") || !strcmp(o, "--min-deposit")) {
-            NEED();
-            double x;
-            if (!parse_number(argv[++i], &x)) return cli_usage(cmd, "%s takes a number (got '%s')", o, argv[i]);
-            if (!strcmp(o, "--angle")) a->angle = x, a->set_angle = 1;
-            else if (!strcmp(o, "--angle-step")) a->angle_step = x, a->set_step = 1;
-            else if (x < 0) return cli_usage(cmd, "--min-deposit takes a length >= 0 (got '%s')", argv[i]);
-            else a->min_deposit = x, a->set_min = 1;
-        } else if (!strcmp(o, "--perimeters")) {
-            NEED();
-            double x;
-            if (!parse_number(argv[++i], &x) || x < 0 || x > 1000 || x != floor(x))
-                return cli_usage(cmd, "--perimeters takes a whole number from 0 to 1000 (got '%s')", argv[i]);
-            a->perimeters = (int)x;
-            a->set_perimeters = 1;
-        } else if (!strcmp(o, "--islands")) {
-            a->islands = 1;
-        } else if (!strcmp(o, "--beam-offset")) {
-            a->beam_offset = 1;
-        } else if (!strcmp(o, "--no-alternate")) {
-            a->no_alternate = 1;
-        } else if (!strcmp(o, "--frame")) {
-            NEED();
-            const char *v = argv[++i];
-            if (strcmp(v, "model") && strcmp(v, "machine"))
-                return cli_usage(cmd, "--frame takes model or machine (got '%s')", v);
-            a->set_frame = 1;
-            a->frame_machine = !strcmp(v, "machine");
-        } else if (!strcmp(o, "--svg")) {
-            NEED();
-            a->svg = argv[++i];
-        } else if (!strcmp(o, "-o") || !strcmp(o, "--output")) {
-            NEED();
-            a->out = argv[++i];
-        } else if (o[0] == '-' && o[1]) {
-            return cli_usage(cmd, "unknown option '%s'", o);
-        } else if (a->path) {
-            return cli_usage(cmd, "more than one model given ('%s' and '%s')", a->path, o);
-        } else {
+        if (only_args || o[0] != '-' || !o[1]) {
+            if (!(groups & OPT_MODEL))
+                return cli_usage(cmd, "unexpected argument '%s'%s%s%s", o, groups & OPT_SHOW ? " (to print a profile: --show " : "",
+                                 groups & OPT_SHOW ? o : "", groups & OPT_SHOW ? ")" : "");
+            if (a->path) return cli_usage(cmd, "more than one model given ('%s' and '%s')", a->path, o);
             a->path = o;
+            continue;
+        }
+        if (!strcmp(o, "--")) {
+            only_args = 1;
+            continue;
+        }
+        if (!strcmp(o, "-h") || !strcmp(o, "--help")) {
+            help(usage_text, groups);
+            return -1;
+        }
+        int lng = o[1] == '-';
+        const char *name = o + (lng ? 2 : 1), *eq = lng ? strchr(name, '=') : NULL;
+        const char *attached = lng ? (eq ? eq + 1 : NULL) : (o[2] ? o + 2 : NULL);
+        found f;
+        if (!find_option(name, lng ? (eq ? (size_t)(eq - name) : strlen(name)) : 0, lng ? 0 : o[1], &f) || (!lng && !o[1]))
+            return unknown_option(cmd, groups, o);
+        char opt[80];
+        snprintf(opt, sizeof opt, "%.*s", (int)(lng ? (eq ? (size_t)(eq - o) : strlen(o)) : 2), o);
+        if (!(found_group(&f) & groups)) return cli_usage(cmd, "option %s does not apply to '%s'", opt, cmd);
+        const char *val = NULL;
+        if (found_arg(&f)) {
+            if (attached) val = attached;
+            else if (i + 1 < argc) val = argv[++i];
+            else return cli_usage(cmd, "option %s needs a value", opt);
+        } else if (attached) {
+            return cli_usage(cmd, "option %s takes no value", opt);
+        }
+        if (f.o) {
+            rc = f.o->fn(cmd, a, f.o, opt, val);
+        } else {
+            char shown[160];
+            snprintf(shown, sizeof shown, "%s%s%s", opt, val ? " " : "", val ? val : "");
+            if (!val) val = strncmp(f.k->option, "no-", 3) ? "true" : "false";
+            rc = add_set(cmd, a, shown, f.k->name, val);
         }
     }
-#undef NEED
-    if (!a->path) return cli_usage(cmd, "no model given");
-    if ((a->so.widths || a->so.planes) && a->set_width)
-        return cli_usage(cmd, "give one of -w, --widths and --planes");
+    if (rc) return rc;
+    if (groups & OPT_MODEL && !a->path) return cli_usage(cmd, "no model given");
+    int width = 0;
+    for (size_t i = 0; i < a->nsets; i++) width |= a->sets[i].key->offset == offsetof(lam_profile, layer_width);
+    if ((a->so.widths || a->so.planes) && width) return cli_usage(cmd, "give one of -w, --widths and --planes");
     return EXIT_OK;
-}
-
-static void apply_overrides(const args *a, lam_plan_opts *po);
-
-void cli_apply_profile(args *a, const lam_profile *p, lam_plan_opts *po)
-{
-    if (!a->set_width && !a->so.widths && !a->so.planes && p->layer_width > 0) a->so.width = p->layer_width;
-    if (!a->set_cut) a->so.cut = (lam_cut)p->cut;
-    if (!a->set_gap) a->so.gap = p->gap;
-    /* a machine's units say what the automatic gap may be at most; the
-     * built-in profile stands for no machine, and model units for nothing */
-    if (a->machine) a->so.gap_limit = lam_profile_gap_limit(p);
-    lam_plan_opts_from_profile(po, p);
-    apply_overrides(a, po);
-}
-
-static void apply_overrides(const args *a, lam_plan_opts *po)
-{
-    if (a->set_frame) po->frame_machine = a->frame_machine;
-    if (a->set_first) po->first_center = a->first_center;
-    if (a->set_angle) po->angle = a->angle;
-    if (a->set_step) po->angle_step = a->angle_step;
-    if (a->set_min) po->min_deposit = a->min_deposit;
-    if (a->no_alternate) po->alternate = 0;
-    if (a->set_perimeters) po->perimeters = a->perimeters;
-    if (a->beam_offset) po->beam_offset = 1;
-    if (a->islands) po->islands = 1;
 }
 
 void cli_args_free(args *a)
 {
     free(a->list);
+    free(a->sets);
     a->list = NULL;
+    a->sets = NULL;
+    a->nsets = 0;
 }
 
-int cli_load_profile(const args *a, lam_profile **out, lam_error *err)
+int cli_apply_sets(const char *cmd, const args *a, lam_profile *p)
 {
-    return a->machine ? lam_profile_find(a->machine, out, err) : lam_profile_builtin_sls(out, err);
+    lam_error err;
+    lam_error_clear(&err);
+    for (size_t i = 0; i < a->nsets; i++)
+        if (lam_profile_set(p, a->sets[i].key->name, a->sets[i].value, &err))
+            return err.code == LAM_ENOMEM ? cli_fail(&err) : cli_usage(cmd, "%s: %s", a->sets[i].shown, err.msg);
+    if (a->nsets && lam_profile_check(p, &err)) return cli_usage(cmd, "%s", err.msg);
+    return EXIT_OK;
+}
+
+int cli_profile(const char *cmd, args *a, lam_profile **out, lam_plan_opts *po)
+{
+    lam_error err;
+    lam_error_clear(&err);
+    *out = NULL;
+    lam_profile *p = NULL;
+    if (a->machine ? lam_profile_find(a->machine, &p, &err) : lam_profile_builtin_sls(&p, &err)) return cli_fail(&err);
+    int rc = cli_apply_sets(cmd, a, p);
+    if (rc) {
+        lam_profile_free(p);
+        return rc;
+    }
+    if (!a->so.widths && !a->so.planes && p->layer_width > 0) a->so.width = p->layer_width;
+    a->so.cut = (lam_cut)p->cut;
+    a->so.gap = p->gap;
+    /* a machine's units say what the automatic gap may be at most; the
+     * built-in profile stands for no machine, and model units for nothing */
+    if (a->machine) a->so.gap_limit = lam_profile_gap_limit(p);
+    if (po) lam_plan_opts_from_profile(po, p);
+    *out = p;
+    return EXIT_OK;
 }

@@ -1,40 +1,62 @@
-/* Options shared by the commands that slice (slice, validate, check):
- * one parser, so every command spells an option the same way. */
+/* The option parser the commands share (info, slice, validate, check,
+ * machines): one table of options, so every command spells an option the
+ * same way. GNU conventions: `--name=value` and `--name value`, `-x value`
+ * and `-xvalue`, `--` ends the options, an unknown option gets "did you
+ * mean". Every machine-profile key can be given as `--set KEY=VALUE` (`-s`);
+ * the convenience options (`-w`, `--angle`, `--islands`, ...) are the
+ * options of the key table's rows (core/profile_keys.c), short for --set. */
 #ifndef LAM_CLI_ARGS_H
 #define LAM_CLI_ARGS_H
 
+#include <stddef.h>
+
 #include "planner.h"
 #include "profile.h"
+#include "profile_keys.h"
 #include "slice.h"
 
 /* Option groups a command accepts. */
 enum {
-    OPT_SLICE = 1,     /* -m -a -w --widths --planes --cut --gap --allow-open --fill */
-    OPT_PLAN = 2,      /* raster and SLS options, --frame, -o, --validate */
-    OPT_JSON = 4,      /* --json */
-    OPT_SVG = 8        /* --svg FILE */
+    OPT_MODEL = 1,     /* one MODEL argument */
+    OPT_SLICE = 2,     /* -m -a --widths --planes --fill --allow-open, and the slicing keys' options */
+    OPT_PLAN = 4,      /* --validate -o, and the planning keys' options */
+    OPT_JSON = 8,      /* --json */
+    OPT_SVG = 16,      /* --svg FILE */
+    OPT_SET = 32,      /* -s/--set KEY=VALUE */
+    OPT_SHOW = 64      /* machines: --show NAME, --keys */
 };
 
+/* A profile value from the command line: --set KEY=VALUE or an option short for it. */
+typedef struct cli_set {
+    const lam_key *key;
+    const char *value;
+    char shown[160];         /* the option as given, for messages: "--set gap=x", "-w 0" */
+} cli_set;
+
 typedef struct args {
-    const char *path, *out, *svg, *machine;
+    const char *path, *out, *svg, *machine, *show;
     lam_slice_opts so;
     double *list;
-    int allow_open, set_width, set_cut, set_gap, set_frame, json, validate;
-    int set_first, first_center, set_angle, set_step, set_min, no_alternate, frame_machine;
-    int perimeters, set_perimeters, beam_offset, islands;
-    double angle, angle_step, min_deposit;
+    int allow_open, json, validate, keys;
+    cli_set *sets;           /* in command-line order; later ones win */
+    size_t nsets;
 } args;
 
 /* Parse argv[1..] for command cmd, accepting the option groups in
- * `groups`. Returns 0, -1 when --help was printed (usage text), or
- * EXIT_USAGE after printing the problem. Free with cli_args_free. */
+ * `groups`. Returns 0, -1 when --help was printed (usage text and the
+ * profile options of the command's groups), or EXIT_USAGE after printing
+ * the problem. Free with cli_args_free. */
 int cli_parse_args(const char *cmd, const char *usage, unsigned groups, int argc, char **argv, args *a);
 void cli_args_free(args *a);
 
-/* The machine profile for a run: -m's, or the built-in SLS profile. */
-int cli_load_profile(const args *a, lam_profile **out, lam_error *err);
+/* The machine profile of a run: -m's, or the built-in SLS profile, with the
+ * command line's profile values applied; the slicing options take the
+ * profile's layer width, cut and gap unless the command line gave its own
+ * layers, and po (when not NULL) its planning values. Returns EXIT_OK with
+ * *out to free, or the exit status after printing the problem. */
+int cli_profile(const char *cmd, args *a, lam_profile **out, lam_plan_opts *po);
 
-/* Profile defaults under the command line's overrides. */
-void cli_apply_profile(args *a, const lam_profile *p, lam_plan_opts *po);
+/* The profile values of the command line applied to p (machines --show). */
+int cli_apply_sets(const char *cmd, const args *a, lam_profile *p);
 
 #endif

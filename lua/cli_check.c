@@ -15,7 +15,8 @@
 #include <string.h>
 
 static const char usage_text[] =
-    "usage: lamina check MODEL -m MACHINE [-a AXIS] [-w WIDTH ...] [--json] [--svg FILE]\n"
+    "usage: lamina check MODEL -m MACHINE [-s KEY=VALUE ...] [-a AXIS] [-w WIDTH ...] [--json]\n"
+    "                          [--svg FILE]\n"
     "Design-rule check: walls thinner than the machine's bead (or spot) width, and\n"
     "downward faces steeper than its max_overhang_deg (when the profile sets it).\n"
     "-a gives the build direction (default z). Exit 3 when any rule is violated.\n";
@@ -61,7 +62,7 @@ static int draw(const args *a, lam_model *m, const lam_drc_result *res, lam_erro
 int cmd_check(int argc, char **argv)
 {
     args a;
-    int rc = cli_parse_args("check", usage_text, OPT_SLICE | OPT_JSON | OPT_SVG, argc, argv, &a);
+    int rc = cli_parse_args("check", usage_text, OPT_MODEL | OPT_SLICE | OPT_SET | OPT_JSON | OPT_SVG, argc, argv, &a);
     if (rc) {
         cli_args_free(&a);
         return rc < 0 ? EXIT_OK : rc;
@@ -77,13 +78,7 @@ int cmd_check(int argc, char **argv)
     lam_validator *v = NULL;
     lam_drc_result res;
     memset(&res, 0, sizeof res);
-    lam_plan_opts po;
-    lam_plan_opts_init(&po);
-    if (cli_load_profile(&a, &prof, &err)) {
-        rc = cli_fail(&err);
-        goto done;
-    }
-    cli_apply_profile(&a, prof, &po);
+    if ((rc = cli_profile("check", &a, &prof, NULL))) goto done;
     if (lam_model_load(a.path, &m, &err) || lam_validator_new(m, &v, &err)) {
         rc = cli_fail(&err);
         goto done;

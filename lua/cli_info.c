@@ -1,5 +1,6 @@
 /* lamina info MODEL [--json]: the model report of SPEC 2.4. */
 #include "cli.h"
+#include "cli_args.h"
 #include "model.h"
 
 #include <string.h>
@@ -85,22 +86,19 @@ static void print_text(const lam_model *m)
     printf("wires                 %zu\n", s->wires);
 }
 
+static const char usage_text[] =
+    "usage: lamina info MODEL [--json]\n"
+    "Report triangles, vertices, edges, shells and cavities, bounding box,\n"
+    "surface area, volume, and mesh defects of a .ug, .stl or .obj model.\n";
+
 int cmd_info(int argc, char **argv)
 {
-    const char *path = NULL;
-    int json = 0;
-    for (int i = 1; i < argc; i++) {
-        if (strcmp(argv[i], "--json") == 0) json = 1;
-        else if (strcmp(argv[i], "-h") == 0 || strcmp(argv[i], "--help") == 0) {
-            printf("usage: lamina info MODEL [--json]\n"
-                   "Report triangles, vertices, edges, shells and cavities, bounding box,\n"
-                   "surface area, volume, and mesh defects of a .ug, .stl or .obj model.\n");
-            return EXIT_OK;
-        } else if (argv[i][0] == '-' && argv[i][1]) return cli_usage("info", "unknown option '%s'", argv[i]);
-        else if (path) return cli_usage("info", "more than one model given ('%s' and '%s')", path, argv[i]);
-        else path = argv[i];
-    }
-    if (!path) return cli_usage("info", "no model given");
+    args a;
+    int rc = cli_parse_args("info", usage_text, OPT_MODEL | OPT_JSON, argc, argv, &a);
+    cli_args_free(&a);
+    if (rc) return rc < 0 ? EXIT_OK : rc;
+    const char *path = a.path;
+    int json = a.json;
     lam_error err;
     lam_error_clear(&err);
     lam_model *m;

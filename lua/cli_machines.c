@@ -1,10 +1,13 @@
 /* lamina machines [--show NAME|PATH]: list the machine profiles found in the
  * machine directories, or print one resolved profile as YAML. */
 #include "cli.h"
+#include "cli_args.h"
+#include "dialect.h"
 #include "profile.h"
 #include "writer.h"
 
 #include <dirent.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -12,9 +15,11 @@
 #define MAX_DIRS 16
 
 static const char usage_text[] =
-    "usage: lamina machines [--show NAME|PATH]\n"
+    "usage: lamina machines [--show NAME|PATH [-s KEY=VALUE ...]] [--keys]\n"
     "List the machine profiles (name, process, description), or with --show\n"
-    "print one profile as YAML with inheritance resolved and defaults filled in.\n"
+    "print one profile as YAML with inheritance resolved and defaults filled in\n"
+    "(and the values of -s/--set KEY=VALUE applied, as 'lamina slice' would);\n"
+    "--keys lists every key a profile may have: type, default, meaning.\n"
     "Profiles are NAME.yaml files in $LAMINA_MACHINES (colon-separated), then\n"
     "<lamina>/../machines and <lamina>/../share/lamina/machines; when two\n"
     "directories have the same name, the first one wins.\n";
@@ -128,14 +133,19 @@ static int list(void)
     return status;
 }
 
-static int show(const char *which)
+static int show(const args *a)
 {
     lam_error err;
     lam_error_clear(&err);
     lam_profile *p;
-    if (lam_profile_find(which, &p, &err)) return cli_fail(&err);
+    if (lam_profile_find(a->show, &p, &err)) return cli_fail(&err);
+    int rc = cli_apply_sets("machines", a, p);
+    if (rc) {
+        lam_profile_free(p);
+        return rc;
+    }
     lam_writer *w;
-    int rc = lam_writer_stream(stdout, "(stdout)", &w, &err);
+    rc = lam_writer_stream(stdout, "(stdout)", &w, &err);
     if (!rc) {
         lam_profile_dump(p, w);
         rc = lam_writer_commit(w, &err);
@@ -144,26 +154,74 @@ static int show(const char *which)
     return rc ? cli_fail(&err) : EXIT_OK;
 }
 
+/* What a row takes, for the reference: "number > 0", "`a` \\| `b`", ... */
+static void key_type(const lam_key *k, char *out, size_t size)
+{
+    char lo[64], hi[64];
+    snprintf(lo, sizeof lo, "%g", k->lo);
+    snprintf(hi, sizeof hi, "%g", k->hi);
+    switch (k->type) {
+    case LAM_KEY_NUMBER:
+        if (k->lo == -HUGE_VAL && k->hi == HUGE_VAL) snprintf(out, size, "number");
+        else if (k->hi == HUGE_VAL) snprintf(out, size, "number %s %s", k->flags & LAM_KEY_ABOVE ? ">" : ">=", lo);
+        else snprintf(out, size, "number %s..%s", lo, hi);
+        if (k->flags & LAM_KEY_AUTO) strncat(out, " or `auto`", size - strlen(out) - 1);
+        break;
+    case LAM_KEY_INTEGER: snprintf(out, size, "whole number %s..%s", lo, hi); break;
+    case LAM_KEY_BOOLEAN: snprintf(out, size, "boolean"); break;
+    case LAM_KEY_STRING: snprintf(out, size, "text"); break;
+    case LAM_KEY_TEMPLATE: snprintf(out, size, "template"); break;
+    case LAM_KEY_CHOICE: {
+        size_t n = 0;
+        out[0] = '\0';
+        for (int i = 0; k->choices[i] && n + 1 < size; i++) {
+            int w = snprintf(out + n, size - n, "%s`%s`", i ? " \\| " : "", k->choices[i]);
+            if (w < 0) break;
+            n += (size_t)w;
+        }
+        break;
+    }
+    }
+}
+
+/* The key reference of machines/README.md (a test keeps the two equal):
+ * every key but the dialect's commands, then the commands with their
+ * fields. */
+static int keys(void)
+{
+    printf("| key | type | default | meaning |\n|-----|------|---------|---------|\n");
+    for (size_t i = 0; i < lam_profile_nkeys; i++) {
+        const lam_key *k = &lam_profile_keys[i];
+        if (k->type == LAM_KEY_TEMPLATE) continue;
+        char type[200], def[200];
+        key_type(k, type, sizeof type);
+        if (k->def) snprintf(def, sizeof def, "`%s`", k->def);
+        else if (k->follows) snprintf(def, sizeof def, "`%s`", k->follows);
+        else snprintf(def, sizeof def, "%s", k->flags & (LAM_KEY_NEED | LAM_KEY_NEED_LADRP | LAM_KEY_NEED_SLS) ? "required" : "none");
+        if (k->flags & LAM_KEY_NEED_LADRP) snprintf(def, sizeof def, "required (ladrp)");
+        if (k->flags & LAM_KEY_NEED_SLS) snprintf(def, sizeof def, "required (sls)");
+        char opt[80] = "";
+        if (k->option && k->letter) snprintf(opt, sizeof opt, " Option: `-%c`, `--%s`.", k->letter, k->option);
+        else if (k->option) snprintf(opt, sizeof opt, " Option: `--%s`.", k->option);
+        printf("| `%s` | %s | %s | %s.%s |\n", k->name, type, def, k->doc, opt);
+    }
+    printf("\n| command | when | fields |\n|---------|------|--------|\n");
+    for (size_t i = 0; i < lam_profile_nkeys; i++) {
+        const lam_key *k = &lam_profile_keys[i];
+        if (k->type != LAM_KEY_TEMPLATE) continue;
+        const char *f = lam_cmd_fields((lam_cmd)k->cmd);
+        printf("| `%s` | %s | %s%s%s |\n", lam_key_short(k), k->doc, *f ? "`" : "", *f ? f : "none", *f ? "`" : "");
+    }
+    return EXIT_OK;
+}
+
 int cmd_machines(int argc, char **argv)
 {
-    const char *which = NULL;
-    for (int i = 1; i < argc; i++) {
-        if (strcmp(argv[i], "-h") == 0 || strcmp(argv[i], "--help") == 0) {
-            fputs(usage_text, stdout);
-            return EXIT_OK;
-        } else if (strcmp(argv[i], "--show") == 0) {
-            if (i + 1 >= argc) return cli_usage("machines", "option --show needs a profile name or path");
-            if (which) return cli_usage("machines", "--show given twice");
-            which = argv[++i];
-        } else if (strncmp(argv[i], "--show=", 7) == 0) {
-            if (which) return cli_usage("machines", "--show given twice");
-            which = argv[i] + 7;
-        } else if (argv[i][0] == '-' && argv[i][1]) {
-            return cli_usage("machines", "unknown option '%s'", argv[i]);
-        } else {
-            return cli_usage("machines", "unexpected argument '%s' (to print a profile: --show %s)", argv[i], argv[i]);
-        }
-    }
-    if (which && !*which) return cli_usage("machines", "--show needs a profile name or path");
-    return which ? show(which) : list();
+    args a;
+    int rc = cli_parse_args("machines", usage_text, OPT_SHOW | OPT_SET, argc, argv, &a);
+    if (!rc && a.nsets && !a.show) rc = cli_usage("machines", "-s/--set applies to a profile: give --show NAME too");
+    if (!rc && a.keys && a.show) rc = cli_usage("machines", "give --show or --keys, not both");
+    if (!rc) rc = a.keys ? keys() : a.show ? show(&a) : list();
+    cli_args_free(&a);
+    return rc < 0 ? EXIT_OK : rc;
 }

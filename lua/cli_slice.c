@@ -22,32 +22,27 @@
 #include <string.h>
 
 static const char usage_text[] =
-    "usage: lamina slice MODEL [-m MACHINE] [-a x|y|z|DX,DY,DZ] [-w WIDTH | --widths W1,W2,... |\n"
-    "                          --planes P1,P2,...] [--cut floor|middle|ceiling] [--gap TOL]\n"
-    "                          [--allow-open] [--first-line edge|center] [--angle DEG]\n"
-    "                          [--angle-step DEG] [--min-deposit LEN] [--no-alternate]\n"
-    "                          [--perimeters N] [--islands] [--beam-offset]\n"
-    "                          [--frame model|machine] [--fill evenodd|nonzero] [--validate]\n"
-    "                          [--svg FILE] [-o FILE]\n"
+    "usage: lamina slice MODEL [-m MACHINE] [-s KEY=VALUE ...] [-a x|y|z|DX,DY,DZ]\n"
+    "                          [-w WIDTH | --widths W1,W2,... | --planes P1,P2,...]\n"
+    "                          [--cut floor|middle|ceiling] [--gap TOL] [--allow-open]\n"
+    "                          [--first-line edge|center] [--angle DEG] [--angle-step DEG]\n"
+    "                          [--min-deposit LEN] [--no-alternate] [--perimeters N] [--islands]\n"
+    "                          [--beam-offset] [--frame model|machine] [--fill evenodd|nonzero]\n"
+    "                          [--validate] [--svg FILE] [-o FILE]\n"
     "  -m, --machine    machine profile: a shipped name (see 'lamina machines') or a path\n"
+    "                   (default: the thesis's SLS contours)\n"
+    "  -s, --set        KEY=VALUE: any key of the machine profile, checked as in its YAML\n"
+    "                   (bead_width=0.1, raster.angle=90 or angle=90); repeatable\n"
     "  -a, --axis       slice axis or direction (default z)\n"
-    "  -w, --width      uniform layer width (default: the profile's, else 1/100 of the extent)\n"
     "      --widths     layer widths from the model's minimum; must cover the model\n"
     "      --planes     explicit layer boundaries, strictly increasing\n"
-    "      --cut        where each layer's section is taken (default: profile, else middle)\n"
-    "      --gap        close open outlines whose ends are at most TOL apart (default: the\n"
-    "                   profile's, else auto: 1/2000 of the model's size, with -m at most\n"
-    "                   0.05 mm in the machine's units)\n"
     "      --allow-open drop outlines that stay open instead of failing\n"
-    "      --first-line, --angle, --angle-step, --min-deposit, --no-alternate, --perimeters\n"
-    "                   LADRP raster options (override the profile)\n"
-    "      --islands    LADRP: raster each island on its own, nearest next (less travel)\n"
-    "      --beam-offset   SLS: move contours inward by half the spot width\n"
-    "      --frame      coordinates of the program: model (default) or machine (layer frame)\n"
     "      --fill       evenodd (default: nesting parity) or nonzero (overlapping bodies merge)\n"
     "      --validate   check every label with Embree first; write nothing if any disagrees\n"
     "      --svg        write a contact sheet of the layers\n"
-    "  -o, --output     program file (default: standard output)\n";
+    "  -o, --output     program file (default: standard output)\n"
+    "Values: --name=VALUE or --name VALUE; -- ends the options. The profile's values are\n"
+    "defaults that -s and the options below override.\n";
 
 /* Per-layer reports and the SVG preview, before each layer is planned. */
 typedef struct report {
@@ -99,7 +94,7 @@ static int on_layer(void *ctx, const lam_layer *L, lam_error *err)
 int cmd_slice(int argc, char **argv)
 {
     args a;
-    int rc = cli_parse_args("slice", usage_text, OPT_SLICE | OPT_PLAN | OPT_SVG, argc, argv, &a);
+    int rc = cli_parse_args("slice", usage_text, OPT_MODEL | OPT_SLICE | OPT_SET | OPT_PLAN | OPT_SVG, argc, argv, &a);
     if (rc) {
         cli_args_free(&a);
         return rc < 0 ? EXIT_OK : rc;
@@ -116,13 +111,8 @@ int cmd_slice(int argc, char **argv)
     rep.path = a.path;
     rep.vr.out = stderr;
 
-    if (cli_load_profile(&a, &prof, &err)) {
-        rc = cli_fail(&err);
-        goto done;
-    }
     lam_plan_opts po;
-    lam_plan_opts_init(&po);
-    cli_apply_profile(&a, prof, &po);
+    if ((rc = cli_profile("slice", &a, &prof, &po))) goto done;
     if (lam_model_load(a.path, &m, &err)) {
         rc = cli_fail(&err);
         goto done;

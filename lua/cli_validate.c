@@ -11,7 +11,8 @@
 #include <string.h>
 
 static const char usage_text[] =
-    "usage: lamina validate MODEL [-m MACHINE] [-a AXIS] [-w WIDTH | --widths ... | --planes ...]\n"
+    "usage: lamina validate MODEL [-m MACHINE] [-s KEY=VALUE ...] [-a AXIS]\n"
+    "                             [-w WIDTH | --widths ... | --planes ...]\n"
     "                             [--cut floor|middle|ceiling] [--gap TOL] [--allow-open]\n"
     "                             [--fill evenodd|nonzero] [--json]\n"
     "Slices like 'lamina slice' and checks every contour's label against the 3D model:\n"
@@ -81,7 +82,7 @@ int vreport_layer(vreport *r, lam_validator *v, const lam_layer *L, const lam_fr
 int cmd_validate(int argc, char **argv)
 {
     args a;
-    int rc = cli_parse_args("validate", usage_text, OPT_SLICE | OPT_JSON, argc, argv, &a);
+    int rc = cli_parse_args("validate", usage_text, OPT_MODEL | OPT_SLICE | OPT_SET | OPT_JSON, argc, argv, &a);
     if (rc) {
         cli_args_free(&a);
         return rc < 0 ? EXIT_OK : rc;
@@ -98,15 +99,7 @@ int cmd_validate(int argc, char **argv)
     r.json = a.json;
     r.verbose = 1;
     r.first = 1;
-    if (a.machine) {
-        lam_plan_opts po;
-        lam_plan_opts_init(&po);
-        if (cli_load_profile(&a, &prof, &err)) {
-            rc = cli_fail(&err);
-            goto done;
-        }
-        cli_apply_profile(&a, prof, &po);
-    }
+    if ((rc = cli_profile("validate", &a, &prof, NULL))) goto done;
     if (lam_model_load(a.path, &m, &err)) {
         rc = cli_fail(&err);
         goto done;

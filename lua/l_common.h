@@ -33,6 +33,7 @@
 #include "model.h"
 #include "planner.h"
 #include "profile.h"
+#include "profile_keys.h"
 #include "slice.h"
 
 #include "version.h"
@@ -147,6 +148,7 @@ int lam_lua_load(lua_State *L);            /* lamina.load (l_model.c) */
 int lam_lua_slice(lua_State *L);           /* model:slice (l_layer.c) */
 int lam_lua_machine(lua_State *L);         /* lamina.machine (l_machine.c) */
 int lam_lua_machines(lua_State *L);        /* lamina.machines (l_machine.c) */
+int lam_lua_machine_keys(lua_State *L);    /* lamina.machine_keys (l_machine.c) */
 int lam_lua_plan(lua_State *L);            /* machine:plan (l_plan.c) */
 
 /* Fill plan options from a machine profile's values. */
@@ -157,13 +159,14 @@ void lam_lua_plan_opts(const lam_profile *p, lam_plan_opts *o);
  * them before being applied: reading may run the table's metamethods, so
  * it happens before any pointer into a profile is taken. */
 typedef struct lam_lua_overrides {
-    unsigned set;            /* bit k: value k was given */
-    double v[24];
+    unsigned char set[LAM_KEYS_MAX]; /* set[i]: row i of lam_profile_keys was given */
+    double v[LAM_KEYS_MAX];
 } lam_lua_overrides;
 
-/* Read table t (argument number arg, as luaL_argerror counts); `keys`
- * lists the keys allowed (NULL: every overridable key). */
-void lam_lua_read_overrides(lua_State *L, int t, int arg, const char *const *keys, lam_lua_overrides *o);
+/* Read table t (argument number arg, as luaL_argerror counts): the rows a
+ * machine may change (not LAM_KEY_FIXED) that have the flags `need`
+ * (LAM_KEY_PLAN: machine:plan's options; 0: every one), by their Lua names. */
+void lam_lua_read_overrides(lua_State *L, int t, int arg, unsigned need, lam_lua_overrides *o);
 void lam_lua_apply_overrides(const lam_lua_overrides *o, lam_profile *p);
 
 /* ---- errors and options ----------------------------------------------- */

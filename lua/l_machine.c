@@ -4,7 +4,8 @@
  * machine:override{...} makes a new machine whose values differ: it holds a
  * shallow copy of the profile (numbers its own, strings and dialect
  * templates borrowed) and keeps the owning machine alive as its user value.
- * Values are validated with the YAML loader's rules and messages. */
+ * Values are validated with the YAML loader's rules and messages: the
+ * fields and the keys of override are the rows of core/profile_keys.c. */
 #include "l_common.h"
 
 #include <dirent.h>
@@ -13,12 +14,8 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include "profile_keys.h"
 #include "writer.h"
-
-static const char *const process_names[] = { "ladrp", "sls", NULL };
-static const char *const cut_names[] = { "floor", "middle", "ceiling", NULL };
-static const char *const frame_names[] = { "model", "machine", NULL };
-static const char *const first_line_names[] = { "edge", "center", NULL };
 
 /* Whether the machine u (at idx) can still reach its profile: a derived
  * machine's owner may have been finalized in the same cycle. */
@@ -112,6 +109,57 @@ int lam_lua_machines(lua_State *L)
     return 1;
 }
 
+/* lamina.machine_keys() -> { {name=, lua=, type=, ...}, ... }: the rows of
+ * the profile key table, in its order */
+int lam_lua_machine_keys(lua_State *L)
+{
+    static const char *const types[] = { "number", "integer", "boolean", "choice", "string", "template" };
+    lua_createtable(L, (int)lam_profile_nkeys, 0);
+    for (size_t i = 0; i < lam_profile_nkeys; i++) {
+        const lam_key *k = &lam_profile_keys[i];
+        lua_createtable(L, 0, 16);
+        lua_pushstring(L, k->name);
+        lua_setfield(L, -2, "name");
+        lua_pushstring(L, lam_key_lua_name(k));
+        lua_setfield(L, -2, "lua");
+        lua_pushstring(L, types[k->type]);
+        lua_setfield(L, -2, "type");
+        if (k->type == LAM_KEY_NUMBER || k->type == LAM_KEY_INTEGER) {
+            lua_pushnumber(L, k->lo);
+            lua_setfield(L, -2, "min");
+            lua_pushnumber(L, k->hi);
+            lua_setfield(L, -2, "max");
+            lua_pushboolean(L, k->flags & LAM_KEY_ABOVE);
+            lua_setfield(L, -2, "above_min");
+        }
+        if (k->choices) {
+            lua_newtable(L);
+            for (int c = 0; k->choices[c]; c++) {
+                lua_pushstring(L, k->choices[c]);
+                lua_rawseti(L, -2, c + 1);
+            }
+            lua_setfield(L, -2, "choices");
+        }
+        const char *text[][2] = { { "default", k->def }, { "follows", k->follows }, { "option", k->option },
+                                  { "doc", k->doc } };
+        for (size_t t = 0; t < sizeof text / sizeof text[0]; t++)
+            if (text[t][1]) {
+                lua_pushstring(L, text[t][1]);
+                lua_setfield(L, -2, text[t][0]);
+            }
+        const struct { const char *field; unsigned flag; } flags[] = {
+            { "optional", LAM_KEY_OPTIONAL }, { "fixed", LAM_KEY_FIXED | LAM_KEY_LOADER }, { "plan", LAM_KEY_PLAN },
+            { "loader", LAM_KEY_LOADER },
+        };
+        for (size_t f = 0; f < sizeof flags / sizeof flags[0]; f++) {
+            lua_pushboolean(L, (k->flags & flags[f].flag) != 0);
+            lua_setfield(L, -2, flags[f].field);
+        }
+        lua_rawseti(L, -2, (lua_Integer)i + 1);
+    }
+    return 1;
+}
+
 static int mc_gc(lua_State *L)
 {
     lmachine *u = LAM_CHECKUD(L, 1, lmachine, LAM_MACHINE, LAM_TAG_MACHINE);
@@ -128,192 +176,143 @@ static int mc_tostring(lua_State *L)
         return 1;
     }
     int sls = u->p.process == LAM_PROCESS_SLS;
-    lua_pushfstring(L, LAM_MACHINE " %s (%s, %s %f%s)", u->p.name, process_names[sls], sls ? "spot" : "bead",
+    const lam_key *process = lam_key_at(offsetof(lam_profile, process));
+    lua_pushfstring(L, LAM_MACHINE " %s (%s, %s %f%s)", u->p.name, process->choices[sls], sls ? "spot" : "bead",
                     sls ? u->p.spot_width : u->p.bead_width, u->owner ? "" : ", overridden");
     return 1;
 }
 
-static void push_opt_number(lua_State *L, double x)
+/* The value of row k in p, as Lua sees it: nil for an optional value not
+ * given. */
+static void push_key(lua_State *L, const lam_profile *p, const lam_key *k)
 {
-    if (x > 0) lua_pushnumber(L, x);
-    else lua_pushnil(L);
+    const char *at = (const char *)p + k->offset;
+    double x = lam_key_get(p, k);
+    switch (k->type) {
+    case LAM_KEY_NUMBER:
+        if (k->flags & LAM_KEY_OPTIONAL && x == 0) lua_pushnil(L);
+        else if (k->flags & LAM_KEY_AUTO && x < 0) lua_pushliteral(L, "auto");
+        else lua_pushnumber(L, x);
+        break;
+    case LAM_KEY_INTEGER: lua_pushinteger(L, (lua_Integer)x); break;
+    case LAM_KEY_BOOLEAN: lua_pushboolean(L, x != 0); break;
+    case LAM_KEY_CHOICE: lua_pushstring(L, k->choices[(int)x]); break;
+    case LAM_KEY_STRING: lua_pushstring(L, *(char *const *)(const void *)at); break; /* nil when absent */
+    case LAM_KEY_TEMPLATE: {
+        const lam_template *t = (const lam_template *)(const void *)at;
+        if (t->present) lua_pushstring(L, t->source);
+        else lua_pushnil(L);
+        break;
+    }
+    }
+}
+
+/* The row Lua knows by `name`: a flat row by its short name, any other by
+ * its whole name. */
+static const lam_key *lua_key(const char *name)
+{
+    const lam_key *k = name ? lam_key_find(name) : NULL;
+    return k && !(k->flags & LAM_KEY_LOADER) && !strcmp(lam_key_lua_name(k), name) ? k : NULL;
 }
 
 static int mc_fields(lua_State *L)
 {
     const lam_profile *p = &lam_lua_checkmachine(L, 1)->p;
-    const char *k = lua_tostring(L, 2);
-    if (strcmp(k, "name") == 0) lua_pushstring(L, p->name);
-    else if (strcmp(k, "path") == 0) lua_pushstring(L, p->path);
-    else if (strcmp(k, "description") == 0) lua_pushstring(L, p->description); /* nil when absent */
-    else if (strcmp(k, "process") == 0) lua_pushstring(L, process_names[p->process == LAM_PROCESS_SLS]);
-    else if (strcmp(k, "units") == 0) lua_pushstring(L, p->units);
-    else if (strcmp(k, "writer") == 0) lua_pushstring(L, p->writer);
-    else if (strcmp(k, "bead_width") == 0) push_opt_number(L, p->bead_width);
-    else if (strcmp(k, "spot_width") == 0) push_opt_number(L, p->spot_width);
-    else if (strcmp(k, "layer_width") == 0) push_opt_number(L, p->layer_width);
-    else if (strcmp(k, "cut") == 0) lua_pushstring(L, cut_names[p->cut >= 0 && p->cut <= 2 ? p->cut : 1]);
-    else if (strcmp(k, "feed_rate") == 0) lua_pushnumber(L, p->feed_rate);
-    else if (strcmp(k, "travel_rate") == 0) lua_pushnumber(L, p->travel_rate);
-    else if (strcmp(k, "gap") == 0) {
-        if (p->gap < 0) lua_pushliteral(L, "auto");
-        else lua_pushnumber(L, p->gap);
-    }
-    else if (strcmp(k, "frame") == 0) lua_pushstring(L, frame_names[p->frame_machine ? 1 : 0]);
-    else if (strcmp(k, "first_line") == 0) lua_pushstring(L, first_line_names[p->first_line == LAM_FIRST_CENTER]);
-    else if (strcmp(k, "angle") == 0) lua_pushnumber(L, p->angle);
-    else if (strcmp(k, "angle_step") == 0) lua_pushnumber(L, p->angle_step);
-    else if (strcmp(k, "alternate") == 0) lua_pushboolean(L, p->alternate);
-    else if (strcmp(k, "min_deposit") == 0) lua_pushnumber(L, p->min_deposit);
-    else if (strcmp(k, "perimeters") == 0) lua_pushinteger(L, p->perimeters);
-    else if (strcmp(k, "beam_offset") == 0) lua_pushboolean(L, p->beam_offset);
-    else if (strcmp(k, "islands") == 0) lua_pushboolean(L, p->islands);
-    else if (strcmp(k, "max_overhang_deg") == 0) push_opt_number(L, p->max_overhang_deg);
+    const char *name = lua_tostring(L, 2);
+    const lam_key *k = lua_key(name);
+    if (k) push_key(L, p, k);
+    else if (name && strcmp(name, "path") == 0) lua_pushstring(L, p->path);
     else lua_pushnil(L);
     return 1;
 }
 
 /* ---- overrides -------------------------------------------------------------- */
 
-/* The values a script may change, with the YAML loader's rules. */
-enum okind { NUM, CHOICE, BOOL, WHOLE };
-typedef struct okey {
-    const char *name;
-    enum okind kind;
-    double lo, hi;             /* NUM: the range */
-    int lo_open;               /* NUM: lo itself is excluded */
-    const char *const *names;  /* CHOICE */
-} okey;
-
-enum { O_BEAD, O_SPOT, O_LAYER, O_CUT, O_FEED, O_TRAVEL, O_GAP, O_FRAME, O_FIRST, O_ANGLE, O_STEP,
-       O_ALTERNATE, O_MIN_DEPOSIT, O_PERIMETERS, O_BEAM, O_OVERHANG, O_ISLANDS, O_COUNT };
-
-static const okey okeys[O_COUNT] = {
-    { "bead_width", NUM, 0, HUGE_VAL, 1, NULL },
-    { "spot_width", NUM, 0, HUGE_VAL, 1, NULL },
-    { "layer_width", NUM, 0, HUGE_VAL, 1, NULL },
-    { "cut", CHOICE, 0, 0, 0, cut_names },
-    { "feed_rate", NUM, 0, HUGE_VAL, 0, NULL },
-    { "travel_rate", NUM, 0, HUGE_VAL, 0, NULL },
-    { "gap", NUM, 0, HUGE_VAL, 0, NULL },
-    { "frame", CHOICE, 0, 0, 0, frame_names },
-    { "first_line", CHOICE, 0, 0, 0, first_line_names },
-    { "angle", NUM, -HUGE_VAL, HUGE_VAL, 0, NULL },
-    { "angle_step", NUM, -HUGE_VAL, HUGE_VAL, 0, NULL },
-    { "alternate", BOOL, 0, 0, 0, NULL },
-    { "min_deposit", NUM, 0, HUGE_VAL, 0, NULL },
-    { "perimeters", WHOLE, 0, 1000, 0, NULL },
-    { "beam_offset", BOOL, 0, 0, 0, NULL },
-    { "max_overhang_deg", NUM, 0, 90, 0, NULL },
-    { "islands", BOOL, 0, 0, 0, NULL },
-};
-
-static const char *const override_keys[O_COUNT + 1] = {
-    "bead_width", "spot_width", "layer_width", "cut", "feed_rate", "travel_rate", "gap", "frame",
-    "first_line", "angle", "angle_step", "alternate", "min_deposit", "perimeters", "beam_offset",
-    "max_overhang_deg", "islands", NULL,
-};
-
-static const char *const fixed_keys[] = { "name", "description", "process", "units", "writer", "dialect",
-                                          "inherits", "raster", NULL };
-
-static int listed(const char *const *keys, const char *k)
+/* Whether row k may be given in a table whose rows must have `need`. */
+static int allowed(const lam_key *k, unsigned need)
 {
-    for (size_t i = 0; keys[i]; i++)
-        if (strcmp(keys[i], k) == 0) return 1;
-    return 0;
+    return !(k->flags & (LAM_KEY_FIXED | LAM_KEY_LOADER)) && (k->flags & need) == need;
 }
 
-_Static_assert(O_COUNT <= sizeof ((lam_lua_overrides *)0)->v / sizeof(double), "lam_lua_overrides.v is too small");
-
-static void read_one(lua_State *L, int t, int arg, const okey *k, double *v)
+static void read_one(lua_State *L, int t, int arg, const lam_key *k, double *v)
 {
+    const char *name = lam_key_lua_name(k);
     double x = 0;
     int i = 0;
-    switch (k->kind) {
-    case NUM:
-        lam_lua_numfield(L, t, arg, k->name, &x);
-        if (k->lo_open && !(x > k->lo)) lam_lua_opterror(L, arg, "%s must be greater than %.14g, got %.14g", k->name, k->lo, x);
-        if (!k->lo_open && x < k->lo && k->hi == HUGE_VAL)
-            lam_lua_opterror(L, arg, "%s must be 0 or more, got %.14g", k->name, x);
-        if (x < k->lo || x > k->hi)
-            lam_lua_opterror(L, arg, "%s must be from %.14g to %.14g, got %.14g", k->name, k->lo, k->hi, x);
+    lam_error err;
+    char shown[64];
+    switch (k->type) {
+    case LAM_KEY_NUMBER:
+    case LAM_KEY_INTEGER:
+        if (k->flags & LAM_KEY_AUTO) {
+            int is_auto = lua_getfield(L, t, name) == LUA_TSTRING && !strcmp(lua_tostring(L, -1), "auto");
+            lua_pop(L, 1);
+            if (is_auto) {
+                *v = -1;
+                break;
+            }
+        }
+        lam_lua_numfield(L, t, arg, name, &x);
+        snprintf(shown, sizeof shown, "%.14g", x);
+        if (lam_key_check(k, name, x, shown, &err)) lam_lua_opterror(L, arg, "%s", err.msg);
         *v = x;
         break;
-    case WHOLE:
-        lam_lua_numfield(L, t, arg, k->name, &x);
-        if (x != floor(x) || x < k->lo || x > k->hi)
-            lam_lua_opterror(L, arg, "%s must be a whole number from %.14g to %.14g, got %.14g", k->name, k->lo, k->hi, x);
-        *v = x;
-        break;
-    case CHOICE:
-        lam_lua_choicefield(L, t, arg, k->name, k->names, &i);
+    case LAM_KEY_CHOICE:
+        lam_lua_choicefield(L, t, arg, name, k->choices, &i);
         *v = i;
         break;
-    case BOOL:
-        lam_lua_boolfield(L, t, arg, k->name, &i);
+    case LAM_KEY_BOOLEAN:
+        lam_lua_boolfield(L, t, arg, name, &i);
         *v = i;
         break;
+    default:
+        break; /* strings and templates are FIXED */
     }
 }
 
-void lam_lua_read_overrides(lua_State *L, int t, int arg, const char *const *keys, lam_lua_overrides *o)
+void lam_lua_read_overrides(lua_State *L, int t, int arg, unsigned need, lam_lua_overrides *o)
 {
-    if (!keys) keys = override_keys;
     t = lua_absindex(L, t);
     memset(o, 0, sizeof *o);
+    const char *names[LAM_KEYS_MAX + 1];
+    size_t n = 0;
+    for (size_t i = 0; i < lam_profile_nkeys; i++)
+        if (allowed(&lam_profile_keys[i], need)) names[n++] = lam_key_lua_name(&lam_profile_keys[i]);
+    names[n] = NULL;
     /* keys of the profile that cannot be given here get their own message */
     lua_pushnil(L);
     while (lua_next(L, t)) {
         lua_pop(L, 1);
-        const char *k = lua_type(L, -1) == LUA_TSTRING ? lua_tostring(L, -1) : NULL;
-        if (!k || listed(keys, k)) continue;
-        if (strcmp(k, "raster") == 0)
-            lam_lua_opterror(L, arg, "give the raster keys directly (angle = 90, not raster = {angle = 90})");
-        if (listed(fixed_keys, k))
-            lam_lua_opterror(L, arg, "%s cannot be changed here (load another machine profile)", k);
-        if (listed(override_keys, k))
-            lam_lua_opterror(L, arg, "%s cannot be changed here (it is not a planning option)", k);
+        const char *name = lua_type(L, -1) == LUA_TSTRING ? lua_tostring(L, -1) : NULL;
+        const lam_key *k = lua_key(name);
+        if (!name || (k && allowed(k, need))) continue;
+        if (k && k->flags & LAM_KEY_FIXED)
+            lam_lua_opterror(L, arg, "%s cannot be changed here (load another machine profile)", name);
+        if (k) lam_lua_opterror(L, arg, "%s cannot be changed here (it is not a planning option)", name);
+        for (size_t i = 0; i < lam_profile_nkeys; i++) {
+            const lam_key *f = &lam_profile_keys[i];
+            size_t sl = lam_key_section_len(f);
+            if (f->flags & LAM_KEY_FLAT && strlen(name) == sl && !strncmp(f->name, name, sl))
+                lam_lua_opterror(L, arg, "give the %s keys directly (%s = ..., not %s = {%s = ...})", name,
+                                 lam_key_short(f), name, lam_key_short(f));
+        }
     }
-    lam_lua_checkkeys(L, t, arg, keys);
-    for (int k = 0; k < O_COUNT; k++) {
-        if (!listed(keys, okeys[k].name)) continue;
-        int present = lua_getfield(L, t, okeys[k].name) != LUA_TNIL;
+    lam_lua_checkkeys(L, t, arg, names);
+    for (size_t i = 0; i < lam_profile_nkeys; i++) {
+        const lam_key *k = &lam_profile_keys[i];
+        if (!allowed(k, need)) continue;
+        int present = lua_getfield(L, t, lam_key_lua_name(k)) != LUA_TNIL;
         lua_pop(L, 1);
         if (!present) continue;
-        read_one(L, t, arg, &okeys[k], &o->v[k]);
-        o->set |= 1u << k;
+        read_one(L, t, arg, k, &o->v[i]);
+        o->set[i] = 1;
     }
 }
 
 void lam_lua_apply_overrides(const lam_lua_overrides *o, lam_profile *p)
 {
-#define SET(k) (o->set & (1u << (k)))
-    int sls = p->process == LAM_PROCESS_SLS;
-    int travel_follows = p->travel_rate == p->feed_rate;
-    if (SET(O_BEAD)) p->bead_width = o->v[O_BEAD];
-    if (SET(O_SPOT)) p->spot_width = o->v[O_SPOT];
-    if (sls && SET(O_BEAD)) p->spot_width = p->bead_width; /* one width for SLS */
-    if (sls && SET(O_SPOT)) p->bead_width = p->spot_width;
-    if (SET(O_LAYER)) p->layer_width = o->v[O_LAYER];
-    if (SET(O_CUT)) p->cut = (int)o->v[O_CUT];
-    if (SET(O_FEED)) {
-        p->feed_rate = o->v[O_FEED];
-        if (travel_follows) p->travel_rate = p->feed_rate;
-    }
-    if (SET(O_TRAVEL)) p->travel_rate = o->v[O_TRAVEL];
-    if (SET(O_GAP)) p->gap = o->v[O_GAP];
-    if (SET(O_FRAME)) p->frame_machine = (int)o->v[O_FRAME];
-    if (SET(O_FIRST)) p->first_line = (lam_first_line)(int)o->v[O_FIRST];
-    if (SET(O_ANGLE)) p->angle = o->v[O_ANGLE];
-    if (SET(O_STEP)) p->angle_step = o->v[O_STEP];
-    if (SET(O_ALTERNATE)) p->alternate = (int)o->v[O_ALTERNATE];
-    if (SET(O_MIN_DEPOSIT)) p->min_deposit = o->v[O_MIN_DEPOSIT];
-    if (SET(O_PERIMETERS)) p->perimeters = (int)o->v[O_PERIMETERS];
-    if (SET(O_BEAM)) p->beam_offset = (int)o->v[O_BEAM];
-    if (SET(O_OVERHANG)) p->max_overhang_deg = o->v[O_OVERHANG];
-    if (SET(O_ISLANDS)) p->islands = (int)o->v[O_ISLANDS];
-#undef SET
+    for (size_t i = 0; i < lam_profile_nkeys; i++)
+        if (o->set[i]) lam_key_put(p, &lam_profile_keys[i], o->v[i]);
 }
 
 /* machine:override{key = value, ...} -> a new machine */
@@ -322,7 +321,7 @@ static int mc_override(lua_State *L)
     lam_lua_checkmachine(L, 1);
     luaL_checktype(L, 2, LUA_TTABLE);
     lam_lua_overrides ovr;
-    lam_lua_read_overrides(L, 2, 2, NULL, &ovr); /* may run metamethods: no pointers held yet */
+    lam_lua_read_overrides(L, 2, 2, 0, &ovr); /* may run metamethods: no pointers held yet */
     lmachine *u = lua_newuserdatauv(L, sizeof *u, 1);
     memset(u, 0, sizeof *u);
     u->tag = LAM_TAG_MACHINE;

@@ -44,10 +44,6 @@ static int job_gc(lua_State *L)
     return 0;
 }
 
-static const char *const plan_keys[] = { "bead_width", "spot_width", "feed_rate", "travel_rate", "frame",
-                                         "first_line", "angle", "angle_step", "alternate", "min_deposit",
-                                         "perimeters", "beam_offset", "islands", NULL };
-
 /* Check argument 2: a non-empty sequence of live layers of one run in
  * increasing order; store their lam_layer pointers into ls (room for n,
  * the table's length) and return the run. Nothing here allocates. */
@@ -108,7 +104,7 @@ int lam_lua_plan(lua_State *L)
     memset(&ovr, 0, sizeof ovr);
     if (!lua_isnoneornil(L, 3)) {
         luaL_checktype(L, 3, LUA_TTABLE);
-        lam_lua_read_overrides(L, 3, 3, plan_keys, &ovr); /* may run metamethods: before any pointer */
+        lam_lua_read_overrides(L, 3, 3, LAM_KEY_PLAN, &ovr); /* may run metamethods: before any pointer */
     }
     lua_settop(L, 3);
     lua_Unsigned nl = lua_rawlen(L, 2);

@@ -175,8 +175,13 @@ void lam_lua_checkkeys(lua_State *L, int t, int arg, const char *const *allowed)
                 if (w < 0) break;
                 n += (size_t)w;
             }
-            char b[64];
-            lam_lua_opterror(L, arg, "unknown option %s (options: %s)", lam_lua_describe(L, -1, b, sizeof b), list);
+            char b[64], hint[80] = "";
+            size_t n_allowed = 0;
+            while (allowed[n_allowed]) n_allowed++;
+            const char *best = lam_key_nearest(k, allowed, n_allowed);
+            if (best) snprintf(hint, sizeof hint, "did you mean '%s'? ", best);
+            lam_lua_opterror(L, arg, "unknown option %s (%soptions: %s)", lam_lua_describe(L, -1, b, sizeof b), hint,
+                             list);
         }
     }
 }
@@ -272,6 +277,7 @@ static const luaL_Reg lamina_funcs[] = {
     { "load", lam_lua_load },
     { "machine", lam_lua_machine },
     { "machines", lam_lua_machines },
+    { "machine_keys", lam_lua_machine_keys },
     { "plugin", l_plugin },
     { "writers", l_writers },
     { "preview", lam_lua_preview },

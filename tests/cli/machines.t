@@ -96,4 +96,32 @@ like "$OUT" 'LAMINA_MACHINES' "--help: describes the search path"
 run "$LAMINA" --help
 like "$OUT" 'lamina machines' "lamina --help lists machines"
 
+# --keys: the key reference, which machines/README.md carries verbatim.
+run "$LAMINA" machines --keys
+is "$RC" 0 "--keys: exit 0"
+like "$OUT" $'\n\\| `raster.islands` \\| boolean \\| `false` \\|' "--keys: a row per key with type and default"
+readme=$(sed -n '/^<!-- keys: begin/,/^<!-- keys: end/p' "$TESTS/../machines/README.md" | sed '1d;$d')
+is "$readme" "$OUT" "machines/README.md's key reference is what --keys prints (regenerate it with lamina machines --keys)"
+
+# --show with --set: the profile a run would use.
+run "$LAMINA" machines --show creol-ladrp --set feed_rate=0.3 -s raster.angle=45 --set perimeters=2
+is "$RC" 0 "--show --set: exit 0"
+like "$OUT" $'\nfeed_rate: 0\\.3\ntravel_rate: 0\\.3\n' "--set feed_rate: the travel rate that followed it follows"
+like "$OUT" $'\n  angle: 45\n' "-s raster.angle=45"
+like "$OUT" $'\n  perimeters: 2\n' "--set perimeters (a raster key by its own name)"
+run "$LAMINA" machines --show creol-ladrp --set 'dialect.layer=; layer {number}'
+like "$OUT" $'\n  layer: "; layer \\{number\\}"\n' "--set a dialect template"
+run "$LAMINA" machines --show creol-ladrp --set feed_rate=-1
+like "$RC $ERR" "^2 lamina machines: --set feed_rate=-1: feed_rate must be 0 or more, got '-1'" "--set: a bad value, exit 2, the loader's message"
+like "$ERR" "try 'lamina machines --help'" "the hint names the command"
+run "$LAMINA" machines --show creol-ladrp --set feedrate=1
+like "$RC $ERR" "^2 .*unknown key 'feedrate' \\(did you mean 'feed_rate'\\?\\)" "--set: an unknown key, did you mean"
+run "$LAMINA" machines --show creol-ladrp --set feed_rate
+like "$RC $ERR" "^2 .*--set feed_rate: expected KEY=VALUE" "--set without ="
+run "$LAMINA" machines --set feed_rate=1
+is "$RC" 2 "--set without --show: usage error"
+run "$LAMINA" machines --show=creol-ladrp --set=feed_rate=0.5
+is "$RC" 0 "--show=NAME --set=KEY=VALUE: exit 0"
+like "$OUT" $'\nfeed_rate: 0\\.5\n' "--show=NAME --set=KEY=VALUE"
+
 done_testing

@@ -150,4 +150,41 @@ ok "$(cmp -s "$TMP/plain.sls" "$TMP/real.sls"; echo $?)" "the file it names hold
 mkdir "$TMP/adir"
 run "$LAMINA" slice "$M/thesis_cube_hole.ug" -w 1 --cut floor -o "$TMP/adir"
 like "$RC $ERR" "^1 .*adir: cannot write output: is a directory" "-o DIRECTORY: exit 1, said so"
+
+# Every profile key from the command line (--set), the options as its
+# aliases, GNU conventions.
+run "$LAMINA" slice "$M/thesis_cube.ug" -m sls-contours --set spot_width=0.3 --set layer_width=0.05 -o "$TMP/s.sls"
+is "$RC" 0 "--set spot_width --set layer_width: exit 0"
+is "$(grep -c '^contour' "$TMP/s.sls")" 40 "--set layer_width=0.05: a 2-unit cube in 40 layers"
+run "$LAMINA" slice "$M/thesis_cube.ug" -m sls-contours -s spot_width=0.3 --set beam_offset=true -w 1 -o "$TMP/b.sls"
+is "$(sed -n 3p "$TMP/b.sls")" "-0.850000 -0.850000 -0.500000" "--set spot_width=0.3 with beam_offset: the contour inset by 0.15"
+run "$LAMINA" slice "$M/thesis_cube.ug" -w 1 --beam-offset --set spot_width=0.3 -o "$TMP/b2.sls"
+cmp -s "$TMP/b.sls" "$TMP/b2.sls"
+ok $? "--beam-offset is --set beam_offset=true"
+run "$LAMINA" slice "$M/thesis_cube.ug" --width=1 --cut=floor -o "$TMP/eq.sls"
+run "$LAMINA" slice "$M/thesis_cube.ug" --width 1 --cut floor -o "$TMP/sp.sls"
+cmp -s "$TMP/eq.sls" "$TMP/sp.sls"
+ok $? "--name=value and --name value are the same"
+run "$LAMINA" slice "$M/thesis_cube.ug" -w1 --set cut=floor -o "$TMP/att.sls"
+cmp -s "$TMP/eq.sls" "$TMP/att.sls"
+ok $? "-w1 (attached value) and --set cut=floor"
+cp "$M/thesis_cube.ug" "$TMP/-cube.ug"
+(cd "$TMP" && "$LAMINA" slice -w 1 -o dash.sls -- -cube.ug)
+ok $? "-- ends the options: a model named -cube.ug"
+run "$LAMINA" slice "$M/thesis_cube.ug" --set bead_width=abc
+like "$RC $ERR" "^2 lamina slice: --set bead_width=abc: bead_width must be a number, got 'abc'" "--set: a bad value, exit 2, the YAML loader's message"
+run "$LAMINA" slice "$M/thesis_cube.ug" -w 0
+like "$RC $ERR" "^2 lamina slice: -w 0: layer_width must be greater than 0, got '0'" "-w is layer_width: its message"
+run "$LAMINA" slice "$M/thesis_cube.ug" --angel 5
+like "$RC $ERR" "^2 lamina slice: unknown option '--angel' \\(did you mean '--angle'\\?\\)" "an unknown option: did you mean"
+like "$ERR" "try 'lamina slice --help'" "the hint names the command"
+run "$LAMINA" slice "$M/thesis_cube.ug" --bead-width 0.3
+like "$RC $ERR" "^2 .*unknown option '--bead-width' \\(did you mean '--set bead_width=...'\\?\\)" "a profile key spelt as an option: --set"
+run "$LAMINA" slice "$M/thesis_cube.ug" --islands=yes
+like "$RC $ERR" "^2 .*option --islands takes no value" "a flag with a value"
+run "$LAMINA" slice "$M/thesis_cube.ug" -w 1 --widths 1,1
+is "$RC" 2 "-w with --widths: usage error"
+run "$LAMINA" slice --help
+like "$OUT" '--islands +--set raster.islands=true' "--help lists the profile options with the key they set"
+ok "$([ ! -e "$TMP/u2.sls" ]; echo $?)" "usage errors write nothing"
 done_testing

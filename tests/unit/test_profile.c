@@ -459,7 +459,7 @@ static void test_errors(void)
          "dialect.preamble must be a template (text) or null, got a list", "a template that is a list");
     CASE("dialect: start_plot\n", LAM_EINVAL, 4, 10, "dialect must be a mapping", "dialect as text");
     CASE("dialect:\n  penup: \"0 penup\"\n", LAM_EINVAL, 5, 3,
-         "unknown key 'penup' in dialect (allowed: preamble, postamble,", "unknown command");
+         "unknown key 'penup' in dialect (allowed: close_polylines, preamble, postamble,", "unknown command");
     CASE("raster:\n  alternate: maybe\ndialect: {}\n", LAM_EINVAL, 5, 14,
          "raster.alternate must be true or false, got 'maybe'", "not a boolean");
     CASE("raster:\n  perimeters: 1.5\ndialect: {}\n", LAM_EINVAL, 5, 15, "raster.perimeters must be a whole number",
@@ -467,8 +467,8 @@ static void test_errors(void)
     CASE("raster: [1]\ndialect: {}\n", LAM_EINVAL, 4, 9, "raster must be a mapping", "raster as a list");
     CASE("cut: top\ndialect: {}\n", LAM_EINVAL, 4, 6, "cut must be floor, middle or ceiling, got 'top'", "bad cut");
     CASE("gap: 1e999\ndialect: {}\n", LAM_EINVAL, 4, 6, "gap must be a finite number", "overflowing number");
-    CASE("gap: 0x10\ndialect: {}\n", LAM_EINVAL, 4, 6, "gap must be a number, got '0x10'", "hex is not a number");
-    CASE("gap: 1.5mm\ndialect: {}\n", LAM_EINVAL, 4, 6, "gap must be a number, got '1.5mm'", "trailing text");
+    CASE("gap: 0x10\ndialect: {}\n", LAM_EINVAL, 4, 6, "gap must be a number or auto, got '0x10'", "hex is not a number");
+    CASE("gap: 1.5mm\ndialect: {}\n", LAM_EINVAL, 4, 6, "gap must be a number or auto, got '1.5mm'", "trailing text");
     CASE("gap: .inf\ndialect: {}\n", LAM_EINVAL, 4, 6, "gap must be a number", "YAML .inf");
     CASE("name: again\ndialect: {}\n", LAM_EINVAL, 4, 1, "duplicate key 'name'", "duplicate name");
     CASE("units:\ndialect: {}\n", LAM_EINVAL, 4, 7, "units must be text, got null", "null units");

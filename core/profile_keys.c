@@ -1,0 +1,385 @@
+/* The machine-profile key table and the reading, checking and storing of
+ * one value that the YAML loader, --set and Lua share. See profile_keys.h. */
+#include "profile_keys.h"
+
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "dialect.h"
+#include "fmt.h"
+#include "lexnum.h"
+#include "profile.h"
+#include "slice.h"
+
+/* Choices are stored as an int through the row's offset. */
+_Static_assert(sizeof(lam_process) == sizeof(int) && sizeof(lam_first_line) == sizeof(int),
+               "choice fields must be int-sized");
+
+#define AT(field) offsetof(lam_profile, field)
+
+static const char *const process_choices[] = { "ladrp", "sls", NULL };         /* lam_process */
+static const char *const cut_choices[] = { "floor", "middle", "ceiling", NULL }; /* lam_cut */
+static const char *const frame_choices[] = { "model", "machine", NULL };
+static const char *const first_line_choices[] = { "edge", "center", NULL };     /* lam_first_line */
+
+#define TEMPLATE(c, key, when)                                                                                 \
+    { .name = "dialect." key, .type = LAM_KEY_TEMPLATE, .flags = LAM_KEY_FIXED | LAM_KEY_OPTIONAL, .cmd = c, \
+      .offset = AT(dialect.cmd[c]), .doc = when }
+
+const lam_key lam_profile_keys[] = {
+    { .name = "name", .type = LAM_KEY_STRING, .flags = LAM_KEY_NEED | LAM_KEY_NONEMPTY | LAM_KEY_FIXED,
+      .offset = AT(name), .doc = "the profile's name (use the file's name without `.yaml`)" },
+    { .name = "description", .type = LAM_KEY_STRING, .flags = LAM_KEY_OPTIONAL | LAM_KEY_FIXED,
+      .offset = AT(description), .doc = "one line for `lamina machines`" },
+    { .name = "process", .type = LAM_KEY_CHOICE, .flags = LAM_KEY_NEED | LAM_KEY_FIXED, .choices = process_choices,
+      .offset = AT(process), .doc = "raster deposition (LADRP/DED) or contour sintering (SLS/powder bed)" },
+    { .name = "units", .type = LAM_KEY_STRING, .flags = LAM_KEY_NONEMPTY | LAM_KEY_FIXED, .def = "mm",
+      .offset = AT(units), .doc = "what one model unit is on this machine (for preambles; nothing is scaled)" },
+    { .name = "bead_width", .type = LAM_KEY_NUMBER,
+      .flags = LAM_KEY_ABOVE | LAM_KEY_OPTIONAL | LAM_KEY_NEED_LADRP | LAM_KEY_PLAN, .lo = 0, .hi = HUGE_VAL,
+      .offset = AT(bead_width), .doc = "ladrp: deposited line width `d`; scan lines are `d` apart" },
+    { .name = "spot_width", .type = LAM_KEY_NUMBER,
+      .flags = LAM_KEY_ABOVE | LAM_KEY_OPTIONAL | LAM_KEY_NEED_SLS | LAM_KEY_PLAN, .lo = 0, .hi = HUGE_VAL,
+      .offset = AT(spot_width), .doc = "sls: laser spot; an sls profile's bead width is its spot width" },
+    { .name = "layer_width", .type = LAM_KEY_NUMBER, .flags = LAM_KEY_ABOVE | LAM_KEY_OPTIONAL, .lo = 0,
+      .hi = HUGE_VAL, .option = "width", .letter = 'w', .offset = AT(layer_width),
+      .doc = "layer thickness when the command line or recipe gives none (absent: the slicer's default)" },
+    { .name = "cut", .type = LAM_KEY_CHOICE, .choices = cut_choices, .def = "middle", .option = "cut",
+      .offset = AT(cut), .doc = "where in the layer the section is taken" },
+    { .name = "feed_rate", .type = LAM_KEY_NUMBER, .flags = LAM_KEY_PLAN, .lo = 0, .hi = HUGE_VAL, .def = "0",
+      .offset = AT(feed_rate), .doc = "deposit feed rate (the thesis's powder feed `R`)" },
+    { .name = "travel_rate", .type = LAM_KEY_NUMBER, .flags = LAM_KEY_PLAN, .lo = 0, .hi = HUGE_VAL,
+      .follows = "feed_rate", .offset = AT(travel_rate), .doc = "rate of moves with the laser off" },
+    { .name = "gap", .type = LAM_KEY_NUMBER, .flags = LAM_KEY_AUTO, .lo = 0, .hi = HUGE_VAL, .def = "auto",
+      .option = "gap", .offset = AT(gap),
+      .doc = "close open outlines whose ends are this close (0: never; auto: 1/2000 of the model's size, at most "
+             "0.05 mm in the profile's units)" },
+    { .name = "frame", .type = LAM_KEY_CHOICE, .flags = LAM_KEY_PLAN, .choices = frame_choices, .def = "model",
+      .option = "frame", .offset = AT(frame_machine),
+      .doc = "coordinates written: model x y z, or the layer frame u v w (build axis = machine Z)" },
+    { .name = "raster.first_line", .type = LAM_KEY_CHOICE, .flags = LAM_KEY_PLAN | LAM_KEY_FLAT,
+      .choices = first_line_choices, .def = "edge", .option = "first-line", .offset = AT(first_line),
+      .doc = "ladrp: first scan line on the layer's top edge (the thesis) or half a bead inside" },
+    { .name = "raster.angle", .type = LAM_KEY_NUMBER, .flags = LAM_KEY_PLAN | LAM_KEY_FLAT, .lo = -HUGE_VAL,
+      .hi = HUGE_VAL, .def = "0", .option = "angle", .offset = AT(angle),
+      .doc = "ladrp: raster direction of the first layer, degrees" },
+    { .name = "raster.angle_step", .type = LAM_KEY_NUMBER, .flags = LAM_KEY_PLAN | LAM_KEY_FLAT, .lo = -HUGE_VAL,
+      .hi = HUGE_VAL, .def = "0", .option = "angle-step", .offset = AT(angle_step),
+      .doc = "ladrp: degrees added per layer (90: cross-hatch, 67.5: rotating)" },
+    { .name = "raster.alternate", .type = LAM_KEY_BOOLEAN, .flags = LAM_KEY_PLAN | LAM_KEY_FLAT, .def = "true",
+      .option = "no-alternate", .offset = AT(alternate),
+      .doc = "ladrp: boustrophedon, every other line runs backwards" },
+    { .name = "raster.min_deposit", .type = LAM_KEY_NUMBER, .flags = LAM_KEY_PLAN | LAM_KEY_FLAT, .lo = 0,
+      .hi = HUGE_VAL, .def = "0", .option = "min-deposit", .offset = AT(min_deposit),
+      .doc = "ladrp: deposits shorter than this are skipped" },
+    { .name = "raster.perimeters", .type = LAM_KEY_INTEGER, .flags = LAM_KEY_PLAN | LAM_KEY_FLAT, .lo = 0,
+      .hi = 1000, .def = "0", .option = "perimeters", .offset = AT(perimeters),
+      .doc = "ladrp: passes around each contour, the first offset by `d/2`" },
+    { .name = "raster.islands", .type = LAM_KEY_BOOLEAN, .flags = LAM_KEY_PLAN | LAM_KEY_FLAT, .def = "false",
+      .option = "islands", .offset = AT(islands),
+      .doc = "ladrp: raster each island (an outer contour and what it holds) on its own, the nearest next, "
+             "instead of whole scan lines across the layer: less travel between islands" },
+    { .name = "beam_offset", .type = LAM_KEY_BOOLEAN, .flags = LAM_KEY_PLAN, .def = "false",
+      .option = "beam-offset", .offset = AT(beam_offset), .doc = "sls: inset contours by half the spot" },
+    { .name = "max_overhang_deg", .type = LAM_KEY_NUMBER, .flags = LAM_KEY_OPTIONAL, .lo = 0, .hi = 90,
+      .offset = AT(max_overhang_deg), .doc = "design rule for `lamina check`, degrees from the vertical (0: no rule)" },
+    { .name = "writer", .type = LAM_KEY_STRING, .flags = LAM_KEY_NONEMPTY | LAM_KEY_FIXED, .def = "text",
+      .offset = AT(writer),
+      .doc = "`text` writes the dialect; another name selects a plugin writer (e.g. binary CLI)" },
+    { .name = "inherits", .type = LAM_KEY_STRING, .flags = LAM_KEY_NONEMPTY | LAM_KEY_FIXED | LAM_KEY_LOADER,
+      .doc = "a profile to start from: a name (machine directories) or a path" },
+    { .name = "dialect.close_polylines", .type = LAM_KEY_BOOLEAN, .flags = LAM_KEY_FIXED, .def = "false",
+      .offset = AT(dialect.close_polylines), .doc = "repeat each contour's first point at its end" },
+    TEMPLATE(LAM_CMD_PREAMBLE, "preamble", "once, first"),
+    TEMPLATE(LAM_CMD_POSTAMBLE, "postamble", "once, last"),
+    TEMPLATE(LAM_CMD_LAYER, "layer", "at the start of each layer"),
+    TEMPLATE(LAM_CMD_LAYER_END, "layer_end", "at the end of each layer"),
+    TEMPLATE(LAM_CMD_FEED, "feed", "the planner sets the feed rate"),
+    TEMPLATE(LAM_CMD_LASER_ON, "laser_on", "the laser switches on (`rate`: the deposit rate)"),
+    TEMPLATE(LAM_CMD_LASER_OFF, "laser_off", "the laser switches off (`rate`: the deposit rate)"),
+    TEMPLATE(LAM_CMD_TRAVEL, "travel", "a move with the laser off (`rate`: `travel_rate`)"),
+    TEMPLATE(LAM_CMD_DEPOSIT, "deposit", "a move with the laser on (`rate`: `feed_rate`)"),
+    TEMPLATE(LAM_CMD_CONTOUR_BEGIN, "contour_begin", "a contour starts"),
+    TEMPLATE(LAM_CMD_CONTOUR_END, "contour_end", "after `loop_end`"),
+    TEMPLATE(LAM_CMD_LOOP_BEGIN, "loop_begin", "after `contour_begin`"),
+    TEMPLATE(LAM_CMD_LOOP_END, "loop_end", "after the points"),
+    TEMPLATE(LAM_CMD_VERTEX, "vertex", "each point of the contour"),
+    TEMPLATE(LAM_CMD_POLYLINE, "polyline", "after `contour_end`: the whole contour as one line"),
+    TEMPLATE(LAM_CMD_SEPARATOR, "separator", "between two contour blocks (not before the first)"),
+};
+
+const size_t lam_profile_nkeys = sizeof lam_profile_keys / sizeof lam_profile_keys[0];
+_Static_assert(sizeof lam_profile_keys / sizeof lam_profile_keys[0] <= LAM_KEYS_MAX, "raise LAM_KEYS_MAX");
+
+/* ---- names ---------------------------------------------------------------- */
+
+size_t lam_key_section_len(const lam_key *k)
+{
+    const char *dot = strchr(k->name, '.');
+    return dot ? (size_t)(dot - k->name) : 0;
+}
+
+const char *lam_key_short(const lam_key *k)
+{
+    size_t n = lam_key_section_len(k);
+    return n ? k->name + n + 1 : k->name;
+}
+
+const char *lam_key_lua_name(const lam_key *k)
+{
+    return k->flags & LAM_KEY_FLAT ? lam_key_short(k) : k->name;
+}
+
+const lam_key *lam_key_find(const char *name)
+{
+    for (size_t i = 0; i < lam_profile_nkeys; i++)
+        if (!strcmp(lam_profile_keys[i].name, name)) return &lam_profile_keys[i];
+    for (size_t i = 0; i < lam_profile_nkeys; i++)
+        if (lam_profile_keys[i].flags & LAM_KEY_FLAT && !strcmp(lam_key_short(&lam_profile_keys[i]), name))
+            return &lam_profile_keys[i];
+    return NULL;
+}
+
+const lam_key *lam_key_at(size_t offset)
+{
+    for (size_t i = 0; i < lam_profile_nkeys; i++)
+        if (!(lam_profile_keys[i].flags & LAM_KEY_LOADER) && lam_profile_keys[i].offset == offset)
+            return &lam_profile_keys[i];
+    return NULL;
+}
+
+static size_t distance(const char *a, const char *b)
+{
+    size_t la = strlen(a), lb = strlen(b);
+    if (la > 40 || lb > 40) return 99;
+    size_t row[41];
+    for (size_t j = 0; j <= lb; j++) row[j] = j;
+    for (size_t i = 1; i <= la; i++) {
+        size_t diag = row[0];
+        row[0] = i;
+        for (size_t j = 1; j <= lb; j++) {
+            size_t up = row[j];
+            size_t best = diag + (a[i - 1] != b[j - 1]);
+            if (up + 1 < best) best = up + 1;
+            if (row[j - 1] + 1 < best) best = row[j - 1] + 1;
+            row[j] = best;
+            diag = up;
+        }
+    }
+    return row[lb];
+}
+
+const char *lam_key_nearest(const char *word, const char *const *names, size_t n)
+{
+    const char *best = NULL;
+    size_t bd = 3;
+    for (size_t j = 0; j < n; j++) {
+        size_t d = distance(word, names[j]);
+        if (d < bd) bd = d, best = names[j];
+    }
+    return best;
+}
+
+/* ---- one value ------------------------------------------------------------ */
+
+static const char *num(char *buf, double x)
+{
+    lam_dialect_number(buf, x);
+    return buf;
+}
+
+int lam_key_check(const lam_key *k, const char *as, double x, const char *shown, lam_error *err)
+{
+    const char *name = as ? as : k->name;
+    char lo[LAM_FMT_MAX], hi[LAM_FMT_MAX];
+    num(lo, k->lo);
+    num(hi, k->hi);
+    if (k->type == LAM_KEY_INTEGER) {
+        if (x != floor(x) || x < k->lo || x > k->hi)
+            return lam_error_set(err, LAM_EINVAL, NULL, 0, 0, "%s must be a whole number from %s to %s, got %s", name,
+                                 lo, hi, shown);
+        return LAM_OK;
+    }
+    if (k->type != LAM_KEY_NUMBER) return LAM_OK;
+    int above = k->flags & LAM_KEY_ABOVE;
+    if ((above ? x > k->lo : x >= k->lo) && x <= k->hi) return LAM_OK;
+    if (k->hi == HUGE_VAL)
+        return lam_error_set(err, LAM_EINVAL, NULL, 0, 0, "%s must be %s%s%s, got %s", name,
+                             above ? "greater than " : "", lo, above ? "" : " or more", shown);
+    if (above)
+        return lam_error_set(err, LAM_EINVAL, NULL, 0, 0, "%s must be greater than %s and at most %s, got %s", name,
+                             lo, hi, shown);
+    return lam_error_set(err, LAM_EINVAL, NULL, 0, 0, "%s must be from %s to %s, got %s", name, lo, hi, shown);
+}
+
+/* "a, b or c" */
+static void choice_list(const lam_key *k, char *out, size_t size)
+{
+    size_t n = 0;
+    out[0] = '\0';
+    for (int i = 0; k->choices[i] && n + 1 < size; i++) {
+        int w = snprintf(out + n, size - n, "%s%s", i ? (k->choices[i + 1] ? ", " : " or ") : "", k->choices[i]);
+        if (w < 0) break;
+        n += (size_t)w;
+    }
+}
+
+static int word_is(const char *text, size_t len, const char *w)
+{
+    return strlen(w) == len && !memcmp(text, w, len);
+}
+
+int lam_key_expected(const lam_key *k, const char *as, const char *got, lam_error *err)
+{
+    char list[200];
+    const char *what = list;
+    switch (k->type) {
+    case LAM_KEY_NUMBER:
+    case LAM_KEY_INTEGER: what = k->flags & LAM_KEY_AUTO ? "a number or auto" : "a number"; break;
+    case LAM_KEY_BOOLEAN: what = "true or false"; break;
+    case LAM_KEY_CHOICE: choice_list(k, list, sizeof list); break;
+    case LAM_KEY_STRING: what = "text"; break;
+    case LAM_KEY_TEMPLATE: what = "a template (text) or null"; break;
+    }
+    return lam_error_set(err, LAM_EINVAL, NULL, 0, 0, "%s must be %s, got %s", as ? as : k->name, what, got);
+}
+
+int lam_key_scan(const lam_key *k, const char *as, const char *text, size_t len, double *x, lam_error *err)
+{
+    static const char *const yes[] = { "true", "True", "TRUE", "yes", "Yes", "YES", NULL };
+    static const char *const no[] = { "false", "False", "FALSE", "no", "No", "NO", NULL };
+    char shown[64];
+    lam_quote_bytes(shown, sizeof shown, (const unsigned char *)text, len);
+    double v;
+    switch (k->type) {
+    case LAM_KEY_NUMBER:
+    case LAM_KEY_INTEGER: {
+        if (k->flags & LAM_KEY_AUTO && word_is(text, len, "auto")) return *x = -1, LAM_OK;
+        int rc = lam_parse_number((const unsigned char *)text, len, &v);
+        if (rc == LAM_ENOMEM) return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory");
+        if (rc) return lam_key_expected(k, as, shown, err);
+        if (!isfinite(v))
+            return lam_error_set(err, LAM_EINVAL, NULL, 0, 0, "%s must be a finite number, got %s", as ? as : k->name,
+                                 shown);
+        if ((rc = lam_key_check(k, as, v, shown, err))) return rc;
+        *x = v;
+        return LAM_OK;
+    }
+    case LAM_KEY_BOOLEAN:
+        for (int i = 0; yes[i]; i++)
+            if (word_is(text, len, yes[i])) return *x = 1, LAM_OK;
+        for (int i = 0; no[i]; i++)
+            if (word_is(text, len, no[i])) return *x = 0, LAM_OK;
+        return lam_key_expected(k, as, shown, err);
+    case LAM_KEY_CHOICE:
+        for (int i = 0; k->choices[i]; i++)
+            if (word_is(text, len, k->choices[i])) return *x = i, LAM_OK;
+        return lam_key_expected(k, as, shown, err);
+    default:
+        return lam_key_expected(k, as, shown, err);
+    }
+}
+
+double lam_key_get(const lam_profile *p, const lam_key *k)
+{
+    const char *at = (const char *)p + k->offset;
+    if (k->type == LAM_KEY_NUMBER) return *(const double *)(const void *)at;
+    if (k->type == LAM_KEY_INTEGER || k->type == LAM_KEY_BOOLEAN || k->type == LAM_KEY_CHOICE)
+        return *(const int *)(const void *)at;
+    return 0;
+}
+
+void lam_key_store(lam_profile *p, const lam_key *k, double x)
+{
+    char *at = (char *)p + k->offset;
+    if (k->type == LAM_KEY_NUMBER) *(double *)(void *)at = x;
+    else if (k->type == LAM_KEY_INTEGER || k->type == LAM_KEY_BOOLEAN || k->type == LAM_KEY_CHOICE)
+        *(int *)(void *)at = (int)x;
+}
+
+void lam_key_put(lam_profile *p, const lam_key *k, double x)
+{
+    double old = lam_key_get(p, k);
+    lam_key_store(p, k, x);
+    for (size_t i = 0; i < lam_profile_nkeys; i++) {
+        const lam_key *f = &lam_profile_keys[i];
+        if (f->follows && !strcmp(f->follows, k->name) && lam_key_get(p, f) == old) lam_key_store(p, f, x);
+    }
+    /* one width for sls: whichever of the two is set */
+    if (p->process == LAM_PROCESS_SLS) {
+        if (k->offset == AT(bead_width)) p->spot_width = x;
+        if (k->offset == AT(spot_width)) p->bead_width = x;
+    }
+}
+
+/* ---- --set ---------------------------------------------------------------- */
+
+static const lam_key *find_or_fail(const char *name, lam_error *err)
+{
+    const lam_key *k = lam_key_find(name);
+    if (k) return k;
+    const char *names[LAM_KEYS_MAX];
+    size_t n = 0;
+    for (size_t i = 0; i < lam_profile_nkeys; i++)
+        if (!(lam_profile_keys[i].flags & LAM_KEY_LOADER)) names[n++] = lam_profile_keys[i].name;
+    const char *best = lam_key_nearest(name, names, n);
+    char shown[64];
+    lam_quote_bytes(shown, sizeof shown, (const unsigned char *)name, strlen(name));
+    if (best)
+        lam_error_set(err, LAM_EINVAL, NULL, 0, 0, "unknown key %s (did you mean '%s'?)", shown, best);
+    else
+        lam_error_set(err, LAM_EINVAL, NULL, 0, 0, "unknown key %s", shown);
+    return NULL;
+}
+
+int lam_profile_set(lam_profile *p, const char *name, const char *text, lam_error *err)
+{
+    const lam_key *k = find_or_fail(name, err);
+    if (!k) return LAM_EINVAL;
+    if (k->flags & LAM_KEY_LOADER)
+        return lam_error_set(err, LAM_EINVAL, NULL, 0, 0, "%s is only read while a profile loads", k->name);
+    if (k->type == LAM_KEY_STRING) {
+        if (k->flags & LAM_KEY_NONEMPTY && !*text)
+            return lam_error_set(err, LAM_EINVAL, NULL, 0, 0, "%s must not be empty", k->name);
+        char *copy = strdup(text);
+        if (!copy) return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory");
+        char **at = (char **)(void *)((char *)p + k->offset);
+        free(*at);
+        *at = copy;
+        return LAM_OK;
+    }
+    if (k->type == LAM_KEY_TEMPLATE) {
+        lam_template t;
+        size_t off = 0;
+        int rc = lam_template_parse((lam_cmd)k->cmd, text, &t, &off, err);
+        if (rc == LAM_ENOMEM) return rc;
+        if (rc) {
+            char msg[sizeof err->msg];
+            snprintf(msg, sizeof msg, "%s", err->msg);
+            return lam_error_set(err, LAM_EINVAL, NULL, 0, 0, "%s: %s (at character %zu)", k->name, msg, off + 1);
+        }
+        lam_template *at = (lam_template *)(void *)((char *)p + k->offset);
+        lam_template_free(at);
+        *at = t;
+        return LAM_OK;
+    }
+    double x;
+    int rc = lam_key_scan(k, NULL, text, strlen(text), &x, err);
+    if (!rc) lam_key_put(p, k, x);
+    return rc;
+}
+
+int lam_profile_check(const lam_profile *p, lam_error *err)
+{
+    for (size_t i = 0; i < lam_profile_nkeys; i++) {
+        const lam_key *k = &lam_profile_keys[i];
+        unsigned need = p->process == LAM_PROCESS_SLS ? LAM_KEY_NEED_SLS : LAM_KEY_NEED_LADRP;
+        if (k->flags & need && !(lam_key_get(p, k) > 0))
+            return lam_error_set(err, LAM_EINVAL, NULL, 0, 0, "%s must be given for process %s", k->name,
+                                 process_choices[p->process == LAM_PROCESS_SLS]);
+    }
+    return LAM_OK;
+}

@@ -1,0 +1,148 @@
+/* The machine-profile keys: one table row per key (name, type, range or
+ * choices, default, where it lives in lam_profile, doc string), as Redis
+ * declares its configuration and dialect.c its commands' fields.
+ *
+ * The table drives everything that knows a key by name: the YAML loader and
+ * its messages (profile.c), `lamina machines --show` (lam_profile_dump),
+ * `--set KEY=VALUE` and the convenience options (lua/cli_args.c), the Lua
+ * machine fields and machine:override (lua/l_machine.c) and the key
+ * reference in machines/README.md (`lamina machines --keys`, checked by a
+ * test). Adding a key is one row in profile_keys.c, a field in lam_profile
+ * and its use in a planner.
+ *
+ * A key in a section is written `section.key` ("raster.angle"): in YAML it
+ * is `key:` inside the `section:` mapping. Messages name keys the way the
+ * YAML loader always has: "bead_width must be greater than 0, got '0'". */
+#ifndef LAM_PROFILE_KEYS_H
+#define LAM_PROFILE_KEYS_H
+
+#include <stddef.h>
+
+#include "error.h"
+
+struct lam_profile;
+
+typedef enum lam_key_type {
+    LAM_KEY_NUMBER,   /* double, finite, in [lo, hi] ((lo, hi] with LAM_KEY_ABOVE) */
+    LAM_KEY_INTEGER,  /* int, a whole number in [lo, hi] */
+    LAM_KEY_BOOLEAN,  /* int 0 or 1: true/false/yes/no */
+    LAM_KEY_CHOICE,   /* int: index into choices */
+    LAM_KEY_STRING,   /* char *, malloc'd, owned by the profile */
+    LAM_KEY_TEMPLATE  /* lam_template of a dialect command (dialect.h) */
+} lam_key_type;
+
+enum lam_key_flag {
+    LAM_KEY_ABOVE = 1 << 0,      /* number: lo itself is excluded */
+    LAM_KEY_OPTIONAL = 1 << 1,   /* 0 / NULL means "not given": no default,
+                                    left out of dumps, nil in Lua */
+    LAM_KEY_FIXED = 1 << 2,      /* what the machine is (identity, dialect):
+                                    machine:override cannot change it */
+    LAM_KEY_PLAN = 1 << 3,       /* a planning value: machine:plan's options
+                                    and the planning command-line options */
+    LAM_KEY_NONEMPTY = 1 << 4,   /* string: "" is refused */
+    LAM_KEY_FLAT = 1 << 5,       /* in a section, but known in Lua and to
+                                    --set by its own name (raster.angle: angle) */
+    LAM_KEY_LOADER = 1 << 6,     /* read by the loader only (inherits): no
+                                    field, never dumped or set afterwards */
+    LAM_KEY_NEED = 1 << 7,       /* every profile must give it */
+    LAM_KEY_NEED_LADRP = 1 << 8, /* a ladrp profile must give it */
+    LAM_KEY_NEED_SLS = 1 << 9,   /* an sls profile must give it */
+    LAM_KEY_AUTO = 1 << 10       /* number: also the word `auto`, stored as
+                                    -1 (decided per run: the gap from the
+                                    model's size) */
+};
+
+typedef struct lam_key {
+    const char *name;            /* "bead_width", "raster.angle" */
+    lam_key_type type;
+    unsigned flags;              /* lam_key_flag */
+    double lo, hi;               /* number, integer: the range */
+    const char *const *choices;  /* choice: the names, NULL-ended */
+    const char *def;             /* the default as YAML text; NULL: none */
+    const char *follows;         /* no default of its own: when not given,
+                                    the value of this key (travel_rate:
+                                    feed_rate) */
+    const char *option;          /* the command-line option that is short
+                                    for --set KEY=VALUE ("angle" for
+                                    --angle), or NULL; a boolean's option
+                                    is a flag: "no-..." sets false, any
+                                    other name true */
+    char letter;                 /* its one-letter form ('w' for -w), or 0 */
+    int cmd;                     /* template: the lam_cmd */
+    size_t offset;               /* where it lives in lam_profile */
+    const char *doc;             /* one line for the reference */
+} lam_key;
+
+/* The row of the field at `offset` in lam_profile, or NULL. */
+const lam_key *lam_key_at(size_t offset);
+
+/* The table, in the order `lamina machines --show` writes the keys (the
+ * rows of a section are adjacent). */
+extern const lam_key lam_profile_keys[];
+extern const size_t lam_profile_nkeys;
+
+/* Most rows the table may have (loader and Lua bookkeeping arrays). */
+#define LAM_KEYS_MAX 256
+
+/* The row named `name` ("raster.angle"), or a flat row by its own name
+ * ("angle"); NULL when there is none. */
+const lam_key *lam_key_find(const char *name);
+
+/* The row's section length: "raster.angle" -> 6, "gap" -> 0. */
+size_t lam_key_section_len(const lam_key *k);
+
+/* The key's name without its section ("raster.angle" -> "angle"). */
+const char *lam_key_short(const lam_key *k);
+
+/* Its name in Lua and in Lua messages: the short name for flat rows, else
+ * the whole name. */
+const char *lam_key_lua_name(const lam_key *k);
+
+/* The name among names[0..n) nearest to word by edit distance, if it is at
+ * most 2 edits away (for "did you mean"); NULL otherwise. */
+const char *lam_key_nearest(const char *word, const char *const *names, size_t n);
+
+/* Record "KEY must be WHAT, got GOT" for a value of the wrong kind: WHAT is
+ * what the row's type takes ("a number", "true or false", "floor, middle
+ * or ceiling", "text", "a template (text) or null"), `got` what was there
+ * ("'abc'", "a list"). Returns LAM_EINVAL. */
+int lam_key_expected(const lam_key *k, const char *as, const char *got, lam_error *err);
+
+/* Read a number, integer, boolean or choice key's value from text[0..len)
+ * (what a plain YAML scalar holds) into *x (a choice's index, a boolean's
+ * 0/1), and check it against the row. `as` names the key in messages
+ * (NULL: its name). Errors (LAM_EINVAL, no position): "KEY must be a number,
+ * got 'abc'" and the range messages of lam_key_check. */
+int lam_key_scan(const lam_key *k, const char *as, const char *text, size_t len, double *x, lam_error *err);
+
+/* Check a number or integer value x against the row's range; `shown` is x
+ * as the user wrote it (for "got ..."). Booleans and choices always pass.
+ * Errors: LAM_EINVAL "KEY must be greater than 0, got '0'", "... 0 or more",
+ * "... from 0 to 90", "... a whole number from 0 to 1000". */
+int lam_key_check(const lam_key *k, const char *as, double x, const char *shown, lam_error *err);
+
+/* A number, integer, boolean or choice key's value in p. */
+double lam_key_get(const struct lam_profile *p, const lam_key *k);
+
+/* Store a checked number, integer, boolean or choice value into p, and
+ * keep what follows it: a key that `follows` this one and had its value
+ * takes the new one (a travel rate that followed the feed rate), and an sls
+ * profile's bead width is its spot width. */
+void lam_key_put(struct lam_profile *p, const lam_key *k, double x);
+
+/* The same without the values that follow (the loader settles those once
+ * the whole chain is read). */
+void lam_key_store(struct lam_profile *p, const lam_key *k, double x);
+
+/* Set key `name` of p from text, as one more YAML file on top of p would
+ * (`--set KEY=VALUE`): every row but the loader's; the value is checked
+ * with the loader's rules and messages; strings and templates replace
+ * p's (p owns them). Errors: LAM_EINVAL (unknown key, with "did you mean";
+ * a bad value), LAM_ENOMEM. p is unchanged on error. */
+int lam_profile_set(struct lam_profile *p, const char *name, const char *text, lam_error *err);
+
+/* After lam_profile_set: the keys a profile must give for its process are
+ * there (a changed process may need another width). LAM_EINVAL otherwise. */
+int lam_profile_check(const struct lam_profile *p, lam_error *err);
+
+#endif
