@@ -58,12 +58,14 @@ static unsigned group_of(const char *o)
     static const char *const slice_opts[] = { "-m", "--machine", "-a", "--axis", "-w", "--width", "--widths",
                                               "--planes", "--cut", "--gap", "--allow-open", "--fill", NULL };
     static const char *const plan_opts[] = { "--first-line", "--angle", "--angle-step", "--min-deposit",
-                                             "--no-alternate", "--perimeters", "--beam-offset", "--frame", "--islands",
+                                             "--no-alternate", "--perimeters", "--beam-offset", "--islands",
                                              "-o", "--output", "--validate", NULL };
     for (int i = 0; slice_opts[i]; i++)
         if (!strcmp(o, slice_opts[i])) return OPT_SLICE;
     for (int i = 0; plan_opts[i]; i++)
         if (!strcmp(o, plan_opts[i])) return OPT_PLAN;
+    if (!strcmp(o, "--frame")) return OPT_PLAN | OPT_PROGRAM;
+    if (!strcmp(o, "--program")) return OPT_PROGRAM;
     if (!strcmp(o, "--json")) return OPT_JSON;
     if (!strcmp(o, "--svg")) return OPT_SVG;
     return 0;
@@ -179,6 +181,9 @@ int cli_parse_args(const char *cmd, const char *usage_text, unsigned groups, int
                 return cli_usage(cmd, "--frame takes model or machine (got '%s')", v);
             a->set_frame = 1;
             a->frame_machine = !strcmp(v, "machine");
+        } else if (!strcmp(o, "--program")) {
+            NEED();
+            a->program = argv[++i];
         } else if (!strcmp(o, "--svg")) {
             NEED();
             a->svg = argv[++i];

@@ -12,11 +12,12 @@ enum {
     OPT_SLICE = 1,     /* -m -a -w --widths --planes --cut --gap --allow-open --fill */
     OPT_PLAN = 2,      /* raster and SLS options, --frame, -o, --validate */
     OPT_JSON = 4,      /* --json */
-    OPT_SVG = 8        /* --svg FILE */
+    OPT_SVG = 8,       /* --svg FILE */
+    OPT_PROGRAM = 16   /* --program FILE, --frame (validate a program read back) */
 };
 
 typedef struct args {
-    const char *path, *out, *svg, *machine;
+    const char *path, *out, *svg, *machine, *program;
     lam_slice_opts so;
     double *list;
     int allow_open, set_width, set_cut, set_gap, set_frame, json, validate;

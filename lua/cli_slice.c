@@ -75,7 +75,10 @@ static int on_layer(void *ctx, const lam_layer *L, lam_error *err)
         if (L->max_gap > r->gap_max) r->gap_max = L->max_gap;
     }
     if (r->v) {
-        int rc = vreport_layer(&r->vr, r->v, L, r->frame, r->fill_nonzero, err);
+        lam_validate_opts vo;
+        lam_validate_opts_init(&vo);
+        vo.fill_nonzero = r->fill_nonzero;
+        int rc = vreport_layer(&r->vr, r->v, L, r->frame, &vo, NULL, err);
         if (rc) return rc;
     }
     return r->svg ? lam_svg_add(r->svg, L, err) : LAM_OK;
@@ -151,9 +154,10 @@ int cmd_slice(int argc, char **argv)
     if (rep.gap_layers > 20)
         fprintf(stderr, "lamina: %s: closed %zu gaps in %zu layers, largest %g\n", a.path, rep.gaps_total,
                 rep.gap_layers, rep.gap_max);
-    if (rep.vr.disagreeing) {
-        fprintf(stderr, "lamina: %s: %zu contour label%s disagree%s with the model; nothing written\n", a.path,
-                rep.vr.disagreeing, rep.vr.disagreeing == 1 ? "" : "s", rep.vr.disagreeing == 1 ? "s" : "");
+    if (rep.vr.disagreeing || rep.vr.areas_differ) {
+        fprintf(stderr, "lamina: %s: %zu contour%s and %zu layer area%s disagree with the model; nothing written\n",
+                a.path, rep.vr.disagreeing, rep.vr.disagreeing == 1 ? "" : "s", rep.vr.areas_differ,
+                rep.vr.areas_differ == 1 ? "" : "s");
         rc = EXIT_CHECK;
         goto done;
     }
