@@ -355,9 +355,52 @@ static int trace(lam_validator *v, const float o[3], const float d[3])
     return v->nomem;
 }
 
-/* Cast direction k from p (perturbed an infinitesimal step along e when e
- * is not NULL); on CAST_OK *w is the winding along that ray. */
-static int cast_dir(lam_validator *v, const double p[3], const double *e, int k, int *w)
+/* A point of a section: (u, v) at height h along the frame's w, taken just
+ * above the plane (below 0) or just below it (below 1), as the slicer has it. */
+typedef struct section_pt {
+    const lam_frame *f;
+    double u, v, h;
+    int below;
+} section_pt;
+
+static double dot_skip(const double *p, const double *a)
+{
+    double s = 0;
+    for (int k = 0; k < 3; k++)
+        if (a[k] != 0) s += p[k] * a[k];
+    return s;
+}
+
+/* Triangle t against section point q whose plane it (nearly) contains:
+ * +1 when it passes above q, -1 below, from its vertices' heights along w
+ * compared with h as the slicer compares them (a face lying in the plane is
+ * on the far side of the symbolic step); 0 when it passes through q itself
+ * or stands on edge. */
+static int tri_side(const lam_validator *v, uint32_t t, const section_pt *q)
+{
+    const lam_mesh *m = &v->m->mesh;
+    double U[3], V[3], W[3];
+    int flat = 1;
+    for (int i = 0; i < 3; i++) {
+        const double *x = m->xyz + 3 * (size_t)m->tris[3 * (size_t)t + i];
+        U[i] = dot_skip(x, q->f->u) - q->u;
+        V[i] = dot_skip(x, q->f->v) - q->v;
+        W[i] = dot_skip(x, q->f->w) - q->h;
+        flat &= W[i] == 0;
+    }
+    if (flat) return q->below ? 1 : -1;
+    double area = (U[1] - U[0]) * (V[2] - V[0]) - (V[1] - V[0]) * (U[2] - U[0]);
+    if (area == 0) return 0;
+    /* the height of the triangle's plane over q, times area */
+    double c0 = U[1] * V[2] - V[1] * U[2], c1 = U[2] * V[0] - V[2] * U[0], c2 = U[0] * V[1] - V[0] * U[1];
+    double hgt = c0 * W[0] + c1 * W[1] + c2 * W[2];
+    if (hgt == 0) return 0;
+    return (hgt > 0) == (area > 0) ? 1 : -1;
+}
+
+/* Cast direction k from p (a section point q when not NULL); on CAST_OK *w
+ * is the winding along that ray. */
+static int cast_dir(lam_validator *v, const double p[3], const section_pt *q, int k, int *w)
 {
     const double *d = v->dird[k];
     /* start a little behind p, so that a surface through p is seen in
@@ -391,11 +434,16 @@ static int cast_dir(lam_validator *v, const double p[3], const double *e, int k,
             h[i].s = -dist / nd;
             continue;
         }
-        /* p is in the triangle's plane: p + eps * e crosses it ahead iff
-         * the step and the ray leave the plane on opposite sides */
-        double ne = e ? nrm[0] * e[0] + nrm[1] * e[1] + nrm[2] * e[2] : 0;
-        if (ne == 0) return CAST_SURFACE;
-        h[i].s = (ne > 0) != (nd > 0) ? 0.0 : -1.0;
+        /* p is in the triangle's plane, to double rounding: at a section,
+         * the side the triangle passes p on decides, as the slicer sees it
+         * from the vertices' heights, and the ray meets it ahead when it
+         * heads that way (along w when above) */
+        int side = q ? tri_side(v, h[i].prim, q) : 0;
+        double nw = q ? nrm[0] * q->f->w[0] + nrm[1] * q->f->w[1] + nrm[2] * q->f->w[2] : 0;
+        /* a steep triangle this near p would cross the plane at p: p is
+         * on the section's boundary, which test points keep away from */
+        if (!side || !(fabs(nw) >= 0.5)) return CAST_SURFACE;
+        h[i].s = (side > 0) == ((nw > 0) == (nd > 0)) ? 0.0 : -1.0;
     }
     /* a primitive may be reported more than once (spatial splits): keep one */
     if (n > 1) qsort(h, n, sizeof *h, by_prim);
@@ -465,7 +513,7 @@ int lam_validator_ray(lam_validator *v, const double p[3], const double d[3], do
 
 enum { W_DECIDED, W_SURFACE, W_UNDECIDED, W_NOMEM };
 
-static int winding_at(lam_validator *v, const double p[3], const double *e, int *w)
+static int winding_at(lam_validator *v, const double p[3], const section_pt *q, int *w)
 {
     int vals[NDIRS];
     int nrel = 0;
@@ -480,7 +528,7 @@ static int winding_at(lam_validator *v, const double p[3], const double *e, int 
             }
             v->st.recasts++;
         }
-        int x = 0, r = cast_dir(v, p, e, k, &x);
+        int x = 0, r = cast_dir(v, p, q, k, &x);
         if (r == CAST_NOMEM) return W_NOMEM;
         if (r == CAST_SURFACE) {
             v->st.surface++;
@@ -506,16 +554,27 @@ static int winding_at(lam_validator *v, const double p[3], const double *e, int 
     return W_UNDECIDED;
 }
 
+static int winding_result(lam_validator *v, const double p[3], const section_pt *q, int *winding,
+                          lam_error *err);
+
 int lam_validator_winding(lam_validator *v, const double p[3], int *winding, lam_error *err)
 {
-    return lam_validator_winding_toward(v, p, NULL, winding, err);
+    return winding_result(v, p, NULL, winding, err);
 }
 
-int lam_validator_winding_toward(lam_validator *v, const double p[3], const double *e, int *winding,
-                                 lam_error *err)
+int lam_validator_winding_section(lam_validator *v, const lam_frame *f, double u, double w, double h, int below,
+                                  double xyz[3], int *winding, lam_error *err)
+{
+    section_pt q = { f, u, w, h, below };
+    lam_frame_to_model(f, u, w, h, xyz);
+    return winding_result(v, xyz, &q, winding, err);
+}
+
+static int winding_result(lam_validator *v, const double p[3], const section_pt *q, int *winding,
+                          lam_error *err)
 {
     int w = 0;
-    switch (winding_at(v, p, e, &w)) {
+    switch (winding_at(v, p, q, &w)) {
     case W_DECIDED:
         *winding = w;
         return LAM_OK;

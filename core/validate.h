@@ -106,12 +106,15 @@ void lam_validator_free(lam_validator *v);
  * validator (each call reuses its hit buffer). */
 int lam_validator_winding(lam_validator *v, const double p[3], int *winding, lam_error *err);
 
-/* The same at p moved an infinitesimal step along e (NULL: not moved): a
- * point in the plane of a triangle it hits is then off it, on e's side, as
- * the slicer's symbolic perturbation has it. Still on the surface (LAM_EGEOM)
- * only when e lies in that plane. */
-int lam_validator_winding_toward(lam_validator *v, const double p[3], const double *e, int *winding,
-                                 lam_error *err);
+/* The winding at the section point (u, v) at height h of frame f (its
+ * model coordinates into xyz), taken just above the plane (below 0) or just
+ * below it (below 1), as the slicer takes sections (SPEC 3.2): a triangle
+ * in whose plane the point lies, to double rounding, is above or below it
+ * as the slicer sees it from its vertices' heights (a face lying in the
+ * plane is on the far side of that step). On the surface (LAM_EGEOM) only
+ * when a triangle passes through the point itself or stands on edge there. */
+int lam_validator_winding_section(lam_validator *v, const lam_frame *f, double u, double w, double h, int below,
+                                  double xyz[3], int *winding, lam_error *err);
 
 /* Embree's float32 tolerance (hits this close along a ray are placed again
  * in double precision), and the smallest inset of a layer test point from

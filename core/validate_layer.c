@@ -353,16 +353,14 @@ static void check_nesting(const lam_layer *L, size_t ci, lam_contour_check *it)
     }
 }
 
-/* Winding at (u, v) in the cut plane, the point taken an infinitesimal step
- * along e (toward the inside of the slab). LAM_OK, LAM_ENOMEM, or
- * LAM_EGEOM when it cannot be decided. */
-static int layer_point(lam_validator *v, const lam_frame *f, double cut, const double e[3], const double uv[2],
-                       double xyz[3], int *w)
+/* Winding at (u, v) in the cut plane, taken on the slab's side. LAM_OK,
+ * LAM_ENOMEM, or LAM_EGEOM when it cannot be decided. */
+static int layer_point(lam_validator *v, const lam_frame *f, double cut, int below, const double uv[2], double xyz[3],
+                       int *w)
 {
-    lam_frame_to_model(f, uv[0], uv[1], cut, xyz);
     lam_error scratch;
     lam_error_clear(&scratch);
-    return lam_validator_winding_toward(v, xyz, e, w, &scratch);
+    return lam_validator_winding_section(v, f, uv[0], uv[1], cut, below, xyz, w, &scratch);
 }
 
 /* The longest edges of a contour (ties: the first), at most EDGES_TRIED. */
@@ -393,7 +391,7 @@ typedef struct layer_ctx {
     const lam_layer *L;
     const lam_frame *f;
     const lam_validate_opts *o;
-    double e[3];             /* the symbolic step: +w or -w */
+    int below;               /* the section is taken just below the cut */
     double dmin;             /* smallest inset of a test point */
     egrid G;
     nest_scratch N;
@@ -444,7 +442,7 @@ static int check_material(layer_ctx *X, size_t ci, lam_contour_check *it)
         double side_xyz[2][3];
         int wind[2], r0 = LAM_OK;
         for (int sd = 0; sd < 2 && r0 == LAM_OK; sd++) {
-            r0 = layer_point(X->v, X->f, L->cut, X->e, side_uv[sd], side_xyz[sd], &wind[sd]);
+            r0 = layer_point(X->v, X->f, L->cut, X->below, side_uv[sd], side_xyz[sd], &wind[sd]);
             if (r0 == LAM_ENOMEM) return LAM_ENOMEM;
         }
         if (r0 != LAM_OK) {
@@ -554,7 +552,7 @@ int lam_validate_layer(lam_validator *v, const lam_layer *L, const lam_frame *f,
     X.f = f;
     X.o = o;
     int below = L->cut >= L->ceiling && L->ceiling > L->floor;
-    for (int k = 0; k < 3; k++) X.e[k] = below ? -f->w[k] : f->w[k];
+    X.below = below;
     X.dmin = fmax(lam_validator_min_inset(v), 10 * o->quantum_uv);
     size_t K = L->ncontours, P = L->npoints;
     if (K) {
