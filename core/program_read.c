@@ -164,8 +164,8 @@ static int number(rd *r, const line *l, const tok *t, double *x, double *q)
     char b[64];
     int rc = lam_parse_number(t->s, t->n, x);
     if (rc == LAM_ENOMEM) return nomem(r);
-    if (rc) return fail_at(r, LAM_ESYNTAX, l->no, t->col, "'%s' is not a number", shown(b, sizeof b, t));
-    if (!isfinite(*x)) return fail_at(r, LAM_EINVAL, l->no, t->col, "'%s' is not a finite number", shown(b, sizeof b, t));
+    if (rc) return fail_at(r, LAM_ESYNTAX, l->no, t->col, "%s is not a number", shown(b, sizeof b, t));
+    if (!isfinite(*x)) return fail_at(r, LAM_EINVAL, l->no, t->col, "%s is not a finite number", shown(b, sizeof b, t));
     if (q) {
         double w = written_quantum(t);
         if (w > *q) *q = w;
@@ -210,7 +210,7 @@ static int no_more(rd *r, const line *l, size_t i)
     tok t;
     char b[64];
     if (next_tok(l, &i, 0, &t))
-        return fail_at(r, LAM_ESYNTAX, l->no, t.col, "unexpected '%s' at the end of the line", shown(b, sizeof b, &t));
+        return fail_at(r, LAM_ESYNTAX, l->no, t.col, "unexpected %s at the end of the line", shown(b, sizeof b, &t));
     return LAM_OK;
 }
 
@@ -254,7 +254,7 @@ static int sls_loop(rd *r, double z, const line *head, const tok *kw, long id)
     if (!next_statement(r, &l, &t, &j)) return expect_more(r, "'endloop'", "loop", head->no, kw->col);
     char b[64];
     if (!tok_is(&t, "endloop"))
-        return fail_at(r, LAM_ESYNTAX, l.no, t.col, "expected 'endloop' after %ld vertices, got '%s'", npts,
+        return fail_at(r, LAM_ESYNTAX, l.no, t.col, "expected 'endloop' after %ld vertices, got %s", npts,
                        shown(b, sizeof b, &t));
     return no_more(r, &l, j);
 }
@@ -268,7 +268,7 @@ static int read_sls(rd *r)
     char b[64];
     while (next_statement(r, &l, &t, &i)) {
         if (!tok_is(&t, "contour"))
-            return fail_at(r, LAM_ESYNTAX, l.no, t.col, "expected 'contour', got '%s'", shown(b, sizeof b, &t));
+            return fail_at(r, LAM_ESYNTAX, l.no, t.col, "expected 'contour', got %s", shown(b, sizeof b, &t));
         long cline = l.no, ccol = t.col;
         tok zt;
         double z;
@@ -283,7 +283,7 @@ static int read_sls(rd *r)
                 break;
             }
             if (!tok_is(&t, "loop"))
-                return fail_at(r, LAM_ESYNTAX, l.no, t.col, "expected 'loop' or 'endcontour', got '%s'",
+                return fail_at(r, LAM_ESYNTAX, l.no, t.col, "expected 'loop' or 'endcontour', got %s",
                                shown(b, sizeof b, &t));
             if ((rc = sls_loop(r, z, &l, &t, ++loops))) return rc;
         }
@@ -338,7 +338,7 @@ static int cli_read_header(rd *r, size_t end, cli_header *h)
             return fail_at(r, LAM_ESYNTAX, l.no, 1, "expected a $$ header command");
         if (!started) {
             if (!tok_is(&name, "$$HEADERSTART"))
-                return fail_at(r, LAM_ESYNTAX, l.no, name.col, "expected $$HEADERSTART, got '%s'",
+                return fail_at(r, LAM_ESYNTAX, l.no, name.col, "expected $$HEADERSTART, got %s",
                                shown(b, sizeof b, &name));
             started = 1;
         } else if (tok_is(&name, "$$HEADEREND")) {
@@ -435,7 +435,7 @@ static int cli_polyline(rd *r, const line *l, const tok *name, size_t args, int 
     }
     if (i < l->n) {
         tok extra = { l->s + i, l->n - i, (long)i + 1 };
-        return fail_at(r, LAM_ESYNTAX, l->no, extra.col, "more than %ld points: '%s'", head[2],
+        return fail_at(r, LAM_ESYNTAX, l->no, extra.col, "more than %ld points: %s", head[2],
                        shown(b, sizeof b, &extra));
     }
     return close_polyline(r, l->no, name->col, 0);
@@ -458,12 +458,12 @@ static int read_cli_ascii(rd *r)
             size_t i = 0;
             tok t;
             next_tok(&l, &i, 0, &t);
-            return fail_at(r, LAM_ESYNTAX, l.no, t.col, ended ? "'%s' after $$GEOMETRYEND" : "expected a $$ command, got '%s'",
+            return fail_at(r, LAM_ESYNTAX, l.no, t.col, ended ? "%s after $$GEOMETRYEND" : "expected a $$ command, got %s",
                            shown(b, sizeof b, &t));
         }
         if (!geometry) {
             if (!tok_is(&name, "$$GEOMETRYSTART"))
-                return fail_at(r, LAM_ESYNTAX, l.no, name.col, "expected $$GEOMETRYSTART, got '%s'",
+                return fail_at(r, LAM_ESYNTAX, l.no, name.col, "expected $$GEOMETRYSTART, got %s",
                                shown(b, sizeof b, &name));
             geometry = 1;
         } else if (tok_is(&name, "$$GEOMETRYEND")) {
@@ -481,7 +481,7 @@ static int read_cli_ascii(rd *r)
         } else if (tok_is(&name, "$$POLYLINE")) {
             if ((rc = cli_polyline(r, &l, &name, args, have_layer, z))) return rc;
         } else if (!tok_is(&name, "$$HATCHES")) {
-            return fail_at(r, LAM_ESYNTAX, l.no, name.col, "unknown command '%s'", shown(b, sizeof b, &name));
+            return fail_at(r, LAM_ESYNTAX, l.no, name.col, "unknown command %s", shown(b, sizeof b, &name));
         }
     }
     if (!ended) {
