@@ -227,7 +227,7 @@ static int sls_loop(rd *r, double z, const line *head, const tok *kw, long id)
 {
     size_t i = (size_t)(kw->col - 1) + kw->n;
     tok t;
-    long npts;
+    long npts = 0;
     if (!next_tok(head, &i, 0, &t))
         return fail_at(r, LAM_ESYNTAX, head->no, kw->col + (long)kw->n, "'loop' needs its number of points");
     int rc = whole(r, head, &t, 3, 1e9, "a loop's number of points (at least 3)", &npts);
@@ -402,7 +402,7 @@ static int cli_polyline(rd *r, const line *l, const tok *name, size_t args, int 
     char b[64];
     if (!have_layer) return fail_at(r, LAM_ESYNTAX, l->no, name->col, "$$POLYLINE before the first $$LAYER");
     size_t i = args;
-    long head[3];
+    long head[3] = { 0, 0, 0 };
     static const char *const what[3] = { "the polyline's id", "the polyline's direction", "the polyline's count" };
     static const double hi[3] = { 2147483647.0, 2, 1e9 };
     tok t;
