@@ -14,6 +14,7 @@ struct lam_section_index {
     double *wuv;          /* per vertex: w, then u and v about the (u, v) box centre */
     double wlo, extent;
     int top;              /* deepest level */
+    double size[MAX_LEVEL + 1]; /* bucket height at each level */
     uint32_t *first;      /* 2^(top+1) buckets (level L at 2^L - 1 + i) + 1 offsets into tris */
     uint32_t *tris;
     uint32_t *seen;       /* per shell: the query that last counted it */
@@ -31,7 +32,7 @@ static double dot(const double *p, const double *a)
     return s;
 }
 
-static double bucket_size(const lam_section_index *x, int level) { return ldexp(x->extent, -level); }
+static double bucket_size(const lam_section_index *x, int level) { return x->size[level]; }
 
 /* The bucket of a triangle spanning [a, b]: the deepest level whose buckets
  * are at least as tall as the triangle, the bucket holding its centre. */
@@ -86,6 +87,7 @@ int lam_section_index_new(const lam_model *m, const lam_frame *f, lam_section_in
         x->wlo = lo[0];
         x->extent = hi[0] - lo[0];
     }
+    for (int l = 0; l <= MAX_LEVEL; l++) x->size[l] = ldexp(x->extent, -l);
     for (int pass = 0; pass < 2; pass++) {
         for (size_t t = 0; t < T; t++) {
             const uint32_t *tv = mesh->tris + 3 * t;
@@ -179,7 +181,7 @@ void lam_section_measure_at(lam_section_index *x, double h, int below, lam_secti
                     else if (!up[c] && up[d]) crossing(x, tv[c], tv[d], h, Q);
                 }
                 add(&area, &area_c, (P[0] * Q[1] - P[1] * Q[0]) / 2);
-                double len = hypot(Q[0] - P[0], Q[1] - P[1]);
+                double len = sqrt((Q[0] - P[0]) * (Q[0] - P[0]) + (Q[1] - P[1]) * (Q[1] - P[1]));
                 add(&per, &per_c, len);
                 const double *A = x->wuv + 3 * (size_t)tv[0], *B = x->wuv + 3 * (size_t)tv[1],
                              *C = x->wuv + 3 * (size_t)tv[2];
@@ -189,7 +191,7 @@ void lam_section_measure_at(lam_section_index *x, double h, int below, lam_secti
                 double nw = e1[1] * e2[2] - e1[2] * e2[1];
                 double nu = e1[2] * e2[0] - e1[0] * e2[2];
                 double nv = e1[0] * e2[1] - e1[1] * e2[0];
-                double side = hypot(nu, nv);
+                double side = sqrt(nu * nu + nv * nv);
                 if (side > 0) add(&rate, &rate_c, len * fabs(nw) / side);
                 out->segments++;
                 uint32_t s = m->tri_shell ? m->tri_shell[t] : 0;
