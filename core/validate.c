@@ -9,7 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "contour.h"
+#include "section.h"
 
 /* ---- fixed ray directions ------------------------------------------------------ */
 
@@ -64,8 +64,10 @@ struct lam_validator {
      * of kilometres or nanometres, keeps float32's full precision, and its
      * products stay far from float overflow and underflow. */
     double center[3], unit;
-    double tol;             /* same-distance and on-surface tolerance */
+    double tol;             /* float32 tolerance: same-distance grouping of hits */
+    double on_eps;          /* double rounding: a point this near a triangle's plane is in it */
     double dmin, dtarget;   /* smallest and preferred inset of layer test points */
+    lam_section_index *sec; /* the model's sections along the last frame asked for */
     hit *hits;              /* hits of the ray being cast (filled by the filter) */
     size_t nhits, cap;
     int nomem;
@@ -183,6 +185,9 @@ int lam_validator_new(const lam_model *m, lam_validator **out, lam_error *err)
     v->tol = fmax(1e-6 * v->scale, 16 * FLT_EPSILON * v->maxabs);
     v->dmin = fmax(1e-5 * v->scale, 1e3 * FLT_EPSILON * v->maxabs);
     v->dtarget = fmax(1e-3 * v->scale, 4 * v->dmin);
+    double mag = 0;
+    for (int k = 0; k < 3; k++) mag = fmax(mag, fabs(v->center[k]));
+    v->on_eps = 64 * DBL_EPSILON * (mag + v->maxabs);
     for (int k = 0; k < NDIRS; k++)
         for (int j = 0; j < 3; j++) {
             v->dirf[k][j] = (float)DIRS[k][j];
@@ -241,12 +246,28 @@ void lam_validator_free(lam_validator *v)
     if (!v) return;
     if (v->scene) rtcReleaseScene(v->scene);
     if (v->dev) rtcReleaseDevice(v->dev);
+    lam_section_index_free(v->sec);
     free(v->hits);
     free(v);
 }
 
 double lam_validator_tolerance(const lam_validator *v) { return v->tol; }
 double lam_validator_min_inset(const lam_validator *v) { return v->dmin; }
+double lam_validator_target_inset(const lam_validator *v) { return v->dtarget; }
+double lam_validator_scale(const lam_validator *v) { return v->scale; }
+
+int lam_validator_section(lam_validator *v, const lam_frame *f, lam_section_index **out, lam_error *err)
+{
+    if (v->sec && !memcmp(lam_section_index_frame(v->sec), f, sizeof *f)) {
+        *out = v->sec;
+        return LAM_OK;
+    }
+    lam_section_index_free(v->sec);
+    v->sec = NULL;
+    int rc = lam_section_index_new(v->m, f, &v->sec, err);
+    *out = v->sec;
+    return rc;
+}
 
 void lam_validator_get_stats(const lam_validator *v, lam_validator_stats *st) { *st = v->st; }
 
@@ -285,7 +306,27 @@ static int tri_sign(const lam_validator *v, uint32_t t, const double d[3])
     return (dot > 0) - (dot < 0);
 }
 
-/* Cast direction k from p; on CAST_OK *w is the winding along that ray. */
+/* Triangle t's unit normal (model's double vertices) into n and the signed
+ * distance of p from its plane (> 0 on the normal's side); 0 for a
+ * degenerate triangle (n then zero). */
+static int tri_plane(const lam_validator *v, uint32_t t, const double p[3], double n[3], double *dist)
+{
+    const lam_mesh *m = &v->m->mesh;
+    const double *a = m->xyz + 3 * (size_t)m->tris[3 * (size_t)t];
+    const double *b = m->xyz + 3 * (size_t)m->tris[3 * (size_t)t + 1];
+    const double *c = m->xyz + 3 * (size_t)m->tris[3 * (size_t)t + 2];
+    double e1[3] = { b[0] - a[0], b[1] - a[1], b[2] - a[2] };
+    double e2[3] = { c[0] - a[0], c[1] - a[1], c[2] - a[2] };
+    n[0] = e1[1] * e2[2] - e1[2] * e2[1];
+    n[1] = e1[2] * e2[0] - e1[0] * e2[2];
+    n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+    double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    if (!(len > 0)) return 0;
+    for (int k = 0; k < 3; k++) n[k] /= len;
+    *dist = n[0] * (p[0] - a[0]) + n[1] * (p[1] - a[1]) + n[2] * (p[2] - a[2]);
+    return 1;
+}
+
 /* Cast one ray from o along d, gathering every hit into v->hits (the
  * filter rejects each hit so traversal goes on). Non-zero when the hit list
  * could not grow. */
@@ -314,7 +355,52 @@ static int trace(lam_validator *v, const float o[3], const float d[3])
     return v->nomem;
 }
 
-static int cast_dir(lam_validator *v, const double p[3], int k, int *w)
+/* A point of a section: (u, v) at height h along the frame's w, taken just
+ * above the plane (below 0) or just below it (below 1), as the slicer has it. */
+typedef struct section_pt {
+    const lam_frame *f;
+    double u, v, h;
+    int below;
+} section_pt;
+
+static double dot_skip(const double *p, const double *a)
+{
+    double s = 0;
+    for (int k = 0; k < 3; k++)
+        if (a[k] != 0) s += p[k] * a[k];
+    return s;
+}
+
+/* Triangle t against section point q whose plane it (nearly) contains:
+ * +1 when it passes above q, -1 below, from its vertices' heights along w
+ * compared with h as the slicer compares them (a face lying in the plane is
+ * on the far side of the symbolic step); 0 when it passes through q itself
+ * or stands on edge. */
+static int tri_side(const lam_validator *v, uint32_t t, const section_pt *q)
+{
+    const lam_mesh *m = &v->m->mesh;
+    double U[3], V[3], W[3];
+    int flat = 1;
+    for (int i = 0; i < 3; i++) {
+        const double *x = m->xyz + 3 * (size_t)m->tris[3 * (size_t)t + i];
+        U[i] = dot_skip(x, q->f->u) - q->u;
+        V[i] = dot_skip(x, q->f->v) - q->v;
+        W[i] = dot_skip(x, q->f->w) - q->h;
+        flat &= W[i] == 0;
+    }
+    if (flat) return q->below ? 1 : -1;
+    double area = (U[1] - U[0]) * (V[2] - V[0]) - (V[1] - V[0]) * (U[2] - U[0]);
+    if (area == 0) return 0;
+    /* the height of the triangle's plane over q, times area */
+    double c0 = U[1] * V[2] - V[1] * U[2], c1 = U[2] * V[0] - V[2] * U[0], c2 = U[0] * V[1] - V[0] * U[1];
+    double hgt = c0 * W[0] + c1 * W[1] + c2 * W[2];
+    if (hgt == 0) return 0;
+    return (hgt > 0) == (area > 0) ? 1 : -1;
+}
+
+/* Cast direction k from p (a section point q when not NULL); on CAST_OK *w
+ * is the winding along that ray. */
+static int cast_dir(lam_validator *v, const double p[3], const section_pt *q, int k, int *w)
 {
     const double *d = v->dird[k];
     /* start a little behind p, so that a surface through p is seen in
@@ -335,7 +421,30 @@ static int cast_dir(lam_validator *v, const double p[3], int k, int *w)
     hit *h = v->hits;
     double len = sqrt(dd);
     /* t is in unit-box lengths of the (float) direction */
-    for (size_t i = 0; i < n; i++) h[i].s = ((double)h[i].t * v->unit - sp) * len;
+    for (size_t i = 0; i < n; i++) {
+        h[i].s = ((double)h[i].t * v->unit - sp) * len;
+        /* near p, float32 cannot say on which side of the triangle p lies:
+         * place the crossing again from the double vertices */
+        if (!(fabs(h[i].s) <= 8 * v->tol)) continue;
+        double nrm[3], dist;
+        if (!tri_plane(v, h[i].prim, p, nrm, &dist)) continue;
+        double nd = nrm[0] * d[0] + nrm[1] * d[1] + nrm[2] * d[2];
+        if (nd == 0) return CAST_UNRELIABLE;
+        if (fabs(dist) > v->on_eps) {
+            h[i].s = -dist / nd;
+            continue;
+        }
+        /* p is in the triangle's plane, to double rounding: at a section,
+         * the side the triangle passes p on decides, as the slicer sees it
+         * from the vertices' heights, and the ray meets it ahead when it
+         * heads that way (along w when above) */
+        int side = q ? tri_side(v, h[i].prim, q) : 0;
+        double nw = q ? nrm[0] * q->f->w[0] + nrm[1] * q->f->w[1] + nrm[2] * q->f->w[2] : 0;
+        /* a steep triangle this near p would cross the plane at p: p is
+         * on the section's boundary, which test points keep away from */
+        if (!side || !(fabs(nw) >= 0.5)) return CAST_SURFACE;
+        h[i].s = (side > 0) == ((nw > 0) == (nd > 0)) ? 0.0 : -1.0;
+    }
     /* a primitive may be reported more than once (spatial splits): keep one */
     if (n > 1) qsort(h, n, sizeof *h, by_prim);
     size_t u = 0;
@@ -343,8 +452,6 @@ static int cast_dir(lam_validator *v, const double p[3], int k, int *w)
         if (u == 0 || h[i].prim != h[u - 1].prim) h[u++] = h[i];
     n = u;
     if (n > 1) qsort(h, n, sizeof *h, by_s);
-    for (size_t i = 0; i < n; i++)
-        if (fabs(h[i].s) <= v->tol) return CAST_SURFACE;
 
     const uint32_t *shell = v->m->tri_shell;
     int sum = 0;
@@ -406,7 +513,7 @@ int lam_validator_ray(lam_validator *v, const double p[3], const double d[3], do
 
 enum { W_DECIDED, W_SURFACE, W_UNDECIDED, W_NOMEM };
 
-static int winding_at(lam_validator *v, const double p[3], int *w)
+static int winding_at(lam_validator *v, const double p[3], const section_pt *q, int *w)
 {
     int vals[NDIRS];
     int nrel = 0;
@@ -421,7 +528,7 @@ static int winding_at(lam_validator *v, const double p[3], int *w)
             }
             v->st.recasts++;
         }
-        int x = 0, r = cast_dir(v, p, k, &x);
+        int x = 0, r = cast_dir(v, p, q, k, &x);
         if (r == CAST_NOMEM) return W_NOMEM;
         if (r == CAST_SURFACE) {
             v->st.surface++;
@@ -447,10 +554,27 @@ static int winding_at(lam_validator *v, const double p[3], int *w)
     return W_UNDECIDED;
 }
 
+static int winding_result(lam_validator *v, const double p[3], const section_pt *q, int *winding,
+                          lam_error *err);
+
 int lam_validator_winding(lam_validator *v, const double p[3], int *winding, lam_error *err)
 {
+    return winding_result(v, p, NULL, winding, err);
+}
+
+int lam_validator_winding_section(lam_validator *v, const lam_frame *f, double u, double w, double h, int below,
+                                  double xyz[3], int *winding, lam_error *err)
+{
+    section_pt q = { f, u, w, h, below };
+    lam_frame_to_model(f, u, w, h, xyz);
+    return winding_result(v, xyz, &q, winding, err);
+}
+
+static int winding_result(lam_validator *v, const double p[3], const section_pt *q, int *winding,
+                          lam_error *err)
+{
     int w = 0;
-    switch (winding_at(v, p, &w)) {
+    switch (winding_at(v, p, q, &w)) {
     case W_DECIDED:
         *winding = w;
         return LAM_OK;
@@ -458,7 +582,7 @@ int lam_validator_winding(lam_validator *v, const double p[3], int *winding, lam
         return lam_error_set(err, LAM_EGEOM, NULL, 0, 0,
                              "the point (%.17g, %.17g, %.17g) is on the surface (within %g): "
                              "it has no winding number",
-                             p[0], p[1], p[2], v->tol);
+                             p[0], p[1], p[2], v->on_eps);
     case W_NOMEM:
         return nomem(err);
     }
@@ -466,307 +590,3 @@ int lam_validator_winding(lam_validator *v, const double p[3], int *winding, lam
                          p[0], p[1], p[2]);
 }
 
-/* ---- a grid of the layer's edges ------------------------------------------------ */
-
-/* Edge g of the layer runs from point g to point nxt[g]. Each edge is listed
- * in every cell its bounding box touches. */
-typedef struct egrid {
-    const double *uv;
-    size_t *nxt;
-    double u0, v0, cu, cv;
-    size_t g;            /* g x g cells */
-    size_t *first;       /* g*g + 1 offsets into items */
-    size_t *items;
-} egrid;
-
-static size_t cell(double x, double x0, double c, size_t g)
-{
-    double q = (x - x0) / c;
-    if (!(q > 0)) return 0;
-    if (q >= (double)g) return g - 1;
-    return (size_t)q;
-}
-
-static void edge_cells(const egrid *G, size_t e, size_t *iu0, size_t *iv0, size_t *iu1, size_t *iv1)
-{
-    const double *a = G->uv + 2 * e, *b = G->uv + 2 * G->nxt[e];
-    *iu0 = cell(fmin(a[0], b[0]), G->u0, G->cu, G->g);
-    *iu1 = cell(fmax(a[0], b[0]), G->u0, G->cu, G->g);
-    *iv0 = cell(fmin(a[1], b[1]), G->v0, G->cv, G->g);
-    *iv1 = cell(fmax(a[1], b[1]), G->v0, G->cv, G->g);
-}
-
-static void egrid_free(egrid *G)
-{
-    free(G->nxt);
-    free(G->first);
-    free(G->items);
-    memset(G, 0, sizeof *G);
-}
-
-static int egrid_build(egrid *G, const lam_layer *L)
-{
-    memset(G, 0, sizeof *G);
-    size_t P = L->npoints;
-    G->uv = L->uv;
-    G->nxt = malloc((P ? P : 1) * sizeof *G->nxt);
-    if (!G->nxt) return -1;
-    double lo[2] = { INFINITY, INFINITY }, hi[2] = { -INFINITY, -INFINITY };
-    for (size_t c = 0; c < L->ncontours; c++) {
-        const lam_contour *k = &L->contours[c];
-        for (size_t i = 0; i < k->n; i++) {
-            size_t g = k->first + i;
-            G->nxt[g] = i + 1 < k->n ? g + 1 : k->first;
-            for (int j = 0; j < 2; j++) {
-                if (L->uv[2 * g + j] < lo[j]) lo[j] = L->uv[2 * g + j];
-                if (L->uv[2 * g + j] > hi[j]) hi[j] = L->uv[2 * g + j];
-            }
-        }
-    }
-    if (!(hi[0] >= lo[0])) lo[0] = hi[0] = lo[1] = hi[1] = 0;
-    size_t g = (size_t)ceil(sqrt((double)P));
-    if (g < 1) g = 1;
-    if (g > 1024) g = 1024;
-    G->u0 = lo[0];
-    G->v0 = lo[1];
-    size_t total;
-    for (;;) {
-        G->g = g;
-        G->cu = hi[0] > lo[0] ? (hi[0] - lo[0]) / (double)g : 1;
-        G->cv = hi[1] > lo[1] ? (hi[1] - lo[1]) / (double)g : 1;
-        total = 0;
-        for (size_t c = 0; c < L->ncontours; c++)
-            for (size_t i = 0; i < L->contours[c].n; i++) {
-                size_t iu0, iv0, iu1, iv1;
-                edge_cells(G, L->contours[c].first + i, &iu0, &iv0, &iu1, &iv1);
-                total += (iu1 - iu0 + 1) * (iv1 - iv0 + 1);
-            }
-        /* long slanted edges fill many cells: coarsen until the lists stay
-         * linear in the number of edges */
-        if (total <= 16 * P + 1024 || g == 1) break;
-        g /= 2;
-    }
-    G->first = calloc(g * g + 1, sizeof *G->first);
-    G->items = malloc((total ? total : 1) * sizeof *G->items);
-    if (!G->first || !G->items) return -1;
-    for (int pass = 0; pass < 2; pass++) {
-        for (size_t c = 0; c < L->ncontours; c++)
-            for (size_t i = 0; i < L->contours[c].n; i++) {
-                size_t e = L->contours[c].first + i, iu0, iv0, iu1, iv1;
-                edge_cells(G, e, &iu0, &iv0, &iu1, &iv1);
-                for (size_t y = iv0; y <= iv1; y++)
-                    for (size_t x = iu0; x <= iu1; x++) {
-                        size_t k = y * g + x;
-                        if (pass == 0) G->first[k + 1]++;
-                        else G->items[G->first[k]++] = e;
-                    }
-            }
-        if (pass == 0) {
-            for (size_t k = 0; k < g * g; k++) G->first[k + 1] += G->first[k];
-        } else {
-            /* first[k] now holds the end of cell k: shift back */
-            for (size_t k = g * g; k > 0; k--) G->first[k] = G->first[k - 1];
-            G->first[0] = 0;
-        }
-    }
-    return 0;
-}
-
-/* Distance from m along +-n (unit) to the nearest edge of the layer other
- * than `self`, looking no further than r; r when there is none. */
-static double clearance(const egrid *G, size_t self, const double m[2], const double n[2], double r)
-{
-    double best = r;
-    size_t iu0 = cell(m[0] - r * fabs(n[0]), G->u0, G->cu, G->g);
-    size_t iu1 = cell(m[0] + r * fabs(n[0]), G->u0, G->cu, G->g);
-    size_t iv0 = cell(m[1] - r * fabs(n[1]), G->v0, G->cv, G->g);
-    size_t iv1 = cell(m[1] + r * fabs(n[1]), G->v0, G->cv, G->g);
-    for (size_t y = iv0; y <= iv1; y++)
-        for (size_t x = iu0; x <= iu1; x++) {
-            size_t k = y * G->g + x;
-            for (size_t q = G->first[k]; q < G->first[k + 1]; q++) {
-                size_t e = G->items[q];
-                if (e == self) continue;
-                const double *a = G->uv + 2 * e, *b = G->uv + 2 * G->nxt[e];
-                double ex = b[0] - a[0], ey = b[1] - a[1];
-                double ax = a[0] - m[0], ay = a[1] - m[1];
-                double den = n[0] * ey - n[1] * ex;
-                if (den == 0) {
-                    /* parallel to the normal line: on it, it blocks at its
-                     * nearest point */
-                    if (ax * n[1] - ay * n[0] != 0) continue;
-                    double sa = ax * n[0] + ay * n[1];
-                    double sb = (b[0] - m[0]) * n[0] + (b[1] - m[1]) * n[1];
-                    double d = (sa > 0) == (sb > 0) && sa != 0 && sb != 0 ? fmin(fabs(sa), fabs(sb)) : 0;
-                    if (d < best) best = d;
-                    continue;
-                }
-                double s = (ax * ey - ay * ex) / den;  /* along the normal */
-                double t = (ax * n[1] - ay * n[0]) / den; /* along the edge */
-                if (t < 0 || t > 1) continue;
-                if (fabs(s) < best) best = fabs(s);
-            }
-        }
-    return best;
-}
-
-/* ---- layers ------------------------------------------------------------------------ */
-
-#define EDGES_TESTED 4
-#define EDGES_TRIED 8
-
-static const char *WHY_OK = "confirmed";
-static const char *WHY_VOID = "the label says material here but the point is outside the part";
-static const char *WHY_SOLID = "the label says void here but the point is inside the part";
-static const char *WHY_OVERLAP =
-    "the label says void here but bodies overlap here (an even winding: void under evenodd, "
-    "material under nonzero)";
-static const char *WHY_NOPOINT =
-    "not checked: no edge is long enough or far enough from the others for a test point above "
-    "float32 precision";
-static const char *WHY_UNDECIDED = "not checked: the winding could not be decided at any test point";
-
-/* Winding at (u, v) on layer L: at the cut height, or, when that point is on
- * the surface (a flat face in the cut plane), a small step toward the inside
- * of the slab. */
-static int layer_point(lam_validator *v, const lam_layer *L, const lam_frame *f, const double uv[2],
-                       double xyz[3], int *w)
-{
-    int up = !(L->cut >= L->ceiling && L->ceiling > L->floor);
-    static const double steps[3] = { 0, 4, 32 };
-    for (int i = 0; i < 3; i++) {
-        double h = L->cut + (up ? 1 : -1) * steps[i] * v->tol;
-        lam_frame_to_model(f, uv[0], uv[1], h, xyz);
-        int r = winding_at(v, xyz, w);
-        if (r != W_SURFACE) return r;
-    }
-    return W_UNDECIDED;
-}
-
-int lam_validate_layer(lam_validator *v, const lam_layer *L, const lam_frame *f, int fill_nonzero,
-                       lam_layer_check *out, lam_error *err)
-{
-    memset(out, 0, sizeof *out);
-    out->index = L->index;
-    if (!L->ncontours) return LAM_OK;
-    out->items = calloc(L->ncontours, sizeof *out->items);
-    if (!out->items) return nomem(err);
-    out->nitems = L->ncontours;
-    egrid G;
-    if (egrid_build(&G, L)) {
-        egrid_free(&G);
-        lam_layer_check_free(out);
-        return nomem(err);
-    }
-    for (size_t ci = 0; ci < L->ncontours; ci++) {
-        const lam_contour *c = &L->contours[ci];
-        lam_contour_check *it = &out->items[ci];
-        it->contour = ci;
-        it->ok = -1;
-        it->why = WHY_NOPOINT;
-        const double *pts = L->uv + 2 * c->first;
-        if (c->n < 3) {
-            out->unchecked++;
-            continue;
-        }
-        int interior_left = lam_loop_area(pts, c->n) > 0;
-        int interior_material = c->kind == LAM_SOLID;
-        /* the longest edges (ties: the first) */
-        size_t cand[EDGES_TRIED];
-        double clen[EDGES_TRIED];
-        size_t ncand = 0;
-        for (size_t i = 0; i < c->n; i++) {
-            const double *a = pts + 2 * i, *b = pts + 2 * ((i + 1) % c->n);
-            double len = hypot(b[0] - a[0], b[1] - a[1]);
-            if (!(len > 0)) continue;
-            size_t pos = ncand;
-            while (pos > 0 && clen[pos - 1] < len) pos--;
-            if (pos >= EDGES_TRIED) continue;
-            size_t last = ncand < EDGES_TRIED ? ncand : EDGES_TRIED - 1;
-            for (size_t q = last; q > pos; q--) {
-                cand[q] = cand[q - 1];
-                clen[q] = clen[q - 1];
-            }
-            cand[pos] = i;
-            clen[pos] = len;
-            if (ncand < EDGES_TRIED) ncand++;
-        }
-        int have_first = 0, disagree = 0, undecided = 0;
-        for (size_t q = 0; q < ncand && it->edges < EDGES_TESTED; q++) {
-            size_t i = cand[q];
-            const double *a = pts + 2 * i, *b = pts + 2 * ((i + 1) % c->n);
-            double len = clen[q];
-            double m[2] = { a[0] + (b[0] - a[0]) / 2, a[1] + (b[1] - a[1]) / 2 };
-            double nl[2] = { -(b[1] - a[1]) / len, (b[0] - a[0]) / len };
-            double r = fmin(v->dtarget, len / 4);
-            double d = fmin(r, clearance(&G, c->first + i, m, nl, 2 * r) / 2);
-            if (!(d >= v->dmin)) continue;
-            double side_uv[2][2] = { { m[0] + d * nl[0], m[1] + d * nl[1] },
-                                     { m[0] - d * nl[0], m[1] - d * nl[1] } };
-            double side_xyz[2][3];
-            int wind[2], r0 = W_DECIDED;
-            for (int sd = 0; sd < 2 && r0 == W_DECIDED; sd++) {
-                r0 = layer_point(v, L, f, side_uv[sd], side_xyz[sd], &wind[sd]);
-                if (r0 == W_NOMEM) {
-                    egrid_free(&G);
-                    lam_layer_check_free(out);
-                    return nomem(err);
-                }
-            }
-            if (r0 != W_DECIDED) {
-                undecided = 1;
-                continue;
-            }
-            it->edges++;
-            for (int sd = 0; sd < 2; sd++) {
-                int interior = sd == 0 ? interior_left : !interior_left;
-                int expect = interior ? interior_material : !interior_material;
-                int truth = wind[sd] != 0;
-                int bad = truth != expect;
-                if (!have_first || (bad && !disagree)) {
-                    memcpy(it->uv, side_uv[sd], sizeof it->uv);
-                    memcpy(it->xyz, side_xyz[sd], sizeof it->xyz);
-                    it->winding_found = wind[sd];
-                    it->expected_material = expect;
-                    have_first = 1;
-                }
-                if (bad && !disagree) {
-                    disagree = 1;
-                    if (expect) it->why = WHY_VOID;
-                    else if (!fill_nonzero && wind[sd] % 2 == 0) it->why = WHY_OVERLAP;
-                    else it->why = WHY_SOLID;
-                }
-            }
-        }
-        if (!it->edges) {
-            if (undecided) it->why = WHY_UNDECIDED;
-            out->unchecked++;
-            continue;
-        }
-        out->checked++;
-        if (disagree) {
-            it->ok = 0;
-            out->disagreeing++;
-        } else {
-            it->ok = 1;
-            it->why = WHY_OK;
-            out->confirmed++;
-        }
-    }
-    egrid_free(&G);
-    return LAM_OK;
-}
-
-void lam_layer_check_free(lam_layer_check *c)
-{
-    if (!c) return;
-    free(c->items);
-    memset(c, 0, sizeof *c);
-}
-
-void lam_layer_flip_label_for_test(lam_layer *L, size_t contour)
-{
-    if (!L || contour >= L->ncontours) return;
-    lam_contour *c = &L->contours[contour];
-    c->kind = c->kind == LAM_SOLID ? LAM_HOLE : LAM_SOLID;
-}

@@ -19,20 +19,53 @@
  * unreliable. Five directions vote first; unless at least three are reliable
  * and all agree, eleven more are cast and a strict majority (of at least
  * three) of the reliable ones decides. Otherwise the winding is not guessed:
- * the call fails. A point within the tolerance of the surface has no winding
- * number (the call fails and says so). The same point always gets the same
- * answer.
+ * the call fails. Hits near the point (within a few float32 tolerances
+ * along the ray, where Embree's float geometry cannot tell which side the
+ * point is on) are placed again in double precision from the model's own
+ * vertices: the signed distance of the point from the triangle's plane
+ * decides whether the crossing is ahead or behind. A point in the plane of
+ * a triangle it hits (to double rounding) is on the surface and has no
+ * winding number, unless the query gives a direction to perturb it in (the
+ * layer check does: the slicer's symbolic step toward the inside of its
+ * slab), which then decides. The same point always gets the same answer.
  *
- * Layer check. For each contour, test points are placed on both sides of
- * up to four of its longest edges, at the edge's midpoint, offset along its
- * normal by an inset well above float32 error (at least max(1e-5 * model
- * size, 1000 * FLT_EPSILON * largest |coordinate|)) and well below the
- * feature size (at most a quarter of the edge, half the distance to any
- * other edge of the layer along that normal, 1e-3 * model size), and
- * lifted to 3D at the cut height. A point that falls on the surface (a cut
- * through a flat face) is moved a tiny step toward the inside of its slab,
- * as the slicer's symbolic perturbation does (SPEC 3.2): up for floor and
- * middle cuts, down for ceiling cuts.
+ * Layer check. Per contour, what is written is checked, not only its label:
+ * - direction: a solid is counter-clockwise and a hole clockwise by its
+ *   signed area (computed here, compensated), since a machine takes a
+ *   clockwise loop for a hole whatever the label says;
+ * - ancestry: the parent is a contour of the layer, no contour is its own
+ *   ancestor, depth is the parent's plus one (0 without one) and the label
+ *   is the depth's parity;
+ * - nesting: the contours around a point just inside it, counted by an
+ *   even-odd ray in the plane (this module's own crossing test, not the
+ *   slicer's), give its depth and its parent (the smallest around it); a
+ *   layer read back from a program (depth < 0: unknown) must have each
+ *   label agree with that depth's parity;
+ * - material: test points beside its edges, lifted to 3D at the cut
+ *   height, must be material on the side the label claims and void on the
+ *   other, by the winding number of rays (below).
+ * Per layer, the net area (solids minus holes, by the label) must match the
+ * model's own section at the cut (section.h: Green's theorem over the
+ * mesh's triangles), within a tolerance from the precision the points and
+ * the height were written with. Not compared, and said so: layers whose
+ * outlines were closed across gaps or left open, models with boundary
+ * edges; one-sided (net at most the section) under the non-zero fill rule
+ * when two bodies meet the plane, where the section counts their overlap
+ * twice.
+ *
+ * Test points: on both sides of up to four of the contour's longest edges,
+ * at the edge's midpoint, offset along its normal by d. d is tied to the
+ * local geometry: at most a quarter of the edge, half the distance along
+ * the normal to any other edge of the layer, 1e-3 * model size, and halved
+ * until no edge of the layer comes nearer to the point than d / 2; at
+ * least an inset well above float32 error (max(1e-5 * model size, 1000 *
+ * FLT_EPSILON * largest |coordinate|)) and, for a program read back, ten
+ * times the precision its points were written with. The points stay in the
+ * cut plane: the winding is the one at the section itself, and a face lying
+ * in the plane (a cut on a flat face) is resolved by the slicer's symbolic
+ * step toward the inside of the slab (up for floor and middle cuts, down
+ * for ceiling cuts), never by moving the point off the plane, where a face
+ * just above or below the cut would be crossed.
  *
  * What the label claims: a solid's interior is material and its exterior
  * void; a hole's interior is void and its exterior material. The interior
@@ -54,6 +87,7 @@
 
 #include "error.h"
 #include "model.h"
+#include "section.h"
 #include "slice.h"
 
 typedef struct lam_validator lam_validator;
@@ -68,14 +102,35 @@ void lam_validator_free(lam_validator *v);
 /* Winding number of the model's solid around p (model coordinates).
  * Errors: LAM_EGEOM "cannot decide the winding at (x, y, z)" when the
  * directions do not reach a majority, LAM_EGEOM when p is on the surface
- * (within the validator's tolerance), LAM_ENOMEM. Not thread-safe for one
+ * (in the plane of a triangle a ray hits, to double rounding), LAM_ENOMEM. Not thread-safe for one
  * validator (each call reuses its hit buffer). */
 int lam_validator_winding(lam_validator *v, const double p[3], int *winding, lam_error *err);
 
-/* Distance within which a point counts as on the surface, and the smallest
- * inset of a layer test point from its edge (model units). */
+/* The winding at the section point (u, v) at height h of frame f (its
+ * model coordinates into xyz), taken just above the plane (below 0) or just
+ * below it (below 1), as the slicer takes sections (SPEC 3.2): a triangle
+ * in whose plane the point lies, to double rounding, is above or below it
+ * as the slicer sees it from its vertices' heights (a face lying in the
+ * plane is on the far side of that step). On the surface (LAM_EGEOM) only
+ * when a triangle passes through the point itself or stands on edge there. */
+int lam_validator_winding_section(lam_validator *v, const lam_frame *f, double u, double w, double h, int below,
+                                  double xyz[3], int *winding, lam_error *err);
+
+/* Embree's float32 tolerance (hits this close along a ray are placed again
+ * in double precision), and the smallest inset of a layer test point from
+ * its edge (model units). */
 double lam_validator_tolerance(const lam_validator *v);
 double lam_validator_min_inset(const lam_validator *v);
+
+/* The preferred inset of a test point (1e-3 of the model's size, at least
+ * four smallest insets) and the model's largest extent. */
+double lam_validator_target_inset(const lam_validator *v);
+double lam_validator_scale(const lam_validator *v);
+
+/* The model's sections along f (section.h), indexed on first use and kept
+ * for the next layers of the same frame; owned by the validator. Errors:
+ * LAM_ENOMEM. */
+int lam_validator_section(lam_validator *v, const lam_frame *f, lam_section_index **out, lam_error *err);
 
 /* Ray direction k of the fixed set (unit length in double precision; Embree
  * gets it rounded to float), NULL when k is past the last. The first five
@@ -102,36 +157,75 @@ typedef struct lam_validator_stats {
 
 void lam_validator_get_stats(const lam_validator *v, lam_validator_stats *st);
 
+/* What a contour check found wrong (bits of lam_contour_check.problems). */
+enum {
+    LAM_VP_MATERIAL = 1 << 0,   /* a test point contradicts the label (rays) */
+    LAM_VP_DIRECTION = 1 << 1,  /* written clockwise and labelled solid, or the reverse, or no area */
+    LAM_VP_ANCESTRY = 1 << 2,   /* parent out of range, its own ancestor, depth or label against the parent */
+    LAM_VP_NESTING = 1 << 3     /* depth or parent (or, read back, the label) against the contours around it */
+};
+
 /* The result for one contour. */
 typedef struct lam_contour_check {
     size_t contour;          /* index in the layer */
     int ok;                  /* 1 confirmed, 0 disagrees, -1 not checked (no test point
-                                could be placed or decided; why says which) */
+                                could be placed or decided and nothing else is wrong;
+                                why says which) */
+    unsigned problems;       /* LAM_VP_* bits, 0 when confirmed or not checked */
     size_t edges;            /* edges tested (both sides decided) */
     double uv[2], xyz[3];    /* the first disagreeing test point; for a confirmed
                                 contour, the first point tested */
     int winding_found;       /* the winding number there */
     int expected_material;   /* what the label claims there: 1 material, 0 void */
-    const char *why;         /* static text: "confirmed" or what disagrees */
+    double area;             /* signed area of the points as written (> 0 counter-clockwise) */
+    int depth_found;         /* contours around it by the plane ray; -1 when not found */
+    long parent_found;       /* the smallest of them, -1 for none */
+    const char *why;         /* static text: "confirmed", why not checked, or the first problem */
+    const char *whys[4];     /* per LAM_VP_* bit (bit k at k): what is wrong, NULL if nothing */
 } lam_contour_check;
 
 typedef struct lam_layer_check {
     size_t index;            /* the layer's index */
-    size_t checked;          /* contours with at least one edge tested */
+    size_t checked;          /* contours with at least one edge tested or a problem found */
     size_t confirmed, disagreeing;  /* confirmed + disagreeing == checked */
     size_t unchecked;        /* contours with no test point (ok == -1) */
     lam_contour_check *items;  /* one per contour, in the layer's order; owned */
     size_t nitems;
+    /* the layer's net area against the model's section */
+    int area_checked;        /* 1 compared, 0 not (area_why says why) */
+    int area_ok;             /* 1 when compared and within tolerance (or not compared) */
+    double net_area;         /* solids minus holes, by the label, of the points as written */
+    double section_area;     /* the model's section at the cut (section.h) */
+    double area_tolerance;
+    const char *area_why;    /* static text: why not compared, or what the comparison was */
 } lam_layer_check;
 
-/* Check every contour of layer L (made with frame f; fill_nonzero: the fill
- * rule it was made with, 0 even-odd, 1 non-zero). out is overwritten (not
- * freed first) and must be released with lam_layer_check_free. Errors:
+/* How a layer is checked. */
+typedef struct lam_validate_opts {
+    int fill_nonzero;        /* the fill rule it was made with: 0 even-odd, 1 non-zero */
+    double quantum_uv;       /* how far a written coordinate may be from the true one
+                                (half a unit in its last printed place); 0 for layers
+                                straight from the slicer */
+    double quantum_h;        /* the same for the written height */
+} lam_validate_opts;
+
+/* Defaults: even-odd, exact coordinates. */
+void lam_validate_opts_init(lam_validate_opts *o);
+
+/* Check every contour of layer L (made with frame f) as the header says.
+ * The section is taken just below the cut when L is a ceiling cut (cut ==
+ * ceiling > floor), else just above. Contours with depth < 0 have no
+ * nesting to check (a program read back): their depth and parent are found
+ * and their labels must agree with it. out is overwritten (not freed
+ * first) and must be released with lam_layer_check_free. Errors:
  * LAM_ENOMEM (out is then empty). Undecidable points are not errors: the
  * edge is replaced by the next longest one, and a contour with no decided
- * edge is reported unchecked. */
-int lam_validate_layer(lam_validator *v, const lam_layer *L, const lam_frame *f, int fill_nonzero,
+ * edge and no other problem is reported unchecked. */
+int lam_validate_layer(lam_validator *v, const lam_layer *L, const lam_frame *f, const lam_validate_opts *o,
                        lam_layer_check *out, lam_error *err);
+
+/* Static text naming one LAM_VP_* bit ("material", "direction", ...). */
+const char *lam_validate_problem_name(unsigned bit);
 
 /* Release out->items and zero *out (NULL is fine). */
 void lam_layer_check_free(lam_layer_check *c);

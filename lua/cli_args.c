@@ -150,6 +150,7 @@ static const cli_opt options[] = {
     { "validate", 0, OPT_PLAN, NULL, o_flag, F(validate) },
     { "output", 'o', OPT_PLAN, "FILE", o_text, F(out) },
     { "svg", 0, OPT_SVG, "FILE", o_text, F(svg) },
+    { "program", 0, OPT_PROGRAM, "FILE", o_text, F(program) },
     { "json", 0, OPT_JSON, NULL, o_flag, F(json) },
     { "show", 0, OPT_SHOW, "NAME|PATH", o_show, 0 },
     { "keys", 0, OPT_SHOW, NULL, o_flag, F(keys) },
@@ -163,6 +164,8 @@ static const cli_opt options[] = {
  * options, the rest (layer width, cut, gap) with the slicing ones. */
 static unsigned key_group(const lam_key *k)
 {
+    /* the frame also says how a program read back was written */
+    if (k->offset == offsetof(lam_profile, frame_machine)) return OPT_PLAN | OPT_PROGRAM;
     return k->flags & LAM_KEY_PLAN ? OPT_PLAN : OPT_SLICE;
 }
 

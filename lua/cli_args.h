@@ -23,7 +23,8 @@ enum {
     OPT_JSON = 8,      /* --json */
     OPT_SVG = 16,      /* --svg FILE */
     OPT_SET = 32,      /* -s/--set KEY=VALUE */
-    OPT_SHOW = 64      /* machines: --show NAME, --keys */
+    OPT_SHOW = 64,     /* machines: --show NAME, --keys */
+    OPT_PROGRAM = 128  /* validate: --program FILE, and --frame (how it was written) */
 };
 
 /* A profile value from the command line: --set KEY=VALUE or an option short for it. */
@@ -34,7 +35,7 @@ typedef struct cli_set {
 } cli_set;
 
 typedef struct args {
-    const char *path, *out, *svg, *machine, *show;
+    const char *path, *out, *svg, *machine, *show, *program;
     lam_slice_opts so;
     double *list;
     int allow_open, json, validate, keys;

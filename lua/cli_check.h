@@ -7,15 +7,30 @@
 
 #include "validate.h"
 
+#include "program_read.h"
+
 typedef struct vreport {
     FILE *out;               /* where the report goes */
     int json, verbose;       /* verbose: a line for every layer, not only disagreeing ones */
     size_t layers, checked, confirmed, disagreeing, unchecked;
+    size_t areas_compared, areas_differ;
     int first;               /* JSON: no comma before the first layer */
 } vreport;
 
+/* Where a layer's contours stand in a program read back (NULL for a layer
+ * straight from the slicer). */
+typedef struct vsource {
+    const char *path;
+    const lam_program_contour *contours;  /* the layer's, in its order */
+} vsource;
+
 /* Check one layer and report it. Returns LAM_OK or an error code. */
-int vreport_layer(vreport *r, lam_validator *v, const lam_layer *L, const lam_frame *f, int fill_nonzero,
-                  lam_error *err);
+int vreport_layer(vreport *r, lam_validator *v, const lam_layer *L, const lam_frame *f, const lam_validate_opts *o,
+                  const vsource *src, lam_error *err);
+
+/* The report's last line (text) or closing fields (JSON), and the exit
+ * status the checks call for: EXIT_CHECK when a contour or an area
+ * disagrees, else EXIT_OK. */
+int vreport_finish(vreport *r, const char *what);
 
 #endif

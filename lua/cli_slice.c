@@ -85,7 +85,10 @@ static int on_layer(void *ctx, const lam_layer *L, lam_error *err)
         r->twins += L->twins;
     }
     if (r->v) {
-        int rc = vreport_layer(&r->vr, r->v, L, r->frame, r->fill_nonzero, err);
+        lam_validate_opts vo;
+        lam_validate_opts_init(&vo);
+        vo.fill_nonzero = r->fill_nonzero;
+        int rc = vreport_layer(&r->vr, r->v, L, r->frame, &vo, NULL, err);
         if (rc) return rc;
     }
     return r->svg ? lam_svg_add(r->svg, L, err) : LAM_OK;
@@ -159,9 +162,10 @@ int cmd_slice(int argc, char **argv)
     if (rep.degenerate_layers > 20)
         fprintf(stderr, "lamina: %s: dropped %zu loops of no area, cancelled %zu coincident loops, in %zu layers\n",
                 a.path, rep.slivers, rep.twins, rep.degenerate_layers);
-    if (rep.vr.disagreeing) {
-        fprintf(stderr, "lamina: %s: %zu contour label%s disagree%s with the model; nothing written\n", a.path,
-                rep.vr.disagreeing, rep.vr.disagreeing == 1 ? "" : "s", rep.vr.disagreeing == 1 ? "s" : "");
+    if (rep.vr.disagreeing || rep.vr.areas_differ) {
+        fprintf(stderr, "lamina: %s: %zu contour%s and %zu layer area%s disagree with the model; nothing written\n",
+                a.path, rep.vr.disagreeing, rep.vr.disagreeing == 1 ? "" : "s", rep.vr.areas_differ,
+                rep.vr.areas_differ == 1 ? "" : "s");
         rc = EXIT_CHECK;
         goto done;
     }

@@ -1,88 +1,249 @@
-/* lamina validate MODEL [slice options] [--json]: an independent 3D check
- * of every solid/hole label with Embree rays (SPEC 6). Exit 0 when every
- * checked contour is confirmed, 3 when any disagrees. Contours too small
+/* lamina validate MODEL [slice options] [--program FILE] [--json]: an
+ * independent 3D check of every layer (SPEC 6, validate.h): each contour's
+ * direction, ancestry, nesting and label against rays through the model,
+ * and each layer's net area against the model's own section. Without
+ * --program the layers are sliced here; with it they are read back from the
+ * program file (program_read.h), as the machine would get them. Exit 0 when
+ * everything checked agrees, 3 when anything disagrees. Contours too small
  * to place a test point in are reported as unchecked, not as failures. */
 #include "cli.h"
 #include "cli_args.h"
 #include "cli_check.h"
 #include "model.h"
+#include "program_read.h"
 #include "validate.h"
 
+#include <math.h>
+#include <stddef.h>
 #include <string.h>
 
 static const char usage_text[] =
-    "usage: lamina validate MODEL [-m MACHINE] [-s KEY=VALUE ...] [-a AXIS]\n"
-    "                             [-w WIDTH | --widths ... | --planes ...]\n"
+    "usage: lamina validate MODEL [-m MACHINE] [-a AXIS] [-w WIDTH | --widths ... | --planes ...]\n"
     "                             [--cut floor|middle|ceiling] [--gap TOL] [--allow-open]\n"
     "                             [--fill evenodd|nonzero] [--json]\n"
-    "Slices like 'lamina slice' and checks every contour's label against the 3D model:\n"
-    "test points beside its edges, lifted to the cut height, get their winding number\n"
-    "from rays cast through the model (Embree). Exit 3 when any label disagrees.\n";
+    "       lamina validate MODEL --program FILE [-m MACHINE] [-a AXIS] [--cut ...]\n"
+    "                             [--frame model|machine] [--fill ...] [--json]\n"
+    "Slices like 'lamina slice' (or reads the program FILE back: sls-contours, cli-ascii or\n"
+    "cli-binary, told apart by content) and checks every layer against the 3D model: each\n"
+    "contour's direction against its label, its parents and depth against the contours\n"
+    "around it, its label against the winding number of rays cast through the model\n"
+    "(Embree) from test points beside its edges in the cut plane, and the layer's net\n"
+    "area against the model's own section. Exit 3 when anything disagrees.\n"
+    "With --program: -a, --frame (or the profile's) say how the program was written, --cut\n"
+    "which side of a flat face a height on it meant (middle and floor: above, ceiling: below).\n";
 
 static const char *kind_name(const lam_layer *L, size_t c)
 {
     return L->contours[c].kind == LAM_SOLID ? "solid" : "hole";
 }
 
-int vreport_layer(vreport *r, lam_validator *v, const lam_layer *L, const lam_frame *f, int fill_nonzero,
-                  lam_error *err)
+/* "contour 3 (solid" and, read back, ", FILE:LINE:COL" */
+static void contour_name(FILE *out, const lam_layer *L, size_t c, const vsource *src)
+{
+    fprintf(out, "contour %zu (%s", c, kind_name(L, c));
+    if (src) {
+        const lam_program_contour *pc = &src->contours[c];
+        if (pc->offset >= 0) fprintf(out, ", %s: byte %lld", src->path, pc->offset);
+        else fprintf(out, ", %s:%ld:%ld", src->path, pc->line, pc->column);
+    }
+    fputc(')', out);
+}
+
+static const unsigned STRUCTURE[] = { LAM_VP_ANCESTRY, LAM_VP_DIRECTION, LAM_VP_NESTING };
+
+static int bit_index(unsigned bit)
+{
+    int i = 0;
+    while (bit > 1) bit >>= 1, i++;
+    return i;
+}
+
+static void text_contour(FILE *out, const lam_layer *L, const lam_contour_check *c, const vsource *src)
+{
+    if (c->ok < 0) {
+        fputs("  ", out);
+        contour_name(out, L, c->contour, src);
+        fprintf(out, " not checked: %s\n", c->why ? c->why : "no test point");
+        return;
+    }
+    if (c->problems & LAM_VP_MATERIAL) {
+        fputs("  ", out);
+        contour_name(out, L, c->contour, src);
+        fprintf(out, " disagrees at (%g, %g, %g): winding %d, the label says %s (%s)\n", c->xyz[0], c->xyz[1],
+                c->xyz[2], c->winding_found, c->expected_material ? "material" : "void",
+                c->whys[bit_index(LAM_VP_MATERIAL)]);
+    }
+    const lam_contour *k = &L->contours[c->contour];
+    for (size_t i = 0; i < sizeof STRUCTURE / sizeof *STRUCTURE; i++) {
+        unsigned b = STRUCTURE[i];
+        if (!(c->problems & b)) continue;
+        fputs("  ", out);
+        contour_name(out, L, c->contour, src);
+        fprintf(out, " %s: %s (", lam_validate_problem_name(b), c->whys[bit_index(b)]);
+        if (b == LAM_VP_DIRECTION) fprintf(out, "signed area %g", c->area);
+        else if (k->depth >= 0) fprintf(out, "depth %d, parent %ld", k->depth, k->parent);
+        if (b == LAM_VP_NESTING) {
+            fputs(k->depth >= 0 ? "; " : "", out);
+            if (c->depth_found > 0)
+                fprintf(out, "%d contour%s around it, the smallest contour %ld", c->depth_found,
+                        c->depth_found == 1 ? "" : "s", c->parent_found);
+            else fputs("no contour around it", out);
+        }
+        fputs(")\n", out);
+    }
+}
+
+static void json_contour(FILE *out, const lam_layer *L, const lam_contour_check *c, const vsource *src)
+{
+    fprintf(out, "{\"contour\":%zu,\"label\":\"%s\"", c->contour, kind_name(L, c->contour));
+    if (src) {
+        const lam_program_contour *pc = &src->contours[c->contour];
+        if (pc->offset >= 0) fprintf(out, ",\"offset\":%lld", pc->offset);
+        else fprintf(out, ",\"line\":%ld,\"column\":%ld", pc->line, pc->column);
+    }
+    fputs(",\"position\":[", out);
+    for (int k = 0; k < 3; k++) {
+        if (k) fputc(',', out);
+        cli_json_number(out, c->xyz[k]);
+    }
+    fprintf(out, "],\"winding\":%d,\"label_says\":\"%s\",\"area\":", c->winding_found,
+            c->expected_material ? "material" : "void");
+    cli_json_number(out, c->area);
+    fprintf(out, ",\"depth_found\":%d,\"parent_found\":%ld,\"why\":", c->depth_found, c->parent_found);
+    cli_json_string(out, c->why ? c->why : "");
+    fputs(",\"problems\":[", out);
+    int first = 1;
+    for (unsigned b = 1; b <= LAM_VP_NESTING; b <<= 1) {
+        if (!(c->problems & b)) continue;
+        fprintf(out, "%s{\"check\":\"%s\",\"why\":", first ? "" : ",", lam_validate_problem_name(b));
+        cli_json_string(out, c->whys[bit_index(b)]);
+        fputc('}', out);
+        first = 0;
+    }
+    fputs("]}", out);
+}
+
+int vreport_layer(vreport *r, lam_validator *v, const lam_layer *L, const lam_frame *f, const lam_validate_opts *o,
+                  const vsource *src, lam_error *err)
 {
     lam_layer_check chk;
-    int rc = lam_validate_layer(v, L, f, fill_nonzero, &chk, err);
+    int rc = lam_validate_layer(v, L, f, o, &chk, err);
     if (rc) return rc;
     r->layers++;
     r->checked += chk.checked;
     r->confirmed += chk.confirmed;
     r->disagreeing += chk.disagreeing;
     r->unchecked += chk.unchecked;
+    r->areas_compared += chk.area_checked;
+    r->areas_differ += !chk.area_ok;
     if (r->json) {
         fprintf(r->out, "%s{\"index\":%zu,\"z\":", r->first ? "" : ",", L->index);
         cli_json_number(r->out, L->cut);
         fprintf(r->out, ",\"contours\":%zu,\"checked\":%zu,\"confirmed\":%zu,\"disagreeing\":%zu,\"unchecked\":%zu,"
-                        "\"disagreements\":[",
+                        "\"net_area\":",
                 L->ncontours, chk.checked, chk.confirmed, chk.disagreeing, chk.unchecked);
+        cli_json_number(r->out, chk.net_area);
+        fputs(",\"section_area\":", r->out);
+        cli_json_number(r->out, chk.area_checked ? chk.section_area : NAN);
+        fputs(",\"area_tolerance\":", r->out);
+        cli_json_number(r->out, chk.area_checked ? chk.area_tolerance : NAN);
+        fprintf(r->out, ",\"area_ok\":%s,\"area\":", chk.area_ok ? "true" : "false");
+        cli_json_string(r->out, chk.area_why ? chk.area_why : "");
+        fputs(",\"disagreements\":[", r->out);
         int firstd = 1;
         for (size_t i = 0; i < chk.nitems; i++) {
-            const lam_contour_check *c = &chk.items[i];
-            if (c->ok != 0) continue;
-            fprintf(r->out, "%s{\"contour\":%zu,\"label\":\"%s\",\"position\":[", firstd ? "" : ",", c->contour,
-                    kind_name(L, c->contour));
-            for (int k = 0; k < 3; k++) {
-                if (k) fputc(',', r->out);
-                cli_json_number(r->out, c->xyz[k]);
-            }
-            fprintf(r->out, "],\"winding\":%d,\"label_says\":\"%s\",\"why\":", c->winding_found,
-                    c->expected_material ? "material" : "void");
-            cli_json_string(r->out, c->why ? c->why : "");
-            fputc('}', r->out);
+            if (chk.items[i].ok != 0) continue;
+            if (!firstd) fputc(',', r->out);
+            json_contour(r->out, L, &chk.items[i], src);
             firstd = 0;
         }
         fputs("]}", r->out);
         r->first = 0;
     } else {
-        if (r->verbose || chk.disagreeing || chk.unchecked)
+        if (r->verbose || chk.disagreeing || chk.unchecked || !chk.area_ok)
             fprintf(r->out, "layer %zu (h=%g): %zu contour%s, %zu confirmed, %zu disagreeing%s\n", L->index, L->cut,
                     L->ncontours, L->ncontours == 1 ? "" : "s", chk.confirmed, chk.disagreeing,
                     chk.unchecked ? ", some too small to check" : "");
-        for (size_t i = 0; i < chk.nitems; i++) {
-            const lam_contour_check *c = &chk.items[i];
-            if (c->ok == 0)
-                fprintf(r->out, "  contour %zu (%s) disagrees at (%g, %g, %g): winding %d, the label says %s (%s)\n",
-                        c->contour, kind_name(L, c->contour), c->xyz[0], c->xyz[1], c->xyz[2], c->winding_found,
-                        c->expected_material ? "material" : "void", c->why ? c->why : "");
-            else if (c->ok < 0)
-                fprintf(r->out, "  contour %zu (%s) not checked: %s\n", c->contour, kind_name(L, c->contour),
-                        c->why ? c->why : "no test point");
-        }
+        for (size_t i = 0; i < chk.nitems; i++)
+            if (chk.items[i].ok <= 0) text_contour(r->out, L, &chk.items[i], src);
+        if (!chk.area_ok)
+            fprintf(r->out, "  net area %.10g (solids minus holes) but the model's section has %.10g: off by %.3g, "
+                            "tolerance %.3g (%s)\n",
+                    chk.net_area, chk.section_area, chk.net_area - chk.section_area, chk.area_tolerance, chk.area_why);
     }
     lam_layer_check_free(&chk);
     return LAM_OK;
 }
 
+int vreport_finish(vreport *r, const char *what)
+{
+    if (r->json) {
+        fprintf(r->out, "],\"checked\":%zu,\"confirmed\":%zu,\"disagreeing\":%zu,\"unchecked\":%zu,"
+                        "\"areas_compared\":%zu,\"areas_differing\":%zu",
+                r->checked, r->confirmed, r->disagreeing, r->unchecked, r->areas_compared, r->areas_differ);
+    } else {
+        fprintf(r->out, "%s: %zu layers, %zu contours checked, %zu confirmed, %zu disagreeing", what, r->layers,
+                r->checked, r->confirmed, r->disagreeing);
+        if (r->unchecked) fprintf(r->out, ", %zu too small to check", r->unchecked);
+        fprintf(r->out, "; net area against the section in %zu layer%s, %zu differ%s\n", r->areas_compared,
+                r->areas_compared == 1 ? "" : "s", r->areas_differ, r->areas_differ == 1 ? "s" : "");
+    }
+    return r->disagreeing || r->areas_differ ? EXIT_CHECK : EXIT_OK;
+}
+
+/* The layers of a program read back, each checked as it is written. */
+static int validate_program(const args *a, const lam_plan_opts *po, lam_validator *v, vreport *r, lam_error *err)
+{
+    lam_program *p = NULL;
+    int rc = lam_program_read(a->program, &p, err);
+    if (rc) return rc;
+    const lam_frame *f = &a->so.frame;
+    lam_section_index *sec = NULL;
+    if ((rc = lam_validator_section(v, f, &sec, err))) {
+        lam_program_free(p);
+        return rc;
+    }
+    lam_validate_opts vo;
+    lam_validate_opts_init(&vo);
+    vo.fill_nonzero = a->so.fill_nonzero;
+    vo.quantum_uv = p->quantum_xy;
+    vo.quantum_h = p->quantum_z;
+    int below = a->so.cut == LAM_CUT_CEILING;
+    if (r->json) {
+        fputs("{\"model\":", r->out);
+        cli_json_string(r->out, a->path);
+        fputs(",\"program\":", r->out);
+        cli_json_string(r->out, a->program);
+        fprintf(r->out, ",\"format\":\"%s\",\"fill\":\"%s\",\"layers\":[", lam_program_format_name(p->format),
+                a->so.fill_nonzero ? "nonzero" : "evenodd");
+    }
+    for (size_t i = 0; i < p->nlayers && !rc; i++) {
+        lam_layer L;
+        if ((rc = lam_program_layer_make(p, i, f, po->frame_machine, a->program, &L, err))) break;
+        /* a height written on a flat face's plane (to its precision) means
+         * that plane, and the side the cut says */
+        double h = L.cut;
+        rc = lam_section_snap(sec, h, p->quantum_z * (1 + 1e-9), &L.cut, err);
+        double prev = i ? p->layers[i - 1].z : h - 1, next = i + 1 < p->nlayers ? p->layers[i + 1].z : h + 1;
+        L.floor = below ? prev : L.cut;
+        L.ceiling = below ? L.cut : next;
+        L.width = L.ceiling - L.floor;
+        vsource src = { a->program, p->contours + p->layers[i].first };
+        if (!rc) rc = vreport_layer(r, v, &L, f, &vo, &src, err);
+        lam_layer_clear(&L);
+    }
+    if (!rc && !r->json)
+        fprintf(r->out, "%s: %s program, %zu layers, %zu contours, read back\n", a->program,
+                lam_program_format_name(p->format), p->nlayers, p->ncontours);
+    lam_program_free(p);
+    return rc;
+}
+
 int cmd_validate(int argc, char **argv)
 {
     args a;
-    int rc = cli_parse_args("validate", usage_text, OPT_MODEL | OPT_SLICE | OPT_SET | OPT_JSON, argc, argv, &a);
+    int rc = cli_parse_args("validate", usage_text, OPT_MODEL | OPT_SLICE | OPT_SET | OPT_JSON | OPT_PROGRAM, argc,
+                            argv, &a);
     if (rc) {
         cli_args_free(&a);
         return rc < 0 ? EXIT_OK : rc;
@@ -99,17 +260,33 @@ int cmd_validate(int argc, char **argv)
     r.json = a.json;
     r.verbose = 1;
     r.first = 1;
-    if ((rc = cli_profile("validate", &a, &prof, NULL))) goto done;
+    lam_plan_opts po;
+    lam_plan_opts_init(&po);
+    for (size_t i = 0; i < a.nsets && !a.program; i++)
+        if (a.sets[i].key->offset == offsetof(lam_profile, frame_machine)) {
+            rc = cli_usage("validate", "%s applies to --program only", a.sets[i].shown);
+            goto done;
+        }
+    if ((rc = cli_profile("validate", &a, &prof, &po))) goto done;
     if (lam_model_load(a.path, &m, &err)) {
         rc = cli_fail(&err);
         goto done;
     }
-    if (lam_slicer_new(m, &a.so, &s, &err)) {
-        rc = err.code == LAM_EUSAGE ? cli_usage("validate", "%s", err.msg) : cli_fail(&err);
-        goto done;
-    }
     if (lam_validator_new(m, &v, &err)) {
         rc = cli_fail(&err);
+        goto done;
+    }
+    if (a.program) {
+        if (validate_program(&a, &po, v, &r, &err)) {
+            rc = err.code == LAM_EUSAGE ? cli_usage("validate", "%s", err.msg) : cli_fail(&err);
+            goto done;
+        }
+        rc = vreport_finish(&r, a.program);
+        if (r.json) fputs("}\n", stdout);
+        goto done;
+    }
+    if (lam_slicer_new(m, &a.so, &s, &err)) {
+        rc = err.code == LAM_EUSAGE ? cli_usage("validate", "%s", err.msg) : cli_fail(&err);
         goto done;
     }
     if (r.json) {
@@ -126,28 +303,22 @@ int cmd_validate(int argc, char **argv)
         }
         if (!L) break;
         open += L->nopen;
-        int vrc = vreport_layer(&r, v, L, lam_slicer_frame(s), a.so.fill_nonzero, &err);
+        lam_validate_opts vo;
+        lam_validate_opts_init(&vo);
+        vo.fill_nonzero = a.so.fill_nonzero;
+        int vrc = vreport_layer(&r, v, L, lam_slicer_frame(s), &vo, NULL, &err);
         lam_layer_free(L);
         if (vrc) {
             rc = cli_fail(&err);
             goto done;
         }
     }
-    if (r.json) {
-        fprintf(stdout, "],\"checked\":%zu,\"confirmed\":%zu,\"disagreeing\":%zu,\"unchecked\":%zu,\"open_outlines\":%zu}\n",
-                r.checked, r.confirmed, r.disagreeing, r.unchecked, open);
-    } else {
-        printf("%s: %zu layers, %zu contours checked, %zu confirmed, %zu disagreeing", a.path, r.layers, r.checked,
-               r.confirmed, r.disagreeing);
-        if (r.unchecked) printf(", %zu too small to check", r.unchecked);
-        printf("\n");
-    }
+    rc = vreport_finish(&r, a.path);
+    if (r.json) printf(",\"open_outlines\":%zu}\n", open);
     if (open && !a.allow_open) {
         fprintf(stderr, "lamina: %s: %zu outline%s stayed open (gap tolerance %g); use --gap or --allow-open\n", a.path,
-                open, open == 1 ? "" : "s", a.so.gap);
+                open, open == 1 ? "" : "s", lam_slicer_gap(s));
         rc = EXIT_INPUT;
-    } else {
-        rc = r.disagreeing ? EXIT_CHECK : EXIT_OK;
     }
 done:
     fflush(stdout);

@@ -8,7 +8,9 @@
 -- as it can be, at most --max (0.5), while no triangle it crosses gets a cusp
 -- above --cusp (0.05), and never narrower than --min (0.02). The recipe
 -- slices MODEL (recipes/parts/sphere.obj) with those widths and compares the
--- layer count with the uniform slicing that has the same worst cusp.
+-- layer count with the widest uniform slicing whose measured worst cusp is
+-- no worse than adaptive's (flat faces that miss the uniform grid count: a
+-- face across the axis inside a layer leaves a cusp of the layer's width).
 -- --axis: x, y, z (default), -z, ... or a direction dx,dy,dz. --list prints
 -- every layer: index, floor, ceiling, width.
 local args = require "lamina.args"
@@ -36,7 +38,7 @@ local worst = adaptive.worst_cusp(facets, planes)
 local layers = assert(model:slice{axis = axis.slice, widths = widths})
 assert(#layers == #widths)
 
-local uniform = adaptive.uniform(facets, worst, o.max)
+local uniform, why = adaptive.uniform(facets, worst, o.max)
 
 local wlo, whi = math.huge, 0
 for _, w in ipairs(widths) do wlo, whi = math.min(wlo, w), math.max(whi, w) end
@@ -45,10 +47,19 @@ print(("model: %s (%d triangles), axis %s, span %.6g .. %.6g"):format(
 print(("cusp %g, widths in [%g, %g]"):format(o.cusp, o.min, o.max))
 print(("adaptive: %d layers, worst cusp %.6g, widths %.6g .. %.6g"):format(
   #widths, worst, wlo, whi))
-print(("uniform: %d layers of %.6g, worst cusp %.6g"):format(
-  uniform.layers, uniform.width, uniform.worst))
-print(("adaptive uses %.1f%% fewer layers than uniform"):format(
-  100 * (1 - #widths / uniform.layers)))
+if uniform then
+  print(("uniform: %d layers of %.6g, worst cusp %.6g"):format(
+    uniform.layers, uniform.width, uniform.worst))
+  local st = uniform.steepest
+  if st.width ~= uniform.width then
+    print(("  (at the width the sloped facets allow, %.6g, uniform takes %d layers but leaves a cusp of %.6g"
+      .. " at flat faces off its grid: not the same worst cusp)"):format(st.width, st.layers, st.worst))
+  end
+  print(("adaptive uses %.1f%% fewer layers than uniform at the same worst cusp"):format(
+    100 * (1 - #widths / uniform.layers)))
+else
+  print(("uniform: none with worst cusp %.6g (%s)"):format(worst, why))
+end
 if worst > o.cusp * (1 + 1e-9) then
   print(("note: --min %g breaks the cusp limit where the surface is nearly flat"):format(o.min))
 end

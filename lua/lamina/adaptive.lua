@@ -29,10 +29,16 @@
 --   The largest w * k over the triangles and the layers they cross (a face
 --   across the axis lying on a boundary crosses none). O(T log S + S log S).
 --
--- adaptive.uniform(facets, cusp, max) -> { width, layers, worst }
---   The uniform slicing whose worst cusp is `cusp`: its width times the
---   steepest sloped facet's k (faces across the axis can sit on a boundary),
---   at most max; its layer count and its measured worst cusp.
+-- adaptive.uniform(facets, cusp, max) -> { width, layers, worst, steepest } | nil, why
+--   The widest uniform slicing (from facets.lo, at most max wide) whose
+--   measured worst cusp is at most `cusp`, so the two are compared at equal
+--   worst cusp: the steepest sloped facet's width cusp / k when every face
+--   across the axis lands on a layer boundary there; else the widest
+--   narrower width that puts them all on boundaries, or cusp itself (a flat
+--   face inside a layer of w leaves a cusp of w). `steepest` is the slicing
+--   at the steepest sloped facet's width, whatever flat faces it misses
+--   ({ width, layers, worst }). nil and why when no width reaches `cusp`
+--   (cusp 0 with sloped facets, or flat faces no grid aligns).
 --
 -- adaptive.flat_heights(facets) -> { h, ... }
 --   The heights of the faces across the axis (k = 1 up to 1e-9), sorted,
@@ -171,16 +177,65 @@ function adaptive.worst_cusp(facets, planes)
   return worst, at
 end
 
+-- the offsets from lo of the flat heights above it
+local function flat_offsets(facets)
+  local eps, out = tolerance(facets), {}
+  for _, h in ipairs(adaptive.flat_heights(facets)) do
+    if h - facets.lo > eps then out[#out + 1] = h - facets.lo end
+  end
+  return out
+end
+
+-- every flat height on the grid lo + i * w
+local function aligned(offsets, w, eps)
+  for _, d in ipairs(offsets) do
+    local k = math.floor(d / w + 0.5)
+    if math.abs(d - k * w) > eps then return false end
+  end
+  return true
+end
+
+local function uniform_at(facets, width)
+  local n = math.max(1, math.ceil((facets.hi - facets.lo) / width - 1e-9))
+  local planes = {}
+  for i = 0, n do planes[i + 1] = facets.lo + i * width end
+  return { width = width, layers = n, worst = adaptive.worst_cusp(facets, planes) }
+end
+
+adaptive.MAX_GRID_TRIES = 100000
+
 function adaptive.uniform(facets, cusp, wmax)
   local kmax = 0
   for _, f in ipairs(facets) do
     if f.k < 1 - adaptive.FLAT and f.k > kmax then kmax = f.k end
   end
-  local width = math.min(kmax > 0 and cusp > 0 and cusp / kmax or wmax, wmax)
-  local n = math.max(1, math.ceil((facets.hi - facets.lo) / width - 1e-9))
-  local planes = {}
-  for i = 0, n do planes[i + 1] = facets.lo + i * width end
-  return { width = width, layers = n, worst = adaptive.worst_cusp(facets, planes) }
+  if kmax > 0 and not (cusp > 0) then
+    return nil, "no uniform width leaves no cusp on a sloped facet"
+  end
+  -- the steepest sloped facet's width: what a flat face off its grid spoils
+  local w0 = math.min(kmax > 0 and cusp / kmax or wmax, wmax)
+  local steepest = uniform_at(facets, w0)
+  local eps, offsets = tolerance(facets), flat_offsets(facets)
+  local width = w0
+  if not aligned(offsets, w0, eps) and w0 > cusp then
+    -- the widest w < w0 that puts every flat face on the grid, as long as
+    -- it is wider than cusp (at cusp, a flat face inside a layer leaves
+    -- exactly cusp)
+    width = nil
+    local d1 = offsets[1]
+    local m = math.ceil(d1 / w0 - 1e-9)
+    for _ = 1, adaptive.MAX_GRID_TRIES do
+      local w = d1 / m
+      if w <= cusp then break end
+      if w < w0 and aligned(offsets, w, eps) then width = w; break end
+      m = m + 1
+    end
+    width = width or (cusp > 0 and cusp or nil)
+    if not width then return nil, "no uniform width puts every flat face on a layer boundary" end
+  end
+  local u = width == w0 and steepest or uniform_at(facets, width)
+  u.steepest = steepest
+  return u
 end
 
 function adaptive.flat_heights(facets)

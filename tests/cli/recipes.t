@@ -92,6 +92,15 @@ awk -v min=0.02 -v max=0.5 '
     $3 < min - 1e-12 || $3 > max + 1e-12 { bad = "width " $3 }
     { prev = $2 } END { if (prev < 10 - 1e-9) bad = "ends at " prev; if (bad) { print bad; exit 1 } }' "$TMP/layers"
 ok $? "adaptive: widths in [0.02, 0.5], contiguous, from -10 to at least 10"
+# flat faces off the uniform grid: the comparison is at the same worst cusp
+# (terrace.ug: flat faces at 0, 1, 1.05 and 2.5, walls only: adaptive has no
+# cusp at all, and so must uniform: 0.05 puts every flat face on a boundary)
+run "$LAMINA" run "$R/adaptive.lua" "$R/parts/terrace.ug"
+like "$OUT" '^adaptive: 6 layers, worst cusp 0,' "adaptive on the terrace: 6 layers, no cusp"
+like "$OUT" '^uniform: 50 layers of 0\.05, worst cusp 0$' "... uniform at the same (zero) worst cusp: 50 layers of 0.05"
+like "$OUT" 'uniform takes 5 layers but leaves a cusp of 0\.5 at flat faces off its grid' \
+    "... and says what the wider uniform slicing would leave"
+like "$OUT" '^adaptive uses 88\.0% fewer layers than uniform at the same worst cusp$' "... and says which is compared"
 # the same with a tighter cusp along another axis: still within the limits
 run "$LAMINA" run "$R/adaptive.lua" --cusp 0.02 --min 0.01 --max 0.3 --axis x "$TMP/sphere.obj"
 na=$(num "$OUT" '^adaptive: ([0-9]+) layers.*'); nu=$(num "$OUT" '^uniform: ([0-9]+) layers.*')

@@ -1,5 +1,5 @@
-/* Fuzz target for everything lamina reads: models (Unigrafix, STL, OBJ)
- * and machine profiles (YAML). Built two ways:
+/* Fuzz target for everything lamina reads: models (Unigrafix, STL, OBJ),
+ * machine profiles (YAML) and programs read back (SLS, CLI). Built two ways:
  *  - with clang -fsanitize=fuzzer (make fuzz): a libFuzzer target;
  *  - in the test suite: a deterministic mutation driver that replays every
  *    seed file given on the command line and a few thousand mutants of
@@ -11,6 +11,7 @@
 #include "import.h"
 #include "model.h"
 #include "profile.h"
+#include "program_read.h"
 #include "slice.h"
 
 #include <stdint.h>
@@ -22,7 +23,7 @@
 static int one(const uint8_t *data, size_t size)
 {
     if (size < 1) return 0;
-    int kind = data[0] % 4;
+    int kind = data[0] % 5;
     const char *buf = (const char *)data + 1;
     size_t len = size - 1;
     lam_error err;
@@ -34,6 +35,22 @@ static int one(const uint8_t *data, size_t size)
     case 0: rc = lam_import_ug_buf("fuzz.ug", buf, len, &m, &err); break;
     case 1: rc = lam_import_stl_buf("fuzz.stl", (const unsigned char *)buf, len, &m, &bin, &err); break;
     case 2: rc = lam_import_obj_buf("fuzz.obj", buf, len, &m, &err); break;
+    case 4: {
+        /* a program read back, and its layers made along z and x */
+        lam_program *p = NULL;
+        rc = lam_program_read_buf("fuzz.sls", (const unsigned char *)buf, len, &p, &err);
+        for (size_t i = 0; p && i < p->nlayers; i++)
+            for (int ax = 0; ax < 2; ax++) {
+                lam_frame f;
+                lam_frame_axis(ax ? 'x' : 'z', &f, NULL);
+                lam_layer L;
+                lam_error lerr;
+                if (lam_program_layer_make(p, i, &f, 0, "fuzz.sls", &L, &lerr) == LAM_OK) lam_layer_clear(&L);
+                else if (lerr.msg[0] == '\0') rc = -1;
+            }
+        lam_program_free(p);
+        return rc != LAM_OK && err.msg[0] == '\0' ? -1 : 0;
+    }
     default: {
         lam_profile *p = NULL;
         rc = lam_profile_load_buf("fuzz.yaml", buf, len, &p, &err);
@@ -147,7 +164,12 @@ int main(int argc, char **argv)
         size_t n = fread(seed + 1, 1, (1 << 20) - 1, f) + 1;
         fclose(f);
         const char *dot = strrchr(argv[i], '.');
-        seed[0] = !dot ? 0 : !strcmp(dot, ".stl") ? 1 : !strcmp(dot, ".obj") ? 2 : !strcmp(dot, ".yaml") ? 3 : 0;
+        seed[0] = !dot                    ? 0
+                  : !strcmp(dot, ".stl")  ? 1
+                  : !strcmp(dot, ".obj")  ? 2
+                  : !strcmp(dot, ".yaml") ? 3
+                  : !strcmp(dot, ".sls") || !strcmp(dot, ".cli") ? 4
+                                          : 0;
         size_t cap = n + 4096;
         uint8_t *b = malloc(cap);
         int bad = one(seed, n) != 0;

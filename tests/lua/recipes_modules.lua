@@ -126,6 +126,28 @@ T.ok(math.abs(u.width - 0.1) < 1e-12 and u.layers == 100 and math.abs(u.worst - 
 u = adaptive.uniform({ facet(0, 0, 1), facet(0, 2, 0), lo = 0, hi = 2 }, 0, 0.5)
 T.ok(u.width == 0.5 and u.layers == 4 and u.worst == 0, "uniform: max wide without sloped facets")
 
+-- the issue's case: a 45-degree slope (k = sqrt(1/2)) and a flat face at
+-- 3.3. cusp / k = 0.0707 puts 3.3 at 46.67 layers: the face would sit inside
+-- a layer and leave a cusp of 0.0707 > 0.05. The widest width that puts it
+-- on a boundary is 3.3 / 47 (0.0702, cusp 0.0496 on the slope): 143 layers.
+local k45 = math.sqrt(0.5)
+u = adaptive.uniform({ facet(0, 10, k45), facet(3.3, 3.3, 1), lo = 0, hi = 10 }, 0.05, 1)
+T.ok(math.abs(u.width - 3.3 / 47) < 1e-12 and u.layers == 143 and u.worst <= 0.05
+     and math.abs(u.worst - 3.3 / 47 * k45) < 1e-9,
+     "uniform: at the same worst cusp, the flat face on a boundary (3.3 / 47)",
+     ("width %.17g, %d layers, worst %.17g"):format(u.width, u.layers, u.worst))
+T.ok(math.abs(u.steepest.width - 0.05 / k45) < 1e-12 and math.abs(u.steepest.worst - 0.05 / k45) < 1e-9,
+     "uniform.steepest: cusp / k wide, the flat face inside a layer leaves 0.0707",
+     ("width %.17g, worst %.17g"):format(u.steepest.width, u.steepest.worst))
+-- two flat faces 0.0301 apart: no width over the cusp puts both on the
+-- grid, so the cusp itself is the width (a flat face inside leaves 0.05)
+u = adaptive.uniform({ facet(0, 10, k45), facet(3.3, 3.3, 1), facet(3.3301, 3.3301, 1), lo = 0, hi = 10 }, 0.05, 1)
+T.ok(math.abs(u.width - 0.05) < 1e-12 and u.layers == 200 and math.abs(u.worst - 0.05) < 1e-9,
+     "uniform: flat faces no grid wider than the cusp aligns: the cusp's width",
+     ("width %.17g, %d layers, worst %.17g"):format(u.width, u.layers, u.worst))
+local none, why = adaptive.uniform({ facet(0, 10, k45), lo = 0, hi = 10 }, 0, 1)
+T.ok(none == nil and why:find("sloped", 1, true), "uniform: no width reaches a zero cusp on a slope")
+
 local terrace = { facet(0, 0, 1), facet(1, 1, 1), facet(1.05, 1.05, 1), facet(2.5, 2.5, 1),
                   facet(0, 1, 0), lo = 0, hi = 2.5 }
 near_all(adaptive.flat_heights(terrace), { 0, 1, 1.05, 2.5 }, "flat_heights")
