@@ -82,11 +82,12 @@ static void lstop(lua_State *L, lua_Debug *ar)
 }
 
 /* SIGINT while Lua runs: stop at the next instruction or call (hook) or the
- * next layer (the binding polls lam_lua_interrupt). SA_RESETHAND: a second
- * Ctrl-C kills the process if the first is not noticed (a long C call). */
+ * next layer (the binding polls lam_lua_interrupt). A second Ctrl-C before
+ * the first is noticed (a long C call) ends the process as any other
+ * interrupt does: temporary files removed. */
 static void laction(int sig)
 {
-    (void)sig;
+    if (lam_lua_interrupt) cli_fatal_signal(sig);
     lam_lua_interrupt = 1;
     lua_sethook(globalL, lstop, LUA_MASKCALL | LUA_MASKRET | LUA_MASKLINE | LUA_MASKCOUNT, 1);
 }
@@ -118,7 +119,6 @@ int lam_cli_docall(lua_State *L, int narg, int nres)
     struct sigaction sa, old;
     memset(&sa, 0, sizeof sa);
     sa.sa_handler = laction;
-    sa.sa_flags = SA_RESETHAND;
     sigemptyset(&sa.sa_mask);
     lam_lua_interrupt = 0;
     sigaction(SIGINT, &sa, &old);

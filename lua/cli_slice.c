@@ -20,6 +20,16 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+
+/* Whether output path `out` names the same file as the model (device and
+ * inode, so any spelling and any link to it counts). */
+static int same_file(const char *out, const char *model)
+{
+    struct stat a, b;
+    return out && strcmp(out, "-") && stat(out, &a) == 0 && stat(model, &b) == 0 && a.st_dev == b.st_dev &&
+           a.st_ino == b.st_ino;
+}
 
 static const char usage_text[] =
     "usage: lamina slice MODEL [-m MACHINE] [-a x|y|z|DX,DY,DZ] [-w WIDTH | --widths W1,W2,... |\n"
@@ -88,6 +98,12 @@ int cmd_slice(int argc, char **argv)
     if (rc) {
         cli_args_free(&a);
         return rc < 0 ? EXIT_OK : rc;
+    }
+    if (same_file(a.out, a.path) || same_file(a.svg, a.path)) {
+        rc = cli_usage("slice", "%s %s is the model being read: refusing to overwrite it",
+                       same_file(a.out, a.path) ? "-o" : "--svg", same_file(a.out, a.path) ? a.out : a.svg);
+        cli_args_free(&a);
+        return rc;
     }
     lam_error err;
     lam_error_clear(&err);
