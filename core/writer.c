@@ -246,6 +246,8 @@ int lam_writer_memory(lam_writer **out, lam_error *err)
 
 void lam_writer_set_limit(lam_writer *w, unsigned long long max_bytes) { w->limit = max_bytes; }
 
+int lam_writer_over_limit(const lam_writer *w) { return w->failed == OVER_LIMIT; }
+
 unsigned long long lam_writer_bytes(const lam_writer *w) { return w->written; }
 
 static const char *reason(int e, char *buf, size_t size, unsigned long long limit)

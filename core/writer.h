@@ -47,6 +47,9 @@ int lam_writer_memory(lam_writer **out, lam_error *err);
  * "output exceeds the limit of N bytes". */
 void lam_writer_set_limit(lam_writer *w, unsigned long long max_bytes);
 
+/* Whether a write failed for passing that limit. */
+int lam_writer_over_limit(const lam_writer *w);
+
 /* Bytes written so far. */
 unsigned long long lam_writer_bytes(const lam_writer *w);
 

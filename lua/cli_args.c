@@ -52,14 +52,30 @@ static int parse_number(const char *s, double *x)
     return end != s && *end == '\0' && errno != ERANGE && isfinite(*x);
 }
 
+/* A byte count: a whole number, optionally followed by k, M, G or T
+ * (powers of 1024; K too). 0 when malformed or out of range. */
+static unsigned long long parse_size(const char *s)
+{
+    char *end;
+    errno = 0;
+    double x = strtod(s, &end);
+    if (end == s || errno == ERANGE || !(x >= 1) || x != floor(x)) return 0;
+    static const char units[] = "kMGT";
+    const char *u = *end ? strchr(units, *end == 'K' ? 'k' : *end) : NULL;
+    if (*end && (!u || end[1])) return 0;
+    for (const char *p = units; u && p <= u; p++) x *= 1024;
+    return x < 1.8e19 ? (unsigned long long)x : 0;
+}
+
 /* Which group an option belongs to (0: not a known option). */
 static unsigned group_of(const char *o)
 {
     static const char *const slice_opts[] = { "-m", "--machine", "-a", "--axis", "-w", "--width", "--widths",
-                                              "--planes", "--cut", "--gap", "--allow-open", "--fill", NULL };
+                                              "--planes", "--cut", "--gap", "--allow-open", "--fill", "--max-layers",
+                                              NULL };
     static const char *const plan_opts[] = { "--first-line", "--angle", "--angle-step", "--min-deposit",
                                              "--no-alternate", "--perimeters", "--beam-offset", "--frame", "--islands",
-                                             "-o", "--output", "--validate", NULL };
+                                             "-o", "--output", "--validate", "--max-output", NULL };
     for (int i = 0; slice_opts[i]; i++)
         if (!strcmp(o, slice_opts[i])) return OPT_SLICE;
     for (int i = 0; plan_opts[i]; i++)
@@ -142,6 +158,16 @@ int cli_parse_args(const char *cmd, const char *usage_text, unsigned groups, int
             if (!parse_number(argv[++i], &a->so.gap) || a->so.gap < 0)
                 return cli_usage(cmd, "--gap takes a tolerance >= 0 (got '%s')", argv[i]);
             a->set_gap = 1;
+        } else if (!strcmp(o, "--max-layers")) {
+            NEED();
+            double x;
+            if (!parse_number(argv[++i], &x) || !(x >= 1) || x != floor(x) || x > 1e15)
+                return cli_usage(cmd, "--max-layers takes a whole number of layers >= 1 (got '%s')", argv[i]);
+            a->so.max_layers = (size_t)x;
+        } else if (!strcmp(o, "--max-output")) {
+            NEED();
+            if (!(a->max_output = parse_size(argv[++i])))
+                return cli_usage(cmd, "--max-output takes a size in bytes, such as 500M or 8G (got '%s')", argv[i]);
         } else if (!strcmp(o, "--allow-open")) {
             a->allow_open = 1;
         } else if (!strcmp(o, "--first-line")) {
@@ -213,6 +239,7 @@ void cli_apply_profile(args *a, const lam_profile *p, lam_plan_opts *po)
 
 static void apply_overrides(const args *a, lam_plan_opts *po)
 {
+    po->max_output = a->max_output;
     if (a->set_frame) po->frame_machine = a->frame_machine;
     if (a->set_first) po->first_center = a->first_center;
     if (a->set_angle) po->angle = a->angle;
@@ -228,6 +255,13 @@ void cli_args_free(args *a)
 {
     free(a->list);
     a->list = NULL;
+}
+
+int cli_fail_limit(const lam_error *err, int over, const char *option)
+{
+    int rc = cli_fail(err);
+    if (over || err->code == LAM_ELIMIT) fprintf(stderr, "lamina: raise the limit with %s\n", option);
+    return rc;
 }
 
 int cli_load_profile(const args *a, lam_profile **out, lam_error *err)

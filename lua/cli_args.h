@@ -23,6 +23,7 @@ typedef struct args {
     int set_first, first_center, set_angle, set_step, set_min, no_alternate, frame_machine;
     int perimeters, set_perimeters, beam_offset, islands;
     double angle, angle_step, min_deposit;
+    unsigned long long max_output;  /* --max-output, 0: the default */
 } args;
 
 /* Parse argv[1..] for command cmd, accepting the option groups in
@@ -33,6 +34,12 @@ void cli_args_free(args *a);
 
 /* The machine profile for a run: -m's, or the built-in SLS profile. */
 int cli_load_profile(const args *a, lam_profile **out, lam_error *err);
+
+/* Report err (cli_fail); when it is a limit (LAM_ELIMIT, or `over`) also
+ * say that `option` raises it. */
+int cli_fail_limit(const lam_error *err, int over, const char *option);
+#define CLI_RAISE_LAYERS "--max-layers N"
+#define CLI_RAISE_OUTPUT "--max-output SIZE (bytes, or with k, M, G or T)"
 
 /* Profile defaults under the command line's overrides. */
 void cli_apply_profile(args *a, const lam_profile *p, lam_plan_opts *po);

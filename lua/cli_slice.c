@@ -129,7 +129,7 @@ int cmd_slice(int argc, char **argv)
         goto done;
     }
     if (lam_slicer_new(m, &a.so, &s, &err)) {
-        rc = err.code == LAM_EUSAGE ? cli_usage("slice", "%s", err.msg) : cli_fail(&err);
+        rc = err.code == LAM_EUSAGE ? cli_usage("slice", "%s", err.msg) : cli_fail_limit(&err, 0, CLI_RAISE_LAYERS);
         goto done;
     }
     if (a.validate) {
@@ -154,6 +154,7 @@ int cmd_slice(int argc, char **argv)
         rc = cli_fail(&err);
         goto done;
     }
+    lam_writer_set_limit(w, a.max_output ? a.max_output : LAM_DEFAULT_MAX_OUTPUT);
     int src = !prof->writer || !strcmp(prof->writer, "text") ? lam_dialect_sink(&prof->dialect, w, &err, &sink)
                                                              : lam_plugin_writer_sink(prof->writer, w, &err, &sink);
     if (src) {
@@ -161,7 +162,8 @@ int cmd_slice(int argc, char **argv)
         goto done;
     }
     if (lam_plan_run(s, m, &po, &sink, on_layer, &rep, &err)) {
-        rc = err.code == LAM_EUSAGE ? cli_usage("slice", "%s", err.msg) : cli_fail(&err);
+        rc = err.code == LAM_EUSAGE ? cli_usage("slice", "%s", err.msg)
+                                    : cli_fail_limit(&err, lam_writer_over_limit(w), CLI_RAISE_OUTPUT);
         goto done;
     }
     if (rep.gap_layers > 20)
@@ -189,7 +191,8 @@ int cmd_slice(int argc, char **argv)
     {
         lam_writer *tmp = w;
         w = NULL;
-        if (lam_writer_commit(tmp, &err)) rc = cli_fail(&err);
+        int over = lam_writer_over_limit(tmp);
+        if (lam_writer_commit(tmp, &err)) rc = cli_fail_limit(&err, over, CLI_RAISE_OUTPUT);
     }
 done:
     if (sink.destroy) sink.destroy(sink.ctx);

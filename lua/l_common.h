@@ -44,10 +44,6 @@
 #define LAM_MACHINE "lamina.machine"
 #define LAM_PLAN    "lamina.plan"
 
-/* Most layers one model:slice may make (each is kept in memory). */
-#define LAM_LUA_MAX_LAYERS 1000000
-/* Most scan lines a LADRP plan may lay in one layer. */
-#define LAM_LUA_MAX_LINES 10000000
 
 /* Set by the SIGINT handler of cli_lua.c while Lua code runs, cleared when
  * that code returns; long C loops of the binding (slicing, planning) poll
