@@ -45,6 +45,11 @@ lmachine *lam_lua_checkmachine(lua_State *L, int idx)
 int lam_lua_machine(lua_State *L)
 {
     const char *name = luaL_checkstring(L, 1);
+    /* a name is looked up in the machine directories; a path is the user's */
+    size_t len = strlen(name);
+    int path = strchr(name, '/') || (len > 5 && strcmp(name + len - 5, ".yaml") == 0);
+    int n = path ? lam_lua_denied(L, name, 0) : 0;
+    if (n) return n;
     lmachine *u = lua_newuserdatauv(L, sizeof *u, 1);
     memset(u, 0, sizeof *u);
     u->tag = LAM_TAG_MACHINE;

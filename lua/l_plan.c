@@ -284,6 +284,8 @@ static int p_write(lua_State *L)
 {
     lplan *pl = check(L, 1);
     const char *path = luaL_checkstring(L, 2);
+    int n = lam_lua_denied(L, path, 1);
+    if (n) return n;
     lam_writer *w;
     lam_error err;
     lam_error_clear(&err);
