@@ -25,7 +25,8 @@
  *   - memory: the state's allocator (lua_setallocf's kind) refuses to grow
  *     Lua's memory past the limit ("not enough memory" in the recipe);
  *   - time: a count hook, and lamina's long C loops between layers, raise
- *     "time limit exceeded" once the limit has passed.
+ *     "time limit exceeded" once the limit has passed; from then on pcall,
+ *     xpcall and coroutine.resume pass it on instead of catching it.
  * The sandbox is found from a state by its allocator (lua_getallocf), which
  * Lua code cannot change. */
 /* realpath (XSI) */
@@ -52,6 +53,7 @@ struct lam_sandbox {
     size_t nmods;
     size_t mem_limit, mem_used;
     double time_limit, deadline;
+    int timed_out;           /* the limit was reached: pcall cannot catch it */
 };
 
 /* ---- the allocator and the clock --------------------------------------- */
@@ -87,8 +89,21 @@ static double now(void)
 void lam_lua_sandbox_check_time(lua_State *L)
 {
     lam_sandbox *sb = lam_lua_sandbox_of(L);
-    if (sb && sb->deadline > 0 && now() > sb->deadline)
+    if (sb && (sb->timed_out || (sb->deadline > 0 && now() > sb->deadline))) {
+        sb->timed_out = 1;
         luaL_error(L, "time limit exceeded (%f s; raise it with --time or the option time)", sb->time_limit);
+    }
+}
+
+/* pcall, xpcall, coroutine.resume: upvalue 1 after the call, but once the
+ * time limit is reached the error goes on up instead of being caught */
+static int sb_catching(lua_State *L)
+{
+    lua_pushvalue(L, lua_upvalueindex(1));
+    lua_insert(L, 1);
+    lua_call(L, lua_gettop(L) - 1, LUA_MULTRET);
+    lam_lua_sandbox_check_time(L);
+    return lua_gettop(L);
 }
 
 static void time_hook(lua_State *L, lua_Debug *ar)
@@ -394,6 +409,7 @@ static int sb_require(lua_State *L)
 /* Replace t[name] with a closure of f over its old value. */
 static void wrap(lua_State *L, int t, const char *name, lua_CFunction f)
 {
+    t = lua_absindex(L, t);
     lua_getfield(L, t, name);
     lua_pushcclosure(L, f, 1);
     lua_setfield(L, t, name);
@@ -401,6 +417,7 @@ static void wrap(lua_State *L, int t, const char *name, lua_CFunction f)
 
 static void drop(lua_State *L, int t, const char *const *names)
 {
+    t = lua_absindex(L, t);
     for (; *names; names++) {
         lua_pushnil(L);
         lua_setfield(L, t, *names);
@@ -428,6 +445,11 @@ static int open_libs(lua_State *L)
     wrap(L, g, "setmetatable", sb_setmetatable);
     wrap(L, g, "getmetatable", sb_getmetatable);
     wrap(L, g, "collectgarbage", sb_collectgarbage);
+    wrap(L, g, "pcall", sb_catching);
+    wrap(L, g, "xpcall", sb_catching);
+    lua_getglobal(L, LUA_COLIBNAME);
+    wrap(L, -1, "resume", sb_catching);
+    lua_pop(L, 1);
     lua_pushcfunction(L, sb_loadfile);
     lua_setfield(L, g, "loadfile");
     lua_pushcfunction(L, sb_dofile);
