@@ -336,6 +336,7 @@ static void release(lam_writer *w)
 int lam_writer_commit(lam_writer *w, lam_error *err)
 {
     int bad = w->failed;
+    FILE *stream = w->kind == W_STREAM ? w->f : NULL;
     if (w->kind != W_MEMORY) {
         if (fflush(w->f) != 0 && !bad) bad = errno ? errno : EIO;
         if (w->kind != W_STREAM && fclose(w->f) != 0 && !bad) bad = errno ? errno : EIO;
@@ -346,6 +347,8 @@ int lam_writer_commit(lam_writer *w, lam_error *err)
     if (w->kind == W_FILE && bad) unlink(w->tmp);
     w->failed = bad;
     int rc = lam_writer_error(w, err);
+    /* reported here: the stream's owner need not report it again */
+    if (rc && stream) clearerr(stream);
     release(w);
     return rc;
 }
