@@ -38,7 +38,7 @@ static const char usage_text[] =
     "                          [--angle-step DEG] [--min-deposit LEN] [--no-alternate]\n"
     "                          [--perimeters N] [--islands] [--beam-offset]\n"
     "                          [--frame model|machine] [--fill evenodd|nonzero] [--validate]\n"
-    "                          [--svg FILE] [-o FILE]\n"
+    "                          [--max-layers N] [--max-output SIZE] [--svg FILE] [-o FILE]\n"
     "  -m, --machine    machine profile: a shipped name (see 'lamina machines') or a path\n"
     "  -a, --axis       slice axis or direction (default z)\n"
     "  -w, --width      uniform layer width (default: the profile's, else 1/100 of the extent)\n"
@@ -54,6 +54,9 @@ static const char usage_text[] =
     "      --frame      coordinates of the program: model (default) or machine (layer frame)\n"
     "      --fill       evenodd (default: nesting parity) or nonzero (overlapping bodies merge)\n"
     "      --validate   check every label with Embree first; write nothing if any disagrees\n"
+    "      --max-layers refuse runs of more layers (default 1000000)\n"
+    "      --max-output refuse programs larger than SIZE bytes (k, M, G, T: powers of\n"
+    "                   1024; default 4G), estimated before planning and as written\n"
     "      --svg        write a contact sheet of the layers\n"
     "  -o, --output     program file (default: standard output)\n";
 
