@@ -8,6 +8,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/time.h>
 #include <unistd.h>
 
 #include <lauxlib.h>
@@ -259,7 +260,7 @@ static int protected_run(lua_State *L, lua_CFunction f, void *ud)
 }
 
 /* The last resort of --time: Lua's own C functions (a string pattern that
- * backtracks for ever) never reach the hook. A few seconds after the
+ * backtracks for ever) never reach the hook. Two seconds after the
  * limit, the process ends, temporary files removed. */
 static void watchdog(int sig)
 {
@@ -330,12 +331,18 @@ int cmd_run(int argc, char **argv)
     char msg[1024];
     lua_State *L = lam_lua_sandbox_open(&so, msg, sizeof msg);
     if (!L) return cli_usage("run", "%s", msg);
+    struct itimerval t;
+    memset(&t, 0, sizeof t);
     if (so.time > 0) {
+        double at = so.time + 2;
+        t.it_value.tv_sec = (time_t)at;
+        t.it_value.tv_usec = (suseconds_t)((at - floor(at)) * 1e6);
         signal(SIGALRM, watchdog);
-        alarm((unsigned)ceil(so.time) + 5);
+        setitimer(ITIMER_REAL, &t, NULL);
     }
     int rc = protected_run(L, run_main, &a);
-    alarm(0);
+    memset(&t, 0, sizeof t);
+    setitimer(ITIMER_REAL, &t, NULL);
     return rc;
 }
 

@@ -64,8 +64,10 @@ like "$RC $ERR" "^2 lamina slice: --svg link\.ug is the model being read" "--svg
 is "$(cksum <model.ug)" "$sum" "the model is untouched"
 
 # ---- signals during a slice ------------------------------------------------------------------
-# A slice that runs until it is stopped: a 2-unit cube in 2 * 10^7 layers.
-LONG=(slice model.ug -w 1e-7 --max-layers 100000000 --max-output 1T)
+# A slice that runs until it is stopped, writing from the start: LADRP
+# with a bead of 1e-7, 2 * 10^7 scan lines in each of the 2 layers.
+printf 'inherits: creol-ladrp\nbead_width: 1e-7\n' >fine.yaml
+LONG=(slice model.ug -m ./fine.yaml -w 1)
 # wait_for COND-COMMAND: poll until it holds, at most about 60 s
 wait_for() {
     for _ in $(seq 1 6000); do eval "$1" && return 0; sleep 0.01; done
