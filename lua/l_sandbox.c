@@ -498,6 +498,7 @@ static void sandbox_free(lam_sandbox *sb)
 /* mkdir -p, without checks (the caller's own directories) */
 int lam_lua_mkdirs(const char *path)
 {
+    if (!*path) return ENOENT;
     char *p = strdup(path);
     if (!p) return ENOMEM;
     int e = 0;
