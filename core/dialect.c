@@ -551,13 +551,12 @@ typedef struct dsink {
  * size: one writer call per line was a fifth of the run time. */
 #define FLUSH_AT 65536
 
-static int flush(dsink *s, lam_cmd c)
+static int flush(dsink *s)
 {
     if (s->b.len == 0) return LAM_OK;
     int rc = lam_writer_write(s->w, s->b.s, s->b.len);
     s->b.len = 0;
-    if (rc) return lam_error_set(s->err, rc, NULL, 0, 0, "cannot write the program (%s command)", cmd_names[c]);
-    return LAM_OK;
+    return rc ? lam_writer_error(s->w, s->err) : LAM_OK;
 }
 
 static int emit(dsink *s, lam_cmd c, const vals *v, double rel[3], int has_rel[3])
@@ -568,7 +567,7 @@ static int emit(dsink *s, lam_cmd c, const vals *v, double rel[3], int has_rel[3
     put(&s->b, "\n", 1);
     if (s->b.oom) return lam_error_set(s->err, LAM_ENOMEM, NULL, 0, 0, "out of memory writing the %s command",
                                        cmd_names[c]);
-    return s->b.len >= FLUSH_AT ? flush(s, c) : LAM_OK;
+    return s->b.len >= FLUSH_AT ? flush(s) : LAM_OK;
 }
 
 static void job_vals(const dsink *s, vals *v)
@@ -728,7 +727,7 @@ static int d_end(void *ctx)
     vals v;
     job_vals(s, &v);
     int rc = emit(s, LAM_CMD_POSTAMBLE, &v, NULL, NULL);
-    return rc ? rc : flush(s, LAM_CMD_POSTAMBLE);
+    return rc ? rc : flush(s);
 }
 
 static void d_destroy(void *ctx)

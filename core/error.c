@@ -83,6 +83,7 @@ const char *lam_status_name(int code)
     case LAM_EFORMAT: return "unknown format";
     case LAM_EGEOM: return "geometry error";
     case LAM_EUSAGE: return "usage error";
+    case LAM_ELIMIT: return "over a limit";
     }
     return "error";
 }

@@ -17,7 +17,9 @@ enum lam_status {
     LAM_ENOMEM,   /* allocation failed */
     LAM_EFORMAT,  /* the file's format is not one lamina reads */
     LAM_EGEOM,    /* geometry that cannot be processed (e.g. a polygon that will not triangulate) */
-    LAM_EUSAGE    /* a caller passed options that make no sense */
+    LAM_EUSAGE,   /* a caller passed options that make no sense */
+    LAM_ELIMIT    /* a job larger than a limit allows (layers, output size): the
+                     message gives the numbers; the caller names its option */
 };
 
 typedef struct lam_error {

@@ -43,6 +43,16 @@ static void rotation(double deg, double *c, double *s)
     }
 }
 
+double lam_ladrp_lines(const double box[4], double deg, double bead)
+{
+    if (!(box[2] >= box[0]) || !(box[3] >= box[1])) return 0;
+    /* lines run along (c, s), spaced across (-s, c), over which the box
+     * spans |w s| + |h c| */
+    double c, s;
+    rotation(deg, &c, &s);
+    return floor((fabs((box[2] - box[0]) * s) + fabs((box[3] - box[1]) * c)) / bead) + 1;
+}
+
 typedef struct emitter {
     const lam_sink *sink;
     const lam_frame *f;
@@ -162,8 +172,6 @@ static int raster(emitter *e, const lam_layer *L, int approach, lam_error *err)
     int rc = LAM_OK;
     double d = o->bead;
     double y0 = o->first_center ? vmax - d / 2 : vmax;
-    if (ne && (vmax - vmin) / d > 1e7) rc = lam_error_set(err, LAM_EUSAGE, NULL, 0, 0,
-                                                          "bead width %g makes more than 10^7 scan lines in a layer", d);
     size_t ins = 0, nact = 0, emitted = 0;
     for (size_t k = 0; ne && rc == LAM_OK; k++) {
         double y = y0 - (double)k * d; /* never accumulated */

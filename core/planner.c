@@ -4,6 +4,7 @@
 #include "profile.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
 
 void lam_plan_opts_init(lam_plan_opts *o)
@@ -37,6 +38,72 @@ void lam_plan_opts_from_profile(lam_plan_opts *o, const lam_profile *p)
     o->beam_offset = p->beam_offset;
 }
 
+/* ---- estimates ------------------------------------------------------------ */
+
+enum { BYTES_LINE = 64, BYTES_POINT = 24, BYTES_LAYER = 16 };
+
+void lam_job_estimate_layer(lam_job_estimate *e, const lam_plan_opts *o, size_t index, const double *box,
+                            double points)
+{
+    e->layers++;
+    if (o->kind == LAM_PLAN_LADRP) {
+        if (box) e->lines += lam_ladrp_lines(box, o->angle + (double)index * o->angle_step, o->bead);
+        e->points += points * o->perimeters;
+    } else {
+        e->points += points;
+    }
+    e->bytes = BYTES_LINE * e->lines + BYTES_POINT * e->points + BYTES_LAYER * (double)e->layers;
+}
+
+void lam_plan_estimate(const lam_slicer *s, const lam_plan_opts *o, lam_job_estimate *e)
+{
+    memset(e, 0, sizeof *e);
+    double box[4];
+    lam_slicer_uv_bounds(s, box);
+    size_t n = lam_slicer_count(s);
+    if (!n) return;
+    /* the points spread evenly: only their sum counts; one angle: one layer
+     * times n */
+    double per = lam_slicer_crossings(s) / (double)n;
+    if (o->kind == LAM_PLAN_LADRP && o->angle_step != 0) {
+        for (size_t i = 0; i < n; i++) lam_job_estimate_layer(e, o, i, box, per);
+        return;
+    }
+    lam_job_estimate_layer(e, o, 0, box, per);
+    e->layers = n;
+    e->lines *= (double)n;
+    e->points *= (double)n;
+    e->bytes *= (double)n;
+}
+
+/* n bytes for people: "16 GB", "512 kB" (powers of 1024, as the limits). */
+static const char *bytes_text(double n, char *buf, size_t size)
+{
+    static const char *const unit[] = { "bytes", "kB", "MB", "GB", "TB", "PB", "EB" };
+    int u = 0;
+    while (n >= 1024 && u < 6) n /= 1024, u++;
+    snprintf(buf, size, u ? "%.3g %s" : "%.0f %s", n, unit[u]);
+    return buf;
+}
+
+int lam_plan_check_estimate(const lam_job_estimate *e, const lam_plan_opts *o, unsigned long long max_bytes,
+                            lam_error *err)
+{
+    if (!max_bytes) max_bytes = LAM_DEFAULT_MAX_OUTPUT;
+    if (!(e->bytes > (double)max_bytes)) return LAM_OK;
+    char a[32], b[32];
+    if (o->kind == LAM_PLAN_LADRP)
+        return lam_error_set(err, LAM_ELIMIT, NULL, 0, 0,
+                             "the job would write about %s (%zu layers, %.4g scan lines of bead %g), more than the "
+                             "limit of %s",
+                             bytes_text(e->bytes, a, sizeof a), e->layers, e->lines, o->bead,
+                             bytes_text((double)max_bytes, b, sizeof b));
+    return lam_error_set(err, LAM_ELIMIT, NULL, 0, 0,
+                         "the job would write about %s (%zu layers, %.4g contour points), more than the limit of %s",
+                         bytes_text(e->bytes, a, sizeof a), e->layers, e->points,
+                         bytes_text((double)max_bytes, b, sizeof b));
+}
+
 static void job_bbox(const lam_slicer *s, const lam_model *m, const lam_plan_opts *o, double bb[6])
 {
     if (!o->frame_machine) {
@@ -57,6 +124,9 @@ static void job_bbox(const lam_slicer *s, const lam_model *m, const lam_plan_opt
 int lam_plan_run(lam_slicer *s, const lam_model *m, const lam_plan_opts *o, const lam_sink *sink,
                  lam_layer_cb cb, void *cbctx, lam_error *err)
 {
+    lam_job_estimate est;
+    lam_plan_estimate(s, o, &est);
+    if (lam_plan_check_estimate(&est, o, o->max_output, err)) return LAM_ELIMIT;
     const lam_frame *f = lam_slicer_frame(s);
     lam_job_info job;
     memset(&job, 0, sizeof job);

@@ -54,6 +54,8 @@ typedef struct lam_plan_opts {
     /* SLS */
     int beam_offset;             /* contours moved inward by half the spot (holes
                                     outward), so the beam's edge traces the part */
+    unsigned long long max_output; /* lam_plan_run refuses a job estimated to write
+                                      more (lam_plan_check_estimate); 0: the default */
 } lam_plan_opts;
 
 /* Defaults: SLS, bead 1, rates 0, model frame, edge, 0 degrees, alternate. */
@@ -66,13 +68,54 @@ struct lam_profile;
  * profile's strings are borrowed: it must outlive o. */
 void lam_plan_opts_from_profile(lam_plan_opts *o, const struct lam_profile *p);
 
+/* ---- the size of a job, before it runs ------------------------------------ */
+
+/* The default output limit: 4 GiB, over ten times the largest program of
+ * the bench parts, and far below what a width or bead typed wrong asks
+ * (-w 1e-6 on a 100 mm cube writes about 16 GB). */
+#define LAM_DEFAULT_MAX_OUTPUT (4ULL << 30)
+
+/* What a job will do, estimated from the model's extent before any layer
+ * is made. */
+typedef struct lam_job_estimate {
+    size_t layers;
+    double lines;            /* LADRP scan lines: per layer, the extent across the scan
+                                direction of the box of the sections / bead, + 1 */
+    double points;           /* contour points (SLS; LADRP perimeters) */
+    double bytes;            /* estimated output: 64 bytes a scan line (a travel, the
+                                laser on and off, a deposit: 60 in G-code, 90 in the
+                                thesis's dialect), 24 a contour point, 16 a layer */
+} lam_job_estimate;
+
+/* Scan lines a layer whose sections lie in box (umin vmin umax vmax) gets
+ * at raster angle `deg` with bead d (0 for an empty box). */
+double lam_ladrp_lines(const double box[4], double deg, double bead);
+
+/* Add one layer to e: sections within box (NULL: the layer is empty), with
+ * `points` contour points, index the layer's index in its run (for the
+ * raster angle); e->bytes is brought up to date. */
+void lam_job_estimate_layer(lam_job_estimate *e, const lam_plan_opts *o, size_t index, const double *box,
+                            double points);
+
+/* The estimate of planning slicer s's whole run with o: every layer within
+ * the model's extent, points from lam_slicer_crossings. */
+void lam_plan_estimate(const lam_slicer *s, const lam_plan_opts *o, lam_job_estimate *e);
+
+/* LAM_ELIMIT when e->bytes passes max_bytes (0: LAM_DEFAULT_MAX_OUTPUT),
+ * with a message that gives the estimate and what it comes from:
+ * "the job would write about 16 GB (100000000 layers, 400000000 contour
+ * points), more than the limit of 4 GB". */
+int lam_plan_check_estimate(const lam_job_estimate *e, const lam_plan_opts *o, unsigned long long max_bytes,
+                            lam_error *err);
+
 /* Called with every layer before it is planned (reports, previews). A
  * non-zero return stops the run with that code. */
 typedef int (*lam_layer_cb)(void *ctx, const lam_layer *layer, lam_error *err);
 
 /* Plan a whole slicing run into sink: begin, every layer, end. The sink is
  * not destroyed. Returns LAM_OK or the first error (from the slicer, a
- * planner, the sink or the callback). */
+ * planner, the sink or the callback); LAM_ELIMIT, before anything is
+ * planned or written, when the run's estimate passes o->max_output. */
 int lam_plan_run(lam_slicer *s, const lam_model *m, const lam_plan_opts *o, const lam_sink *sink,
                  lam_layer_cb cb, void *cbctx, lam_error *err);
 

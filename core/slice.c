@@ -3,6 +3,7 @@
 
 #include <float.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -139,6 +140,7 @@ struct lam_slicer {
     double *wuv;
     double *cuts;          /* cut height of each layer, nondecreasing */
     double min_area;       /* loops of no more area are slivers */
+    double crossings;      /* edge crossings over all cuts */
     int up;                /* vertices on a plane count as below it */
     uint32_t *order;       /* edges that cross some cut, by first layer crossed */
     size_t *layer_first;   /* order[layer_first[i] ..] enter at layer i */
@@ -169,10 +171,18 @@ static int unit_axis(const double a[3])
     return -1;
 }
 
+static int too_many(double layers, size_t max, const char *what, lam_error *err)
+{
+    return lam_error_set(err, LAM_ELIMIT, NULL, 0, 0, "%s makes %.0f layers, more than the limit of %zu", what, layers,
+                         max);
+}
+
 static int make_planes(lam_slicer *s, double wmin, double wmax, lam_error *err)
 {
     const lam_slice_opts *o = &s->o;
-    size_t n;
+    size_t n, max = o->max_layers ? o->max_layers : LAM_DEFAULT_MAX_LAYERS;
+    if (o->planes && o->nplanes > max + 1) return too_many((double)o->nplanes - 1, max, "the list of planes", err);
+    if (!o->planes && o->widths && o->nwidths > max) return too_many((double)o->nwidths, max, "the list of widths", err);
     if (o->planes) {
         if (o->nplanes < 2)
             return lam_error_set(err, LAM_EUSAGE, NULL, 0, 0, "at least two planes are needed (they bound the layers)");
@@ -211,8 +221,11 @@ static int make_planes(lam_slicer *s, double wmin, double wmax, lam_error *err)
         if (!(w > 0) || !isfinite(w))
             return lam_error_set(err, LAM_EUSAGE, NULL, 0, 0, "layer width must be a positive number (got %g)", o->width);
         double q = (wmax - wmin) / w;
-        if (q > 1e8)
-            return lam_error_set(err, LAM_EUSAGE, NULL, 0, 0, "width %g makes %.3g layers (more than 10^8)", w, q);
+        if (q > (double)max) {
+            char what[64];
+            snprintf(what, sizeof what, "width %g", w);
+            return too_many(ceil(q), max, what, err);
+        }
         /* an extent that is a whole number of layers up to rounding gets
          * exactly that many, not one more nearly empty layer */
         double layers = floor(q);
@@ -399,6 +412,8 @@ int lam_slicer_new(const lam_model *m, const lam_slice_opts *opts, lam_slicer **
         /* first layer with lo below its cut: cut >= lo (up) or cut > lo */
         size_t a = first_cut(s, c0, step, lo, !s->up);
         int crosses = a < S && (s->up ? hi > s->cuts[a] : hi >= s->cuts[a]);
+        /* cuts crossed: those from a up to the first one at or above hi */
+        if (crosses) s->crossings += (double)(first_cut(s, c0, step, hi, !s->up) - a);
         bucket[e] = crosses ? (uint32_t)a : NONE;
         if (crosses) s->layer_first[a + 1]++;
     }
@@ -423,6 +438,7 @@ fail:
 }
 
 size_t lam_slicer_count(const lam_slicer *s) { return s->nlayers; }
+double lam_slicer_crossings(const lam_slicer *s) { return s->crossings; }
 const double *lam_slicer_planes(const lam_slicer *s) { return s->planes; }
 double lam_slicer_cut(const lam_slicer *s, size_t i)
 {

@@ -73,7 +73,12 @@ typedef struct lam_slice_opts {
     size_t nwidths;
     const double *planes;    /* explicit increasing boundaries a(0) .. a(S) */
     size_t nplanes;
+    size_t max_layers;       /* most layers a run may make; 0: LAM_DEFAULT_MAX_LAYERS */
 } lam_slice_opts;
+
+/* The default of max_layers: a metre at a micrometre, far above any real
+ * build, far below a width typed wrong (-w 1e-6 on a 100 mm part is 10^8). */
+#define LAM_DEFAULT_MAX_LAYERS 1000000
 
 /* Fill opts with the defaults: axis z, middle cut, default gap, width 0
  * (meaning: lam_default_width of the model). */
@@ -126,7 +131,9 @@ typedef struct lam_slicer lam_slicer;
 /* Prepare a sweep over model with opts (copied). The model must outlive the
  * slicer. Errors: LAM_EUSAGE for a negative or non-finite width, a width
  * in the list <= 0, widths that do not cover the model, planes not strictly
- * increasing or fewer than two. */
+ * increasing or fewer than two; LAM_ELIMIT for more layers than
+ * max_layers (the message gives both numbers), found before anything the
+ * size of the run is allocated. */
 int lam_slicer_new(const lam_model *model, const lam_slice_opts *opts, lam_slicer **out,
                    lam_error *err);
 
@@ -135,6 +142,11 @@ size_t lam_slicer_count(const lam_slicer *s);
 
 /* Layer boundaries a(0) .. a(S) (S + 1 values). */
 const double *lam_slicer_planes(const lam_slicer *s);
+
+/* Points of all the run's sections before points in line are merged (one
+ * per edge crossing a cut): an upper bound on the contour points of the
+ * run, known before slicing. */
+double lam_slicer_crossings(const lam_slicer *s);
 
 /* Cut height of layer i (0 <= i < count). */
 double lam_slicer_cut(const lam_slicer *s, size_t i);

@@ -1,11 +1,17 @@
-/* realpath (XSI) */
+/* realpath (XSI); flock (BSD) */
 #define _XOPEN_SOURCE 700
+#define _DEFAULT_SOURCE
 #include "writer.h"
 
+#include <ctype.h>
+#include <dirent.h>
 #include <errno.h>
+#include <fcntl.h>
+#include <signal.h>
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/file.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -18,7 +24,91 @@ struct lam_writer {
     char *buf;             /* W_MEMORY */
     size_t len, cap;
     int failed;            /* errno of the first failure, 0 if none */
+    int lockfd;            /* W_FILE: holds the temporary's flock until commit/abort */
+    unsigned long long written, limit;
 };
+
+/* EFBIG stands for "over lam_writer_set_limit" in `failed`. */
+#define OVER_LIMIT EFBIG
+
+/* ---- the registry of live temporaries ------------------------------------ */
+
+/* Read by lam_writer_unlink_temps in a signal handler: a slot holds a path
+ * only while that string is allocated and complete, and is cleared before
+ * the string is freed. Writers live in one thread (the CLI's and the Lua
+ * binding's), so plain volatile pointers do. */
+#define MAX_LIVE 64
+static char *volatile live[MAX_LIVE];
+
+static void live_add(char *path)
+{
+    for (size_t i = 0; i < MAX_LIVE; i++)
+        if (!live[i]) {
+            live[i] = path;
+            return;
+        }
+}
+
+static void live_remove(const char *path)
+{
+    for (size_t i = 0; i < MAX_LIVE; i++)
+        if (live[i] == path) live[i] = NULL;
+}
+
+void lam_writer_unlink_temps(void)
+{
+    for (size_t i = 0; i < MAX_LIVE; i++) {
+        char *p = live[i];
+        if (p) unlink(p);
+    }
+}
+
+/* ---- stale temporaries ------------------------------------------------------ */
+
+/* name is BASE ".tmp-" DIGITS "-" six characters (what create_temp makes). */
+static int is_temp_name(const char *name, const char *base, size_t nbase)
+{
+    if (strncmp(name, base, nbase) != 0 || strncmp(name + nbase, ".tmp-", 5) != 0) return 0;
+    const char *p = name + nbase + 5;
+    if (!isdigit((unsigned char)*p)) return 0;
+    while (isdigit((unsigned char)*p)) p++;
+    return *p == '-' && strlen(p + 1) == 6;
+}
+
+/* Remove the temporaries of `target` that no live writer holds (writer.h). */
+static void remove_stale(const char *target)
+{
+    const char *slash = strrchr(target, '/');
+    const char *base = slash ? slash + 1 : target;
+    size_t nbase = strlen(base), ndir = slash ? (size_t)(slash - target) + 1 : 0;
+    char *dirpath = malloc(ndir + 2), *full = malloc(ndir + nbase + 64);
+    DIR *dir = NULL;
+    if (dirpath && full) {
+        if (ndir) memcpy(dirpath, target, ndir);
+        else dirpath[ndir++] = '.';
+        dirpath[ndir] = '\0';
+        dir = opendir(dirpath);
+    }
+    struct dirent *de;
+    uid_t me = geteuid();
+    while (dir && (de = readdir(dir))) {
+        if (!is_temp_name(de->d_name, base, nbase) || strlen(de->d_name) > nbase + 40) continue;
+        snprintf(full, ndir + nbase + 64, "%.*s%s", (int)(slash ? ndir : 0), target, de->d_name);
+        struct stat ls, fs;
+        if (lstat(full, &ls) != 0 || !S_ISREG(ls.st_mode) || ls.st_uid != me) continue;
+        int fd = open(full, O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC);
+        if (fd < 0) continue;
+        /* a lock nobody holds: its writer is gone; the same file still at
+         * that name (not replaced in between) */
+        if (flock(fd, LOCK_EX | LOCK_NB) == 0 && fstat(fd, &fs) == 0 && fs.st_ino == ls.st_ino &&
+            fs.st_dev == ls.st_dev)
+            unlink(full);
+        close(fd);
+    }
+    if (dir) closedir(dir);
+    free(dirpath);
+    free(full);
+}
 
 /* An existing target that is not a regular file (a terminal, /dev/null, a
  * pipe): written to directly, since renaming over it would replace the
@@ -59,7 +149,7 @@ int lam_writer_file(const char *path, lam_writer **out, lam_error *err)
     lam_writer *w = calloc(1, sizeof *w);
     if (w) {
         w->path = strdup(target);
-        w->tmp = malloc(n + 32);
+        w->tmp = malloc(n + 48);
     }
     free(real);
     if (!w || !w->path || !w->tmp) {
@@ -71,25 +161,60 @@ int lam_writer_file(const char *path, lam_writer **out, lam_error *err)
         return lam_error_set(err, LAM_ENOMEM, path, 0, 0, "out of memory");
     }
     w->kind = W_FILE;
-    /* same directory as the target, so the final rename is atomic */
-    snprintf(w->tmp, n + 32, "%s.tmp-XXXXXX", w->path);
-    int fd = mkstemp(w->tmp);
-    if (fd >= 0) {
-        /* mkstemp makes the file private; the output gets the usual mode */
+    w->lockfd = -1;
+    remove_stale(w->path);
+    /* the mode of the file it replaces, else the usual one */
+    mode_t mode;
+    struct stat old;
+    if (stat(w->path, &old) == 0 && S_ISREG(old.st_mode)) {
+        mode = old.st_mode & 07777;
+    } else {
         mode_t mask = umask(0);
         umask(mask);
-        fchmod(fd, 0666 & ~mask);
+        mode = 0666 & ~mask;
     }
-    if (fd < 0 || !(w->f = fdopen(fd, "wb"))) {
-        int e = errno;
+    /* Signals are held from mkstemp until the temporary is registered, so
+     * a handler never misses it. Same directory as the target, so the final
+     * rename is atomic. */
+    sigset_t all, was;
+    sigfillset(&all);
+    int fd = -1, e = 0;
+    for (int attempt = 0; attempt < 8 && fd < 0; attempt++) {
+        snprintf(w->tmp, n + 48, "%s.tmp-%ld-XXXXXX", w->path, (long)getpid());
+        sigprocmask(SIG_BLOCK, &all, &was);
+        fd = mkstemp(w->tmp);
+        if (fd >= 0) live_add(w->tmp);
+        sigprocmask(SIG_SETMASK, &was, NULL);
+        if (fd < 0) {
+            e = errno;
+            break;
+        }
+        /* the lock marks it live (remove_stale); a cleaner that locked it
+         * first (between mkstemp and here) has unlinked it: make another */
+        struct stat ts;
+        if (flock(fd, LOCK_EX) != 0 || fstat(fd, &ts) != 0 || ts.st_nlink == 0) {
+            live_remove(w->tmp);
+            close(fd);
+            fd = -1;
+            e = EAGAIN;
+        }
+    }
+    if (fd >= 0) {
+        fchmod(fd, mode);
+        w->lockfd = dup(fd);
+        if (w->lockfd < 0 || !(w->f = fdopen(fd, "wb"))) e = errno;
+    }
+    if (fd < 0 || !w->f) {
         if (fd >= 0) {
             close(fd);
             unlink(w->tmp);
+            live_remove(w->tmp);
         }
+        if (w->lockfd >= 0) close(w->lockfd);
         free(w->path);
         free(w->tmp);
         free(w);
-        return lam_error_set(err, LAM_EIO, path, 0, 0, "cannot create output: %s", strerror(e));
+        return lam_error_set(err, LAM_EIO, path, 0, 0, "cannot create output: %s", strerror(e ? e : EIO));
     }
     *out = w;
     return LAM_OK;
@@ -119,9 +244,39 @@ int lam_writer_memory(lam_writer **out, lam_error *err)
     return LAM_OK;
 }
 
+void lam_writer_set_limit(lam_writer *w, unsigned long long max_bytes) { w->limit = max_bytes; }
+
+int lam_writer_over_limit(const lam_writer *w) { return w->failed == OVER_LIMIT; }
+
+unsigned long long lam_writer_bytes(const lam_writer *w) { return w->written; }
+
+static const char *reason(int e, char *buf, size_t size, unsigned long long limit)
+{
+    if (e == OVER_LIMIT) {
+        snprintf(buf, size, "output exceeds the limit of %llu bytes", limit);
+        return buf;
+    }
+    return strerror(e ? e : EIO);
+}
+
+int lam_writer_error(const lam_writer *w, lam_error *err)
+{
+    if (!w->failed) return LAM_OK;
+    char buf[96];
+    if (w->kind == W_MEMORY && w->failed != OVER_LIMIT)
+        return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory writing output");
+    return lam_error_set(err, LAM_EIO, w->kind == W_MEMORY ? NULL : w->path, 0, 0, "cannot write output: %s",
+                         reason(w->failed, buf, sizeof buf, w->limit));
+}
+
 int lam_writer_write(lam_writer *w, const void *data, size_t len)
 {
-    if (w->failed) return LAM_EIO;
+    if (w->failed) return w->failed == ENOMEM ? LAM_ENOMEM : LAM_EIO;
+    if (w->limit && len > w->limit - w->written) {
+        w->failed = OVER_LIMIT;
+        return LAM_EIO;
+    }
+    w->written += len;
     if (w->kind == W_MEMORY) {
         if (w->len + len + 1 > w->cap) {
             size_t cap = w->cap ? w->cap : 4096;
@@ -170,6 +325,8 @@ int lam_writer_printf(lam_writer *w, const char *fmt, ...)
 
 static void release(lam_writer *w)
 {
+    if (w->tmp) live_remove(w->tmp);
+    if (w->kind == W_FILE && w->lockfd >= 0) close(w->lockfd);
     free(w->path);
     free(w->tmp);
     free(w->buf);
@@ -178,25 +335,20 @@ static void release(lam_writer *w)
 
 int lam_writer_commit(lam_writer *w, lam_error *err)
 {
-    int rc = LAM_OK;
-    if (w->kind == W_FILE) {
-        int bad = w->failed;
+    int bad = w->failed;
+    FILE *stream = w->kind == W_STREAM ? w->f : NULL;
+    if (w->kind != W_MEMORY) {
         if (fflush(w->f) != 0 && !bad) bad = errno ? errno : EIO;
-        if (fclose(w->f) != 0 && !bad) bad = errno ? errno : EIO;
+        if (w->kind != W_STREAM && fclose(w->f) != 0 && !bad) bad = errno ? errno : EIO;
         w->f = NULL;
-        if (!bad && rename(w->tmp, w->path) != 0) bad = errno;
-        if (bad) {
-            unlink(w->tmp);
-            rc = lam_error_set(err, LAM_EIO, w->path, 0, 0, "cannot write output: %s", strerror(bad));
-        }
-    } else if (w->kind == W_STREAM || w->kind == W_DEVICE) {
-        int bad = w->failed;
-        if (fflush(w->f) != 0 && !bad) bad = errno ? errno : EIO;
-        if (w->kind == W_DEVICE && fclose(w->f) != 0 && !bad) bad = errno ? errno : EIO;
-        if (bad) rc = lam_error_set(err, LAM_EIO, w->path, 0, 0, "cannot write output: %s", strerror(bad));
-    } else if (w->failed) {
-        rc = lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory writing output");
     }
+    /* the temporary is renamed while its lock is still held (lockfd) */
+    if (w->kind == W_FILE && !bad && rename(w->tmp, w->path) != 0) bad = errno;
+    if (w->kind == W_FILE && bad) unlink(w->tmp);
+    w->failed = bad;
+    int rc = lam_writer_error(w, err);
+    /* reported here: the stream's owner need not report it again */
+    if (rc && stream) clearerr(stream);
     release(w);
     return rc;
 }
@@ -224,8 +376,9 @@ int lam_writer_take(lam_writer *w, char **data, size_t *len, lam_error *err)
         return lam_error_set(err, LAM_EUSAGE, NULL, 0, 0, "not a memory writer");
     }
     if (w->failed) {
+        int rc = lam_writer_error(w, err);
         release(w);
-        return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory writing output");
+        return rc;
     }
     *data = w->buf ? w->buf : calloc(1, 1);
     *len = w->len;

@@ -23,6 +23,11 @@ void cli_json_number(FILE *f, double x);
 /* Format a double for people: shortest form that reads back exactly. */
 const char *cli_num(char *buf, size_t size, double x);
 
+/* The handler of SIGINT, SIGTERM, SIGHUP and SIGPIPE (main.c): remove the
+ * temporary files of outputs being written and end by the same signal.
+ * Async-signal-safe. */
+void cli_fatal_signal(int sig);
+
 int cmd_info(int argc, char **argv);
 int cmd_slice(int argc, char **argv);
 int cmd_validate(int argc, char **argv);

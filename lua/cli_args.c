@@ -138,6 +138,41 @@ static int o_set(const char *cmd, args *a, const cli_opt *o, const char *opt, co
     return add_set(cmd, a, shown, name, eq + 1);
 }
 
+/* A byte count: a whole number, optionally followed by k, M, G or T
+ * (powers of 1024; K too). 0 when malformed or out of range. */
+static unsigned long long parse_size(const char *s)
+{
+    char *end;
+    errno = 0;
+    double x = strtod(s, &end);
+    if (end == s || errno == ERANGE || !(x >= 1) || x != floor(x)) return 0;
+    static const char units[] = "kMGT";
+    const char *u = *end ? strchr(units, *end == 'K' ? 'k' : *end) : NULL;
+    if (*end && (!u || end[1])) return 0;
+    for (const char *p = units; u && p <= u; p++) x *= 1024;
+    return x < 1.8e19 ? (unsigned long long)x : 0;
+}
+
+static int o_max_layers(const char *cmd, args *a, const cli_opt *o, const char *opt, const char *val)
+{
+    (void)o;
+    char *end;
+    errno = 0;
+    double x = strtod(val, &end);
+    if (end == val || *end || errno == ERANGE || !(x >= 1) || x != floor(x) || x > 1e15)
+        return cli_usage(cmd, "%s takes a whole number of layers >= 1 (got '%s')", opt, val);
+    a->so.max_layers = (size_t)x;
+    return 0;
+}
+
+static int o_max_output(const char *cmd, args *a, const cli_opt *o, const char *opt, const char *val)
+{
+    (void)o;
+    if (!(a->max_output = parse_size(val)))
+        return cli_usage(cmd, "%s takes a size in bytes, such as 500M or 8G (got '%s')", opt, val);
+    return 0;
+}
+
 #define F(member) offsetof(args, member)
 static const cli_opt options[] = {
     { "machine", 'm', OPT_SLICE, "MACHINE", o_text, F(machine) },
@@ -146,6 +181,8 @@ static const cli_opt options[] = {
     { "planes", 0, OPT_SLICE, "P1,P2,...", o_layers, F(so.planes) },
     { "fill", 0, OPT_SLICE, "RULE", o_fill, 0 },
     { "allow-open", 0, OPT_SLICE, NULL, o_flag, F(allow_open) },
+    { "max-layers", 0, OPT_SLICE, "N", o_max_layers, 0 },
+    { "max-output", 0, OPT_PLAN, "SIZE", o_max_output, 0 },
     { "set", 's', OPT_SET, "KEY=VALUE", o_set, 0 },
     { "validate", 0, OPT_PLAN, NULL, o_flag, F(validate) },
     { "output", 'o', OPT_PLAN, "FILE", o_text, F(out) },
@@ -372,7 +409,17 @@ int cli_profile(const char *cmd, args *a, lam_profile **out, lam_plan_opts *po)
     /* a machine's units say what the automatic gap may be at most; the
      * built-in profile stands for no machine, and model units for nothing */
     if (a->machine) a->so.gap_limit = lam_profile_gap_limit(p);
-    if (po) lam_plan_opts_from_profile(po, p);
+    if (po) {
+        lam_plan_opts_from_profile(po, p);
+        po->max_output = a->max_output;
+    }
     *out = p;
     return EXIT_OK;
+}
+
+int cli_fail_limit(const lam_error *err, int over, const char *option)
+{
+    int rc = cli_fail(err);
+    if (over || err->code == LAM_ELIMIT) fprintf(stderr, "lamina: raise the limit with %s\n", option);
+    return rc;
 }

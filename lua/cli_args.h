@@ -41,6 +41,7 @@ typedef struct args {
     int allow_open, json, validate, keys;
     cli_set *sets;           /* in command-line order; later ones win */
     size_t nsets;
+    unsigned long long max_output;  /* --max-output, 0: the default */
 } args;
 
 /* Parse argv[1..] for command cmd, accepting the option groups in
@@ -59,5 +60,11 @@ int cli_profile(const char *cmd, args *a, lam_profile **out, lam_plan_opts *po);
 
 /* The profile values of the command line applied to p (machines --show). */
 int cli_apply_sets(const char *cmd, const args *a, lam_profile *p);
+
+/* Report err (cli_fail); when it is a limit (LAM_ELIMIT, or `over`) also
+ * say that `option` raises it. */
+int cli_fail_limit(const lam_error *err, int over, const char *option);
+#define CLI_RAISE_LAYERS "--max-layers N"
+#define CLI_RAISE_OUTPUT "--max-output SIZE (bytes, or with k, M, G or T)"
 
 #endif

@@ -142,7 +142,7 @@ int cmd_check(int argc, char **argv)
         printf(")\n");
     }
     if (a.svg && draw(&a, m, &res, &err)) {
-        rc = cli_fail(&err);
+        rc = cli_fail_limit(&err, 0, CLI_RAISE_LAYERS);
         goto done;
     }
     rc = res.n ? EXIT_CHECK : EXIT_OK;

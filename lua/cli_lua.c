@@ -3,10 +3,12 @@
  * interrupts the running code). */
 #include "cli_lua.h"
 
+#include <math.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/time.h>
 #include <unistd.h>
 
 #include <lauxlib.h>
@@ -15,6 +17,7 @@
 #include "cli.h"
 #include "l_common.h"
 #include "paths.h"
+#include "writer.h"
 
 LUAMOD_API int luaopen_lamina(lua_State *L);
 
@@ -82,11 +85,12 @@ static void lstop(lua_State *L, lua_Debug *ar)
 }
 
 /* SIGINT while Lua runs: stop at the next instruction or call (hook) or the
- * next layer (the binding polls lam_lua_interrupt). SA_RESETHAND: a second
- * Ctrl-C kills the process if the first is not noticed (a long C call). */
+ * next layer (the binding polls lam_lua_interrupt). A second Ctrl-C before
+ * the first is noticed (a long C call) ends the process as any other
+ * interrupt does: temporary files removed. */
 static void laction(int sig)
 {
-    (void)sig;
+    if (lam_lua_interrupt) cli_fatal_signal(sig);
     lam_lua_interrupt = 1;
     lua_sethook(globalL, lstop, LUA_MASKCALL | LUA_MASKRET | LUA_MASKLINE | LUA_MASKCOUNT, 1);
 }
@@ -118,7 +122,6 @@ int lam_cli_docall(lua_State *L, int narg, int nres)
     struct sigaction sa, old;
     memset(&sa, 0, sizeof sa);
     sa.sa_handler = laction;
-    sa.sa_flags = SA_RESETHAND;
     sigemptyset(&sa.sa_mask);
     lam_lua_interrupt = 0;
     sigaction(SIGINT, &sa, &old);
@@ -180,39 +183,69 @@ static void set_arg(lua_State *L, const char *cmd, const char *script, int argc,
 /* ---- lamina run ---------------------------------------------------------- */
 
 static const char run_usage[] =
-    "usage: lamina run RECIPE.lua [ARGS...]\n"
+    "usage: lamina run [--safe [--allow DIR]... [--out DIR]... [--memory SIZE] [--time SECONDS]]\n"
+    "                  RECIPE.lua [ARGS...]\n"
     "Run a Lua recipe with the lamina module loaded (global `lamina`, or\n"
     "require \"lamina\"). ARGS are in the table `arg` (arg[0] is the recipe,\n"
     "arg[1] the first argument) and in `...`, as with lua. RECIPE '-' reads\n"
-    "the recipe from standard input. Exit code 1 when the recipe fails.\n";
+    "the recipe from standard input. Exit code 1 when the recipe fails.\n"
+    "  --safe      run it sandboxed: no os.execute, io.popen, C modules, debug\n"
+    "              library or bytecode; files only in these directories:\n"
+    "  --allow DIR    may be read (any number of them)\n"
+    "  --out DIR      may be read and written (created if missing)\n"
+    "  --memory SIZE  Lua memory limit (default 256M; 0: none)\n"
+    "  --time SECONDS run time limit (default 60; 0: none)\n";
 
 typedef struct runargs {
     const char *script;
     int argc;
     char **argv;
     int status;
+    int safe;
 } runargs;
+
+/* In a sandbox: the recipe's os.exit(n), or a memory error said plainly. */
+static int report_safe(lua_State *L)
+{
+    int code;
+    if (lam_lua_sandbox_exit(L, &code)) {
+        lua_pop(L, 1);
+        return code;
+    }
+    char buf[200];
+    const char *mem = lua_type(L, -1) == LUA_TSTRING && strstr(lua_tostring(L, -1), "not enough memory")
+                          ? lam_lua_sandbox_memory_error(L, buf, sizeof buf)
+                          : NULL;
+    if (mem) {
+        lua_pop(L, 1);
+        lua_pushstring(L, mem);
+    }
+    return lam_cli_report(L, 1);
+}
 
 static int run_main(lua_State *L)
 {
     runargs *a = lua_touserdata(L, 1);
     set_arg(L, "run", a->script, a->argc, a->argv);
     const char *fname = strcmp(a->script, "-") == 0 ? NULL : a->script;
-    if (luaL_loadfile(L, fname) != LUA_OK) {
+    /* sandboxed: source text only, never bytecode */
+    if (luaL_loadfilex(L, fname, a->safe ? "t" : NULL) != LUA_OK) {
         lam_cli_report(L, 1);
         a->status = EXIT_INPUT;
         return 0;
     }
     luaL_checkstack(L, a->argc + 5, "too many arguments to the recipe");
     for (int i = 0; i < a->argc; i++) lua_pushstring(L, a->argv[i]);
-    if (lam_cli_docall(L, a->argc, 0) != LUA_OK) a->status = lam_cli_report(L, 1);
+    if (a->safe) lam_lua_sandbox_start(L);
+    if (lam_cli_docall(L, a->argc, 0) != LUA_OK) a->status = a->safe ? report_safe(L) : lam_cli_report(L, 1);
     return 0;
 }
 
-static int protected_run(lua_CFunction f, void *ud)
+/* Run f(ud) protected in L (a new plain state when L is NULL), and close L. */
+static int protected_run(lua_State *L, lua_CFunction f, void *ud)
 {
-    lua_State *L = lam_cli_newstate();
-    if (!L) return EXIT_INPUT;
+    int sandboxed = L != NULL;
+    if (!L && !(L = lam_cli_newstate())) return EXIT_INPUT;
     runargs *a = ud;
     a->status = EXIT_OK;
     lua_pushcfunction(L, f);
@@ -221,8 +254,35 @@ static int protected_run(lua_CFunction f, void *ud)
         lam_cli_report(L, 1);
         a->status = EXIT_INPUT;
     }
-    lua_close(L);
+    if (sandboxed) lam_lua_sandbox_close(L);
+    else lua_close(L);
     return a->status;
+}
+
+/* The last resort of --time: Lua's own C functions (a string pattern that
+ * backtracks for ever) never reach the hook. Two seconds after the
+ * limit, the process ends, temporary files removed. */
+static void watchdog(int sig)
+{
+    (void)sig;
+    static const char msg[] = "lamina: time limit exceeded (the recipe did not stop; ended)\n";
+    ssize_t w = write(STDERR_FILENO, msg, sizeof msg - 1);
+    (void)w;
+    lam_writer_unlink_temps();
+    _exit(EXIT_INPUT);
+}
+
+/* A size in bytes with an optional k, M, G or T (powers of 1024); -1 when
+ * malformed. */
+static double parse_bytes(const char *s)
+{
+    char *end;
+    double x = strtod(s, &end);
+    if (end == s || !(x >= 0) || !isfinite(x)) return -1;
+    const char *units = "kMGT", *u = *end ? strchr(units, *end == 'K' ? 'k' : *end) : NULL;
+    if (*end && (!u || end[1])) return -1;
+    for (const char *p = units; u && p <= u; p++) x *= 1024;
+    return x;
 }
 
 int cmd_run(int argc, char **argv)
@@ -231,9 +291,59 @@ int cmd_run(int argc, char **argv)
         fputs(run_usage, stdout);
         return EXIT_OK;
     }
-    if (argc < 2) return cli_usage("run", "no recipe given");
-    runargs a = { argv[1], argc - 2, argv + 2, EXIT_OK };
-    return protected_run(run_main, &a);
+    lam_sandbox_opts so;
+    memset(&so, 0, sizeof so);
+    so.memory = 256.0 * 1024 * 1024;
+    so.time = 60;
+    const char *allow[64], *out[64];
+    so.allow = allow;
+    so.out = out;
+    int i = 1, safe = 0, limits = 0;
+    for (; i < argc && argv[i][0] == '-' && argv[i][1]; i++) {
+        const char *o = argv[i];
+        if (!strcmp(o, "--safe")) {
+            safe = 1;
+            continue;
+        }
+        if (strcmp(o, "--allow") && strcmp(o, "--out") && strcmp(o, "--memory") && strcmp(o, "--time"))
+            return cli_usage("run", "unknown option '%s' (options go before the recipe)", o);
+        if (i + 1 >= argc) return cli_usage("run", "option %s needs a value", o);
+        const char *v = argv[++i];
+        limits = 1;
+        if (!strcmp(o, "--allow") || !strcmp(o, "--out")) {
+            size_t *n = o[2] == 'a' ? &so.nallow : &so.nout;
+            if (*n == 64) return cli_usage("run", "at most 64 %s directories", o);
+            (o[2] == 'a' ? allow : out)[(*n)++] = v;
+        } else if (!strcmp(o, "--memory")) {
+            if ((so.memory = parse_bytes(v)) < 0)
+                return cli_usage("run", "--memory takes a size in bytes, such as 512M (got '%s')", v);
+        } else {
+            char *end;
+            so.time = strtod(v, &end);
+            if (end == v || *end || !(so.time >= 0) || !isfinite(so.time) || so.time > 1e6)
+                return cli_usage("run", "--time takes a number of seconds (got '%s')", v);
+        }
+    }
+    if (limits && !safe) return cli_usage("run", "--allow, --out, --memory and --time go with --safe");
+    if (i >= argc) return cli_usage("run", "no recipe given");
+    runargs a = { argv[i], argc - i - 1, argv + i + 1, EXIT_OK, safe };
+    if (!safe) return protected_run(NULL, run_main, &a);
+    char msg[1024];
+    lua_State *L = lam_lua_sandbox_open(&so, msg, sizeof msg);
+    if (!L) return cli_usage("run", "%s", msg);
+    struct itimerval t;
+    memset(&t, 0, sizeof t);
+    if (so.time > 0) {
+        double at = so.time + 2;
+        t.it_value.tv_sec = (time_t)at;
+        t.it_value.tv_usec = (suseconds_t)((at - floor(at)) * 1e6);
+        signal(SIGALRM, watchdog);
+        setitimer(ITIMER_REAL, &t, NULL);
+    }
+    int rc = protected_run(L, run_main, &a);
+    memset(&t, 0, sizeof t);
+    setitimer(ITIMER_REAL, &t, NULL);
+    return rc;
 }
 
 /* ---- lamina -e ------------------------------------------------------------- */
@@ -259,8 +369,8 @@ int cmd_eval(int argc, char **argv)
         if (strcmp(argv[i], "-e") != 0) return cli_usage(NULL, "unexpected '%s' after -e CODE (give -e CODE ...)", argv[i]);
         if (i + 1 >= argc) return cli_usage(NULL, "-e needs Lua code");
     }
-    runargs a = { "", argc, argv, EXIT_OK };
-    return protected_run(eval_main, &a);
+    runargs a = { "", argc, argv, EXIT_OK, 0 };
+    return protected_run(NULL, eval_main, &a);
 }
 
 /* ---- lamina repl ----------------------------------------------------------- */
@@ -289,8 +399,8 @@ int cmd_repl(int argc, char **argv)
         return EXIT_OK;
     }
     if (argc >= 2) return cli_usage("repl", "unexpected argument '%s'", argv[1]);
-    runargs a = { "", 0, NULL, EXIT_OK };
-    return protected_run(repl_main, &a);
+    runargs a = { "", 0, NULL, EXIT_OK, 0 };
+    return protected_run(NULL, repl_main, &a);
 }
 
 int lua_main_default(void)

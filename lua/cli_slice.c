@@ -20,6 +20,16 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+
+/* Whether output path `out` names the same file as the model (device and
+ * inode, so any spelling and any link to it counts). */
+static int same_file(const char *out, const char *model)
+{
+    struct stat a, b;
+    return out && strcmp(out, "-") && stat(out, &a) == 0 && stat(model, &b) == 0 && a.st_dev == b.st_dev &&
+           a.st_ino == b.st_ino;
+}
 
 static const char usage_text[] =
     "usage: lamina slice MODEL [-m MACHINE] [-s KEY=VALUE ...] [-a x|y|z|DX,DY,DZ]\n"
@@ -28,7 +38,8 @@ static const char usage_text[] =
     "                          [--first-line edge|center] [--angle DEG] [--angle-step DEG]\n"
     "                          [--min-deposit LEN] [--no-alternate] [--perimeters N] [--islands]\n"
     "                          [--beam-offset] [--frame model|machine] [--fill evenodd|nonzero]\n"
-    "                          [--validate] [--svg FILE] [-o FILE]\n"
+    "                          [--validate] [--max-layers N] [--max-output SIZE]\n"
+    "                          [--svg FILE] [-o FILE]\n"
     "  -m, --machine    machine profile: a shipped name (see 'lamina machines') or a path\n"
     "                   (default: the thesis's SLS contours)\n"
     "  -s, --set        KEY=VALUE: any key of the machine profile, checked as in its YAML\n"
@@ -39,6 +50,9 @@ static const char usage_text[] =
     "      --allow-open drop outlines that stay open instead of failing\n"
     "      --fill       evenodd (default: nesting parity) or nonzero (overlapping bodies merge)\n"
     "      --validate   check every label with Embree first; write nothing if any disagrees\n"
+    "      --max-layers refuse runs of more layers (default 1000000)\n"
+    "      --max-output refuse programs larger than SIZE bytes (k, M, G, T: powers of\n"
+    "                   1024; default 4G), estimated before planning and as written\n"
     "      --svg        write a contact sheet of the layers\n"
     "  -o, --output     program file (default: standard output)\n"
     "Values: --name=VALUE or --name VALUE; -- ends the options. The profile's values are\n"
@@ -102,6 +116,12 @@ int cmd_slice(int argc, char **argv)
         cli_args_free(&a);
         return rc < 0 ? EXIT_OK : rc;
     }
+    if (same_file(a.out, a.path) || same_file(a.svg, a.path)) {
+        rc = cli_usage("slice", "%s %s is the model being read: refusing to overwrite it",
+                       same_file(a.out, a.path) ? "-o" : "--svg", same_file(a.out, a.path) ? a.out : a.svg);
+        cli_args_free(&a);
+        return rc;
+    }
     lam_error err;
     lam_error_clear(&err);
     lam_profile *prof = NULL;
@@ -121,7 +141,7 @@ int cmd_slice(int argc, char **argv)
         goto done;
     }
     if (lam_slicer_new(m, &a.so, &s, &err)) {
-        rc = err.code == LAM_EUSAGE ? cli_usage("slice", "%s", err.msg) : cli_fail(&err);
+        rc = err.code == LAM_EUSAGE ? cli_usage("slice", "%s", err.msg) : cli_fail_limit(&err, 0, CLI_RAISE_LAYERS);
         goto done;
     }
     if (a.validate) {
@@ -146,6 +166,7 @@ int cmd_slice(int argc, char **argv)
         rc = cli_fail(&err);
         goto done;
     }
+    lam_writer_set_limit(w, a.max_output ? a.max_output : LAM_DEFAULT_MAX_OUTPUT);
     int src = !prof->writer || !strcmp(prof->writer, "text") ? lam_dialect_sink(&prof->dialect, w, &err, &sink)
                                                              : lam_plugin_writer_sink(prof->writer, w, &err, &sink);
     if (src) {
@@ -153,7 +174,8 @@ int cmd_slice(int argc, char **argv)
         goto done;
     }
     if (lam_plan_run(s, m, &po, &sink, on_layer, &rep, &err)) {
-        rc = err.code == LAM_EUSAGE ? cli_usage("slice", "%s", err.msg) : cli_fail(&err);
+        rc = err.code == LAM_EUSAGE ? cli_usage("slice", "%s", err.msg)
+                                    : cli_fail_limit(&err, lam_writer_over_limit(w), CLI_RAISE_OUTPUT);
         goto done;
     }
     if (rep.gap_layers > 20)
@@ -185,7 +207,8 @@ int cmd_slice(int argc, char **argv)
     {
         lam_writer *tmp = w;
         w = NULL;
-        if (lam_writer_commit(tmp, &err)) rc = cli_fail(&err);
+        int over = lam_writer_over_limit(tmp);
+        if (lam_writer_commit(tmp, &err)) rc = cli_fail_limit(&err, over, CLI_RAISE_OUTPUT);
     }
 done:
     if (sink.destroy) sink.destroy(sink.ctx);

@@ -286,7 +286,7 @@ int cmd_validate(int argc, char **argv)
         goto done;
     }
     if (lam_slicer_new(m, &a.so, &s, &err)) {
-        rc = err.code == LAM_EUSAGE ? cli_usage("validate", "%s", err.msg) : cli_fail(&err);
+        rc = err.code == LAM_EUSAGE ? cli_usage("validate", "%s", err.msg) : cli_fail_limit(&err, 0, CLI_RAISE_LAYERS);
         goto done;
     }
     if (r.json) {

@@ -45,10 +45,6 @@
 #define LAM_MACHINE "lamina.machine"
 #define LAM_PLAN    "lamina.plan"
 
-/* Most layers one model:slice may make (each is kept in memory). */
-#define LAM_LUA_MAX_LAYERS 1000000
-/* Most scan lines a LADRP plan may lay in one layer. */
-#define LAM_LUA_MAX_LINES 10000000
 
 /* Set by the SIGINT handler of cli_lua.c while Lua code runs, cleared when
  * that code returns; long C loops of the binding (slicing, planning) poll
@@ -56,8 +52,56 @@
  * lua5.4. */
 extern volatile sig_atomic_t lam_lua_interrupt;
 
-/* Raise "interrupted" if the flag is set. */
+/* Raise "interrupted" if the flag is set, or "time limit exceeded" in a
+ * sandbox whose time is up. */
 void lam_lua_check_interrupt(lua_State *L);
+
+/* ---- sandboxes (l_sandbox.c) --------------------------------------------- */
+
+typedef struct lam_sandbox lam_sandbox;
+
+typedef struct lam_sandbox_opts {
+    const char *const *allow;   /* directories to read */
+    size_t nallow;
+    const char *const *out;     /* directories to read and write (created if missing) */
+    size_t nout;
+    double memory;              /* bytes of Lua memory, 0: no limit */
+    double time;                /* seconds from lam_lua_sandbox_start, 0: no limit */
+} lam_sandbox_opts;
+
+/* A new sandboxed state (l_sandbox.c's header says what it has), or NULL
+ * with a message in msg (a directory that is not one). Close it with
+ * lam_lua_sandbox_close. */
+lua_State *lam_lua_sandbox_open(const lam_sandbox_opts *o, char *msg, size_t size);
+void lam_lua_sandbox_close(lua_State *L);
+
+/* Start the clock and the time hook, right before the recipe runs. */
+void lam_lua_sandbox_start(lua_State *L);
+
+/* The sandbox of state L, NULL when L is not sandboxed. */
+lam_sandbox *lam_lua_sandbox_of(lua_State *L);
+
+/* Raise "time limit exceeded" when L's sandbox is out of time. */
+void lam_lua_sandbox_check_time(lua_State *L);
+
+/* When L is sandboxed and path is outside what it may read (write 0) or
+ * write (write 1): push nil, a message and EACCES, as io.open fails, and
+ * return 3. Otherwise 0. For every lamina function that opens a file. */
+int lam_lua_denied(lua_State *L, const char *path, int write);
+
+/* Whether the error object on top of L is a sandbox's os.exit; *code gets
+ * its code. The object stays. */
+int lam_lua_sandbox_exit(lua_State *L, int *code);
+
+/* The message for a memory error in a sandbox with a memory limit (in
+ * buf), NULL otherwise. */
+const char *lam_lua_sandbox_memory_error(lua_State *L, char *buf, size_t size);
+
+/* mkdir -p: 0 or an errno. No sandbox check. */
+int lam_lua_mkdirs(const char *path);
+
+/* Add lamina.sandbox to the module table on top of the stack. */
+int lam_lua_open_sandbox(lua_State *L);
 
 /* ---- userdata --------------------------------------------------------- */
 
@@ -165,8 +209,11 @@ typedef struct lam_lua_overrides {
 
 /* Read table t (argument number arg, as luaL_argerror counts): the rows a
  * machine may change (not LAM_KEY_FIXED) that have the flags `need`
- * (LAM_KEY_PLAN: machine:plan's options; 0: every one), by their Lua names. */
-void lam_lua_read_overrides(lua_State *L, int t, int arg, unsigned need, lam_lua_overrides *o);
+ * (LAM_KEY_PLAN: machine:plan's options; 0: every one), by their Lua names;
+ * `extra` (NULL-ended, or NULL) names the other keys the caller reads
+ * itself, so that only keys in neither are refused as unknown. */
+void lam_lua_read_overrides(lua_State *L, int t, int arg, unsigned need, const char *const *extra,
+                            lam_lua_overrides *o);
 void lam_lua_apply_overrides(const lam_lua_overrides *o, lam_profile *p);
 
 /* ---- errors and options ----------------------------------------------- */

@@ -8,6 +8,7 @@
  * contour.parent give the same userdata every time (usable as table keys). */
 #include "l_common.h"
 
+#include <limits.h>
 #include <math.h>
 #include <string.h>
 
@@ -38,7 +39,7 @@ static int run_close(lua_State *L)
 /* ---- slicing -------------------------------------------------------------- */
 
 static const char *const slice_keys[] = { "axis", "width", "widths", "planes", "cut", "gap", "fill",
-                                          "allow_open", "machine", NULL };
+                                          "allow_open", "machine", "max_layers", NULL };
 static const char *const cut_names[] = { "floor", "middle", "ceiling", NULL };
 static const char *const fill_names[] = { "evenodd", "nonzero", NULL };
 
@@ -87,9 +88,6 @@ static size_t get_list(lua_State *L, int t, const char *key, const double **out)
         lam_lua_opterror(L, 2, "%s must be a list of numbers, got %s", key, lam_lua_describe(L, -1, b, sizeof b));
     lua_Unsigned n = lua_rawlen(L, -1);
     if (n == 0) lam_lua_opterror(L, 2, "%s must not be empty", key);
-    if (n > LAM_LUA_MAX_LAYERS + 1)
-        lam_lua_opterror(L, 2, "%s has %llu entries (at most %d layers)", key, (unsigned long long)n,
-                         LAM_LUA_MAX_LAYERS);
     double *v = lua_newuserdatauv(L, (size_t)n * sizeof *v, 0);
     for (lua_Unsigned i = 0; i < n; i++) {
         if (lua_rawgeti(L, -2, (lua_Integer)i + 1) != LUA_TNUMBER)
@@ -104,19 +102,6 @@ static size_t get_list(lua_State *L, int t, const char *key, const double **out)
     lua_remove(L, -2); /* the table; the array userdata stays */
     *out = v;
     return (size_t)n;
-}
-
-/* The model's extent along the frame's w axis. */
-static void extent(const lam_model *m, const lam_frame *f, double *lo, double *hi)
-{
-    *lo = INFINITY;
-    *hi = -INFINITY;
-    for (size_t i = 0; i < m->mesh.nverts; i++) {
-        const double *p = m->mesh.xyz + 3 * i;
-        double w = p[0] * f->w[0] + p[1] * f->w[1] + p[2] * f->w[2];
-        if (w < *lo) *lo = w;
-        if (w > *hi) *hi = w;
-    }
 }
 
 /* model:slice{axis=, width= | widths= | planes=, cut=, gap=, fill=,
@@ -181,21 +166,20 @@ int lam_lua_slice(lua_State *L)
     if (lam_lua_choicefield(L, 2, 2, "fill", fill_names, &i)) o.fill_nonzero = i;
     int allow_open = 0;
     lam_lua_boolfield(L, 2, 2, "allow_open", &allow_open);
+    if (lam_lua_numfield(L, 2, 2, "max_layers", &x)) {
+        if (!(x >= 1) || x != floor(x) || x > 1e15)
+            lam_lua_opterror(L, 2, "max_layers must be a whole number >= 1, got %.14g", x);
+        o.max_layers = (size_t)x;
+    }
 
     const lam_model *m = mu->m;
-    if (!o.widths && !o.planes && o.width > 0) {
-        double lo, hi;
-        extent(m, &o.frame, &lo, &hi);
-        if ((hi - lo) / o.width > LAM_LUA_MAX_LAYERS)
-            lam_lua_opterror(L, 2, "width %.14g makes %.0f layers (at most %d)", o.width, (hi - lo) / o.width,
-                             LAM_LUA_MAX_LAYERS);
-    }
 
     const int run = 3;
     lam_error err;
     lam_error_clear(&err);
     if (lam_slicer_new(m, &o, &r->s, &err)) {
         if (err.code == LAM_EUSAGE) lam_lua_opterror(L, 2, "%s", err.msg);
+        if (err.code == LAM_ELIMIT) lam_lua_opterror(L, 2, "%s (raise the limit with max_layers)", err.msg);
         return lam_lua_fail(L, &err);
     }
     r->frame = *lam_slicer_frame(r->s);
@@ -206,7 +190,7 @@ int lam_lua_slice(lua_State *L)
     r->wmax = lam_slicer_planes(r->s)[r->nlayers];
     memcpy(r->bbox, m->stats.bbox, sizeof r->bbox);
 
-    lua_createtable(L, r->nlayers < LAM_LUA_MAX_LAYERS ? (int)r->nlayers : 0, 0);
+    lua_createtable(L, r->nlayers < INT_MAX ? (int)r->nlayers : 0, 0);
     int result = lua_gettop(L);
     for (lua_Integer k = 1;; k++) {
         lam_lua_check_interrupt(L);

@@ -42,6 +42,11 @@ lmachine *lam_lua_checkmachine(lua_State *L, int idx)
 int lam_lua_machine(lua_State *L)
 {
     const char *name = luaL_checkstring(L, 1);
+    /* a name is looked up in the machine directories; a path is the user's */
+    size_t len = strlen(name);
+    int path = strchr(name, '/') || (len > 5 && strcmp(name + len - 5, ".yaml") == 0);
+    int n = path ? lam_lua_denied(L, name, 0) : 0;
+    if (n) return n;
     lmachine *u = lua_newuserdatauv(L, sizeof *u, 1);
     memset(u, 0, sizeof *u);
     u->tag = LAM_TAG_MACHINE;
@@ -270,14 +275,16 @@ static void read_one(lua_State *L, int t, int arg, const lam_key *k, double *v)
     }
 }
 
-void lam_lua_read_overrides(lua_State *L, int t, int arg, unsigned need, lam_lua_overrides *o)
+void lam_lua_read_overrides(lua_State *L, int t, int arg, unsigned need, const char *const *extra,
+                            lam_lua_overrides *o)
 {
     t = lua_absindex(L, t);
     memset(o, 0, sizeof *o);
-    const char *names[LAM_KEYS_MAX + 1];
+    const char *names[LAM_KEYS_MAX + 9];
     size_t n = 0;
     for (size_t i = 0; i < lam_profile_nkeys; i++)
         if (allowed(&lam_profile_keys[i], need)) names[n++] = lam_key_lua_name(&lam_profile_keys[i]);
+    for (size_t i = 0; extra && extra[i] && n < LAM_KEYS_MAX + 8; i++) names[n++] = extra[i];
     names[n] = NULL;
     /* keys of the profile that cannot be given here get their own message */
     lua_pushnil(L);
@@ -321,7 +328,7 @@ static int mc_override(lua_State *L)
     lam_lua_checkmachine(L, 1);
     luaL_checktype(L, 2, LUA_TTABLE);
     lam_lua_overrides ovr;
-    lam_lua_read_overrides(L, 2, 2, 0, &ovr); /* may run metamethods: no pointers held yet */
+    lam_lua_read_overrides(L, 2, 2, 0, NULL, &ovr); /* may run metamethods: no pointers held yet */
     lmachine *u = lua_newuserdatauv(L, sizeof *u, 1);
     memset(u, 0, sizeof *u);
     u->tag = LAM_TAG_MACHINE;

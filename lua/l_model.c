@@ -17,6 +17,8 @@ lmodel *lam_lua_checkmodel(lua_State *L, int idx)
 int lam_lua_load(lua_State *L)
 {
     const char *path = luaL_checkstring(L, 1);
+    int n = lam_lua_denied(L, path, 0);
+    if (n) return n;
     lmodel *u = lua_newuserdatauv(L, sizeof *u, 0);
     memset(u, 0, sizeof *u);
     u->tag = LAM_TAG_MODEL;

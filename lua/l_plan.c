@@ -70,21 +70,23 @@ static const lrun *check_layers(lua_State *L, const lam_layer **ls, size_t n)
     return run;
 }
 
-/* Scan lines a layer would get (at any raster angle), to refuse bead widths
- * that would make an endless program. */
-static int too_many_lines(const lam_layer *ly, double bead)
+/* The estimate of planning these layers (core/planner.h): each layer's
+ * box from its contours, its points as they are. */
+static void estimate(const lam_layer **ls, size_t n, const lam_plan_opts *o, lam_job_estimate *e)
 {
-    if (!ly->ncontours) return 0;
-    double b[4] = { INFINITY, INFINITY, -INFINITY, -INFINITY };
-    for (size_t i = 0; i < ly->ncontours; i++) {
-        const double *c = ly->contours[i].bbox;
-        if (c[0] < b[0]) b[0] = c[0];
-        if (c[1] < b[1]) b[1] = c[1];
-        if (c[2] > b[2]) b[2] = c[2];
-        if (c[3] > b[3]) b[3] = c[3];
+    memset(e, 0, sizeof *e);
+    for (size_t i = 0; i < n; i++) {
+        const lam_layer *ly = ls[i];
+        double b[4] = { INFINITY, INFINITY, -INFINITY, -INFINITY };
+        for (size_t k = 0; k < ly->ncontours; k++) {
+            const double *c = ly->contours[k].bbox;
+            if (c[0] < b[0]) b[0] = c[0];
+            if (c[1] < b[1]) b[1] = c[1];
+            if (c[2] > b[2]) b[2] = c[2];
+            if (c[3] > b[3]) b[3] = c[3];
+        }
+        lam_job_estimate_layer(e, o, ly->index, ly->ncontours ? b : NULL, (double)ly->npoints);
     }
-    double lines = hypot(b[2] - b[0], b[3] - b[1]) / bead;
-    return !(lines <= LAM_LUA_MAX_LINES);
 }
 
 static size_t count_lines(const char *s, size_t len)
@@ -102,14 +104,18 @@ int lam_lua_plan(lua_State *L)
     luaL_checktype(L, 2, LUA_TTABLE);
     lam_lua_overrides ovr;
     memset(&ovr, 0, sizeof ovr);
+    double max_output = 0;
     if (!lua_isnoneornil(L, 3)) {
         luaL_checktype(L, 3, LUA_TTABLE);
-        lam_lua_read_overrides(L, 3, 3, LAM_KEY_PLAN, &ovr); /* may run metamethods: before any pointer */
+        static const char *const own[] = { "max_output", NULL }; /* read here, not a profile key */
+        lam_lua_read_overrides(L, 3, 3, LAM_KEY_PLAN, own, &ovr); /* may run metamethods: before any pointer */
+        if (lam_lua_numfield(L, 3, 3, "max_output", &max_output) && !(max_output >= 1 && max_output < 1.8e19))
+            lam_lua_opterror(L, 3, "max_output must be a number of bytes >= 1, got %.14g", max_output);
     }
     lua_settop(L, 3);
     lua_Unsigned nl = lua_rawlen(L, 2);
     if (nl == 0) luaL_argerror(L, 2, "no layers to plan (an empty table)");
-    if (nl > LAM_LUA_MAX_LAYERS) luaL_argerror(L, 2, "too many layers");
+    if (nl > SIZE_MAX / sizeof(void *)) luaL_argerror(L, 2, "too many layers");
     size_t n = (size_t)nl;
     /* Everything Lua is allocated first: after this, until the program is
      * complete, no call can run the collector (and a finalizer with it), so
@@ -134,14 +140,15 @@ int lam_lua_plan(lua_State *L)
     const lrun *run = check_layers(L, ls, n);
     lam_plan_opts o;
     lam_lua_plan_opts(&p, &o);
-    if (o.kind == LAM_PLAN_LADRP)
-        for (size_t i = 0; i < n; i++)
-            if (too_many_lines(ls[i], o.bead))
-                luaL_error(L, "plan: bead width %f gives layer %I more than %d scan lines", o.bead,
-                           (lua_Integer)ls[i]->index + 1, LAM_LUA_MAX_LINES);
+    o.max_output = (unsigned long long)max_output;
+    lam_job_estimate est;
+    estimate(ls, n, &o, &est);
+    if (lam_plan_check_estimate(&est, &o, o.max_output, &j->err))
+        luaL_error(L, "plan: %s (raise the limit with the option max_output)", j->err.msg);
 
     lam_error_clear(&j->err);
     if (lam_writer_memory(&j->w, &j->err)) return lam_lua_fail(L, &j->err);
+    lam_writer_set_limit(j->w, o.max_output ? o.max_output : LAM_DEFAULT_MAX_OUTPUT);
     int text = !p.writer || strcmp(p.writer, "text") == 0;
     int rc = text ? lam_dialect_sink(&p.dialect, j->w, &j->err, &j->sink)
                   : lam_plugin_writer_sink(p.writer, j->w, &j->err, &j->sink);
@@ -274,6 +281,8 @@ static int p_write(lua_State *L)
 {
     lplan *pl = check(L, 1);
     const char *path = luaL_checkstring(L, 2);
+    int n = lam_lua_denied(L, path, 1);
+    if (n) return n;
     lam_writer *w;
     lam_error err;
     lam_error_clear(&err);

@@ -21,6 +21,8 @@ int lam_lua_preview(lua_State *L)
     luaL_checktype(L, 1, LUA_TTABLE);
     const char *path = luaL_checkstring(L, 2);
     const char *title = luaL_optstring(L, 3, "lamina");
+    int denied = lam_lua_denied(L, path, 1);
+    if (denied) return denied;
     lua_Unsigned n = lua_rawlen(L, 1);
     if (n == 0) luaL_argerror(L, 1, "no layers to draw (an empty table)");
     /* check every element before anything is allocated on the C side */

@@ -19,6 +19,7 @@ volatile sig_atomic_t lam_lua_interrupt = 0;
 void lam_lua_check_interrupt(lua_State *L)
 {
     if (lam_lua_interrupt) luaL_error(L, "interrupted");
+    lam_lua_sandbox_check_time(L);
 }
 
 /* ---- classes ------------------------------------------------------------ */
@@ -252,6 +253,7 @@ int lam_lua_boolfield(lua_State *L, int t, int arg, const char *key, int *v)
 static int l_plugin(lua_State *L)
 {
     const char *path = luaL_checkstring(L, 1);
+    if (lam_lua_sandbox_of(L)) return luaL_error(L, "lamina.plugin is not available in the sandbox");
     lam_error err;
     lam_error_clear(&err);
     if (lam_plugin_load(path, &err)) return lam_lua_fail(L, &err);
@@ -273,7 +275,25 @@ static int l_writers(lua_State *L)
     return 1;
 }
 
+/* lamina.mkdir(path) -> true | nil, message: the directory and any
+ * parents missing (mkdir -p) */
+static int l_mkdir(lua_State *L)
+{
+    const char *path = luaL_checkstring(L, 1);
+    int n = lam_lua_denied(L, path, 1);
+    if (n) return n;
+    int e = lam_lua_mkdirs(path);
+    if (e) {
+        luaL_pushfail(L);
+        lua_pushfstring(L, "%s: cannot create the directory: %s", path, strerror(e));
+        return 2;
+    }
+    lua_pushboolean(L, 1);
+    return 1;
+}
+
 static const luaL_Reg lamina_funcs[] = {
+    { "mkdir", l_mkdir },
     { "load", lam_lua_load },
     { "machine", lam_lua_machine },
     { "machines", lam_lua_machines },
@@ -295,5 +315,6 @@ LUAMOD_API int luaopen_lamina(lua_State *L)
     luaL_newlib(L, lamina_funcs);
     lua_pushliteral(L, LAMINA_VERSION);
     lua_setfield(L, -2, "version");
+    lam_lua_open_sandbox(L);
     return 1;
 }

@@ -2,8 +2,14 @@
 #include "cli.h"
 #include "cli_lua.h"
 #include "version.h"
+#include "writer.h"
 
+#include <errno.h>
+#include <signal.h>
+#include <stdio_ext.h>
+#include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 #ifdef __GLIBC__
 #include <malloc.h>
 #endif
@@ -22,6 +28,45 @@ static void heap_setup(void)
     mallopt(M_MMAP_THRESHOLD, 1 << 30);
     mallopt(M_TRIM_THRESHOLD, 1 << 30);
 #endif
+}
+
+/* Standard output is closed at exit and checked, as GNU tools do it: a
+ * report that could not be written (a full disk, /dev/full, a closed pipe
+ * with SIGPIPE ignored) is an error, not exit 0. Runs at every exit (also
+ * os.exit from Lua); _exit because exit is already under way. */
+static void close_stdout(void)
+{
+    int pending = __fpending(stdout) != 0, earlier = ferror(stdout) != 0;
+    errno = 0;
+    int failed = fclose(stdout) != 0;
+    if (earlier || (failed && (pending || errno != EBADF))) {
+        int e = failed ? errno : 0;
+        fprintf(stderr, "lamina: cannot write to standard output%s%s\n", e ? ": " : "", e ? strerror(e) : "");
+        _exit(EXIT_INPUT);
+    }
+}
+
+void cli_fatal_signal(int sig)
+{
+    lam_writer_unlink_temps();
+    signal(sig, SIG_DFL);
+    raise(sig); /* held until this handler returns, then the default action */
+}
+
+/* Interrupts and hang-ups remove the temporary files of outputs being
+ * written, then end the process by the same signal (exit status 128 + N
+ * in a shell). A signal ignored when lamina started (nohup) stays ignored. */
+static void signals_setup(void)
+{
+    static const int sigs[] = { SIGINT, SIGTERM, SIGHUP, SIGPIPE };
+    for (size_t i = 0; i < sizeof sigs / sizeof *sigs; i++) {
+        struct sigaction sa, old;
+        if (sigaction(sigs[i], NULL, &old) == 0 && old.sa_handler == SIG_IGN) continue;
+        memset(&sa, 0, sizeof sa);
+        sa.sa_handler = cli_fatal_signal;
+        sigfillset(&sa.sa_mask);
+        sigaction(sigs[i], &sa, NULL);
+    }
 }
 
 static int help(void)
@@ -45,7 +90,16 @@ static int help(void)
     return EXIT_OK;
 }
 
+static int dispatch(int argc, char **argv);
+
 int main(int argc, char **argv)
+{
+    atexit(close_stdout);
+    signals_setup();
+    exit(dispatch(argc, argv));
+}
+
+static int dispatch(int argc, char **argv)
 {
     if (argc < 2) return lua_main_default();
     const char *cmd = argv[1];

@@ -22,7 +22,7 @@ local o, _, die = args.parse(arg, {
 local model, err = lamina.load(o.model)
 if not model then die("%s", err) end
 local name = o.model:match("([^/]+)$"):gsub("%.[^.]*$", "")
-os.execute(("mkdir -p '%s'"):format((o.out:gsub("'", "'\\''"))))
+assert(lamina.mkdir(o.out))
 
 print(("%s: %d triangles, %d shells, volume %.6g"):format(
   o.model, #model, model.shells, model.volume))

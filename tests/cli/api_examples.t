@@ -37,7 +37,8 @@ local text = f:read("a")
 f:close()
 local missing = {}
 for name, v in pairs(lamina) do
-  if type(v) == "function" and not text:find("lamina." .. name .. "(", 1, true) then
+  if type(v) == "function" and not text:find("lamina." .. name .. "(", 1, true)
+     and not text:find("lamina." .. name .. "{", 1, true) then
     missing[#missing + 1] = "lamina." .. name
   end
 end

@@ -116,7 +116,7 @@ run "$LAMINA" run
 is "$RC" 2 "run without a recipe: usage error"
 run "$LAMINA" run --help
 is "$RC" 0 "run --help"
-like "$OUT" 'usage: lamina run RECIPE' "run --help text"
+like "$OUT" 'usage: lamina run \[--safe .*\n +RECIPE\.lua \[ARGS\.\.\.\]' "run --help text"
 
 # ---- lamina -e -------------------------------------------------------------
 run "$LAMINA" -e "print(lamina.load('$M/thesis_cube_hole.ug').volume)"

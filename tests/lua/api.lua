@@ -156,7 +156,13 @@ T.raises("give one of width, widths and planes", "slice: width and widths",
 T.raises("width must be greater than 0, got -1", "slice: negative width", function() return m:slice{width = -1} end)
 T.raises("width must be a number, got 'a'", "slice: width as text", function() return m:slice{width = "a"} end)
 T.raises("width must be a finite number", "slice: width NaN", function() return m:slice{width = 0 / 0} end)
-T.raises("at most 1000000", "slice: too many layers", function() return m:slice{width = 1e-9} end)
+T.raises("width 1e-09 makes 2000000000 layers, more than the limit of 1000000 (raise the limit with max_layers)",
+         "slice: too many layers", function() return m:slice{width = 1e-9} end)
+T.raises("width 0.001 makes 2000 layers, more than the limit of 1999", "slice: max_layers lowers the limit",
+         function() return m:slice{width = 1e-3, max_layers = 1999} end)
+T.is(#m:slice{width = 1e-3, max_layers = 2000}, 2000, "slice: a run at the limit is made")
+T.raises("max_layers must be a whole number >= 1, got 0.5", "slice: max_layers checked",
+         function() return m:slice{max_layers = 0.5} end)
 T.raises("the widths add up to 1 but the model spans 2", "slice: widths do not cover",
          function() return m:slice{widths = {0.5, 0.5}} end)
 T.raises("planes must increase strictly", "slice: planes decreasing", function() return m:slice{planes = {0, 1, 0.5}} end)
@@ -276,7 +282,16 @@ local rot = assert(ladrp:plan(cl, {angle = 90}))
 T.ok(rot:text():find("0.00000 2.00000 0.00000 uline", 1, true) or rot:text():find("0.00000 -2.00000 0.00000 uline", 1, true),
      "plan opts: raster at 90 degrees")
 T.ok(ladrp:plan(cl, {bead_width = 0.5}).lines < lp.lines, "plan opts: wider bead, fewer lines")
-T.raises("more than 10000000 scan lines", "plan: bead too small", ladrp.plan, ladrp, cl, {bead_width = 1e-300})
+T.raises("2e+300 scan lines of bead 1e-300), more than the limit of 4 GB (raise the limit with the option max_output)",
+         "plan: bead too small", ladrp.plan, ladrp, cl, {bead_width = 1e-300})
+-- one layer of the 2 x 2 cube, bead 0.08: 2 / 0.08 + 1 = 26 scan lines, 64 bytes each, 16 for the layer
+T.raises("about 1.64 kB (1 layers, 26 scan lines of bead 0.08), more than the limit of 1 kB",
+         "plan: max_output lowers the limit", ladrp.plan, ladrp, {cl[1]}, {max_output = 1024})
+-- the estimate passes 2000 bytes; the program itself (2417 bytes: 25 lines of
+-- penup, travel, pendown, feedrate, deposit) does not: the limit holds as it is written
+local none, over = ladrp:plan({cl[1]}, {max_output = 2000})
+T.ok(none == nil and over:match("output exceeds the limit of 2000 bytes"), "plan: the written program is held to the limit too")
+T.is(ladrp:plan({cl[1]}, {max_output = 2417}).bytes, 2417, "plan: a program of exactly the limit is planned")
 
 local out = os.tmpname()
 T.ok(plan:write(out), "plan:write")

@@ -1,0 +1,787 @@
+/* Sandboxed recipes: `lamina run --safe` and lamina.sandbox{...}.
+ *
+ * In the manner of Redis's scripts: the recipe runs in a Lua state of its
+ * own (so nothing it does to metatables, globals or the string library
+ * reaches the caller's state) that has only what cannot reach outside:
+ *   - base, string, table, math, utf8, coroutine; `load`, `loadfile` and
+ *     `dofile` take text only (mode "t": no bytecode, which can break the
+ *     VM); no string.dump, no debug library, no package library (a
+ *     `require` of its own finds Lua modules in lamina's module directories
+ *     and the readable directories only: no C modules, no package.loadlib);
+ *   - setmetatable refuses a metatable with a __gc field (finalizers run
+ *     with hooks off, out of reach of the time limit), getmetatable answers
+ *     for tables only (lamina's objects and files keep their metatables);
+ *     collectgarbage does "collect", "count", "step" and "isrunning" only;
+ *   - io and os without popen, tmpfile, execute, getenv, tmpname,
+ *     setlocale; os.exit ends the recipe, not the process; io.open,
+ *     io.lines, io.input, io.output, os.remove, os.rename, dofile and
+ *     loadfile, and lamina's own functions that open files (lamina.load,
+ *     lamina.machine given a path, plan:write, lamina.preview,
+ *     lamina.mkdir) reach only files inside the readable directories
+ *     (--allow, and --out) or, to write, the writable ones (--out). Paths
+ *     are compared after realpath, so `..` and symbolic links that lead
+ *     outside are outside; a link that leads nowhere is refused. No
+ *     lamina.plugin (it loads machine code), no nested lamina.sandbox;
+ *   - memory: the state's allocator (lua_setallocf's kind) refuses to grow
+ *     Lua's memory past the limit ("not enough memory" in the recipe);
+ *   - time: a count hook, and lamina's long C loops between layers, raise
+ *     "time limit exceeded" once the limit has passed; from then on pcall,
+ *     xpcall and coroutine.resume pass it on instead of catching it.
+ * The sandbox is found from a state by its allocator (lua_getallocf), which
+ * Lua code cannot change. */
+/* realpath (XSI) */
+#define _XOPEN_SOURCE 700
+#include "l_common.h"
+
+#include <errno.h>
+#include <limits.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+
+#include <lualib.h>
+
+#include "paths.h"
+
+struct lam_sandbox {
+    char **dirs;             /* realpath'd directories */
+    int *writable;           /* per directory: also writable (--out) */
+    size_t ndirs;
+    char *mods[4];           /* lamina's Lua module directories (require only) */
+    size_t nmods;
+    size_t mem_limit, mem_used;
+    double time_limit, deadline;
+    int timed_out;           /* the limit was reached: pcall cannot catch it */
+};
+
+/* ---- the allocator and the clock --------------------------------------- */
+
+static void *sb_alloc(void *ud, void *ptr, size_t osize, size_t nsize)
+{
+    lam_sandbox *sb = ud;
+    size_t old = ptr ? osize : 0; /* without ptr, osize is a type tag */
+    if (nsize == 0) {
+        free(ptr);
+        sb->mem_used -= old;
+        return NULL;
+    }
+    if (sb->mem_limit && nsize > old && sb->mem_used - old + nsize > sb->mem_limit) return NULL;
+    void *p = realloc(ptr, nsize);
+    if (p) sb->mem_used = sb->mem_used - old + nsize;
+    return p;
+}
+
+lam_sandbox *lam_lua_sandbox_of(lua_State *L)
+{
+    void *ud;
+    return lua_getallocf(L, &ud) == sb_alloc ? ud : NULL;
+}
+
+static double now(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec + (double)t.tv_nsec * 1e-9;
+}
+
+void lam_lua_sandbox_check_time(lua_State *L)
+{
+    lam_sandbox *sb = lam_lua_sandbox_of(L);
+    if (sb && (sb->timed_out || (sb->deadline > 0 && now() > sb->deadline))) {
+        sb->timed_out = 1;
+        luaL_error(L, "time limit exceeded (%f s; raise it with --time or the option time)", sb->time_limit);
+    }
+}
+
+/* pcall, xpcall, coroutine.resume: upvalue 1 after the call, but once the
+ * time limit is reached the error goes on up instead of being caught */
+static int sb_catching(lua_State *L)
+{
+    lua_pushvalue(L, lua_upvalueindex(1));
+    lua_insert(L, 1);
+    lua_call(L, lua_gettop(L) - 1, LUA_MULTRET);
+    lam_lua_sandbox_check_time(L);
+    return lua_gettop(L);
+}
+
+static void time_hook(lua_State *L, lua_Debug *ar)
+{
+    (void)ar;
+    lam_lua_check_interrupt(L);
+}
+
+/* ---- paths ------------------------------------------------------------------ */
+
+/* The canonical absolute form of path, malloc'd: realpath for what exists,
+ * the canonical parent and the last name for what does not (a name that
+ * is empty, "." or ".." has none). NULL when there is none, or when path
+ * is a symbolic link that leads nowhere (opening it to write would create
+ * whatever it names). */
+static char *resolve(const char *path)
+{
+    struct stat st;
+    if (lstat(path, &st) == 0) return realpath(path, NULL);
+    if (errno != ENOENT) return NULL;
+    size_t n = strlen(path);
+    while (n > 1 && path[n - 1] == '/') n--;
+    const char *slash = NULL;
+    for (size_t i = n; i > 0; i--)
+        if (path[i - 1] == '/') {
+            slash = path + i - 1;
+            break;
+        }
+    const char *base = slash ? slash + 1 : path;
+    size_t nbase = n - (size_t)(base - path);
+    if (nbase == 0 || (nbase == 1 && base[0] == '.') || (nbase == 2 && base[0] == '.' && base[1] == '.'))
+        return NULL;
+    char *dir = slash ? strndup(path, slash == path ? 1 : (size_t)(slash - path)) : strdup(".");
+    char *rd = dir ? resolve(dir) : NULL;
+    free(dir);
+    if (!rd) return NULL;
+    size_t nrd = strlen(rd);
+    char *out = malloc(nrd + nbase + 2);
+    if (out) snprintf(out, nrd + nbase + 2, "%s%s%.*s", rd, strcmp(rd, "/") ? "/" : "", (int)nbase, base);
+    free(rd);
+    return out;
+}
+
+static int inside(const char *real, const char *dir)
+{
+    size_t n = strlen(dir);
+    return strcmp(dir, "/") == 0 || (strncmp(real, dir, n) == 0 && (real[n] == '/' || real[n] == '\0'));
+}
+
+/* 1 when sb lets path be read (write 0) or written (write 1). */
+static int allowed(const lam_sandbox *sb, const char *path, int write)
+{
+    char *real = resolve(path);
+    int ok = 0;
+    for (size_t i = 0; real && i < sb->ndirs && !ok; i++) ok = (!write || sb->writable[i]) && inside(real, sb->dirs[i]);
+    free(real);
+    return ok;
+}
+
+static const char *denied_text(int write)
+{
+    return write ? "outside the sandbox's writable directories (--out)"
+                 : "outside the sandbox's readable directories (--allow, --out)";
+}
+
+int lam_lua_denied(lua_State *L, const char *path, int write)
+{
+    lam_sandbox *sb = lam_lua_sandbox_of(L);
+    if (!sb || allowed(sb, path, write)) return 0;
+    luaL_pushfail(L);
+    lua_pushfstring(L, "%s: %s", path, denied_text(write));
+    lua_pushinteger(L, EACCES);
+    return 3;
+}
+
+/* ---- the restricted libraries ------------------------------------------ */
+
+/* A C function wrapping upvalue 1 after a path check of argument `arg`
+ * (when it is a string). */
+static int checked_call(lua_State *L, int arg, int write)
+{
+    if (lua_type(L, arg) == LUA_TSTRING) {
+        int n = lam_lua_denied(L, lua_tostring(L, arg), write);
+        if (n) return n;
+    }
+    lua_pushvalue(L, lua_upvalueindex(1));
+    lua_insert(L, 1);
+    lua_call(L, lua_gettop(L) - 1, LUA_MULTRET);
+    return lua_gettop(L);
+}
+
+/* io.open(path [, mode]): writing for any mode but plain reading */
+static int sb_open(lua_State *L)
+{
+    const char *mode = luaL_optstring(L, 2, "r");
+    return checked_call(L, 1, strpbrk(mode, "wa+") != NULL);
+}
+static int sb_write1(lua_State *L) { return checked_call(L, 1, 1); }
+
+/* a path check that raises, for functions that raise on a missing file */
+static int sb_raise_read1(lua_State *L)
+{
+    if (lua_type(L, 1) == LUA_TSTRING && lam_lua_denied(L, lua_tostring(L, 1), 0))
+        return luaL_error(L, "%s", lua_tostring(L, -2));
+    lua_pushvalue(L, lua_upvalueindex(1));
+    lua_insert(L, 1);
+    lua_call(L, lua_gettop(L) - 1, LUA_MULTRET);
+    return lua_gettop(L);
+}
+
+static int sb_rename(lua_State *L)
+{
+    const char *from = luaL_checkstring(L, 1), *to = luaL_checkstring(L, 2);
+    int n = lam_lua_denied(L, from, 1);
+    if (!n) n = lam_lua_denied(L, to, 1);
+    if (n) return n;
+    lua_pushvalue(L, lua_upvalueindex(1));
+    lua_insert(L, 1);
+    lua_call(L, lua_gettop(L) - 1, LUA_MULTRET);
+    return lua_gettop(L);
+}
+
+/* os.exit([code]): raises the exit object, which ends the recipe with
+ * that code (lam_lua_sandbox_exit reads it) */
+static const char exit_key = 0;
+
+static int sb_exit(lua_State *L)
+{
+    int code = lua_isnoneornil(L, 1) ? 0
+               : lua_isboolean(L, 1) ? !lua_toboolean(L, 1)
+                                     : (int)luaL_checkinteger(L, 1);
+    lua_newtable(L);
+    lua_pushinteger(L, code);
+    lua_setfield(L, -2, "exit");
+    lua_rawgetp(L, LUA_REGISTRYINDEX, &exit_key);
+    lua_setmetatable(L, -2);
+    return lua_error(L);
+}
+
+static int exit_tostring(lua_State *L)
+{
+    lua_getfield(L, 1, "exit");
+    lua_pushfstring(L, "os.exit(%d)", (int)lua_tointeger(L, -1));
+    return 1;
+}
+
+int lam_lua_sandbox_exit(lua_State *L, int *code)
+{
+    if (!lua_istable(L, -1) || !lua_getmetatable(L, -1)) return 0;
+    lua_rawgetp(L, LUA_REGISTRYINDEX, &exit_key);
+    int is = lua_rawequal(L, -1, -2);
+    lua_pop(L, 2);
+    if (is) {
+        lua_getfield(L, -1, "exit");
+        *code = (int)lua_tointeger(L, -1);
+        lua_pop(L, 2);
+    }
+    return is;
+}
+
+/* load(chunk [, name [, mode [, env]]]): text only */
+static int sb_load(lua_State *L)
+{
+    const char *mode = luaL_optstring(L, 3, "t");
+    if (strchr(mode, 'b')) {
+        luaL_pushfail(L);
+        lua_pushliteral(L, "binary chunks cannot be loaded in the sandbox");
+        return 2;
+    }
+    int n = lua_gettop(L) < 3 ? 3 : lua_gettop(L);
+    lua_settop(L, n);
+    lua_pushliteral(L, "t");
+    lua_replace(L, 3);
+    lua_pushvalue(L, lua_upvalueindex(1));
+    lua_insert(L, 1);
+    lua_call(L, n, LUA_MULTRET);
+    return lua_gettop(L);
+}
+
+/* loadfile([path [, mode [, env]]]): checked, text only */
+static int sb_loadfile(lua_State *L)
+{
+    const char *path = luaL_optstring(L, 1, NULL);
+    if (path && lam_lua_denied(L, path, 0)) {
+        lua_pop(L, 1); /* nil, message: as loadfile fails */
+        return 2;
+    }
+    const char *mode = luaL_optstring(L, 2, "t");
+    if (strchr(mode, 'b')) {
+        luaL_pushfail(L);
+        lua_pushliteral(L, "binary chunks cannot be loaded in the sandbox");
+        return 2;
+    }
+    int env = !lua_isnone(L, 3);
+    if (luaL_loadfilex(L, path, "t") != LUA_OK) {
+        luaL_pushfail(L);
+        lua_insert(L, -2);
+        return 2;
+    }
+    if (env) {
+        lua_pushvalue(L, 3);
+        if (!lua_setupvalue(L, -2, 1)) lua_pop(L, 1);
+    }
+    return 1;
+}
+
+static int sb_dofile(lua_State *L)
+{
+    const char *path = luaL_optstring(L, 1, NULL);
+    if (path && lam_lua_denied(L, path, 0)) return luaL_error(L, "%s", lua_tostring(L, -2));
+    lua_settop(L, 1);
+    if (luaL_loadfilex(L, path, "t") != LUA_OK) return lua_error(L);
+    lua_call(L, 0, LUA_MULTRET);
+    return lua_gettop(L) - 1;
+}
+
+static int sb_setmetatable(lua_State *L)
+{
+    if (lua_istable(L, 2)) {
+        lua_pushliteral(L, "__gc");
+        int gc = lua_rawget(L, 2) != LUA_TNIL;
+        lua_pop(L, 1);
+        if (gc) return luaL_error(L, "setmetatable: __gc metamethods are not allowed in the sandbox");
+    }
+    lua_pushvalue(L, lua_upvalueindex(1));
+    lua_insert(L, 1);
+    lua_call(L, lua_gettop(L) - 1, 1);
+    return 1;
+}
+
+static int sb_getmetatable(lua_State *L)
+{
+    if (!lua_istable(L, 1)) {
+        luaL_checkany(L, 1);
+        lua_pushnil(L);
+        return 1;
+    }
+    lua_pushvalue(L, lua_upvalueindex(1));
+    lua_insert(L, 1);
+    lua_call(L, lua_gettop(L) - 1, 1);
+    return 1;
+}
+
+static int sb_collectgarbage(lua_State *L)
+{
+    static const char *const ok[] = { "collect", "count", "step", "isrunning", NULL };
+    const char *opt = luaL_optstring(L, 1, "collect");
+    int found = 0;
+    for (int i = 0; ok[i] && !found; i++) found = strcmp(ok[i], opt) == 0;
+    if (!found) return luaL_error(L, "collectgarbage('%s') is not allowed in the sandbox", opt);
+    lua_pushvalue(L, lua_upvalueindex(1));
+    lua_insert(L, 1);
+    lua_call(L, lua_gettop(L) - 1, LUA_MULTRET);
+    return lua_gettop(L);
+}
+
+/* require(name): loaded modules, else NAME.lua or NAME/init.lua (dots as
+ * slashes) in lamina's module directories, then the readable
+ * directories; text only. */
+static int sb_require(lua_State *L)
+{
+    const char *name = luaL_checkstring(L, 1);
+    lua_settop(L, 1);
+    lua_getfield(L, LUA_REGISTRYINDEX, LUA_LOADED_TABLE);
+    if (lua_getfield(L, 2, name) != LUA_TNIL) return 1;
+    lua_pop(L, 1);
+    lam_sandbox *sb = lam_lua_sandbox_of(L);
+    int good = name[0] != '\0' && name[0] != '.' && strstr(name, "..") == NULL;
+    for (const char *c = name; *c && good; c++)
+        good = (*c >= 'a' && *c <= 'z') || (*c >= 'A' && *c <= 'Z') || (*c >= '0' && *c <= '9') || *c == '_' ||
+               *c == '.' || *c == '-';
+    if (!good || !sb) return luaL_error(L, "module '%s' not found in the sandbox", name);
+    char rel[256];
+    snprintf(rel, sizeof rel, "%s", name);
+    for (char *c = rel; *c; c++)
+        if (*c == '.') *c = '/';
+    static const char *const forms[] = { "%s/%s.lua", "%s/%s/init.lua" };
+    for (size_t d = 0; d < sb->nmods + sb->ndirs; d++) {
+        const char *dir = d < sb->nmods ? sb->mods[d] : sb->dirs[d - sb->nmods];
+        for (int k = 0; k < 2; k++) {
+            char path[PATH_MAX];
+            snprintf(path, sizeof path, forms[k], dir, rel);
+            struct stat st;
+            if (stat(path, &st) != 0 || !S_ISREG(st.st_mode)) continue;
+            if (d >= sb->nmods && !allowed(sb, path, 0)) continue; /* a link out of the directory */
+            if (luaL_loadfilex(L, path, "t") != LUA_OK)
+                return luaL_error(L, "error loading module '%s' from %s:\n\t%s", name, path, lua_tostring(L, -1));
+            lua_pushvalue(L, 1);
+            lua_pushstring(L, path);
+            lua_call(L, 2, 1);
+            if (lua_isnil(L, -1)) {
+                lua_pop(L, 1);
+                lua_pushboolean(L, 1);
+            }
+            lua_pushvalue(L, -1);
+            lua_setfield(L, 2, name);
+            return 1;
+        }
+    }
+    return luaL_error(L, "module '%s' not found in the sandbox (lamina's modules and the --allow directories)", name);
+}
+
+/* Replace t[name] with a closure of f over its old value. */
+static void wrap(lua_State *L, int t, const char *name, lua_CFunction f)
+{
+    t = lua_absindex(L, t);
+    lua_getfield(L, t, name);
+    lua_pushcclosure(L, f, 1);
+    lua_setfield(L, t, name);
+}
+
+static void drop(lua_State *L, int t, const char *const *names)
+{
+    t = lua_absindex(L, t);
+    for (; *names; names++) {
+        lua_pushnil(L);
+        lua_setfield(L, t, *names);
+    }
+}
+
+LUAMOD_API int luaopen_lamina(lua_State *L);
+
+static int open_libs(lua_State *L)
+{
+    static const luaL_Reg libs[] = {
+        { LUA_GNAME, luaopen_base },          { LUA_COLIBNAME, luaopen_coroutine },
+        { LUA_TABLIBNAME, luaopen_table },    { LUA_IOLIBNAME, luaopen_io },
+        { LUA_OSLIBNAME, luaopen_os },        { LUA_STRLIBNAME, luaopen_string },
+        { LUA_MATHLIBNAME, luaopen_math },    { LUA_UTF8LIBNAME, luaopen_utf8 },
+        { "lamina", luaopen_lamina },         { NULL, NULL },
+    };
+    for (const luaL_Reg *lib = libs; lib->func; lib++) {
+        luaL_requiref(L, lib->name, lib->func, 1);
+        lua_pop(L, 1);
+    }
+    lua_pushglobaltable(L);
+    int g = lua_gettop(L);
+    wrap(L, g, "load", sb_load);
+    wrap(L, g, "setmetatable", sb_setmetatable);
+    wrap(L, g, "getmetatable", sb_getmetatable);
+    wrap(L, g, "collectgarbage", sb_collectgarbage);
+    wrap(L, g, "pcall", sb_catching);
+    wrap(L, g, "xpcall", sb_catching);
+    lua_getglobal(L, LUA_COLIBNAME);
+    wrap(L, -1, "resume", sb_catching);
+    lua_pop(L, 1);
+    lua_pushcfunction(L, sb_loadfile);
+    lua_setfield(L, g, "loadfile");
+    lua_pushcfunction(L, sb_dofile);
+    lua_setfield(L, g, "dofile");
+    lua_pushcfunction(L, sb_require);
+    lua_setfield(L, g, "require");
+
+    lua_getglobal(L, LUA_STRLIBNAME);
+    drop(L, -1, (const char *const[]){ "dump", NULL });
+    lua_getglobal(L, LUA_IOLIBNAME);
+    int io = lua_gettop(L);
+    drop(L, io, (const char *const[]){ "popen", "tmpfile", NULL });
+    wrap(L, io, "open", sb_open);
+    wrap(L, io, "lines", sb_raise_read1);
+    wrap(L, io, "input", sb_raise_read1);
+    wrap(L, io, "output", sb_write1);
+    lua_getglobal(L, LUA_OSLIBNAME);
+    int os = lua_gettop(L);
+    drop(L, os, (const char *const[]){ "execute", "getenv", "tmpname", "setlocale", NULL });
+    wrap(L, os, "remove", sb_write1);
+    wrap(L, os, "rename", sb_rename);
+    lua_pushcfunction(L, sb_exit);
+    lua_setfield(L, os, "exit");
+    lua_getglobal(L, "lamina");
+    drop(L, -1, (const char *const[]){ "plugin", "sandbox", NULL });
+
+    lua_newtable(L); /* the exit object's metatable */
+    lua_pushcfunction(L, exit_tostring);
+    lua_setfield(L, -2, "__tostring");
+    lua_rawsetp(L, LUA_REGISTRYINDEX, &exit_key);
+    return 0;
+}
+
+/* ---- making and closing ---------------------------------------------------- */
+
+static void sandbox_free(lam_sandbox *sb)
+{
+    if (!sb) return;
+    for (size_t i = 0; i < sb->ndirs; i++) free(sb->dirs[i]);
+    for (size_t i = 0; i < sb->nmods; i++) free(sb->mods[i]);
+    free(sb->dirs);
+    free(sb->writable);
+    free(sb);
+}
+
+/* mkdir -p, without checks (the caller's own directories) */
+int lam_lua_mkdirs(const char *path)
+{
+    if (!*path) return ENOENT;
+    char *p = strdup(path);
+    if (!p) return ENOMEM;
+    int e = 0;
+    for (char *c = p + 1;; c++) {
+        if (*c != '/' && *c != '\0') continue;
+        char keep = *c;
+        *c = '\0';
+        struct stat st;
+        if (mkdir(p, 0777) != 0 && (errno != EEXIST || stat(p, &st) != 0 || !S_ISDIR(st.st_mode))) e = errno ? errno : EEXIST;
+        *c = keep;
+        if (e || keep == '\0') break;
+    }
+    free(p);
+    return e;
+}
+
+static int add_dir(lam_sandbox *sb, const char *dir, int writable, char *msg, size_t size)
+{
+    if (writable && lam_lua_mkdirs(dir) != 0) {
+        snprintf(msg, size, "--out %s: cannot create the directory: %s", dir, strerror(errno ? errno : EIO));
+        return -1;
+    }
+    char *real = realpath(dir, NULL);
+    struct stat st;
+    if (!real || stat(real, &st) != 0 || !S_ISDIR(st.st_mode)) {
+        snprintf(msg, size, "%s %s: not a directory", writable ? "--out" : "--allow", dir);
+        free(real);
+        return -1;
+    }
+    sb->dirs[sb->ndirs] = real;
+    sb->writable[sb->ndirs++] = writable;
+    return 0;
+}
+
+lua_State *lam_lua_sandbox_open(const lam_sandbox_opts *o, char *msg, size_t size)
+{
+    lam_sandbox *sb = calloc(1, sizeof *sb);
+    size_t n = o->nallow + o->nout;
+    if (sb) {
+        sb->dirs = calloc(n + 1, sizeof *sb->dirs);
+        sb->writable = calloc(n + 1, sizeof *sb->writable);
+    }
+    if (!sb || !sb->dirs || !sb->writable) {
+        snprintf(msg, size, "not enough memory");
+        sandbox_free(sb);
+        return NULL;
+    }
+    for (size_t i = 0; i < o->nallow; i++)
+        if (add_dir(sb, o->allow[i], 0, msg, size)) {
+            sandbox_free(sb);
+            return NULL;
+        }
+    for (size_t i = 0; i < o->nout; i++)
+        if (add_dir(sb, o->out[i], 1, msg, size)) {
+            sandbox_free(sb);
+            return NULL;
+        }
+    static const char *const rel[] = { "../lua", "../share/lamina/lua", NULL };
+    sb->nmods = lam_search_dirs(NULL, rel, sb->mods, 4);
+    sb->mem_limit = o->memory > 0 && o->memory < (double)SIZE_MAX ? (size_t)o->memory : 0;
+    sb->time_limit = o->time > 0 ? o->time : 0;
+    lua_State *L = lua_newstate(sb_alloc, sb);
+    if (!L) {
+        snprintf(msg, size, "cannot create a Lua state: not enough memory");
+        sandbox_free(sb);
+        return NULL;
+    }
+    lua_pushcfunction(L, open_libs);
+    if (lua_pcall(L, 0, 0, 0) != LUA_OK) {
+        snprintf(msg, size, "%s", lua_tostring(L, -1));
+        lam_lua_sandbox_close(L);
+        return NULL;
+    }
+    return L;
+}
+
+void lam_lua_sandbox_start(lua_State *L)
+{
+    lam_sandbox *sb = lam_lua_sandbox_of(L);
+    if (!sb) return;
+    sb->deadline = sb->time_limit > 0 ? now() + sb->time_limit : 0;
+    lua_sethook(L, time_hook, LUA_MASKCOUNT, 1000);
+}
+
+const char *lam_lua_sandbox_memory_error(lua_State *L, char *buf, size_t size)
+{
+    lam_sandbox *sb = lam_lua_sandbox_of(L);
+    if (!sb || !sb->mem_limit) return NULL;
+    snprintf(buf, size, "memory limit exceeded (%zu bytes of Lua memory; raise it with --memory or the option memory)",
+             sb->mem_limit);
+    return buf;
+}
+
+void lam_lua_sandbox_close(lua_State *L)
+{
+    lam_sandbox *sb = lam_lua_sandbox_of(L);
+    lua_close(L);
+    sandbox_free(sb);
+}
+
+/* ---- lamina.sandbox{...} ------------------------------------------------------ */
+
+/* A directory or a list of them, options[key], as a C array (in a box on
+ * the stack); the strings stay in the options table. */
+static size_t string_list(lua_State *L, const char *key, const char *const **out)
+{
+    *out = NULL;
+    int ty = lua_getfield(L, 1, key);
+    if (ty == LUA_TNIL) {
+        lua_pop(L, 1);
+        return 0;
+    }
+    char b[64];
+    if (ty != LUA_TSTRING && ty != LUA_TTABLE)
+        lam_lua_opterror(L, 1, "%s must be a directory or a list of directories, got %s", key,
+                         lam_lua_describe(L, -1, b, sizeof b));
+    size_t n = ty == LUA_TSTRING ? 1 : (size_t)lua_rawlen(L, -1);
+    void **box = lam_lua_newbox(L);
+    const char **arr = malloc((n + 1) * sizeof *arr);
+    if (!arr) luaL_error(L, "not enough memory");
+    *box = (void *)arr;
+    if (ty == LUA_TSTRING) arr[0] = lua_tostring(L, -2);
+    for (size_t i = 0; ty == LUA_TTABLE && i < n; i++) {
+        if (lua_rawgeti(L, -2, (lua_Integer)i + 1) != LUA_TSTRING)
+            lam_lua_opterror(L, 1, "%s[%zu] must be a string, got %s", key, i + 1,
+                             lam_lua_describe(L, -1, b, sizeof b));
+        arr[i] = lua_tostring(L, -1);
+        lua_pop(L, 1);
+    }
+    lua_remove(L, -2);
+    *out = arr;
+    return n;
+}
+
+static int sandbox_msgh(lua_State *L)
+{
+    if (lua_type(L, 1) != LUA_TSTRING) return 1;
+    luaL_traceback(L, L, lua_tostring(L, 1), 1);
+    return 1;
+}
+
+/* Copy value idx of S onto L: nil, booleans, numbers and strings. */
+static int copy_value(lua_State *S, int idx, lua_State *L)
+{
+    switch (lua_type(S, idx)) {
+    case LUA_TNIL: lua_pushnil(L); return 1;
+    case LUA_TBOOLEAN: lua_pushboolean(L, lua_toboolean(S, idx)); return 1;
+    case LUA_TNUMBER:
+        if (lua_isinteger(S, idx)) lua_pushinteger(L, lua_tointeger(S, idx));
+        else lua_pushnumber(L, lua_tonumber(S, idx));
+        return 1;
+    case LUA_TSTRING: {
+        size_t len;
+        const char *s = lua_tolstring(S, idx, &len);
+        lua_pushlstring(L, s, len);
+        return 1;
+    }
+    }
+    return 0;
+}
+
+/* The sandboxed state, closed by __gc / __close should the caller's state
+ * raise an error (out of memory) while it is open. */
+#define LAM_SANDBOXJOB "lamina.sandboxjob"
+
+static int job_close(lua_State *L)
+{
+    lua_State **S = luaL_checkudata(L, 1, LAM_SANDBOXJOB);
+    if (*S) lam_lua_sandbox_close(*S);
+    *S = NULL;
+    return 0;
+}
+
+/* lamina.sandbox{code= | file=, args=, allow=, out=, memory=, time=}
+ *   -> true, results... | nil, message, exit code */
+static int l_sandbox(lua_State *L)
+{
+    static const char *const keys[] = { "code", "file", "args", "allow", "out", "memory", "time", NULL };
+    luaL_checktype(L, 1, LUA_TTABLE);
+    lua_settop(L, 1);
+    lam_lua_checkkeys(L, 1, 1, keys);
+    lam_sandbox_opts o;
+    memset(&o, 0, sizeof o);
+    o.memory = 256.0 * 1024 * 1024;
+    o.time = 60;
+    if (lam_lua_numfield(L, 1, 1, "memory", &o.memory) && o.memory < 0)
+        lam_lua_opterror(L, 1, "memory must be a number of bytes >= 0 (0: no limit), got %.14g", o.memory);
+    if (lam_lua_numfield(L, 1, 1, "time", &o.time) && o.time < 0)
+        lam_lua_opterror(L, 1, "time must be a number of seconds >= 0 (0: no limit), got %.14g", o.time);
+    lua_getfield(L, 1, "code");
+    lua_getfield(L, 1, "file");
+    size_t clen = 0;
+    const char *code = lua_type(L, 2) == LUA_TSTRING ? lua_tolstring(L, 2, &clen) : NULL;
+    const char *file = lua_type(L, 3) == LUA_TSTRING ? lua_tostring(L, 3) : NULL;
+    if ((code != NULL) == (file != NULL) || (!code && !lua_isnil(L, 2)) || (!file && !lua_isnil(L, 3)))
+        lam_lua_opterror(L, 1, "give the recipe as one string: code = TEXT or file = PATH");
+    o.nallow = string_list(L, "allow", &o.allow);
+    o.nout = string_list(L, "out", &o.out);
+    int args = lua_getfield(L, 1, "args") == LUA_TNIL ? 0 : lua_gettop(L);
+    if (args && !lua_istable(L, args)) lam_lua_opterror(L, 1, "args must be a list");
+
+    lua_State **S = lua_newuserdatauv(L, sizeof *S, 0);
+    *S = NULL;
+    if (luaL_newmetatable(L, LAM_SANDBOXJOB)) {
+        lua_pushcfunction(L, job_close);
+        lua_setfield(L, -2, "__gc");
+        lua_pushcfunction(L, job_close);
+        lua_setfield(L, -2, "__close");
+    }
+    lua_setmetatable(L, -2);
+    int job = lua_gettop(L);
+    lua_toclose(L, job);
+    char msg[1024];
+    if (!(*S = lam_lua_sandbox_open(&o, msg, sizeof msg))) {
+        luaL_pushfail(L);
+        lua_pushstring(L, msg);
+        return 2;
+    }
+    lua_State *s = *S;
+    /* arg as `lamina run` sets it, and the same values as ... */
+    size_t nargs = args ? (size_t)lua_rawlen(L, args) : 0;
+    if (!lua_checkstack(s, (int)nargs + 8)) return luaL_error(L, "too many arguments to the sandbox");
+    lua_pushcfunction(s, sandbox_msgh);
+    int base = lua_gettop(s);
+    int st = code ? luaL_loadbufferx(s, code, clen, "=(sandbox)", "t") : luaL_loadfilex(s, file, "t");
+    if (st == LUA_OK) {
+        lua_createtable(s, (int)nargs, 1);
+        int t = lua_gettop(s);
+        lua_pushstring(s, file ? file : "(sandbox)");
+        lua_rawseti(s, t, 0);
+        for (size_t i = 0; i < nargs; i++) {
+            lua_rawgeti(L, args, (lua_Integer)i + 1);
+            if (!copy_value(L, -1, s)) lua_pushnil(s);
+            lua_pop(L, 1);
+            lua_rawseti(s, t, (lua_Integer)i + 1);
+        }
+        lua_pushvalue(s, t);
+        lua_setglobal(s, "arg");
+        for (size_t i = 0; i < nargs; i++) lua_rawgeti(s, t, (lua_Integer)i + 1);
+        lua_remove(s, t);
+        lam_lua_sandbox_start(s);
+        st = lua_pcall(s, (int)nargs, LUA_MULTRET, base);
+        lua_sethook(s, NULL, 0, 0);
+    }
+    int code_out = 0;
+    if (st != LUA_OK && lam_lua_sandbox_exit(s, &code_out)) {
+        if (code_out == 0) {
+            lua_pushboolean(L, 1);
+            return 1;
+        }
+        luaL_pushfail(L);
+        lua_pushfstring(L, "the recipe called os.exit(%d)", code_out);
+        lua_pushinteger(L, code_out);
+        return 3;
+    }
+    if (st != LUA_OK) {
+        char mb[200];
+        const char *mm = st == LUA_ERRMEM ? lam_lua_sandbox_memory_error(s, mb, sizeof mb) : NULL;
+        luaL_pushfail(L);
+        if (mm) lua_pushstring(L, mm);
+        else if (lua_type(s, -1) == LUA_TSTRING) lua_pushstring(L, lua_tostring(s, -1));
+        else lua_pushfstring(L, "(error object is a %s value)", luaL_typename(s, -1));
+        lua_pushinteger(L, 1);
+        return 3;
+    }
+    int nres = lua_gettop(s) - base;
+    luaL_checkstack(L, nres + 2, "too many results from the sandbox");
+    lua_pushboolean(L, 1);
+    for (int i = 1; i <= nres; i++)
+        if (!copy_value(s, base + i, L)) {
+            lua_settop(L, job);
+            luaL_pushfail(L);
+            lua_pushfstring(L, "result %d of the recipe is a %s (nil, booleans, numbers and strings come back)", i,
+                            luaL_typename(s, base + i));
+            lua_pushinteger(L, 1);
+            return 3;
+        }
+    return nres + 1;
+}
+
+int lam_lua_open_sandbox(lua_State *L)
+{
+    lua_pushcfunction(L, l_sandbox);
+    lua_setfield(L, -2, "sandbox");
+    return 0;
+}
