@@ -645,8 +645,8 @@ static int st_vertex(ug_parser *p)
         char what[96];
         snprintf(what, sizeof what, "%c coordinate of vertex '%.40s'", axis[k], name.s);
         if (!parse_number(&t, &xyz[k])) return expected(p, &t, what);
-        if (!isfinite(xyz[k]))
-            return perr(p, LAM_EINVAL, t.line, t.col, "coordinate is not a finite number");
+        if (lam_coord_problem(xyz[k]))
+            return perr(p, LAM_EINVAL, t.line, t.col, "coordinate %s", lam_coord_problem(xyz[k]));
     }
     /* An optional normal (three more numbers) is read and ignored. */
     if ((rc = next(p, &t))) return rc;
@@ -1180,6 +1180,10 @@ static int emit_vertex(ug_import *imp, ug_scope *s, uint32_t v, const double m[1
     default:
         break;
     }
+    for (int k = 0; k < 3; k++)
+        if (lam_coord_problem(q[k]))
+            return error_at(imp, LAM_EGEOM, s->file, vx->line, vx->col, "vertex '%s' after the instance transform: %c coordinate %g %s",
+                            vx->name, "xyz"[k], q[k], lam_coord_problem(q[k]));
     int rc = lam_mesh_add_vertex(imp->mesh, q[0], q[1], q[2], out, imp->err);
     if (rc) return rc;
     s->vgen[v] = s->gen;
