@@ -1035,7 +1035,7 @@ static int include_file(ug_parser *p, const ug_token *kw, const char *name, uint
     size_t len;
     lam_error rerr;
     lam_error_clear(&rerr);
-    if ((rc = lam_read_file(path, &data, &len, &rerr))) {
+    if ((rc = lam_read_file(path, lam_model_limit(), &data, &len, &rerr))) {
         rc = perr(p, rc, kw->line, kw->col, "cannot include '%s': %s: %s", name, path, rerr.msg);
         goto out;
     }
@@ -1309,7 +1309,7 @@ int lam_import_ug(const char *path, lam_mesh *mesh, lam_error *err)
     if (!path || !mesh) return lam_error_set(err, LAM_EUSAGE, NULL, 0, 0, "lam_import_ug: no path or mesh");
     char *data;
     size_t len;
-    int rc = lam_read_file(path, &data, &len, err);
+    int rc = lam_read_file(path, lam_model_limit(), &data, &len, err);
     if (rc) return rc;
     return import_text(path, data, len, mesh, err);
 }

@@ -70,7 +70,7 @@ const char *lam_coord_problem(double x)
 {
     if (!isfinite(x)) return "is not a finite number";
     if (fabs(x) > LAM_COORD_MAX)
-        return "is beyond 1e100 in magnitude: the model would span more than a double can measure";
+        return "is beyond 1e50 in magnitude: the model would span more than a double can measure";
     return NULL;
 }
 

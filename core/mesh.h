@@ -53,10 +53,12 @@ void lam_mesh_free(lam_mesh *m);
 /* Reserve room for nverts more vertices and ntris more triangles. */
 int lam_mesh_reserve(lam_mesh *m, size_t nverts, size_t ntris, lam_error *err);
 
-/* The largest coordinate magnitude a model may have. Areas, volumes and
- * winding numbers grow with the cube of the model's size, and beyond this
- * they would overflow a double (the cube root of DBL_MAX is 5.6e102). */
-#define LAM_COORD_MAX 1e100
+/* The largest coordinate magnitude a model may have. Derived quantities
+ * are products of up to four differences of coordinates (squared cross
+ * products for areas and normals, triple products for volumes and winding
+ * numbers), which overflow a double from about 1e76; 1e50 leaves room for
+ * six. */
+#define LAM_COORD_MAX 1e50
 
 /* NULL when x can be a vertex coordinate (finite, |x| <= LAM_COORD_MAX),
  * else what is wrong with it, in words every importer reports (static). */

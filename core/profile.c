@@ -20,12 +20,12 @@
 #include <unistd.h>
 #include <yaml.h>
 
+#include "file.h"
 #include "fmt.h"
 #include "lexnum.h"
 #include "paths.h"
 #include "slice.h"
 
-#define MAX_PROFILE_BYTES (4L << 20) /* a profile is a page of text */
 #define MAX_CHAIN 32                 /* inherits depth */
 #define MAX_DIRS 16
 
@@ -93,52 +93,8 @@ static int oom_err(lam_error *err)
 
 static int read_all(src *s, const char *path, char **text, size_t *len)
 {
-    *text = NULL;
-    *len = 0;
-    FILE *f = fopen(path, "rb");
-    if (!f) return lam_error_set(s->err, LAM_EIO, path, 0, 0, "cannot open: %s", strerror(errno));
-    struct stat st;
-    if (fstat(fileno(f), &st) == 0 && S_ISDIR(st.st_mode)) {
-        fclose(f);
-        return lam_error_set(s->err, LAM_EIO, path, 0, 0, "cannot read: is a directory");
-    }
-    size_t cap = 4096, n = 0;
-    char *b = malloc(cap);
-    if (!b) {
-        fclose(f);
-        return oom();
-    }
-    for (;;) {
-        if (n + 1 >= cap) {
-            if (cap > (size_t)MAX_PROFILE_BYTES) {
-                free(b);
-                fclose(f);
-                return lam_error_set(s->err, LAM_EINVAL, path, 0, 0, "too large for a machine profile (over %ld bytes)",
-                                     MAX_PROFILE_BYTES);
-            }
-            char *nb = realloc(b, cap * 2);
-            if (!nb) {
-                free(b);
-                fclose(f);
-                return oom();
-            }
-            b = nb;
-            cap *= 2;
-        }
-        size_t got = fread(b + n, 1, cap - n - 1, f);
-        n += got;
-        if (got == 0) break;
-    }
-    int bad = ferror(f);
-    fclose(f);
-    if (bad) {
-        free(b);
-        return lam_error_set(s->err, LAM_EIO, path, 0, 0, "cannot read: %s", strerror(errno ? errno : EIO));
-    }
-    b[n] = '\0';
-    *text = b;
-    *len = n;
-    return LAM_OK;
+    const lam_read_limit limit = { LAM_MAX_PROFILE_BYTES, "a machine profile", NULL };
+    return lam_read_file(path, limit, text, len, s->err);
 }
 
 /* Byte offset where 0-based line `line` starts, or -1. */
