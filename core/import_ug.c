@@ -52,6 +52,7 @@
  *   a transform sends to infinity at the vertex's name.
  */
 #include "import.h"
+#include "lexnum.h"
 
 #include <errno.h>
 #include <math.h>
@@ -433,6 +434,8 @@ typedef struct ug_parser {
     int has_peek;
     uint32_t scope;      /* scope statements go into */
     int def_depth;
+    int known;           /* a Unigrafix statement was seen: until then the
+                            file may be anything, and messages quote none of it */
 } ug_parser;
 
 static int char_at(const ug_parser *p, size_t i)
@@ -562,17 +565,14 @@ static int peek(ug_parser *p, const ug_token **t)
 }
 
 /* A token as quoted in messages (long words are cut). */
-static const char *tokstr(const ug_token *t, char *buf, size_t size)
+static const char *tokstr(const ug_parser *p, const ug_token *t, char *buf, size_t size)
 {
     switch (t->kind) {
     case TK_EOF: return "end of file";
     case TK_LPAREN: return "'('";
     case TK_RPAREN: return "')'";
     case TK_SEMI: return "';'";
-    default:
-        if (t->len > 40) snprintf(buf, size, "'%.40s...'", t->s);
-        else snprintf(buf, size, "'%s'", t->s);
-        return buf;
+    default: return p->known ? lam_quote_bytes(buf, size, (const unsigned char *)t->s, t->len) : "a word";
     }
 }
 
@@ -580,7 +580,7 @@ static const char *tokstr(const ug_token *t, char *buf, size_t size)
 static int expected(ug_parser *p, const ug_token *t, const char *what)
 {
     char b[64];
-    return perr(p, LAM_ESYNTAX, t->line, t->col, "expected %s, got %s", what, tokstr(t, b, sizeof b));
+    return perr(p, LAM_ESYNTAX, t->line, t->col, "expected %s, got %s", what, tokstr(p, t, b, sizeof b));
 }
 
 static int expect_semi(ug_parser *p, const char *after)
@@ -863,7 +863,7 @@ static int parse_transforms(ug_parser *p, int end, uint32_t *mat)
             if (!parse_number(&at, &a[k])) {
                 char b[64];
                 return perr(p, LAM_ESYNTAX, t.line, t.col, "transform '%s' takes %d number%s, got %s",
-                            f->name, f->nargs, f->nargs == 1 ? "" : "s", tokstr(&at, b, sizeof b));
+                            f->name, f->nargs, f->nargs == 1 ? "" : "s", tokstr(p, &at, b, sizeof b));
             }
             if (!isfinite(a[k]))
                 return perr(p, LAM_EINVAL, at.line, at.col, "transform argument is not a finite number");
@@ -1091,18 +1091,29 @@ static int st_include(ug_parser *p, const ug_token *kw)
 
 static int statement(ug_parser *p, const ug_token *kw)
 {
+    static const char *const skipped[] = { "c", "c_rgb", "l", "cam", NULL };
     const char *k = kw->s;
+    int skip = 0;
+    for (int i = 0; skipped[i]; i++) skip |= strcmp(k, skipped[i]) == 0;
+    int known = skip || !strcmp(k, "v") || !strcmp(k, "f") || !strcmp(k, "w") || !strcmp(k, "i") ||
+                !strcmp(k, "def") || !strcmp(k, "end") || !strcmp(k, "include");
+    if (!known && !p->known)
+        return perr(p, LAM_EFORMAT, kw->line, kw->col,
+                    "not a Unigrafix file: it does not start with a statement (v, f, w, i, def, include, ...)");
+    if (!known) {
+        char b[64];
+        return perr(p, LAM_ESYNTAX, kw->line, kw->col, "unknown statement %s",
+                    lam_quote_bytes(b, sizeof b, (const unsigned char *)k, kw->len));
+    }
+    p->known = 1;
+    if (skip) return skip_statement(p, kw);
     if (strcmp(k, "v") == 0) return st_vertex(p);
     if (strcmp(k, "f") == 0) return st_face(p, kw);
     if (strcmp(k, "w") == 0) return st_wire(p, kw);
     if (strcmp(k, "i") == 0) return st_instance(p, kw);
     if (strcmp(k, "def") == 0) return st_def(p, kw);
     if (strcmp(k, "end") == 0) return st_end(p, kw);
-    if (strcmp(k, "include") == 0) return st_include(p, kw);
-    if (strcmp(k, "c") == 0 || strcmp(k, "c_rgb") == 0 || strcmp(k, "l") == 0 ||
-        strcmp(k, "cam") == 0)
-        return skip_statement(p, kw);
-    return perr(p, LAM_ESYNTAX, kw->line, kw->col, "unknown statement '%s'", k);
+    return st_include(p, kw);
 }
 
 static int parse_file(ug_parser *p)

@@ -418,6 +418,19 @@ static int check_keys(const src *s, const yaml_node_t *m, const char *where, con
     return LAM_OK;
 }
 
+/* Is m the top level of a profile: has it a key of one, or a near miss?
+ * Until it has, it may be any file, and messages quote none of it. */
+static int recognised(const src *s, const yaml_node_t *m)
+{
+    for (yaml_node_pair_t *pr = m->data.mapping.pairs.start; pr < m->data.mapping.pairs.top; pr++) {
+        yaml_node_t *k = node(s, pr->key);
+        if (k->type != YAML_SCALAR_NODE || k->data.scalar.length < 3) continue;
+        for (size_t j = 0; j < K_COUNT; j++)
+            if (distance((const char *)k->data.scalar.value, key_names[j]) < 3) return 1;
+    }
+    return 0;
+}
+
 static const yaml_node_t *lookup(const src *s, const yaml_node_t *m, const char *key)
 {
     for (yaml_node_pair_t *pr = m->data.mapping.pairs.start; pr < m->data.mapping.pairs.top; pr++) {
@@ -868,10 +881,15 @@ static int load_text(ldr *L, src *s, const char *path, int top)
     if ((rc = parse(s))) goto out;
     if ((rc = check_tags(s))) goto out;
     const yaml_node_t *root = yaml_document_get_root_node(&s->doc);
-    char b[64];
     if (root->type != YAML_MAPPING_NODE) {
+        /* nothing of a file that is not a profile is quoted */
         rc = at(s, root->start_mark, LAM_EINVAL, "a machine profile is a mapping of keys (name, process, ...), got %s",
-                describe(root, b, sizeof b));
+                root->type == YAML_SEQUENCE_NODE ? "a list" : "text");
+        goto out;
+    }
+    if (!recognised(s, root)) {
+        rc = at(s, root->start_mark, LAM_EINVAL,
+                "not a machine profile: none of its keys is a profile key (name, process, dialect, ...)");
         goto out;
     }
     if ((rc = check_keys(s, root, "", key_names, K_COUNT))) goto out;
