@@ -570,6 +570,7 @@ static void test_permissions(void)
        "a group-writable plugin file is refused (%s)", err.msg);
     ok(!getenv("LAMINA_CTOR_RAN"), "neither was opened (its constructor did not run)");
     chmod(path, 0755);
+    lam_error_clear(&err);
     rc = lam_plugin_load(path, &err);
     ok(rc == LAM_OK && getenv("LAMINA_CTOR_RAN"), "mode 755 in a 700 directory loads (%s)", err.msg);
     remove(path);
