@@ -122,7 +122,8 @@ run: deps
 # for the test suite over the corpus in tests/fuzz/corpus; `make fuzz`
 # builds it for libFuzzer with clang instead and runs it on each part of
 # the corpus (FUZZ_TIME seconds each, in a copy under build-fuzz/corpus so
-# the kept corpus only changes by hand).
+# the kept corpus only changes by hand), from a copy of tests/models (what
+# a recipe writes lands there).
 FUZZ_BIN := $(BUILD)/tests/fuzz_inputs
 FUZZ_FLAGS = $(CPPFLAGS) $(LUA_CFLAGS) -DLAMINA_FUZZ_LUA
 $(FUZZ_BIN): tests/fuzz/fuzz_inputs.c $(BIND_OBJ) $(LIB)
@@ -138,9 +139,10 @@ fuzz:
 	clang $(FUZZ_FLAGS) -DLAMINA_LIBFUZZER -g -O1 -fsanitize=address,undefined,fuzzer \
 	  -o build-fuzz/fuzz_inputs tests/fuzz/fuzz_inputs.c $(BIND_SRC:%.c=build-fuzz/%.o) build-fuzz/liblamina.a \
 	  $(LUA_LIBS) $(LDLIBS)
+	@rm -rf build-fuzz/models && cp -r tests/models build-fuzz/models
 	@for t in $(FUZZ_TARGETS); do \
 	  mkdir -p build-fuzz/corpus/$$t && cp tests/fuzz/corpus/$$t/* build-fuzz/corpus/$$t/ && \
-	  (cd tests/models && $(abspath build-fuzz/fuzz_inputs) -max_total_time=$(FUZZ_TIME) -timeout=20 \
+	  (cd build-fuzz/models && $(abspath build-fuzz/fuzz_inputs) -max_total_time=$(FUZZ_TIME) -timeout=20 \
 	    -rss_limit_mb=2048 -max_len=65536 -artifact_prefix=$(abspath build-fuzz)/$$t- \
 	    $(abspath build-fuzz/corpus/$$t)) || exit 1; \
 	done
