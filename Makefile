@@ -118,19 +118,34 @@ run: deps
 
 # Tests: C unit tests are compiled to TAP programs; tests/cli/*.t are shell
 # scripts that drive the executable. prove runs both and prints the summary.
-# The fuzz target, as a mutation driver for the test suite; `make fuzz`
-# builds it for libFuzzer with clang instead.
+# The fuzz target (with the Lua binding, for recipes), as a mutation driver
+# for the test suite over the corpus in tests/fuzz/corpus; `make fuzz`
+# builds it for libFuzzer with clang instead and runs it on each part of
+# the corpus (FUZZ_TIME seconds each, in a copy under build-fuzz/corpus so
+# the kept corpus only changes by hand), from a copy of tests/models (what
+# a recipe writes lands there).
 FUZZ_BIN := $(BUILD)/tests/fuzz_inputs
-$(FUZZ_BIN): tests/fuzz/fuzz_inputs.c $(LIB)
+FUZZ_FLAGS = $(CPPFLAGS) $(LUA_CFLAGS) -DLAMINA_FUZZ_LUA
+$(FUZZ_BIN): tests/fuzz/fuzz_inputs.c $(BIND_OBJ) $(LIB)
 	@mkdir -p $(dir $@)
-	$(CC) $(CPPFLAGS) $(CFLAGS) -o $@ $< $(LIB) $(LDFLAGS) $(LDLIBS)
+	$(CC) $(FUZZ_FLAGS) $(CFLAGS) -o $@ $< $(BIND_OBJ) $(LIB) $(LDFLAGS) $(LUA_LIBS) $(LDLIBS)
 
+FUZZ_TIME ?= 600
+FUZZ_TARGETS := models profiles recipes programs
 fuzz:
 	@$(MAKE) --no-print-directory BUILD=build-fuzz CC=clang OPT="-O1 -g" \
-	  SANFLAGS="-fsanitize=address,undefined,fuzzer-no-link" build-fuzz/liblamina.a
-	clang $(CPPFLAGS) -DLAMINA_LIBFUZZER -g -O1 -fsanitize=address,undefined,fuzzer \
-	  -o build-fuzz/fuzz_inputs tests/fuzz/fuzz_inputs.c build-fuzz/liblamina.a $(LDLIBS)
-	@echo "run: build-fuzz/fuzz_inputs CORPUS_DIR (first byte of an input: 0 ug, 1 stl, 2 obj, 3 yaml)"
+	  SANFLAGS="-fsanitize=address,undefined,fuzzer-no-link" build-fuzz/liblamina.a \
+	  $(BIND_SRC:%.c=build-fuzz/%.o)
+	clang $(FUZZ_FLAGS) -DLAMINA_LIBFUZZER -g -O1 -fsanitize=address,undefined,fuzzer \
+	  -o build-fuzz/fuzz_inputs tests/fuzz/fuzz_inputs.c $(BIND_SRC:%.c=build-fuzz/%.o) build-fuzz/liblamina.a \
+	  $(LUA_LIBS) $(LDLIBS)
+	@rm -rf build-fuzz/models && cp -r tests/models build-fuzz/models
+	@for t in $(FUZZ_TARGETS); do \
+	  mkdir -p build-fuzz/corpus/$$t && cp tests/fuzz/corpus/$$t/* build-fuzz/corpus/$$t/ && \
+	  (cd build-fuzz/models && $(abspath build-fuzz/fuzz_inputs) -max_total_time=$(FUZZ_TIME) -timeout=20 \
+	    -rss_limit_mb=2048 -max_len=65536 -artifact_prefix=$(abspath build-fuzz)/$$t- \
+	    $(abspath build-fuzz/corpus/$$t)) || exit 1; \
+	done
 
 $(BUILD)/tests/plugins/%.so: tests/plugins/%.c core/lamina_plugin.h tests/plugins/noop_writer.h
 	@mkdir -p $(dir $@)

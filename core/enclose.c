@@ -30,119 +30,173 @@ static int bbox_inside(const double *in, const double *out)
 
 /* ---- candidate pairs ------------------------------------------------------ */
 
-/* Shells listed by grid cell (cells over more than `wide` cells of the
- * grid go on the list `bigs` instead). */
-typedef struct grid {
-    double lo[3], size[3];
-    int n[3];
-    uint32_t *first, *list, *bigs;
-    size_t nbig;
-} grid;
+/* A bounding-volume tree over the shells that can enclose another: shells
+ * in the order of their box centres along a Morton curve, cut in halves
+ * down to leaves of at most LEAF shells, each node holding the box of its
+ * shells. Memory is linear in the shells whatever their boxes (a grid
+ * listing each box in every cell it covers is not: 2^20 stacked triangles
+ * over 64x64 cells each made 2^32 entries), and a query visits only nodes
+ * whose box holds the query box. A shell of one triangle is left out: the
+ * solid angle of a triangle is below 2 pi, so its winding number stays
+ * under 1/2 and it encloses nothing (a triangle soup thus costs nothing
+ * here). */
+#define LEAF 4
 
-static int cell_of(const grid *g, int k, double x)
+typedef struct node {
+    double box[6];
+    size_t first, count; /* a leaf: order[first .. first + count) */
+    size_t right;        /* an inner node: its right child (the left is next) */
+} node;
+
+typedef struct tree {
+    size_t *order;
+    node *nodes;
+    size_t nnodes;
+} tree;
+
+typedef struct keyed {
+    uint64_t key;
+    size_t shell;
+} keyed;
+
+static int by_key(const void *a, const void *b)
 {
-    double c = floor((x - g->lo[k]) / g->size[k]);
-    return c < 0 ? 0 : c >= g->n[k] ? g->n[k] - 1 : (int)c;
+    const keyed *x = a, *y = b;
+    if (x->key != y->key) return x->key < y->key ? -1 : 1;
+    return x->shell < y->shell ? -1 : x->shell > y->shell;
 }
 
-static size_t cell_index(const grid *g, int i, int j, int k)
+/* 21 bits of x spread to every third bit. */
+static uint64_t spread3(uint64_t x)
 {
-    return ((size_t)i * (size_t)g->n[1] + (size_t)j) * (size_t)g->n[2] + (size_t)k;
+    x &= 0x1fffff;
+    x = (x | x << 32) & 0x1f00000000ffffull;
+    x = (x | x << 16) & 0x1f0000ff0000ffull;
+    x = (x | x << 8) & 0x100f00f00f00f00full;
+    x = (x | x << 4) & 0x10c30c30c30c30c3ull;
+    x = (x | x << 2) & 0x1249249249249249ull;
+    return x;
 }
 
-static void grid_free(grid *g)
+static void box_union(double *to, const double *b)
 {
-    free(g->first);
-    free(g->list);
-    free(g->bigs);
-}
-
-static int grid_build(const lam_model *md, grid *g)
-{
-    memset(g, 0, sizeof *g);
-    size_t ns = md->nshells;
-    int per = (int)ceil(cbrt((double)ns));
-    if (per < 1) per = 1;
-    if (per > 64) per = 64;
     for (int k = 0; k < 3; k++) {
-        double lo = INFINITY, hi = -INFINITY;
-        for (size_t s = 0; s < ns; s++) {
-            if (md->shells[s].bbox[k] < lo) lo = md->shells[s].bbox[k];
-            if (md->shells[s].bbox[k + 3] > hi) hi = md->shells[s].bbox[k + 3];
-        }
-        g->lo[k] = lo;
-        g->n[k] = hi > lo ? per : 1;
-        g->size[k] = hi > lo ? (hi - lo) / per : 1;
+        if (b[k] < to[k]) to[k] = b[k];
+        if (b[k + 3] > to[k + 3]) to[k + 3] = b[k + 3];
     }
-    size_t ncells = (size_t)g->n[0] * (size_t)g->n[1] * (size_t)g->n[2];
-    /* a box over more cells than this goes on the list every shell checks */
-    size_t wide = ncells / 8 > 8 ? ncells / 8 : 8;
-    int *range = malloc(6 * ns * sizeof *range + 1);
-    uint32_t *fill = NULL;
-    g->first = calloc(ncells + 1, sizeof *g->first);
-    if (!range || !g->first) goto fail;
-    for (size_t s = 0; s < ns; s++) {
-        int *r = range + 6 * s;
-        size_t cells = 1;
-        for (int k = 0; k < 3; k++) {
-            r[k] = cell_of(g, k, md->shells[s].bbox[k]);
-            r[k + 3] = cell_of(g, k, md->shells[s].bbox[k + 3]);
-            cells *= (size_t)(r[k + 3] - r[k] + 1);
-        }
-        if (cells > wide) {
-            r[0] = -1; /* big */
-            g->nbig++;
-            continue;
-        }
-        for (int i = r[0]; i <= r[3]; i++)
-            for (int j = r[1]; j <= r[4]; j++)
-                for (int k = r[2]; k <= r[5]; k++) g->first[cell_index(g, i, j, k) + 1]++;
-    }
-    for (size_t c = 0; c < ncells; c++) g->first[c + 1] += g->first[c];
-    g->list = malloc(g->first[ncells] * sizeof *g->list + 1);
-    g->bigs = malloc(g->nbig * sizeof *g->bigs + 1);
-    fill = malloc((ncells + 1) * sizeof *fill);
-    if (!g->list || !g->bigs || !fill) goto fail;
-    memcpy(fill, g->first, (ncells + 1) * sizeof *fill);
-    g->nbig = 0;
-    for (size_t s = 0; s < ns; s++) {
-        const int *r = range + 6 * s;
-        if (r[0] < 0) {
-            g->bigs[g->nbig++] = (uint32_t)s;
-            continue;
-        }
-        for (int i = r[0]; i <= r[3]; i++)
-            for (int j = r[1]; j <= r[4]; j++)
-                for (int k = r[2]; k <= r[5]; k++) g->list[fill[cell_index(g, i, j, k)]++] = (uint32_t)s;
-    }
-    free(fill);
-    free(range);
-    return LAM_OK;
-fail:
-    free(fill);
-    free(range);
-    grid_free(g);
-    return LAM_ENOMEM;
 }
 
-/* The candidates for shell s, in increasing order, one by one: *cursor
- * starts at 0; returns the next o whose box holds s's box, or -1. Both
- * lists hold shells in increasing order and are merged. */
-static long next_candidate(const lam_model *md, const grid *g, size_t s, size_t cursor[2])
+static size_t build(const lam_model *md, tree *t, size_t lo, size_t hi)
+{
+    size_t at = t->nnodes++;
+    node *n = &t->nodes[at];
+    memcpy(n->box, md->shells[t->order[lo]].bbox, sizeof n->box);
+    if (hi - lo <= LEAF) {
+        n->first = lo;
+        n->count = hi - lo;
+        for (size_t i = lo + 1; i < hi; i++) box_union(n->box, md->shells[t->order[i]].bbox);
+        return at;
+    }
+    n->count = 0;
+    size_t mid = lo + (hi - lo) / 2;
+    build(md, t, lo, mid);
+    size_t right = build(md, t, mid, hi);
+    n = &t->nodes[at];
+    n->right = right;
+    box_union(n->box, t->nodes[at + 1].box);
+    box_union(n->box, t->nodes[right].box);
+    return at;
+}
+
+static void tree_free(tree *t)
+{
+    free(t->order);
+    free(t->nodes);
+}
+
+static int tree_build(const lam_model *md, tree *t)
+{
+    memset(t, 0, sizeof *t);
+    size_t ns = md->nshells, n = 0;
+    double lo[3] = { INFINITY, INFINITY, INFINITY }, hi[3] = { -INFINITY, -INFINITY, -INFINITY };
+    for (size_t s = 0; s < ns; s++) {
+        if (md->shells[s].ntris < 2) continue;
+        n++;
+        for (int k = 0; k < 3; k++) {
+            double c = md->shells[s].bbox[k] / 2 + md->shells[s].bbox[k + 3] / 2;
+            if (c < lo[k]) lo[k] = c;
+            if (c > hi[k]) hi[k] = c;
+        }
+    }
+    keyed *keys = malloc(n * sizeof *keys + 1);
+    t->order = malloc(n * sizeof *t->order + 1);
+    /* leaves hold at least LEAF / 2 shells once there is more than one, so
+     * n + 1 nodes are enough */
+    t->nodes = malloc((n + 1) * sizeof *t->nodes);
+    if (!keys || !t->order || !t->nodes) {
+        free(keys);
+        tree_free(t);
+        return LAM_ENOMEM;
+    }
+    n = 0;
+    for (size_t s = 0; s < ns; s++) {
+        if (md->shells[s].ntris < 2) continue;
+        uint64_t key = 0;
+        for (int k = 0; k < 3; k++) {
+            double c = md->shells[s].bbox[k] / 2 + md->shells[s].bbox[k + 3] / 2;
+            double f = hi[k] > lo[k] ? (c - lo[k]) / (hi[k] - lo[k]) * 2097151.0 : 0;
+            key |= spread3(f > 0 ? f < 2097151.0 ? (uint64_t)f : 2097151 : 0) << k;
+        }
+        keys[n].key = key;
+        keys[n++].shell = s;
+    }
+    qsort(keys, n, sizeof *keys, by_key);
+    for (size_t i = 0; i < n; i++) t->order[i] = keys[i].shell;
+    free(keys);
+    if (n) build(md, t, 0, n);
+    return LAM_OK;
+}
+
+/* The shells whose box holds shell s's box, one by one: init_query, then
+ * next_candidate until it returns -1. */
+typedef struct query {
+    size_t stack[128]; /* the tree is balanced: its depth is log2 of the shells */
+    size_t sp, leaf, in_leaf;
+    int in;
+} query;
+
+static void init_query(const tree *t, query *q)
+{
+    q->sp = 0;
+    q->in = 0;
+    if (t->nnodes) q->stack[q->sp++] = 0;
+}
+
+static long next_candidate(const lam_model *md, const tree *t, size_t s, query *q)
 {
     const double *b = md->shells[s].bbox;
-    int ci[3];
-    for (int k = 0; k < 3; k++) ci[k] = cell_of(g, k, (b[k] + b[k + 3]) / 2);
-    size_t c = cell_index(g, ci[0], ci[1], ci[2]);
-    size_t az = g->first[c + 1] - g->first[c];
-    const uint32_t *cl = g->list + g->first[c];
-    while (cursor[0] < az || cursor[1] < g->nbig) {
-        uint32_t o = cursor[1] >= g->nbig || (cursor[0] < az && cl[cursor[0]] < g->bigs[cursor[1]])
-                         ? cl[cursor[0]++]
-                         : g->bigs[cursor[1]++];
-        if (o != s && bbox_inside(b, md->shells[o].bbox)) return (long)o;
+    for (;;) {
+        if (q->in) {
+            const node *n = &t->nodes[q->leaf];
+            while (q->in_leaf < n->count) {
+                size_t o = t->order[n->first + q->in_leaf++];
+                if (o != s && bbox_inside(b, md->shells[o].bbox)) return (long)o;
+            }
+            q->in = 0;
+        }
+        if (!q->sp) return -1;
+        size_t at = q->stack[--q->sp];
+        const node *n = &t->nodes[at];
+        if (!bbox_inside(b, n->box)) continue;
+        if (n->count) {
+            q->leaf = at;
+            q->in_leaf = 0;
+            q->in = 1;
+        } else {
+            q->stack[q->sp++] = n->right;
+            q->stack[q->sp++] = at + 1;
+        }
     }
-    return -1;
 }
 
 /* ---- pairwise ---------------------------------------------------------------- */
@@ -177,25 +231,20 @@ static int shell_encloses(const lam_model *md, size_t outer, size_t inner)
 
 /* ---- by rays ------------------------------------------------------------------- */
 
-/* Set enclosing for every shell marked in cand; 1 when all were decided,
- * else 0 with nothing changed, -LAM_ENOMEM when out of memory. */
-static int by_rays(lam_model *md, const unsigned char *cand, lam_error *err)
+/* Set enclosing for the shells marked in cand that the rays decide, and
+ * unmark them; the pairwise test decides the rest (all of them without
+ * Embree). */
+static void by_rays(lam_model *md, unsigned char *cand)
 {
     const lam_mesh *m = &md->mesh;
-    int *found = malloc((md->nshells + 1) * sizeof *found);
-    if (!found) return -oom(err);
     lam_validator *v = NULL;
     lam_error verr;
     lam_error_clear(&verr);
-    if (lam_validator_new(md, &v, &verr)) {
-        free(found);
-        return 0; /* no Embree here: the pairwise test decides */
-    }
+    if (lam_validator_new(md, &v, &verr)) return;
     /* the offset: the validator's own inset for its test points, well clear
      * of its float32 tolerance and tiny against the model */
     double delta = lam_validator_min_inset(v);
-    int good = 1;
-    for (size_t s = 0; s < md->nshells && good; s++) {
+    for (size_t s = 0; s < md->nshells; s++) {
         if (!cand[s]) continue;
         uint32_t tri[SAMPLES];
         int ns = samples(md, s, tri), w[SAMPLES], nw = 0;
@@ -223,15 +272,12 @@ static int by_rays(lam_model *md, const unsigned char *cand, lam_error *err)
                 best = w[i];
             }
         }
-        if (best < 0 || 2 * best_count <= nw) good = 0;
-        found[s] = best;
+        if (best >= 0 && 2 * best_count > nw) {
+            md->shells[s].enclosing = best;
+            cand[s] = 0;
+        }
     }
     lam_validator_free(v);
-    if (good)
-        for (size_t s = 0; s < md->nshells; s++)
-            if (cand[s]) md->shells[s].enclosing = found[s];
-    free(found);
-    return good;
 }
 
 int lam_count_enclosing(lam_model *md, lam_error *err)
@@ -239,30 +285,34 @@ int lam_count_enclosing(lam_model *md, lam_error *err)
     size_t ns = md->nshells;
     for (size_t s = 0; s < ns; s++) md->shells[s].enclosing = 0;
     if (ns < 2) return LAM_OK;
-    grid g;
+    tree t;
     unsigned char *cand = calloc(ns, 1);
-    if (!cand || grid_build(md, &g)) {
+    if (!cand || tree_build(md, &t)) {
         free(cand);
         return oom(err);
     }
-    /* the work the pairwise test would do, and who has a candidate at all */
+    /* the work the pairwise test would do, and who has a candidate at all;
+     * past the budget only the first candidate of each shell is looked
+     * for (many overlapping boxes make a quadratic number of pairs) */
     double work = 0;
+    query q;
     for (size_t s = 0; s < ns; s++) {
-        size_t cur[2] = { 0, 0 }, n = md->shells[s].ntris;
-        for (long o; (o = next_candidate(md, &g, s, cur)) >= 0;) {
+        size_t n = md->shells[s].ntris;
+        init_query(&t, &q);
+        for (long o; (o = next_candidate(md, &t, s, &q)) >= 0;) {
             cand[s] = 1;
+            if (work > PAIRWISE_WORK) break;
             work += (double)(n < SAMPLES ? n : SAMPLES) * (double)md->shells[o].ntris;
         }
     }
-    int done = 0;
-    if (work > PAIRWISE_WORK) done = by_rays(md, cand, err);
-    for (size_t s = 0; s < ns && done == 0; s++) {
+    if (work > PAIRWISE_WORK) by_rays(md, cand);
+    for (size_t s = 0; s < ns; s++) {
         if (!cand[s]) continue;
-        size_t cur[2] = { 0, 0 };
-        for (long o; (o = next_candidate(md, &g, s, cur)) >= 0;)
+        init_query(&t, &q);
+        for (long o; (o = next_candidate(md, &t, s, &q)) >= 0;)
             if (shell_encloses(md, (size_t)o, s)) md->shells[s].enclosing++;
     }
-    grid_free(&g);
+    tree_free(&t);
     free(cand);
-    return done < 0 ? LAM_ENOMEM : LAM_OK;
+    return LAM_OK;
 }

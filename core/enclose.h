@@ -3,12 +3,15 @@
  * calls it while it builds a model.
  *
  * Candidates first: shell s can only lie in shell o when s's bounding box
- * lies in o's. The pairs come from a grid over the model: each shell is
- * listed in the cells its box covers (a box covering many cells goes on
- * one list that every shell checks), and s looks only in the cell of its
- * box's centre, which any box containing s's box covers. A triangle soup
- * of 160k one-triangle shells thus costs milliseconds, not all 160k^2
- * pairs.
+ * lies in o's. The pairs come from a bounding-volume tree over the shells
+ * (in Morton order of their box centres, halved down to small leaves, each
+ * node with the box of its shells): s descends only into nodes whose box
+ * holds its own. Memory is linear in the shells however their boxes lie;
+ * shells of one triangle, which cannot enclose anything, are not in the
+ * tree, so a triangle soup of 200k one-triangle shells costs milliseconds
+ * and 2^20 stacked triangles too. When the boxes overlap so much that the
+ * pairs pass the budget below, only whether each shell has a candidate at
+ * all is found, and rays decide.
  *
  * Then each candidate pair is decided. Pairwise: the generalized winding
  * number of the outer shell at up to nine sample points of the inner one

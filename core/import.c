@@ -7,94 +7,11 @@
 #include "import.h"
 #include "model.h"
 
-#include <errno.h>
-#include <fcntl.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
-#include <sys/mman.h>
-#include <sys/stat.h>
-#include <unistd.h>
-
-int lam_read_file(const char *path, char **data, size_t *len, lam_error *err)
-{
-    *data = NULL;
-    *len = 0;
-    FILE *f = fopen(path, "rb");
-    if (!f) return lam_error_set(err, LAM_EIO, path, 0, 0, "cannot open: %s", strerror(errno));
-    struct stat st;
-    if (fstat(fileno(f), &st) == 0 && S_ISDIR(st.st_mode)) {
-        fclose(f);
-        return lam_error_set(err, LAM_EIO, path, 0, 0, "is a directory");
-    }
-    size_t cap = st.st_size > 0 ? (size_t)st.st_size + 1 : 4096, n = 0;
-    char *buf = malloc(cap);
-    if (!buf) {
-        fclose(f);
-        return lam_error_set(err, LAM_ENOMEM, path, 0, 0, "out of memory reading the file");
-    }
-    for (;;) {
-        if (n + 1 >= cap) {
-            char *nb = realloc(buf, cap * 2);
-            if (!nb) {
-                free(buf);
-                fclose(f);
-                return lam_error_set(err, LAM_ENOMEM, path, 0, 0, "out of memory reading the file");
-            }
-            buf = nb;
-            cap *= 2;
-        }
-        size_t got = fread(buf + n, 1, cap - 1 - n, f);
-        n += got;
-        if (got == 0) break;
-    }
-    int bad = ferror(f);
-    fclose(f);
-    if (bad) {
-        free(buf);
-        return lam_error_set(err, LAM_EIO, path, 0, 0, "read error");
-    }
-    buf[n] = '\0';
-    *data = buf;
-    *len = n;
-    return LAM_OK;
-}
-
-int lam_map_file(const char *path, char **data, size_t *len, int *mapped, lam_error *err)
-{
-    *mapped = 0;
-    struct stat st;
-    long page = sysconf(_SC_PAGESIZE);
-    /* Only a regular file whose size is not a whole number of pages: the
-     * system zero-fills the rest of the last page, so the mapping ends in
-     * the NUL the text readers rely on. Anything else is read. */
-    if (page > 0 && stat(path, &st) == 0 && S_ISREG(st.st_mode) && st.st_size > 0 &&
-        st.st_size % page != 0 && (uintmax_t)st.st_size < SIZE_MAX / 2) {
-        int fd = open(path, O_RDONLY);
-        if (fd >= 0) {
-            struct stat fst;
-            void *p = MAP_FAILED;
-            if (fstat(fd, &fst) == 0 && fst.st_size == st.st_size)
-                p = mmap(NULL, (size_t)st.st_size, PROT_READ, MAP_PRIVATE, fd, 0);
-            close(fd);
-            if (p != MAP_FAILED) {
-                *data = p;
-                *len = (size_t)st.st_size;
-                *mapped = 1;
-                return LAM_OK;
-            }
-        }
-    }
-    return lam_read_file(path, data, len, err);
-}
-
-void lam_unmap_file(char *data, size_t len, int mapped)
-{
-    if (mapped) munmap(data, len);
-    else free(data);
-}
 
 enum fmt { FMT_UNKNOWN, FMT_UG, FMT_STL, FMT_OBJ };
 
@@ -141,7 +58,7 @@ int lam_model_load(const char *path, lam_model **out, lam_error *err)
     char *data;
     size_t len;
     int mapped;
-    int rc = lam_map_file(path, &data, &len, &mapped, err);
+    int rc = lam_map_file(path, lam_model_limit(), &data, &len, &mapped, err);
     if (rc) return rc;
     if (len == 0) {
         lam_unmap_file(data, len, mapped);

@@ -11,6 +11,7 @@
 #include <stddef.h>
 
 #include "error.h"
+#include "file.h"
 #include "mesh.h"
 
 /* Unigrafix (.ug), SPEC 2.1. `path` names the file for messages and for
@@ -32,18 +33,5 @@ int lam_import_stl_buf(const char *path, const unsigned char *data, size_t len,
  * triangulated; other statements ignored. */
 int lam_import_obj_buf(const char *path, const char *data, size_t len,
                        lam_mesh *mesh, lam_error *err);
-
-/* Read a whole file into a NUL-terminated malloc'd buffer (caller frees).
- * Fails with LAM_EIO naming the file and the system's reason. */
-int lam_read_file(const char *path, char **data, size_t *len, lam_error *err);
-
-/* The same for a large input: maps a regular file read-only when the
- * mapping is NUL-terminated by the system (size not a multiple of the page
- * size), else reads it. *mapped says which; release with lam_unmap_file.
- * The buffer must not be written. */
-int lam_map_file(const char *path, char **data, size_t *len, int *mapped, lam_error *err);
-
-/* Releases what lam_map_file returned. */
-void lam_unmap_file(char *data, size_t len, int mapped);
 
 #endif

@@ -181,10 +181,10 @@ static int obj_vertex(obj_lex *lx, lam_mesh *m)
             return at_error(lx, LAM_ESYNTAX, lx->tline, lx->tcol,
                             "expected the vertex %c coordinate (a number), found %s",
                             "xyz"[k], found(lx, q, sizeof q));
-        if (!isfinite(xyz[k]))
-            return at_error(lx, LAM_EINVAL, lx->tline, lx->tcol,
-                            "vertex %c coordinate is not a finite number (%s)",
-                            "xyz"[k], found(lx, q, sizeof q));
+        const char *why = lam_coord_problem(xyz[k]);
+        if (why)
+            return at_error(lx, LAM_EINVAL, lx->tline, lx->tcol, "vertex %c coordinate %s (%s)", "xyz"[k], why,
+                            found(lx, q, sizeof q));
     }
     long line = lx->tline, col = lx->tcol;
     int rc = lam_mesh_add_vertex(m, xyz[0], xyz[1], xyz[2], NULL, lx->err);

@@ -232,9 +232,8 @@ static int read_xyz(stl_lex *lx, double out[3], int finite, const char *what)
         if (rc)
             return lex_error(lx, LAM_ESYNTAX, "expected the %s %c coordinate (a number), found %s",
                              what, "xyz"[k], found(lx, q, sizeof q));
-        if (finite && !isfinite(out[k]))
-            return lex_error(lx, LAM_EINVAL, "%s %c coordinate is not a finite number (%s)",
-                             what, "xyz"[k], found(lx, q, sizeof q));
+        const char *why = finite ? lam_coord_problem(out[k]) : NULL;
+        if (why) return lex_error(lx, LAM_EINVAL, "%s %c coordinate %s (%s)", what, "xyz"[k], why, found(lx, q, sizeof q));
     }
     return LAM_OK;
 }

@@ -52,6 +52,7 @@
  *   a transform sends to infinity at the vertex's name.
  */
 #include "import.h"
+#include "lexnum.h"
 
 #include <errno.h>
 #include <math.h>
@@ -433,6 +434,8 @@ typedef struct ug_parser {
     int has_peek;
     uint32_t scope;      /* scope statements go into */
     int def_depth;
+    int known;           /* a Unigrafix statement was seen: until then the
+                            file may be anything, and messages quote none of it */
 } ug_parser;
 
 static int char_at(const ug_parser *p, size_t i)
@@ -562,17 +565,14 @@ static int peek(ug_parser *p, const ug_token **t)
 }
 
 /* A token as quoted in messages (long words are cut). */
-static const char *tokstr(const ug_token *t, char *buf, size_t size)
+static const char *tokstr(const ug_parser *p, const ug_token *t, char *buf, size_t size)
 {
     switch (t->kind) {
     case TK_EOF: return "end of file";
     case TK_LPAREN: return "'('";
     case TK_RPAREN: return "')'";
     case TK_SEMI: return "';'";
-    default:
-        if (t->len > 40) snprintf(buf, size, "'%.40s...'", t->s);
-        else snprintf(buf, size, "'%s'", t->s);
-        return buf;
+    default: return p->known ? lam_quote_bytes(buf, size, (const unsigned char *)t->s, t->len) : "a word";
     }
 }
 
@@ -580,7 +580,7 @@ static const char *tokstr(const ug_token *t, char *buf, size_t size)
 static int expected(ug_parser *p, const ug_token *t, const char *what)
 {
     char b[64];
-    return perr(p, LAM_ESYNTAX, t->line, t->col, "expected %s, got %s", what, tokstr(t, b, sizeof b));
+    return perr(p, LAM_ESYNTAX, t->line, t->col, "expected %s, got %s", what, tokstr(p, t, b, sizeof b));
 }
 
 static int expect_semi(ug_parser *p, const char *after)
@@ -645,8 +645,8 @@ static int st_vertex(ug_parser *p)
         char what[96];
         snprintf(what, sizeof what, "%c coordinate of vertex '%.40s'", axis[k], name.s);
         if (!parse_number(&t, &xyz[k])) return expected(p, &t, what);
-        if (!isfinite(xyz[k]))
-            return perr(p, LAM_EINVAL, t.line, t.col, "coordinate is not a finite number");
+        if (lam_coord_problem(xyz[k]))
+            return perr(p, LAM_EINVAL, t.line, t.col, "coordinate %s", lam_coord_problem(xyz[k]));
     }
     /* An optional normal (three more numbers) is read and ignored. */
     if ((rc = next(p, &t))) return rc;
@@ -863,7 +863,7 @@ static int parse_transforms(ug_parser *p, int end, uint32_t *mat)
             if (!parse_number(&at, &a[k])) {
                 char b[64];
                 return perr(p, LAM_ESYNTAX, t.line, t.col, "transform '%s' takes %d number%s, got %s",
-                            f->name, f->nargs, f->nargs == 1 ? "" : "s", tokstr(&at, b, sizeof b));
+                            f->name, f->nargs, f->nargs == 1 ? "" : "s", tokstr(p, &at, b, sizeof b));
             }
             if (!isfinite(a[k]))
                 return perr(p, LAM_EINVAL, at.line, at.col, "transform argument is not a finite number");
@@ -1035,7 +1035,7 @@ static int include_file(ug_parser *p, const ug_token *kw, const char *name, uint
     size_t len;
     lam_error rerr;
     lam_error_clear(&rerr);
-    if ((rc = lam_read_file(path, &data, &len, &rerr))) {
+    if ((rc = lam_read_file(path, lam_model_limit(), &data, &len, &rerr))) {
         rc = perr(p, rc, kw->line, kw->col, "cannot include '%s': %s: %s", name, path, rerr.msg);
         goto out;
     }
@@ -1091,18 +1091,29 @@ static int st_include(ug_parser *p, const ug_token *kw)
 
 static int statement(ug_parser *p, const ug_token *kw)
 {
+    static const char *const skipped[] = { "c", "c_rgb", "l", "cam", NULL };
     const char *k = kw->s;
+    int skip = 0;
+    for (int i = 0; skipped[i]; i++) skip |= strcmp(k, skipped[i]) == 0;
+    int known = skip || !strcmp(k, "v") || !strcmp(k, "f") || !strcmp(k, "w") || !strcmp(k, "i") ||
+                !strcmp(k, "def") || !strcmp(k, "end") || !strcmp(k, "include");
+    if (!known && !p->known)
+        return perr(p, LAM_EFORMAT, kw->line, kw->col,
+                    "not a Unigrafix file: it does not start with a statement (v, f, w, i, def, include, ...)");
+    if (!known) {
+        char b[64];
+        return perr(p, LAM_ESYNTAX, kw->line, kw->col, "unknown statement %s",
+                    lam_quote_bytes(b, sizeof b, (const unsigned char *)k, kw->len));
+    }
+    p->known = 1;
+    if (skip) return skip_statement(p, kw);
     if (strcmp(k, "v") == 0) return st_vertex(p);
     if (strcmp(k, "f") == 0) return st_face(p, kw);
     if (strcmp(k, "w") == 0) return st_wire(p, kw);
     if (strcmp(k, "i") == 0) return st_instance(p, kw);
     if (strcmp(k, "def") == 0) return st_def(p, kw);
     if (strcmp(k, "end") == 0) return st_end(p, kw);
-    if (strcmp(k, "include") == 0) return st_include(p, kw);
-    if (strcmp(k, "c") == 0 || strcmp(k, "c_rgb") == 0 || strcmp(k, "l") == 0 ||
-        strcmp(k, "cam") == 0)
-        return skip_statement(p, kw);
-    return perr(p, LAM_ESYNTAX, kw->line, kw->col, "unknown statement '%s'", k);
+    return st_include(p, kw);
 }
 
 static int parse_file(ug_parser *p)
@@ -1180,6 +1191,10 @@ static int emit_vertex(ug_import *imp, ug_scope *s, uint32_t v, const double m[1
     default:
         break;
     }
+    for (int k = 0; k < 3; k++)
+        if (lam_coord_problem(q[k]))
+            return error_at(imp, LAM_EGEOM, s->file, vx->line, vx->col, "vertex '%s' after the instance transform: %c coordinate %g %s",
+                            vx->name, "xyz"[k], q[k], lam_coord_problem(q[k]));
     int rc = lam_mesh_add_vertex(imp->mesh, q[0], q[1], q[2], out, imp->err);
     if (rc) return rc;
     s->vgen[v] = s->gen;
@@ -1305,7 +1320,7 @@ int lam_import_ug(const char *path, lam_mesh *mesh, lam_error *err)
     if (!path || !mesh) return lam_error_set(err, LAM_EUSAGE, NULL, 0, 0, "lam_import_ug: no path or mesh");
     char *data;
     size_t len;
-    int rc = lam_read_file(path, &data, &len, err);
+    int rc = lam_read_file(path, lam_model_limit(), &data, &len, err);
     if (rc) return rc;
     return import_text(path, data, len, mesh, err);
 }

@@ -143,7 +143,7 @@ const char *lam_quote_bytes(char *buf, size_t size, const unsigned char *s, size
 {
     size_t k = 0, i;
     buf[k++] = '\'';
-    for (i = 0; i < n && i < 40 && k + 10 < size; i++) {
+    for (i = 0; i < n && i < LAM_QUOTE_MAX && k + 10 < size; i++) {
         if (s[i] >= 0x20 && s[i] < 0x7f) {
             buf[k++] = (char)s[i];
         } else {

@@ -44,9 +44,12 @@ static inline int lam_word_eq_nocase(const unsigned char *s, size_t n, const cha
 }
 
 /* Write s[0..n) into the caller's buf (size >= 3 bytes) as 'text' for a
- * message: at most 40 bytes shown, bytes outside printable ASCII as \xNN,
+ * message: at most LAM_QUOTE_MAX bytes shown, so that a message never
+ * carries a line of a file (the one quoting rule of every reader), bytes
+ * outside printable ASCII as \xNN,
  * "..." when cut (a short buf shows fewer bytes). Always NUL-terminated.
  * Returns buf; cannot fail. */
+#define LAM_QUOTE_MAX 20
 const char *lam_quote_bytes(char *buf, size_t size, const unsigned char *s, size_t n);
 
 #endif

@@ -1,6 +1,7 @@
 #include "mesh.h"
 
 #include <stdio.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -65,9 +66,22 @@ int lam_mesh_reserve(lam_mesh *m, size_t nverts, size_t ntris, lam_error *err)
     return grow_tris(m, m->ntris + ntris, err);
 }
 
+const char *lam_coord_problem(double x)
+{
+    if (!isfinite(x)) return "is not a finite number";
+    if (fabs(x) > LAM_COORD_MAX)
+        return "is beyond 1e50 in magnitude: the model would span more than a double can measure";
+    return NULL;
+}
+
 int lam_mesh_add_vertex(lam_mesh *m, double x, double y, double z,
                         uint32_t *idx, lam_error *err)
 {
+    const double in[3] = { x, y, z };
+    for (int k = 0; k < 3; k++)
+        if (lam_coord_problem(in[k]))
+            return lam_error_set(err, LAM_EINVAL, NULL, 0, 0, "vertex %c coordinate %g %s", "xyz"[k], in[k],
+                                 lam_coord_problem(in[k]));
     if (m->nverts >= UINT32_MAX - 1)
         return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "too many vertices");
     int rc = grow((void **)&m->xyz, &m->cap_verts, m->nverts + 1, 3 * sizeof *m->xyz, err);

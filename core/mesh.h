@@ -53,8 +53,20 @@ void lam_mesh_free(lam_mesh *m);
 /* Reserve room for nverts more vertices and ntris more triangles. */
 int lam_mesh_reserve(lam_mesh *m, size_t nverts, size_t ntris, lam_error *err);
 
-/* Append a vertex; its index is stored in *idx. Coordinates must be finite
- * (importers check and report with a position before calling). */
+/* The largest coordinate magnitude a model may have. Derived quantities
+ * are products of up to four differences of coordinates (squared cross
+ * products for areas and normals, triple products for volumes and winding
+ * numbers), which overflow a double from about 1e76; 1e50 leaves room for
+ * six. */
+#define LAM_COORD_MAX 1e50
+
+/* NULL when x can be a vertex coordinate (finite, |x| <= LAM_COORD_MAX),
+ * else what is wrong with it, in words every importer reports (static). */
+const char *lam_coord_problem(double x);
+
+/* Append a vertex; its index is stored in *idx. Coordinates must pass
+ * lam_coord_problem (importers check and report with a position before
+ * calling; LAM_EINVAL without one here). */
 int lam_mesh_add_vertex(lam_mesh *m, double x, double y, double z,
                         uint32_t *idx, lam_error *err);
 

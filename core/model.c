@@ -448,6 +448,14 @@ int lam_model_from_mesh(lam_mesh *mesh, const char *path, const char *format,
         st->volume += sh->volume;
         st->area += sh->area;
     }
+    /* each coordinate is within LAM_COORD_MAX, but a sum over billions of
+     * such triangles could still overflow */
+    if (!isfinite(st->area) || !isfinite(st->volume)) {
+        rc = lam_error_set(err, LAM_EGEOM, path, 0, 0,
+                           "the model spans more than a double can measure (its %s overflows)",
+                           isfinite(st->area) ? "volume" : "surface area");
+        goto fail;
+    }
 
     st->triangles = m->ntris;
     st->vertices = m->nverts;

@@ -1,6 +1,5 @@
 #include "plugin.h"
 
-#include <dirent.h>
 #include <dlfcn.h>
 #include <errno.h>
 #include <stdarg.h>
@@ -148,6 +147,43 @@ static void free_plugin(plugin *p)
     free(p);
 }
 
+/* Refuse a plugin file or directory that someone other than its owner may
+ * write: whoever can replace the code lamina runs could run their own. */
+static int safe_mode(const char *path, const char *what, lam_error *err)
+{
+    struct stat st;
+    if (stat(path, &st) != 0)
+        return lam_error_set(err, LAM_EIO, NULL, 0, 0, "cannot load plugin: %s: %s", path, strerror(errno));
+    if (st.st_mode & (S_IWGRP | S_IWOTH))
+        return lam_error_set(err, LAM_EIO, NULL, 0, 0,
+                             "refusing plugin %s: %s is writable by others than its owner (mode %03o)", what, path,
+                             (unsigned)(st.st_mode & 0777));
+    return LAM_OK;
+}
+
+/* The directory part of path ("." when none), malloc'd. */
+static char *dir_of(const char *path)
+{
+    const char *slash = strrchr(path, '/');
+    if (!slash) return strdup(".");
+    size_t n = slash == path ? 1 : (size_t)(slash - path);
+    char *d = malloc(n + 1);
+    if (d) {
+        memcpy(d, path, n);
+        d[n] = '\0';
+    }
+    return d;
+}
+
+static int safe_plugin(const char *path, lam_error *err)
+{
+    char *dir = dir_of(path);
+    if (!dir) return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory");
+    int rc = safe_mode(dir, "directory", err);
+    free(dir);
+    return rc ? rc : safe_mode(path, "file", err);
+}
+
 typedef int (*init_fn)(const struct lamina_host *);
 
 int lam_plugin_load(const char *path, lam_error *err)
@@ -156,6 +192,8 @@ int lam_plugin_load(const char *path, lam_error *err)
     struct stat st;
     if (stat(path, &st) != 0)
         return lam_error_set(err, LAM_EIO, NULL, 0, 0, "cannot load plugin %s: %s", path, strerror(errno));
+    int unsafe = safe_plugin(path, err);
+    if (unsafe) return unsafe;
     for (size_t i = 0; i < nplugins; i++)
         if (plugins[i]->dev == st.st_dev && plugins[i]->ino == st.st_ino) return LAM_OK;
 
@@ -301,69 +339,51 @@ static void text_add(text *t, const char *fmt, ...)
     if (t->len > sizeof t->buf - 1) t->len = sizeof t->buf - 1;
 }
 
-static int ends_with_so(const char *name)
+/* A writer name that can name a file: letters, digits, '-', '_', '.', not
+ * starting with '.'. */
+static int file_name_ok(const char *name)
 {
     size_t n = strlen(name);
-    return n > 3 && strcmp(name + n - 3, ".so") == 0;
-}
-
-/* The *.so file names in dir, sorted (malloc'd; free each and the array).
- * Returns how many, 0 when dir cannot be read. */
-static size_t list_plugins(const char *path, char ***out)
-{
-    *out = NULL;
-    DIR *dir = opendir(path);
-    if (!dir) return 0;
-    char **names = NULL;
-    size_t n = 0, cap = 0;
-    struct dirent *de;
-    while ((de = readdir(dir))) {
-        if (!ends_with_so(de->d_name)) continue;
-        if (n == cap) {
-            size_t nc = cap ? 2 * cap : 16;
-            char **nn = realloc(names, nc * sizeof *nn);
-            if (!nn) break;
-            names = nn;
-            cap = nc;
-        }
-        if (!(names[n] = strdup(de->d_name))) break;
-        n++;
+    if (n == 0 || n > 64 || name[0] == '.') return 0;
+    for (size_t i = 0; i < n; i++) {
+        unsigned char c = (unsigned char)name[i];
+        if (!((c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '-' ||
+              c == '_' || c == '.'))
+            return 0;
     }
-    closedir(dir);
-    if (n > 1) qsort(names, n, sizeof *names, cmp_str);
-    *out = names;
-    return n;
+    return 1;
 }
 
-/* Load every plugin in the plugin directories (see plugin.h): per directory
- * in sorted order, a file name already met in an earlier directory skipped.
- * Failures are listed in `failures` and otherwise ignored. */
-static void load_all(char **dirs, size_t ndirs, text *failures)
+/* Load NAME.so from the first plugin directory that has it (see plugin.h);
+ * only that file is opened, so no other plugin's code runs. */
+static int load_named(const char *name, char **dirs, size_t ndirs, lam_error *err)
 {
-    char **names[MAX_DIRS];
-    size_t counts[MAX_DIRS];
-    for (size_t d = 0; d < ndirs; d++) counts[d] = list_plugins(dirs[d], &names[d]);
+    if (!file_name_ok(name))
+        return lam_error_set(err, LAM_EINVAL, NULL, 0, 0,
+                             "unknown writer: a writer name is letters, digits, '-', '_' and '.' (a plugin file "
+                             "NAME.so)");
     for (size_t d = 0; d < ndirs; d++) {
-        for (size_t i = 0; i < counts[d]; i++) {
-            int shadowed = 0;
-            for (size_t e = 0; e < d && !shadowed; e++)
-                for (size_t k = 0; k < counts[e] && !shadowed; k++)
-                    shadowed = strcmp(names[e][k], names[d][i]) == 0;
-            if (shadowed) continue;
-            size_t need = strlen(dirs[d]) + strlen(names[d][i]) + 2;
-            char *full = malloc(need);
-            if (!full) continue;
-            snprintf(full, need, "%s/%s", dirs[d], names[d][i]);
-            lam_error e;
-            lam_error_clear(&e);
-            if (lam_plugin_load(full, &e) != LAM_OK) text_add(failures, "%s%s", failures->len ? "; " : "", e.msg);
+        size_t need = strlen(dirs[d]) + strlen(name) + 5;
+        char *full = malloc(need);
+        if (!full) return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory");
+        snprintf(full, need, "%s/%s.so", dirs[d], name);
+        struct stat st;
+        if (stat(full, &st) != 0) {
             free(full);
+            continue;
         }
+        int rc = lam_plugin_load(full, err);
+        if (rc == LAM_OK && !find_writer(name))
+            rc = lam_error_set(err, LAM_EINVAL, NULL, 0, 0, "plugin %s does not provide writer '%s'", full, name);
+        free(full);
+        return rc;
     }
-    for (size_t d = 0; d < ndirs; d++) {
-        for (size_t i = 0; i < counts[d]; i++) free(names[d][i]);
-        free(names[d]);
-    }
+    text t = {.len = 0};
+    text_add(&t, "unknown writer '%s' (no %s.so in", name, name);
+    for (size_t i = 0; i < ndirs; i++) text_add(&t, "%s %s", i ? "," : "", dirs[i]);
+    if (!ndirs) text_add(&t, " any plugin directory: set LAMINA_PLUGINS");
+    text_add(&t, ")");
+    return lam_error_set(err, LAM_EINVAL, NULL, 0, 0, "%s", t.buf);
 }
 
 /* ---- the sink adapter ---- */
@@ -513,28 +533,11 @@ int lam_plugin_writer_sink(const char *name, lam_writer *w, lam_error *err, lam_
         static const char *const rel[] = {"plugins", "../plugins", "../lib/lamina/plugins", NULL};
         char *dirs[MAX_DIRS];
         size_t ndirs = lam_search_dirs("LAMINA_PLUGINS", rel, dirs, MAX_DIRS);
-        text failures = {.len = 0};
-        load_all(dirs, ndirs, &failures);
-        we = find_writer(name);
-        if (!we) {
-            text t = {.len = 0};
-            text_add(&t, "unknown writer '%s'", name);
-            const char *names[64];
-            size_t n = lam_plugin_writers(names, 64);
-            if (n == 0) {
-                text_add(&t, " (no plugin writers available; searched");
-                for (size_t i = 0; i < ndirs; i++) text_add(&t, " %s", dirs[i]);
-                text_add(&t, ")");
-            } else {
-                text_add(&t, " (available:");
-                for (size_t i = 0; i < n && i < 64; i++) text_add(&t, "%s %s", i ? "," : "", names[i]);
-                text_add(&t, ")");
-            }
-            if (failures.len) text_add(&t, "; plugins that failed to load: %s", failures.buf);
-            for (size_t i = 0; i < ndirs; i++) free(dirs[i]);
-            return lam_error_set(err, LAM_EINVAL, NULL, 0, 0, "%s", t.buf);
-        }
+        lam_error_clear(err);
+        int rc = load_named(name, dirs, ndirs, err);
         for (size_t i = 0; i < ndirs; i++) free(dirs[i]);
+        if (rc) return rc;
+        we = find_writer(name);
     }
     plugin_sink *s = calloc(1, sizeof *s);
     if (!s) return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory");

@@ -20,6 +20,8 @@
  * library path), check its ABI and run its lamina_plugin_init, which
  * registers its writers. Loading a file that is already loaded (the same
  * file, by device and inode, under any path) does nothing and succeeds.
+ * A file, or a directory holding it, that others than its owner may write
+ * (group or world write permission) is refused before it is opened.
  * A plugin that fails is unloaded again and leaves nothing registered.
  * Errors: LAM_EIO (no such file / unreadable, with the loader's message),
  * LAM_EFORMAT (not a loadable shared object, no lamina_plugin_abi or
@@ -31,22 +33,22 @@ int lam_plugin_load(const char *path, lam_error *err);
 
 /* A sink (plan.h) that writes through the plugin writer called `name`
  * (a profile's `writer:`) into w. If no writer of that name is registered,
- * every *.so in the plugin directories is loaded first (plugin files are
- * loaded per directory in sorted order; a file name found in an earlier
- * directory shadows the same name in later ones, so a sanitizer build's
- * <exe dir>/plugins wins over an installed copy), and the name is looked up
- * again; plugins that fail to load during that scan are skipped (their
- * errors are reported only if the writer is still not found).
- * Plugin directories: $LAMINA_PLUGINS (colon-separated), then
- * <exe dir>/plugins, <exe dir>/../plugins, <exe dir>/../lib/lamina/plugins.
+ * the file NAME.so is loaded from the first plugin directory that has one
+ * (so a sanitizer build's <exe dir>/plugins wins over an installed copy),
+ * and no other file: a plugin's code runs only when a profile names it.
+ * That file must provide the writer NAME. Plugin directories, in order:
+ * $LAMINA_PLUGINS (colon-separated), then <exe dir>/plugins,
+ * <exe dir>/../plugins, <exe dir>/../lib/lamina/plugins. A name that is not
+ * a file name (letters, digits, '-', '_', '.'; not starting with '.') is
+ * refused.
  *
  * The sink does not own w (the caller commits or aborts it afterwards) and
  * keeps `err` to report errors of later sink calls, so both must outlive the
  * sink; the caller calls out->destroy exactly once. The writer handles
  * contour programs only: begin, layer, contour, end; layer_end is a no-op;
  * feed, laser and move fail with LAM_EUSAGE.
- * Errors: LAM_EINVAL (unknown writer: the message lists the available
- * ones), LAM_ENOMEM. Sink calls return LAM_EUSAGE (misuse), LAM_EIO (the
+ * Errors: LAM_EINVAL (unknown writer: the message lists the directories
+ * searched), what lam_plugin_load returns for NAME.so, LAM_ENOMEM. Sink calls return LAM_EUSAGE (misuse), LAM_EIO (the
  * output could not be written) or LAM_EINVAL (the writer refused, with its
  * message). */
 int lam_plugin_writer_sink(const char *name, lam_writer *w, lam_error *err, lam_sink *out);

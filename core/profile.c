@@ -20,14 +20,15 @@
 #include <unistd.h>
 #include <yaml.h>
 
+#include "file.h"
 #include "fmt.h"
 #include "lexnum.h"
 #include "paths.h"
 #include "profile_keys.h"
 #include "slice.h"
 
-#define MAX_PROFILE_BYTES (4L << 20) /* a profile is a page of text */
 #define MAX_CHAIN 32                 /* inherits depth */
+#define MAX_NESTING 32               /* lists and mappings inside each other */
 #define MAX_DIRS 16
 
 /* The keys are the rows of profile_keys.c; the loader keeps which rows
@@ -93,52 +94,8 @@ static int oom_err(lam_error *err)
 
 static int read_all(src *s, const char *path, char **text, size_t *len)
 {
-    *text = NULL;
-    *len = 0;
-    FILE *f = fopen(path, "rb");
-    if (!f) return lam_error_set(s->err, LAM_EIO, path, 0, 0, "cannot open: %s", strerror(errno));
-    struct stat st;
-    if (fstat(fileno(f), &st) == 0 && S_ISDIR(st.st_mode)) {
-        fclose(f);
-        return lam_error_set(s->err, LAM_EIO, path, 0, 0, "cannot read: is a directory");
-    }
-    size_t cap = 4096, n = 0;
-    char *b = malloc(cap);
-    if (!b) {
-        fclose(f);
-        return oom();
-    }
-    for (;;) {
-        if (n + 1 >= cap) {
-            if (cap > (size_t)MAX_PROFILE_BYTES) {
-                free(b);
-                fclose(f);
-                return lam_error_set(s->err, LAM_EINVAL, path, 0, 0, "too large for a machine profile (over %ld bytes)",
-                                     MAX_PROFILE_BYTES);
-            }
-            char *nb = realloc(b, cap * 2);
-            if (!nb) {
-                free(b);
-                fclose(f);
-                return oom();
-            }
-            b = nb;
-            cap *= 2;
-        }
-        size_t got = fread(b + n, 1, cap - n - 1, f);
-        n += got;
-        if (got == 0) break;
-    }
-    int bad = ferror(f);
-    fclose(f);
-    if (bad) {
-        free(b);
-        return lam_error_set(s->err, LAM_EIO, path, 0, 0, "cannot read: %s", strerror(errno ? errno : EIO));
-    }
-    b[n] = '\0';
-    *text = b;
-    *len = n;
-    return LAM_OK;
+    const lam_read_limit limit = { LAM_MAX_PROFILE_BYTES, "a machine profile", NULL };
+    return lam_read_file(path, limit, text, len, s->err);
 }
 
 /* Byte offset where 0-based line `line` starts, or -1. */
@@ -426,6 +383,29 @@ static int check_keys(const src *s, const yaml_node_t *m, const char *where, con
     return LAM_OK;
 }
 
+/* Is m the top level of a profile: has it a key of one, or a near miss?
+ * Until it has, it may be any file, and messages quote none of it. */
+static int recognised(const src *s, const yaml_node_t *m)
+{
+    /* the top-level names: keys, and the sections' names */
+    char tops[LAM_KEYS_MAX][32];
+    const char *names[LAM_KEYS_MAX];
+    size_t n = 0;
+    for (size_t i = 0; i < lam_profile_nkeys; i++) {
+        const lam_key *k = &lam_profile_keys[i];
+        size_t sl = lam_key_section_len(k);
+        snprintf(tops[n], sizeof tops[n], "%.*s", (int)(sl ? sl : strlen(k->name)), k->name);
+        names[n] = tops[n];
+        n++;
+    }
+    for (yaml_node_pair_t *pr = m->data.mapping.pairs.start; pr < m->data.mapping.pairs.top; pr++) {
+        yaml_node_t *k = node(s, pr->key);
+        if (k->type != YAML_SCALAR_NODE || k->data.scalar.length < 3) continue;
+        if (lam_key_nearest((const char *)k->data.scalar.value, names, n)) return 1;
+    }
+    return 0;
+}
+
 static const yaml_node_t *lookup(const src *s, const yaml_node_t *m, const char *key)
 {
     for (yaml_node_pair_t *pr = m->data.mapping.pairs.start; pr < m->data.mapping.pairs.top; pr++) {
@@ -461,12 +441,40 @@ static int check_tags(const src *s)
 
 /* ---- parse one file ----------------------------------------------------- */
 
-static int parse(src *s)
+/* Refuse nesting deeper than MAX_NESTING from the event stream, before
+ * the loader builds the document: libyaml's scanner and loader take time
+ * quadratic in the depth (100,000 nested '[' took 31 s), the events up to
+ * the limit take time linear in the file. A syntax error is left to the
+ * loader, which meets it at the same place and says it with context. */
+static int check_nesting(src *s)
 {
     yaml_parser_t parser;
     if (!yaml_parser_initialize(&parser)) return oom();
     yaml_parser_set_input_string(&parser, (const unsigned char *)s->text, s->len);
-    int rc = LAM_OK;
+    int rc = LAM_OK, depth = 0, done = 0;
+    while (!done && rc == LAM_OK) {
+        yaml_event_t ev;
+        if (!yaml_parser_parse(&parser, &ev)) break;
+        if (ev.type == YAML_SEQUENCE_START_EVENT || ev.type == YAML_MAPPING_START_EVENT) {
+            if (++depth > MAX_NESTING)
+                rc = at(s, ev.start_mark, LAM_EINVAL, "lists and mappings nested more than %d deep", MAX_NESTING);
+        } else if (ev.type == YAML_SEQUENCE_END_EVENT || ev.type == YAML_MAPPING_END_EVENT) {
+            depth--;
+        }
+        done = ev.type == YAML_STREAM_END_EVENT;
+        yaml_event_delete(&ev);
+    }
+    yaml_parser_delete(&parser);
+    return rc;
+}
+
+static int parse(src *s)
+{
+    int rc = check_nesting(s);
+    if (rc) return rc;
+    yaml_parser_t parser;
+    if (!yaml_parser_initialize(&parser)) return oom();
+    yaml_parser_set_input_string(&parser, (const unsigned char *)s->text, s->len);
     if (!yaml_parser_load(&parser, &s->doc)) {
         goto fail;
     }
@@ -785,10 +793,15 @@ static int load_text(ldr *L, src *s, const char *path, int top)
     if ((rc = parse(s))) goto out;
     if ((rc = check_tags(s))) goto out;
     const yaml_node_t *root = yaml_document_get_root_node(&s->doc);
-    char b[64];
     if (root->type != YAML_MAPPING_NODE) {
+        /* nothing of a file that is not a profile is quoted */
         rc = at(s, root->start_mark, LAM_EINVAL, "a machine profile is a mapping of keys (name, process, ...), got %s",
-                describe(root, b, sizeof b));
+                root->type == YAML_SEQUENCE_NODE ? "a list" : "text");
+        goto out;
+    }
+    if (!recognised(s, root)) {
+        rc = at(s, root->start_mark, LAM_EINVAL,
+                "not a machine profile: none of its keys is a profile key (name, process, dialect, ...)");
         goto out;
     }
     keyset ks;

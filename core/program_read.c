@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "file.h"
 #include "import.h"
 #include "lexnum.h"
 #include "section.h"
@@ -645,7 +646,9 @@ int lam_program_read(const char *path, lam_program **out, lam_error *err)
     *out = NULL;
     char *data;
     size_t len;
-    int rc = lam_read_file(path, &data, &len, err);
+    lam_read_limit limit = lam_model_limit(); /* programs are read back as large as models */
+    limit.what = "a program";
+    int rc = lam_read_file(path, limit, &data, &len, err);
     if (rc) return rc;
     rc = lam_program_read_buf(path, (const unsigned char *)data, len, out, err);
     free(data);

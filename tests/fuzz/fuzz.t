@@ -1,7 +1,10 @@
 #!/usr/bin/env bash
-# Every reader (models, profiles, programs read back) against mutants of every seed input (see fuzz_inputs.c).
+# Every reader, planner and the Lua API against mutants of every input of
+# the fuzz corpus (tests/fuzz/corpus; see fuzz_inputs.c). Files a recipe
+# writes land in a scratch copy of tests/models.
 : "${BUILD:?}" "${TESTS:?}"
-seeds=$(ls "$TESTS"/models/*.ug "$TESTS"/models/*.stl "$TESTS"/models/*.obj "$TESTS"/models/ug/*.ug \
-           "$TESTS"/models/machines/*.yaml "$TESTS"/../machines/*.yaml "$TESTS"/models/validate/*.sls \
-           "$TESTS"/models/validate/*.cli 2>/dev/null)
-cd "$TESTS/models" && exec "$BUILD/tests/fuzz_inputs" $seeds
+seeds=$(ls "$TESTS"/fuzz/corpus/*/*)
+scratch=$(mktemp -d)
+trap 'rm -rf "$scratch"' EXIT
+cp -r "$TESTS"/models/. "$scratch"/
+cd "$scratch" && "$BUILD/tests/fuzz_inputs" $seeds

@@ -1,42 +1,220 @@
-/* Fuzz target for everything lamina reads: models (Unigrafix, STL, OBJ),
- * machine profiles (YAML) and programs read back (SLS, CLI). Built two ways:
+/* Fuzz target for everything lamina reads and runs: models (Unigrafix,
+ * STL, OBJ) through slicing and both planners; machine profiles (YAML)
+ * through their templates and writers on a fixed part; and, with the Lua
+ * binding linked in (LAMINA_FUZZ_LUA), recipe text run in a Lua state
+ * with the lamina module, no io/os/package/debug, an instruction budget and a
+ * memory budget. Built two ways:
  *  - with clang -fsanitize=fuzzer (make fuzz): a libFuzzer target;
  *  - in the test suite: a deterministic mutation driver that replays every
  *    seed file given on the command line and a few thousand mutants of
  *    each (bit flips, byte changes, insertions, deletions, truncations,
  *    duplicated spans), under ASan/UBSan with `make SAN=1 test`.
- * Every input must either load or fail with a message; nothing may crash,
+ * The first byte of an input picks what it is: 0 ug, 1 stl, 2 obj, 3 a
+ * profile, planned on the thesis cube, 4 a Lua recipe; the files of the
+ * corpus (tests/fuzz/corpus) start with that byte, as libFuzzer's do. Paths
+ * in inputs (includes, recipes' models) are relative to tests/models, where
+ * both runs start.
+ * A first byte of 5 is a program read back (SLS or CLI, programs/ in the
+ * corpus), its layers made along z and x.
+ * Every input must either work or fail with a message; nothing may crash,
  * leak or read out of bounds. TAP output: one test per seed. */
+#include "dialect.h"
 #include "error.h"
 #include "import.h"
 #include "model.h"
+#include "planner.h"
 #include "profile.h"
 #include "program_read.h"
 #include "slice.h"
+#include "writer.h"
 
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
+
+#ifdef LAMINA_FUZZ_LUA
+#include <lauxlib.h>
+#include <lua.h>
+#include <lualib.h>
+int luaopen_lamina(lua_State *L);
+#endif
+
+enum { K_UG, K_STL, K_OBJ, K_PROFILE, K_LUA, K_PROGRAM, K_COUNT };
+
+/* The thesis's cube with a through hole: the part every fuzzed profile plans. */
+static const char cube_hole[] =
+    "v a -1 -1 0; v b 1 -1 0; v c 1 1 0; v d -1 1 0; v e -1 -1 2; v f 1 -1 2; v g 1 1 2; v h -1 1 2;\n"
+    "v i -.5 -.5 0; v j .5 -.5 0; v k .5 .5 0; v l -.5 .5 0; v m -.5 -.5 2; v n .5 -.5 2; v o .5 .5 2; v p -.5 .5 2;\n"
+    "f (a b c d) (i l k j); f (e h g f) (m n o p); f (a e f b); f (b f g c); f (c g h d); f (d h e a);\n"
+    "f (i j n m); f (j k o n); f (k l p o); f (l i m p);\n";
+
+static const char ladrp_yaml[] = "name: fuzz-ladrp\nprocess: ladrp\nbead_width: 0.3\nfeed_rate: 1\n"
+                                 "dialect:\n  travel: \"T {x} {y} {z}\"\n  deposit: \"D {dx} {dy} {dz}\"\n"
+                                 "  laser_on: \"ON\"\n  laser_off: \"OFF\"\n  layer: \"L {n} {z}\"\n";
+
+/* Plan md, sliced into about `layers` layers, with profile p into memory.
+ * Scan lines are kept to some thousands a layer whatever the bead. */
+static void plan(const lam_model *md, const lam_profile *p, int layers, int oblique)
+{
+    if (p->writer && strcmp(p->writer, "text") != 0) return; /* plugins are not fuzzed here */
+    lam_error err;
+    lam_error_clear(&err);
+    double ext = 0;
+    for (int k = 0; k < 3; k++)
+        if (md->stats.bbox[k + 3] - md->stats.bbox[k] > ext) ext = md->stats.bbox[k + 3] - md->stats.bbox[k];
+    if (!(ext > 0)) return;
+    lam_slice_opts o;
+    lam_slice_opts_init(&o);
+    const double dir[3] = { 0.3, -0.2, 0.9 };
+    if (oblique) lam_frame_direction(dir, &o.frame, &err);
+    o.width = ext / layers;
+    o.cut = (lam_cut)p->cut;
+    lam_plan_opts po;
+    lam_plan_opts_init(&po);
+    lam_plan_opts_from_profile(&po, p);
+    if (!(po.bead >= ext / 2000)) po.bead = ext / 2000;
+    if (!(po.min_deposit < ext)) po.min_deposit = 0;
+    if (po.perimeters > 3) po.perimeters = 3;
+    lam_slicer *s = NULL;
+    lam_writer *w = NULL;
+    lam_sink sink;
+    memset(&sink, 0, sizeof sink);
+    if (lam_slicer_new(md, &o, &s, &err) == LAM_OK && lam_writer_memory(&w, &err) == LAM_OK &&
+        lam_dialect_sink(&p->dialect, w, &err, &sink) == LAM_OK)
+        (void)lam_plan_run(s, md, &po, &sink, NULL, NULL, &err);
+    if (sink.destroy) sink.destroy(sink.ctx);
+    if (w) lam_writer_abort(w);
+    lam_slicer_free(s);
+}
+
+static lam_profile *builtin_sls, *builtin_ladrp;
+
+static void init_profiles(void)
+{
+    if (builtin_sls) return;
+    lam_error err;
+    lam_profile_builtin_sls(&builtin_sls, &err);
+    lam_profile_load_buf("fuzz-ladrp.yaml", ladrp_yaml, sizeof ladrp_yaml - 1, &builtin_ladrp, &err);
+}
+
+#ifdef LAMINA_FUZZ_LUA
+/* A recipe may allocate 64 MB and run some millions of instructions. */
+typedef struct budget {
+    size_t used, limit;
+} budget;
+
+static void *alloc(void *ud, void *ptr, size_t osize, size_t nsize)
+{
+    budget *b = ud;
+    size_t old = ptr ? osize : 0;
+    if (nsize == 0) {
+        free(ptr);
+        b->used -= old;
+        return NULL;
+    }
+    if (nsize > old && b->used - old + nsize > b->limit) return NULL;
+    void *p = realloc(ptr, nsize);
+    if (p) b->used = b->used - old + nsize;
+    return p;
+}
+
+static void out_of_time(lua_State *L, lua_Debug *ar)
+{
+    (void)ar;
+    luaL_error(L, "fuzz: instruction budget spent");
+}
+
+/* require: only "lamina" */
+static int fuzz_require(lua_State *L)
+{
+    const char *name = luaL_checkstring(L, 1);
+    if (strcmp(name, "lamina") != 0) return luaL_error(L, "fuzz: no module '%s'", name);
+    lua_getglobal(L, "lamina");
+    return 1;
+}
+
+/* print: checks its arguments' tostring like Lua's, writes nothing (the
+ * driver's standard output is TAP) */
+static int quiet_print(lua_State *L)
+{
+    int n = lua_gettop(L);
+    for (int i = 1; i <= n; i++) luaL_tolstring(L, i, NULL);
+    return 0;
+}
+
+static int run_lua(const char *text, size_t len)
+{
+    budget b = { 0, (size_t)64 << 20 };
+    lua_State *L = lua_newstate(alloc, &b);
+    if (!L) return 0;
+    static const luaL_Reg libs[] = { { LUA_GNAME, luaopen_base },     { LUA_TABLIBNAME, luaopen_table },
+                                     { LUA_STRLIBNAME, luaopen_string }, { LUA_MATHLIBNAME, luaopen_math },
+                                     { LUA_UTF8LIBNAME, luaopen_utf8 }, { "lamina", luaopen_lamina },
+                                     { NULL, NULL } };
+    for (const luaL_Reg *l = libs; l->func; l++) {
+        luaL_requiref(L, l->name, l->func, 1);
+        lua_pop(L, 1);
+    }
+    /* no files, no bytecode: text chunks only */
+    static const char *const gone[] = { "dofile", "loadfile", "load", NULL };
+    for (int i = 0; gone[i]; i++) {
+        lua_pushnil(L);
+        lua_setglobal(L, gone[i]);
+    }
+    lua_pushcfunction(L, fuzz_require);
+    lua_setglobal(L, "require");
+    lua_pushcfunction(L, quiet_print);
+    lua_setglobal(L, "print");
+    /* no string.dump either: nothing to load it with, but keep it simple */
+    lua_getglobal(L, "string");
+    lua_pushnil(L);
+    lua_setfield(L, -2, "dump");
+    lua_pop(L, 1);
+    lua_sethook(L, out_of_time, LUA_MASKCOUNT, 5000000);
+    if (luaL_loadbufferx(L, text, len, "=fuzz.lua", "t") == LUA_OK) (void)lua_pcall(L, 0, 0, 0);
+    lua_close(L);
+    return 0;
+}
+#endif
 
 /* The first byte picks the reader, the rest is the input. */
 static int one(const uint8_t *data, size_t size)
 {
     if (size < 1) return 0;
-    int kind = data[0] % 5;
+    int kind = data[0] % K_COUNT;
     const char *buf = (const char *)data + 1;
     size_t len = size - 1;
     lam_error err;
     lam_error_clear(&err);
     lam_mesh m;
     lam_mesh_init(&m);
-    int rc = LAM_OK, bin = 0;
+    int rc = LAM_OK;
+    init_profiles();
     switch (kind) {
-    case 0: rc = lam_import_ug_buf("fuzz.ug", buf, len, &m, &err); break;
-    case 1: rc = lam_import_stl_buf("fuzz.stl", (const unsigned char *)buf, len, &m, &bin, &err); break;
-    case 2: rc = lam_import_obj_buf("fuzz.obj", buf, len, &m, &err); break;
-    case 4: {
-        /* a program read back, and its layers made along z and x */
+    case K_UG: rc = lam_import_ug_buf("fuzz.ug", buf, len, &m, &err); break;
+    case K_STL: rc = lam_import_stl_buf("fuzz.stl", (const unsigned char *)buf, len, &m, NULL, &err); break;
+    case K_OBJ: rc = lam_import_obj_buf("fuzz.obj", buf, len, &m, &err); break;
+    case K_PROFILE: {
+        lam_profile *p = NULL;
+        rc = lam_profile_load_buf("fuzz.yaml", buf, len, &p, &err);
+        if (rc == LAM_OK) {
+            /* its templates and raster settings, on the thesis's part */
+            lam_mesh cm;
+            lam_mesh_init(&cm);
+            lam_model *md = NULL;
+            lam_error cerr;
+            if (lam_import_ug_buf("cube.ug", cube_hole, sizeof cube_hole - 1, &cm, &cerr) == LAM_OK &&
+                lam_model_from_mesh(&cm, "cube", "unigrafix", &md, &cerr) == LAM_OK)
+                plan(md, p, 5, (int)(size & 1));
+            lam_mesh_free(&cm);
+            lam_model_free(md);
+        }
+        lam_profile_free(p);
+        return rc != LAM_OK && err.msg[0] == '\0' ? -1 : 0;
+    }
+    case K_PROGRAM: {
         lam_program *p = NULL;
         rc = lam_program_read_buf("fuzz.sls", (const unsigned char *)buf, len, &p, &err);
         for (size_t i = 0; p && i < p->nlayers; i++)
@@ -45,18 +223,19 @@ static int one(const uint8_t *data, size_t size)
                 lam_frame_axis(ax ? 'x' : 'z', &f, NULL);
                 lam_layer L;
                 lam_error lerr;
+                lam_error_clear(&lerr);
                 if (lam_program_layer_make(p, i, &f, 0, "fuzz.sls", &L, &lerr) == LAM_OK) lam_layer_clear(&L);
                 else if (lerr.msg[0] == '\0') rc = -1;
             }
         lam_program_free(p);
         return rc != LAM_OK && err.msg[0] == '\0' ? -1 : 0;
     }
-    default: {
-        lam_profile *p = NULL;
-        rc = lam_profile_load_buf("fuzz.yaml", buf, len, &p, &err);
-        lam_profile_free(p);
-        return rc != LAM_OK && err.msg[0] == '\0' ? -1 : 0;
-    }
+    default:
+#ifdef LAMINA_FUZZ_LUA
+        return run_lua(buf, len);
+#else
+        return 0;
+#endif
     }
     if (rc == LAM_OK && m.ntris) {
         /* what loads must also build: weld, edges, shells, orientation */
@@ -81,6 +260,9 @@ static int one(const uint8_t *data, size_t size)
             }
             lam_slicer_free(s);
         }
+        /* ... and plan, both processes */
+        if (md && builtin_sls) plan(md, builtin_sls, 3, 0);
+        if (md && builtin_ladrp) plan(md, builtin_ladrp, 3, (int)(size & 1));
         lam_model_free(md);
     }
     lam_mesh_free(&m);
@@ -161,15 +343,8 @@ int main(int argc, char **argv)
             continue;
         }
         uint8_t *seed = malloc(1 << 20);
-        size_t n = fread(seed + 1, 1, (1 << 20) - 1, f) + 1;
+        size_t n = fread(seed, 1, 1 << 20, f);
         fclose(f);
-        const char *dot = strrchr(argv[i], '.');
-        seed[0] = !dot                    ? 0
-                  : !strcmp(dot, ".stl")  ? 1
-                  : !strcmp(dot, ".obj")  ? 2
-                  : !strcmp(dot, ".yaml") ? 3
-                  : !strcmp(dot, ".sls") || !strcmp(dot, ".cli") ? 4
-                                          : 0;
         size_t cap = n + 4096;
         uint8_t *b = malloc(cap);
         int bad = one(seed, n) != 0;

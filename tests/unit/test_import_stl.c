@@ -197,13 +197,13 @@ static void test_ascii_variants(void)
     /* Exact number reading: fast path, slow path, extremes. */
     rc = load_str("solid n\nfacet normal 0 0 0\nouter loop\n"
                   "vertex 0.1 -2.5e-3 +3\n"
-                  "vertex 1.7976931348623157e308 4.9406564584124654e-324 123456789012345678901234567890\n"
+                  "vertex 1e50 4.9406564584124654e-324 123456789012345678901234567890\n"
                   "vertex .5 5. -0\n"
                   "endloop\nendfacet\nendsolid n\n", &m, &bin, &err);
     is_int(rc, LAM_OK, "number forms load (%s)", err.msg);
     if (m.nverts == 3) {
         ok(m.xyz[0] == 0.1 && m.xyz[1] == -2.5e-3 && m.xyz[2] == 3.0, "0.1 -2.5e-3 +3 read exactly");
-        ok(m.xyz[3] == 1.7976931348623157e308, "DBL_MAX read exactly");
+        ok(m.xyz[3] == 1e50, "1e50, the largest coordinate, read exactly");
         ok(m.xyz[4] == 4.9406564584124654e-324, "smallest subnormal read exactly");
         ok(m.xyz[5] == 123456789012345678901234567890.0, "30-digit integer read exactly");
         ok(m.xyz[6] == 0.5 && m.xyz[7] == 5.0 && m.xyz[8] == 0.0 && !signbit(m.xyz[8]),
@@ -211,6 +211,12 @@ static void test_ascii_variants(void)
     } else {
         ok(0, "number forms: 3 vertices");
     }
+    lam_mesh_free(&m);
+    /* DBL_MAX reads, but a model that far out would overflow its areas */
+    rc = load_str("solid n\nfacet normal 0 0 0\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n"
+                  "vertex 0 1.7976931348623157e308 0\nendloop\nendfacet\nendsolid n\n", &m, &bin, &err);
+    ok(rc == LAM_EINVAL && err.line == 6 && err.column == 10 && strstr(err.msg, "more than a double can measure"),
+       "DBL_MAX refused at its position (%ld:%ld %s)", err.line, err.column, err.msg);
     lam_mesh_free(&m);
 }
 

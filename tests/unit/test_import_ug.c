@@ -244,12 +244,12 @@ static void test_syntax(void)
     lam_mesh_free(&m);
 
     /* Numbers in every spelling. */
-    rc = load("v a 2 .5 -.5; v b 2.0 1e-3 -1E+2; v c 0x10 1e300 -0;\nf (a b c);", NULL, &m, &err);
+    rc = load("v a 2 .5 -.5; v b 2.0 1e-3 -1E+2; v c 0x10 1e50 -0;\nf (a b c);", NULL, &m, &err);
     is_int(rc, LAM_OK, "number spellings");
     if (!rc && m.nverts == 3) {
         ok(m.xyz[0] == 2 && m.xyz[1] == 0.5 && m.xyz[2] == -0.5, "2 .5 -.5");
         ok(m.xyz[3] == 2 && m.xyz[4] == 1e-3 && m.xyz[5] == -100, "2.0 1e-3 -1E+2");
-        ok(m.xyz[6] == 16 && m.xyz[7] == 1e300, "0x10 1e300");
+        ok(m.xyz[6] == 16 && m.xyz[7] == 1e50, "0x10 1e50");
     }
     lam_mesh_free(&m);
 
@@ -387,10 +387,16 @@ static void test_limits(void)
     check_error("definitions nested too deeply", src, LAM_EINVAL, 65, 1, "definitions nested more than 64");
     free(src);
 
-    /* Huge but finite numbers are fine. */
-    rc = load("v a 1e308 0 0; v b -1e308 1 0; v c 0 0 1e-320;\nf (a b c);", NULL, &m, &err);
+    /* Coordinates up to 1e50 in magnitude are fine, tiny ones too; beyond,
+     * derived quantities (squared areas) would overflow: refused where the
+     * number is, or at the vertex a transform carries too far. */
+    rc = load("v a 1e50 0 0; v b -1e50 1 0; v c 0 0 1e-320;\nf (a b c);", NULL, &m, &err);
     is_int(rc, LAM_OK, "huge and tiny numbers");
     lam_mesh_free(&m);
+    check_error("a coordinate of 1.5e308", "v a 0 0 0; v b 1 0 0;\nv c 0 0 1.5e308;\nf (a b c);", LAM_EINVAL, 2, 9,
+                "more than a double can measure");
+    check_error("a transform past 1e50", "def t; v a 0 0 0; v b 1 0 0;\nv c 0 0 1; f (a b c); end;\ni (t -sz 1e49 -sz 11);",
+                LAM_EGEOM, 2, 3, "more than a double can measure");
 
     /* A NUL byte in the text is an error, not a truncation. */
     lam_mesh_init(&m);

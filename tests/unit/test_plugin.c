@@ -3,10 +3,11 @@
  * independent CLI decoder.
  *
  * Paths: $BUILD (default "build") is the build directory; the test plugins
- * are $BUILD/tests/plugins/NAME.so, the cli plugin $BUILD/plugins/cli.so
- * when that exists (SAN=1 builds) else plugins/cli.so (the test runs from
+ * are $BUILD/tests/plugins/NAME.so, the cli plugin $BUILD/plugins/cli-binary.so
+ * when that exists (SAN=1 builds) else plugins/cli-binary.so (the test runs from
  * the repository root). This program lives in $BUILD/tests, so the
  * exe-relative plugin directory <exe dir>/plugins is $BUILD/tests/plugins. */
+#include <fcntl.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -234,8 +235,13 @@ static void test_refusals(void)
     contains(err.msg, "/nonexistent/dir/nothing.so", "missing file: message names the file");
     contains(err.msg, "No such file", "missing file: message says why");
 
-    char junk[] = "/tmp/lamina-test-plugin-XXXXXX";
-    int fd = mkstemp(junk);
+    /* in a directory of its own: /tmp is writable by all, so refused */
+    char jdir[] = "/tmp/lamina-test-plugin-XXXXXX", junk[64] = "";
+    int fd = -1;
+    if (mkdtemp(jdir)) {
+        snprintf(junk, sizeof junk, "%s/junk.so", jdir);
+        fd = open(junk, O_WRONLY | O_CREAT | O_EXCL, 0644);
+    }
     ok(fd >= 0, "made a junk file");
     if (fd >= 0) {
         ok(write(fd, "not an ELF file\n", 16) == 16, "wrote the junk file");
@@ -247,6 +253,7 @@ static void test_refusals(void)
         contains(err.msg, junk, "not a shared object: message names the file");
         unlink(junk);
     }
+    rmdir(jdir);
 
     lam_error_clear(&err);
     rc = lam_plugin_load(test_plugin("bad_abi"), &err);
@@ -284,30 +291,50 @@ static void test_registry(void)
     lam_error err;
     lam_error_clear(&err);
 
-    /* lookup by scanning: $LAMINA_PLUGINS (the cli plugin's directory) first,
-     * then <exe dir>/plugins = $BUILD/tests/plugins, whose bad plugins are
-     * skipped and whose old_writer loads */
+    /* lookup by name: NAME.so from $LAMINA_PLUGINS (the cli plugin's
+     * directory) first, then <exe dir>/plugins = $BUILD/tests/plugins, and
+     * no other file (ctor.so would leave its mark) */
     setenv("LAMINA_PLUGINS", cli_dir, 1);
+    unsetenv("LAMINA_CTOR_RAN");
     lam_writer *w;
     lam_writer_memory(&w, &err);
     lam_sink s;
     int rc = lam_plugin_writer_sink("cli-binary", w, &err, &s);
-    is_int(rc, LAM_OK, "cli-binary found by scanning the plugin directories");
+    is_int(rc, LAM_OK, "cli-binary found as cli-binary.so in the plugin directories");
     if (rc) diag("%s", err.msg);
     ok(rc == LAM_OK && s.ctx && s.begin && s.destroy, "the sink is filled in");
     if (rc == LAM_OK) s.destroy(s.ctx);   /* before begin: nothing to abort */
     lam_writer_abort(w);
     ok(writer_listed("cli-binary"), "cli-binary is registered");
-    ok(writer_listed("old-writer"), "old-writer loaded from <exe dir>/plugins");
-    ok(!writer_listed("dup-ok"), "the scan's failed dup_writer left nothing registered");
+    ok(!writer_listed("old-writer"), "old-writer.so, in a later directory, was not loaded");
+    ok(!getenv("LAMINA_CTOR_RAN"), "no other plugin file was opened (ctor.so's constructor did not run)");
+    lam_writer_memory(&w, &err);
+    rc = lam_plugin_writer_sink("old-writer", w, &err, &s);
+    is_int(rc, LAM_OK, "old-writer found as old-writer.so in <exe dir>/plugins");
+    if (rc == LAM_OK) s.destroy(s.ctx);
+    lam_writer_abort(w);
+    ok(!getenv("LAMINA_CTOR_RAN"), "... and still no other file opened");
+    lam_writer_memory(&w, &err);
+    rc = lam_plugin_writer_sink("no_abi", w, &err, &s);
+    ok(rc == LAM_EFORMAT && has(err.msg, "lamina_plugin_abi"), "writer no_abi: no_abi.so refused (%s)", err.msg);
+    lam_writer_abort(w);
+    lam_writer_memory(&w, &err);
+    rc = lam_plugin_writer_sink("ctor", w, &err, &s);
+    ok(rc == LAM_EINVAL && has(err.msg, "does not provide writer 'ctor'"), "a plugin without the named writer (%s)",
+       err.msg);
+    lam_writer_abort(w);
+    lam_writer_memory(&w, &err);
+    rc = lam_plugin_writer_sink("../plugins/cli-binary", w, &err, &s);
+    ok(rc == LAM_EINVAL && has(err.msg, "letters, digits"), "a writer name with '/' is no file name (%s)", err.msg);
+    lam_writer_abort(w);
     size_t count = lam_plugin_writers(NULL, 0);
 
     rc = lam_plugin_load(cli_path, &err);
-    is_int(rc, LAM_OK, "loading cli.so again succeeds");
+    is_int(rc, LAM_OK, "loading cli-binary.so again succeeds");
     char other[1400];
-    snprintf(other, sizeof other, "%s/./cli.so", cli_dir);
+    snprintf(other, sizeof other, "%s/./cli-binary.so", cli_dir);
     rc = lam_plugin_load(other, &err);
-    is_int(rc, LAM_OK, "loading cli.so under another path succeeds");
+    is_int(rc, LAM_OK, "loading cli-binary.so under another path succeeds");
     is_int(lam_plugin_writers(NULL, 0), count, "... and registers nothing twice");
 
     lam_error_clear(&err);
@@ -330,7 +357,8 @@ static void test_registry(void)
     rc = lam_plugin_writer_sink("no-such-writer", w, &err, &s);
     is_int(rc, LAM_EINVAL, "unknown writer: LAM_EINVAL");
     contains(err.msg, "unknown writer 'no-such-writer'", "unknown writer: message names it");
-    contains(err.msg, "available: cli-binary, old-writer", "unknown writer: message lists the available ones");
+    contains(err.msg, "no no-such-writer.so in", "unknown writer: message says which file was looked for");
+    contains(err.msg, cli_dir, "unknown writer: message lists the directories searched");
     ok(s.ctx == NULL && s.destroy == NULL, "unknown writer: sink left empty");
     lam_writer_abort(w);
 }
@@ -510,13 +538,52 @@ static void test_sink_rules(void)
     }
 }
 
+/* A plugin file or directory others than its owner may write is refused
+ * before it is opened. */
+static void test_permissions(void)
+{
+    char dir[] = "/tmp/lamina-plugin-XXXXXX";
+    if (!mkdtemp(dir)) {
+        ok(0, "mkdtemp");
+        return;
+    }
+    char path[64];
+    snprintf(path, sizeof path, "%s/ctor.so", dir);
+    FILE *in = fopen(test_plugin("ctor"), "rb"), *out = fopen(path, "wb");
+    char buf[4096];
+    size_t n;
+    while (in && out && (n = fread(buf, 1, sizeof buf, in)) > 0) fwrite(buf, 1, n, out);
+    if (in) fclose(in);
+    if (out) fclose(out);
+    lam_error err;
+    lam_error_clear(&err);
+    unsetenv("LAMINA_CTOR_RAN");
+    chmod(dir, 0777);
+    chmod(path, 0755);
+    int rc = lam_plugin_load(path, &err);
+    ok(rc == LAM_EIO && has(err.msg, "directory") && has(err.msg, "writable by others than its owner"),
+       "a world-writable plugin directory is refused (%s)", err.msg);
+    chmod(dir, 0700);
+    chmod(path, 0664);
+    rc = lam_plugin_load(path, &err);
+    ok(rc == LAM_EIO && has(err.msg, "file") && has(err.msg, "writable by others than its owner"),
+       "a group-writable plugin file is refused (%s)", err.msg);
+    ok(!getenv("LAMINA_CTOR_RAN"), "neither was opened (its constructor did not run)");
+    chmod(path, 0755);
+    lam_error_clear(&err);
+    rc = lam_plugin_load(path, &err);
+    ok(rc == LAM_OK && getenv("LAMINA_CTOR_RAN"), "mode 755 in a 700 directory loads (%s)", err.msg);
+    remove(path);
+    rmdir(dir);
+}
+
 static void test_unload(void)
 {
     lam_plugins_unload();
     is_int(lam_plugin_writers(NULL, 0), 0, "unload: registry empty");
     lam_error err;
     lam_error_clear(&err);
-    is_int(lam_plugin_load(cli_path, &err), LAM_OK, "cli.so loads again after unload");
+    is_int(lam_plugin_load(cli_path, &err), LAM_OK, "cli-binary.so loads again after unload");
     is_int(lam_plugin_writers(NULL, 0), 1, "... registering cli-binary only");
     char *data;
     size_t len;
@@ -532,10 +599,10 @@ int main(void)
     snprintf(build_dir, sizeof build_dir, "%s", b && *b ? b : "build");
     struct stat st;
     snprintf(cli_dir, sizeof cli_dir, "%s/plugins", build_dir);
-    snprintf(cli_path, sizeof cli_path, "%s/cli.so", cli_dir);
+    snprintf(cli_path, sizeof cli_path, "%s/cli-binary.so", cli_dir);
     if (stat(cli_path, &st) != 0) {
         snprintf(cli_dir, sizeof cli_dir, "plugins");
-        snprintf(cli_path, sizeof cli_path, "plugins/cli.so");
+        snprintf(cli_path, sizeof cli_path, "plugins/cli-binary.so");
     }
     diag("cli plugin: %s; test plugins: %s/tests/plugins", cli_path, build_dir);
 
@@ -543,6 +610,7 @@ int main(void)
     test_registry();
     test_cli_bytes();
     test_sink_rules();
+    test_permissions();
     test_unload();
     return done_testing();
 }

@@ -1,0 +1,133 @@
+/* Whole-file input with a size limit; see file.h. */
+#include "file.h"
+
+#include <errno.h>
+#include <fcntl.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+size_t lam_max_input(void)
+{
+    const char *s = getenv("LAMINA_MAX_INPUT");
+    if (!s || !*s) return LAM_MAX_INPUT_DEFAULT;
+    char *end;
+    errno = 0;
+    unsigned long long n = strtoull(s, &end, 10);
+    unsigned shift = 0;
+    if (*end == 'K' || *end == 'k') shift = 10, end++;
+    else if (*end == 'M' || *end == 'm') shift = 20, end++;
+    else if (*end == 'G' || *end == 'g') shift = 30, end++;
+    if (end == s || *end || errno || s[0] == '-' || n == 0 || n > (SIZE_MAX / 2) >> shift)
+        return LAM_MAX_INPUT_DEFAULT;
+    return (size_t)n << shift;
+}
+
+lam_read_limit lam_model_limit(void)
+{
+    lam_read_limit l = { lam_max_input(), "a model", "set LAMINA_MAX_INPUT to raise it" };
+    return l;
+}
+
+static int too_large(const char *path, lam_read_limit limit, unsigned long long size, lam_error *err)
+{
+    return lam_error_set(err, LAM_EINVAL, path, 0, 0, "too large for %s: %s%llu bytes, the limit is %zu%s%s",
+                         limit.what, size > limit.bytes ? "" : "over ", size > limit.bytes ? size : limit.bytes,
+                         limit.bytes, limit.raise ? "; " : "", limit.raise ? limit.raise : "");
+}
+
+/* Open a regular file within the limit for reading into *fd. */
+static int open_regular(const char *path, lam_read_limit limit, struct stat *st, int *fd_out, lam_error *err)
+{
+    int fd = open(path, O_RDONLY | O_NONBLOCK | O_NOCTTY);
+    if (fd < 0) return lam_error_set(err, LAM_EIO, path, 0, 0, "cannot open: %s", strerror(errno));
+    const char *bad = NULL;
+    if (fstat(fd, st) != 0) bad = strerror(errno);
+    else if (S_ISDIR(st->st_mode)) bad = "is a directory";
+    else if (!S_ISREG(st->st_mode)) bad = "is not a regular file (a device, FIFO or socket)";
+    if (bad) {
+        close(fd);
+        return lam_error_set(err, LAM_EIO, path, 0, 0, "cannot read: %s", bad);
+    }
+    if ((unsigned long long)st->st_size > limit.bytes) {
+        close(fd);
+        return too_large(path, limit, (unsigned long long)st->st_size, err);
+    }
+    *fd_out = fd;
+    return LAM_OK;
+}
+
+int lam_read_file(const char *path, lam_read_limit limit, char **data, size_t *len, lam_error *err)
+{
+    *data = NULL;
+    *len = 0;
+    struct stat st;
+    int fd, rc = open_regular(path, limit, &st, &fd, err);
+    if (rc) return rc;
+    /* the size is a hint (the file may change): read up to one byte past
+     * the limit to see it grow */
+    size_t cap = (size_t)st.st_size + 2, n = 0;
+    char *buf = malloc(cap);
+    rc = buf ? LAM_OK : lam_error_set(err, LAM_ENOMEM, path, 0, 0, "out of memory reading the file");
+    while (rc == LAM_OK) {
+        if (n + 1 >= cap) {
+            size_t ncap = cap * 2 > limit.bytes + 2 ? limit.bytes + 2 : cap * 2;
+            char *nb = ncap > cap ? realloc(buf, ncap) : NULL;
+            if (!nb) {
+                rc = ncap > cap ? lam_error_set(err, LAM_ENOMEM, path, 0, 0, "out of memory reading the file")
+                                : too_large(path, limit, n, err);
+                break;
+            }
+            buf = nb;
+            cap = ncap;
+        }
+        ssize_t got = read(fd, buf + n, cap - 1 - n);
+        if (got < 0 && errno == EINTR) continue;
+        if (got < 0) rc = lam_error_set(err, LAM_EIO, path, 0, 0, "read error: %s", strerror(errno));
+        else if (got == 0) break;
+        else n += (size_t)got;
+        if (rc == LAM_OK && n > limit.bytes) rc = too_large(path, limit, n, err);
+    }
+    close(fd);
+    if (rc) {
+        free(buf);
+        return rc;
+    }
+    buf[n] = '\0';
+    *data = buf;
+    *len = n;
+    return LAM_OK;
+}
+
+int lam_map_file(const char *path, lam_read_limit limit, char **data, size_t *len, int *mapped, lam_error *err)
+{
+    *mapped = 0;
+    struct stat st;
+    int fd, rc = open_regular(path, limit, &st, &fd, err);
+    if (rc) return rc;
+    long page = sysconf(_SC_PAGESIZE);
+    /* Only when the size is not a whole number of pages: the system
+     * zero-fills the rest of the last page, so the mapping ends in the NUL
+     * the text readers rely on. Anything else is read. */
+    if (page > 0 && st.st_size > 0 && st.st_size % page != 0) {
+        void *p = mmap(NULL, (size_t)st.st_size, PROT_READ, MAP_PRIVATE, fd, 0);
+        if (p != MAP_FAILED) {
+            close(fd);
+            *data = p;
+            *len = (size_t)st.st_size;
+            *mapped = 1;
+            return LAM_OK;
+        }
+    }
+    close(fd);
+    return lam_read_file(path, limit, data, len, err);
+}
+
+void lam_unmap_file(char *data, size_t len, int mapped)
+{
+    if (mapped) munmap(data, len);
+    else free(data);
+}

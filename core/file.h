@@ -1,0 +1,57 @@
+/* Whole-file input, the one way lamina reads a model, a Unigrafix include
+ * or a machine profile.
+ *
+ * Only regular files are read: a device (/dev/zero, /dev/urandom), a FIFO,
+ * a socket or a directory is refused before a byte is read. The file is
+ * opened non-blocking, so a FIFO without a writer cannot hang the open, and
+ * checked with fstat on the descriptor it was opened as. Every read has a
+ * size limit: a file larger than it is refused with its size and the
+ * limit, and a file that grows past the limit while it is read is refused
+ * the same way. */
+#ifndef LAM_FILE_H
+#define LAM_FILE_H
+
+#include <stddef.h>
+
+#include "error.h"
+
+/* Default largest model (or Unigrafix include) in bytes: 1 GiB, some 21
+ * million triangles of binary STL. LAMINA_MAX_INPUT (bytes, or a number with
+ * a K, M or G suffix) sets another. */
+#define LAM_MAX_INPUT_DEFAULT ((size_t)1 << 30)
+
+/* Largest machine profile in bytes: a profile is a page of text. */
+#define LAM_MAX_PROFILE_BYTES ((size_t)4 << 20)
+
+/* The model size limit: LAMINA_MAX_INPUT when it is set to a valid size,
+ * else LAM_MAX_INPUT_DEFAULT. */
+size_t lam_max_input(void);
+
+/* What a limited read is for: names it in messages ("a model") and says how
+ * to raise the limit (NULL when it cannot be raised). */
+typedef struct lam_read_limit {
+    size_t bytes;
+    const char *what;
+    const char *raise;
+} lam_read_limit;
+
+/* The limit for models and includes (lam_max_input, raised with
+ * LAMINA_MAX_INPUT). */
+lam_read_limit lam_model_limit(void);
+
+/* Read a whole regular file into a NUL-terminated malloc'd buffer (caller
+ * frees). Errors (naming the file, no position): LAM_EIO with the system's
+ * reason, or "is a directory" / "is not a regular file"; LAM_EINVAL "too
+ * large for <what>"; LAM_ENOMEM. */
+int lam_read_file(const char *path, lam_read_limit limit, char **data, size_t *len, lam_error *err);
+
+/* The same for a large input: maps the file read-only when the mapping is
+ * NUL-terminated by the system (size not a multiple of the page size), else
+ * reads it. *mapped says which; release with lam_unmap_file. The buffer
+ * must not be written. */
+int lam_map_file(const char *path, lam_read_limit limit, char **data, size_t *len, int *mapped, lam_error *err);
+
+/* Releases what lam_map_file returned. */
+void lam_unmap_file(char *data, size_t len, int mapped);
+
+#endif

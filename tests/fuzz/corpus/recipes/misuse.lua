@@ -1,0 +1,7 @@
+local ok, e = pcall(lamina.load)
+ok, e = pcall(lamina.machine, {})
+local m = lamina.load("bad/nan.stl")
+local mc = lamina.machine("no-such")
+print(lamina.machines(), lamina.writers(), lamina.version)
+local m2 = assert(lamina.load("thesis_cube.ug"))
+print(pcall(m2.slice, m2, {width = -1}), pcall(m2.slice, m2, {planes = {0, 1, 0.5}}))
