@@ -39,9 +39,24 @@ static int too_large(const char *path, lam_read_limit limit, unsigned long long 
                          limit.bytes, limit.raise ? "; " : "", limit.raise ? limit.raise : "");
 }
 
+static lam_file_gate gate;
+static void *gate_ctx;
+
+void lam_file_set_gate(lam_file_gate g, void *ctx, lam_file_gate *old_gate, void **old_ctx)
+{
+    if (old_gate) *old_gate = gate;
+    if (old_ctx) *old_ctx = gate_ctx;
+    gate = g;
+    gate_ctx = ctx;
+}
+
 /* Open a regular file within the limit for reading into *fd. */
 static int open_regular(const char *path, lam_read_limit limit, struct stat *st, int *fd_out, lam_error *err)
 {
+    if (gate) {
+        int rc = gate(gate_ctx, path, err);
+        if (rc) return rc;
+    }
     int fd = open(path, O_RDONLY | O_NONBLOCK | O_NOCTTY);
     if (fd < 0) return lam_error_set(err, LAM_EIO, path, 0, 0, "cannot open: %s", strerror(errno));
     const char *bad = NULL;

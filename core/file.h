@@ -51,6 +51,17 @@ int lam_read_file(const char *path, lam_read_limit limit, char **data, size_t *l
  * must not be written. */
 int lam_map_file(const char *path, lam_read_limit limit, char **data, size_t *len, int *mapped, lam_error *err);
 
+/* A gate every whole-file read passes before the file is opened: LAM_OK
+ * lets `path` be read, anything else refuses it with the message set in
+ * err. By default there is none. The Lua sandbox (lua/l_sandbox.c) sets
+ * one while a sandboxed state lives, so that what a file names (a
+ * Unigrafix include, a profile's `inherits`) is held to the sandbox's
+ * directories as the file itself is. One gate per process; set it before
+ * reading starts and put the old one back after (old_gate, old_ctx may be
+ * NULL). */
+typedef int (*lam_file_gate)(void *ctx, const char *path, lam_error *err);
+void lam_file_set_gate(lam_file_gate gate, void *ctx, lam_file_gate *old_gate, void **old_ctx);
+
 /* Releases what lam_map_file returned. */
 void lam_unmap_file(char *data, size_t len, int mapped);
 

@@ -43,7 +43,9 @@
 
 #include <lualib.h>
 
+#include "file.h"
 #include "paths.h"
+#include "profile.h"
 
 struct lam_sandbox {
     char **dirs;             /* realpath'd directories */
@@ -51,9 +53,14 @@ struct lam_sandbox {
     size_t ndirs;
     char *mods[4];           /* lamina's Lua module directories (require only) */
     size_t nmods;
+    char *machines[8];       /* the machine directories (realpath'd): profiles a
+                                file may inherit from, besides --allow */
+    size_t nmachines;
     size_t mem_limit, mem_used;
     double time_limit, deadline;
     int timed_out;           /* the limit was reached: pcall cannot catch it */
+    lam_file_gate old_gate;  /* the file gate before this sandbox's (file.h) */
+    void *old_gate_ctx;
 };
 
 /* ---- the allocator and the clock --------------------------------------- */
@@ -167,6 +174,21 @@ static const char *denied_text(int write)
 {
     return write ? "outside the sandbox's writable directories (--out)"
                  : "outside the sandbox's readable directories (--allow, --out)";
+}
+
+/* The file gate while a sandbox lives: what core reads by itself (a
+ * Unigrafix include, a profile's inherits) stays inside the readable
+ * directories too. */
+static int gate(void *ctx, const char *path, lam_error *err)
+{
+    const lam_sandbox *sb = ctx;
+    if (allowed(sb, path, 0)) return LAM_OK;
+    char *real = resolve(path);
+    int shipped = 0;
+    for (size_t i = 0; real && i < sb->nmachines && !shipped; i++) shipped = inside(real, sb->machines[i]);
+    free(real);
+    if (shipped) return LAM_OK;
+    return lam_error_set(err, LAM_EIO, path, 0, 0, "cannot read: %s", denied_text(0));
 }
 
 int lam_lua_denied(lua_State *L, const char *path, int write)
@@ -490,6 +512,7 @@ static void sandbox_free(lam_sandbox *sb)
     if (!sb) return;
     for (size_t i = 0; i < sb->ndirs; i++) free(sb->dirs[i]);
     for (size_t i = 0; i < sb->nmods; i++) free(sb->mods[i]);
+    for (size_t i = 0; i < sb->nmachines; i++) free(sb->machines[i]);
     free(sb->dirs);
     free(sb->writable);
     free(sb);
@@ -558,6 +581,13 @@ lua_State *lam_lua_sandbox_open(const lam_sandbox_opts *o, char *msg, size_t siz
         }
     static const char *const rel[] = { "../lua", "../share/lamina/lua", NULL };
     sb->nmods = lam_search_dirs(NULL, rel, sb->mods, 4);
+    char *md[8];
+    size_t nmd = lam_machine_dirs(md, 8);
+    for (size_t i = 0; i < nmd; i++) {
+        char *real = realpath(md[i], NULL);
+        if (real) sb->machines[sb->nmachines++] = real;
+        free(md[i]);
+    }
     sb->mem_limit = o->memory > 0 && o->memory < (double)SIZE_MAX ? (size_t)o->memory : 0;
     sb->time_limit = o->time > 0 ? o->time : 0;
     lua_State *L = lua_newstate(sb_alloc, sb);
@@ -566,6 +596,7 @@ lua_State *lam_lua_sandbox_open(const lam_sandbox_opts *o, char *msg, size_t siz
         sandbox_free(sb);
         return NULL;
     }
+    lam_file_set_gate(gate, sb, &sb->old_gate, &sb->old_gate_ctx);
     lua_pushcfunction(L, open_libs);
     if (lua_pcall(L, 0, 0, 0) != LUA_OK) {
         snprintf(msg, size, "%s", lua_tostring(L, -1));
@@ -596,6 +627,7 @@ void lam_lua_sandbox_close(lua_State *L)
 {
     lam_sandbox *sb = lam_lua_sandbox_of(L);
     lua_close(L);
+    if (sb) lam_file_set_gate(sb->old_gate, sb->old_gate_ctx, NULL, NULL);
     sandbox_free(sb);
 }
 

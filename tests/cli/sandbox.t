@@ -210,4 +210,21 @@ nil	result 1 of the recipe is a table .*	1
 nil	.*binary chunk.*	1
 true	true$" "lamina.sandbox: results, refusals, exit codes, limits; the host keeps its own libraries"
 
+# ---- what a file names: includes and inherits stay inside too ------------------------
+printf 'include "%s/outside.ug";\n' "$TMP" >in/wrap.ug
+safe 'print(lamina.load("in/wrap.ug"))'
+like "$OUT" "^nil	.*outside\.ug: cannot read: outside the sandbox's readable directories" \
+    "a Unigrafix include of a file outside the sandbox is refused"
+printf 'print(#lamina.load("in/wrap.ug"))\n' >"$TMP/r.lua"
+run "$LAMINA" run "$TMP/r.lua"
+is "$OUT" "12" "(without --safe the include is read: 12 triangles)"
+printf 'inherits: %s/outside.yaml\nname: mine\n' "$TMP" >in/child.yaml
+cp "$ROOT/machines/creol-ladrp.yaml" "$TMP/outside.yaml"
+safe 'print(lamina.machine("in/child.yaml"))'
+like "$OUT" "^nil	.*outside\.yaml: cannot read: outside the sandbox's readable directories" \
+    "a profile inheriting from a file outside the sandbox is refused"
+printf 'print(lamina.machine("in/child.yaml").name)\n' >"$TMP/r.lua"
+run "$LAMINA" run "$TMP/r.lua"
+is "$OUT" "mine" "(without --safe the parent profile is read)"
+
 done_testing
