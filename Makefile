@@ -36,11 +36,11 @@ LDLIBS   += -lembree3 -lyaml -lgeos_c -ldl -lm
 
 CORE_SRC  := $(sort $(wildcard core/*.c))
 CORE_OBJ  := $(CORE_SRC:%.c=$(BUILD)/%.o)
-# lua/: lamina.c and l_*.c are the binding (also built as the C module
-# lamina.so for a stock lua5.4); main.c, cli*.c and repl.c make the executable.
-BIND_SRC  := $(sort $(wildcard lua/lamina.c lua/l_*.c))
+# Sources by folder: lua/*.c is the binding (also built as the C module
+# lamina.so for a stock lua5.4); lua/cli/*.c is the executable on top of it.
+BIND_SRC  := $(sort $(wildcard lua/*.c))
 BIND_OBJ  := $(BIND_SRC:%.c=$(BUILD)/%.o)
-CLI_SRC   := $(filter-out $(BIND_SRC),$(sort $(wildcard lua/*.c)))
+CLI_SRC   := $(sort $(wildcard lua/cli/*.c))
 CLI_OBJ   := $(CLI_SRC:%.c=$(BUILD)/%.o) $(BIND_OBJ)
 LUAMOD    := $(BUILD)/lamina.so
 UNIT_SRC  := $(sort $(wildcard tests/unit/test_*.c))
@@ -64,7 +64,7 @@ all: $(LAMINA) $(LIB) $(PLUGIN_SO) $(if $(BIND_SRC),$(LUAMOD))
 
 $(BUILD)/lua/%.o: lua/%.c
 	@mkdir -p $(dir $@)
-	$(CC) $(CPPFLAGS) $(LUA_CFLAGS) $(CFLAGS) -MMD -MP -c $< -o $@
+	$(CC) $(CPPFLAGS) -Ilua $(LUA_CFLAGS) $(CFLAGS) -MMD -MP -c $< -o $@
 
 $(LUAMOD): $(BIND_OBJ) $(LIB)
 	$(CC) $(LDFLAGS) -shared -o $@ $(BIND_OBJ) $(LIB) $(filter-out -llua5.4,$(LDLIBS))
