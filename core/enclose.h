@@ -29,6 +29,17 @@
 #define LAM_ENCLOSE_H
 
 #include "model.h"
+#include "rays.h"
+
+/* Transitional: the names enclose.c used before rays.h existed. enclose.c
+ * should call lam_rays_new / lam_rays_min_inset / lam_rays_winding /
+ * lam_rays_free and lam_rays_vote (its sample vote), include rays.h
+ * instead of validate.h, and then these lines go. */
+typedef lam_rays lam_validator;
+#define lam_validator_new lam_rays_new
+#define lam_validator_free lam_rays_free
+#define lam_validator_min_inset lam_rays_min_inset
+#define lam_validator_winding lam_rays_winding
 
 /* Set md->shells[s].enclosing for every shell. md's triangles must be
  * oriented outward per shell, and tri_shell, shell_first/shell_tris and

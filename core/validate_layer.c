@@ -355,12 +355,12 @@ static void check_nesting(const lam_layer *L, size_t ci, lam_contour_check *it)
 
 /* Winding at (u, v) in the cut plane, taken on the slab's side. LAM_OK,
  * LAM_ENOMEM, or LAM_EGEOM when it cannot be decided. */
-static int layer_point(lam_validator *v, const lam_frame *f, double cut, int below, const double uv[2], double xyz[3],
+static int layer_point(lam_rays *v, const lam_frame *f, double cut, int below, const double uv[2], double xyz[3],
                        int *w)
 {
     lam_error scratch;
     lam_error_clear(&scratch);
-    return lam_validator_winding_section(v, f, uv[0], uv[1], cut, below, xyz, w, &scratch);
+    return lam_rays_winding_section(v, f, uv[0], uv[1], cut, below, xyz, w, &scratch);
 }
 
 /* The longest edges of a contour (ties: the first), at most EDGES_TRIED. */
@@ -387,7 +387,7 @@ static size_t longest_edges(const double *pts, size_t n, size_t cand[EDGES_TRIED
 }
 
 typedef struct layer_ctx {
-    lam_validator *v;
+    lam_rays *v;
     const lam_layer *L;
     const lam_frame *f;
     const lam_validate_opts *o;
@@ -417,7 +417,7 @@ static int check_material(layer_ctx *X, size_t ci, lam_contour_check *it)
         double len = clen[q];
         double m[2] = { a[0] + (b[0] - a[0]) / 2, a[1] + (b[1] - a[1]) / 2 };
         double nl[2] = { -(b[1] - a[1]) / len, (b[0] - a[0]) / len };
-        double r = fmin(lam_validator_target_inset(X->v), len / 4);
+        double r = fmin(lam_rays_target_inset(X->v), len / 4);
         double d = fmin(r, clearance(&X->G, c->first + i, m, nl, 2 * r) / 2);
         double side_uv[2][2];
         /* no edge of the layer nearer either point than d / 2 (a vertex
@@ -498,7 +498,7 @@ static int check_area(layer_ctx *X, int below, lam_layer_check *out, lam_error *
         return LAM_OK;
     }
     lam_section_index *sec;
-    int rc = lam_validator_section(X->v, X->f, &sec, err);
+    int rc = lam_rays_section(X->v, X->f, &sec, err);
     if (rc) return rc;
     lam_section_measure sm;
     lam_section_measure_at(sec, L->cut, below, &sm);
@@ -509,7 +509,7 @@ static int check_area(layer_ctx *X, int below, lam_layer_check *out, lam_error *
     }
     double both = per + sm.perimeter;
     out->area_tolerance = 1e-9 * (sum_abs + fabs(sm.area)) + 2 * X->o->quantum_uv * both +
-                          X->o->quantum_h * sm.rate + 1e-12 * lam_validator_scale(X->v) * both;
+                          X->o->quantum_h * sm.rate + 1e-12 * lam_rays_scale(X->v) * both;
     out->area_checked = 1;
     if (X->o->fill_nonzero && sm.solid_shells >= 2) {
         out->area_why = AREA_ONE_SIDED;
@@ -535,7 +535,7 @@ static void layer_ctx_free(layer_ctx *X)
  * would do wrong first. */
 static const unsigned PROBLEM_ORDER[] = { LAM_VP_ANCESTRY, LAM_VP_DIRECTION, LAM_VP_MATERIAL, LAM_VP_NESTING };
 
-int lam_validate_layer(lam_validator *v, const lam_layer *L, const lam_frame *f, const lam_validate_opts *o,
+int lam_validate_layer(lam_rays *v, const lam_layer *L, const lam_frame *f, const lam_validate_opts *o,
                        lam_layer_check *out, lam_error *err)
 {
     memset(out, 0, sizeof *out);
@@ -553,7 +553,7 @@ int lam_validate_layer(lam_validator *v, const lam_layer *L, const lam_frame *f,
     X.o = o;
     int below = L->cut >= L->ceiling && L->ceiling > L->floor;
     X.below = below;
-    X.dmin = fmax(lam_validator_min_inset(v), 10 * o->quantum_uv);
+    X.dmin = fmax(lam_rays_min_inset(v), 10 * o->quantum_uv);
     size_t K = L->ncontours, P = L->npoints;
     if (K) {
         out->items = calloc(K, sizeof *out->items);
