@@ -135,8 +135,4 @@ const char *lam_validate_problem_name(unsigned bit);
 /* Release out->items and zero *out (NULL is fine). */
 void lam_layer_check_free(lam_layer_check *c);
 
-/* Tests only: flip the label of one contour (solid <-> hole) without
- * touching its points, depth or parent. Out of range does nothing. */
-void lam_layer_flip_label_for_test(lam_layer *L, size_t contour);
-
 #endif

@@ -1,5 +1,6 @@
 /* The layer check of validate.h: what a layer's contours say against the
  * model (direction, ancestry, nesting, material by rays, net area). */
+#include "test_hooks.h"
 #include "validate.h"
 
 #include <math.h>

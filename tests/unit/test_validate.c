@@ -14,6 +14,7 @@
 #include "model.h"
 #include "meshes.h"
 #include "slice.h"
+#include "test_hooks.h"
 #include "validate.h"
 
 #include <stdint.h>
