@@ -159,7 +159,7 @@ int lam_loops_tidy(lam_loops *L, double min_area, int cancel_twins, size_t *sliv
     if (!keys || !drop) {
         free(keys);
         free(drop);
-        return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory assembling contours");
+        return lam_error_nomem(err, "assembling contours");
     }
     size_t nk = 0;
     for (size_t l = 0, off = 0; l < nl; off += L->len[l], l++) {
@@ -306,7 +306,7 @@ int lam_contours_assign(lam_layer *layer, const lam_loops *L, lam_error *err)
     layer->contours = calloc(nl, sizeof *layer->contours);
     int rc = LAM_OK;
     if (!li || !start || !keys || !order || !newidx || !stack || !layer->uv || !layer->contours) {
-        rc = lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory assembling contours");
+        rc = lam_error_nomem(err, "assembling contours");
         goto done;
     }
     size_t off = 0;
@@ -346,7 +346,7 @@ int lam_contours_assign(lam_layer *layer, const lam_loops *L, lam_error *err)
     if (!run_first || !run_len) {
         free(run_first);
         free(run_len);
-        rc = lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory assembling contours");
+        rc = lam_error_nomem(err, "assembling contours");
         goto done;
     }
     for (size_t k = 0; k < nl; k++) {

@@ -134,7 +134,7 @@ int lam_drc_run(const lam_model *m, lam_rays *val, const lam_drc_opts *o, lam_dr
     memset(out, 0, sizeof *out);
     size_t nt = m->mesh.ntris;
     finding *f = calloc(nt + 1, sizeof *f);
-    if (!f) return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory checking design rules");
+    if (!f) return lam_error_nomem(err, "checking design rules");
     double wmin = INFINITY;
     for (size_t v = 0; v < m->mesh.nverts; v++) {
         const double *p = m->mesh.xyz + 3 * v;
@@ -201,7 +201,7 @@ int lam_drc_run(const lam_model *m, lam_rays *val, const lam_drc_opts *o, lam_dr
                 memcpy(f[t].pos, bpos, sizeof bpos);
             }
         }
-        if (!rc && regions(m, rule, limit, f, out)) rc = lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory");
+        if (!rc && regions(m, rule, limit, f, out)) rc = lam_error_nomem(err, NULL);
     }
     free(f);
     if (rc) {

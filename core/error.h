@@ -46,6 +46,10 @@ int lam_error_set(lam_error *err, int code, const char *file, long line,
                   long column, const char *fmt, ...)
     __attribute__((format(printf, 6, 7)));
 
+/* LAM_ENOMEM with the message "out of memory" followed by " " and doing
+ * when given ("while slicing"). Returns LAM_ENOMEM. */
+int lam_error_nomem(lam_error *err, const char *doing);
+
 /* Record an error at a byte offset of a binary file. Returns code. */
 int lam_error_at_offset(lam_error *err, int code, const char *file,
                         long long offset, const char *fmt, ...)

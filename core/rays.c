@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "grow.h"
 #include "section.h"
 
 /* ---- fixed ray directions ------------------------------------------------------ */
@@ -83,10 +84,7 @@ typedef struct ray_ctx {
     lam_rays *v;
 } ray_ctx;
 
-static int nomem(lam_error *err)
-{
-    return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory while validating");
-}
+static int nomem(lam_error *err) { return lam_error_nomem(err, "while validating"); }
 
 static const char *rtc_error_name(enum RTCError e)
 {
@@ -126,14 +124,12 @@ static void gather(const struct RTCFilterFunctionNArguments *a)
         if (!a->valid[i]) continue;
         a->valid[i] = 0;
         if (v->nhits == v->cap) {
-            size_t cap = v->cap ? 2 * v->cap : 64;
-            hit *h = realloc(v->hits, cap * sizeof *h);
+            hit *h = lam_grow(v->hits, &v->cap, v->nhits + 1, sizeof *h, 64);
             if (!h) {
                 v->nomem = 1;
                 continue;
             }
             v->hits = h;
-            v->cap = cap;
         }
         double dot = (double)ray[4 * N + i] * hf[0 * N + i] + (double)ray[5 * N + i] * hf[1 * N + i] +
                      (double)ray[6 * N + i] * hf[2 * N + i];

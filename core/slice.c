@@ -9,15 +9,13 @@
 
 #include "contour.h"
 #include "fill.h"
+#include "grow.h"
 #include "prefetch.h"
 
 #define NONE UINT32_MAX
 
 
-static int nomem(lam_error *err)
-{
-    return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory while slicing");
-}
+static int nomem(lam_error *err) { return lam_error_nomem(err, "while slicing"); }
 
 /* ---- frames --------------------------------------------------------------- */
 
@@ -494,7 +492,7 @@ void lam_layer_free(lam_layer *l)
 
 static int grow_u32(uint32_t **p, size_t n, lam_error *err)
 {
-    uint32_t *np = realloc(*p, (n + 1) * sizeof **p);
+    uint32_t *np = lam_realloc_n(*p, n + 1, sizeof **p);
     if (!np) return nomem(err);
     *p = np;
     return LAM_OK;
@@ -503,12 +501,12 @@ static int grow_u32(uint32_t **p, size_t n, lam_error *err)
 static int reserve_active(lam_slicer *s, size_t n, lam_error *err)
 {
     if (n <= s->cap_active) return LAM_OK;
-    size_t cap = s->cap_active ? s->cap_active : 64;
-    while (cap < n) cap *= 2;
+    size_t cap = lam_grow_cap(s->cap_active, n, 64, 2 * sizeof *s->pts);
+    if (!cap) return nomem(err);
     if (grow_u32(&s->active, cap, err) || grow_u32(&s->in_first, cap + 1, err) ||
         grow_u32(&s->indeg, cap, err))
         return LAM_ENOMEM;
-    double *np = realloc(s->pts, 2 * cap * sizeof *np);
+    double *np = lam_realloc_n(s->pts, cap, 2 * sizeof *np);
     if (!np) return nomem(err);
     s->pts = np;
     s->cap_active = cap;
@@ -518,8 +516,8 @@ static int reserve_active(lam_slicer *s, size_t n, lam_error *err)
 static int reserve_segs(lam_slicer *s, size_t n, lam_error *err)
 {
     if (n <= s->cap_seg) return LAM_OK;
-    size_t cap = s->cap_seg ? s->cap_seg : 64;
-    while (cap < n) cap *= 2;
+    size_t cap = lam_grow_cap(s->cap_seg, n, 64, sizeof *s->seg_in);
+    if (!cap) return nomem(err);
     if (grow_u32(&s->seg_in, cap, err) || grow_u32(&s->seg_out, cap, err) || grow_u32(&s->in_seg, cap, err))
         return LAM_ENOMEM;
     unsigned char *nu = realloc(s->used, cap);
@@ -540,11 +538,9 @@ typedef struct chains {
 static int chains_point(chains *c, double u, double v, lam_error *err)
 {
     if (c->npts == c->cap_pts) {
-        size_t cap = c->cap_pts ? 2 * c->cap_pts : 256;
-        double *np = realloc(c->uv, 2 * cap * sizeof *np);
+        double *np = lam_grow(c->uv, &c->cap_pts, c->npts + 1, 2 * sizeof *np, 256);
         if (!np) return nomem(err);
         c->uv = np;
-        c->cap_pts = cap;
     }
     /* consecutive equal points are one point: no zero-length segment */
     size_t start = c->npts - c->len[c->n - 1];
@@ -560,8 +556,8 @@ static int chains_point(chains *c, double u, double v, lam_error *err)
 static int chains_begin(chains *c, lam_error *err)
 {
     if (c->n == c->cap_n) {
-        size_t cap = c->cap_n ? 2 * c->cap_n : 16;
-        size_t *nl = realloc(c->len, cap * sizeof *nl);
+        size_t cap = lam_grow_cap(c->cap_n, c->n + 1, 16, sizeof *c->len);
+        size_t *nl = cap ? lam_realloc_n(c->len, cap, sizeof *nl) : NULL;
         if (!nl) return nomem(err);
         c->len = nl;
         unsigned char *nc = realloc(c->closed, cap);
@@ -844,8 +840,7 @@ static int close_gaps(const chains *c, double gap, lam_layer *L, lam_loops *out,
                 double d = hypot(f[0] - e[0], f[1] - e[1]);
                 if (d > gap) continue;
                 if (npairs == cap_pairs) {
-                    cap_pairs = cap_pairs ? 2 * cap_pairs : 16;
-                    gpair *np = realloc(pairs, cap_pairs * sizeof *np);
+                    gpair *np = lam_grow(pairs, &cap_pairs, npairs + 1, sizeof *np, 16);
                     if (!np) {
                         rc = nomem(err);
                         goto done;

@@ -10,10 +10,7 @@
 
 #include "section.h"
 
-static int nomem(lam_error *err)
-{
-    return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory while validating");
-}
+static int nomem(lam_error *err) { return lam_error_nomem(err, "while validating"); }
 
 /* ---- a grid of the layer's edges ------------------------------------------------ */
 
