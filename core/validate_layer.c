@@ -533,6 +533,70 @@ static void layer_ctx_free(layer_ctx *X)
  * would do wrong first. */
 static const unsigned PROBLEM_ORDER[] = { LAM_VP_ANCESTRY, LAM_VP_DIRECTION, LAM_VP_MATERIAL, LAM_VP_NESTING };
 
+/* The per-layer scratch of X (areas, point owners, nesting marks, the
+ * edge grid) and out's items, and each contour's signed area. 0, or -1
+ * when out of memory (then nothing is left to free in out). */
+static int layer_ctx_init(layer_ctx *X, const lam_layer *L, lam_layer_check *out)
+{
+    size_t K = L->ncontours, P = L->npoints;
+    if (!K) return 0;
+    out->items = calloc(K, sizeof *out->items);
+    X->area = malloc(K * sizeof *X->area);
+    X->N.npoints = P;
+    X->N.loop_of = malloc(P * sizeof *X->N.loop_of);
+    X->N.seen = calloc(P, sizeof *X->N.seen);
+    X->N.odd = calloc(K, 1);
+    X->N.touched = malloc(K * sizeof *X->N.touched);
+    if (!out->items || !X->area || !X->N.loop_of || !X->N.seen || !X->N.odd || !X->N.touched ||
+        egrid_build(&X->G, L)) {
+        lam_layer_check_free(out);
+        return -1;
+    }
+    out->nitems = K;
+    for (size_t ci = 0; ci < K; ci++) {
+        const lam_contour *c = &L->contours[ci];
+        X->area[ci] = c->n >= 3 ? lam_section_loop_area(L->uv + 2 * c->first, c->n) : 0;
+        for (size_t i = 0; i < c->n; i++) X->N.loop_of[c->first + i] = ci;
+    }
+    return 0;
+}
+
+/* Check contour ci into out->items[ci] and count it. 0, or -1 when out of
+ * memory. */
+static int check_contour(layer_ctx *X, size_t ci, lam_layer_check *out)
+{
+    const lam_layer *L = X->L;
+    const lam_contour *c = &L->contours[ci];
+    lam_contour_check *it = &out->items[ci];
+    it->contour = ci;
+    it->area = X->area[ci];
+    it->depth_found = -1;
+    it->parent_found = -1;
+    it->why = WHY_NOPOINT;
+    check_structure(L, ci, X->area[ci], it);
+    int rc = c->n >= 3 ? check_material(X, ci, it) : 0;
+    check_nesting(L, ci, it);
+    if (it->problems) {
+        for (size_t k = 0; k < sizeof PROBLEM_ORDER / sizeof *PROBLEM_ORDER; k++)
+            if (it->problems & PROBLEM_ORDER[k]) {
+                it->why = it->whys[problem_index(PROBLEM_ORDER[k])];
+                break;
+            }
+        it->ok = 0;
+        out->checked++;
+        out->disagreeing++;
+    } else if (it->edges) {
+        it->ok = 1;
+        it->why = WHY_OK;
+        out->checked++;
+        out->confirmed++;
+    } else {
+        it->ok = -1;
+        out->unchecked++;
+    }
+    return rc;
+}
+
 int lam_validate_layer(lam_rays *v, const lam_layer *L, const lam_frame *f, const lam_validate_opts *o,
                        lam_layer_check *out, lam_error *err)
 {
@@ -552,59 +616,12 @@ int lam_validate_layer(lam_rays *v, const lam_layer *L, const lam_frame *f, cons
     int below = L->cut >= L->ceiling && L->ceiling > L->floor;
     X.below = below;
     X.dmin = fmax(lam_rays_min_inset(v), 10 * o->quantum_uv);
-    size_t K = L->ncontours, P = L->npoints;
-    if (K) {
-        out->items = calloc(K, sizeof *out->items);
-        X.area = malloc(K * sizeof *X.area);
-        X.N.npoints = P;
-        X.N.loop_of = malloc(P * sizeof *X.N.loop_of);
-        X.N.seen = calloc(P, sizeof *X.N.seen);
-        X.N.odd = calloc(K, 1);
-        X.N.touched = malloc(K * sizeof *X.N.touched);
-        if (!out->items || !X.area || !X.N.loop_of || !X.N.seen || !X.N.odd || !X.N.touched ||
-            egrid_build(&X.G, L)) {
-            layer_ctx_free(&X);
-            lam_layer_check_free(out);
-            return nomem(err);
-        }
-        out->nitems = K;
-    }
-    for (size_t ci = 0; ci < K; ci++) {
-        const lam_contour *c = &L->contours[ci];
-        X.area[ci] = c->n >= 3 ? lam_section_loop_area(L->uv + 2 * c->first, c->n) : 0;
-        for (size_t i = 0; i < c->n; i++) X.N.loop_of[c->first + i] = ci;
+    if (layer_ctx_init(&X, L, out)) {
+        layer_ctx_free(&X);
+        return nomem(err);
     }
     int rc = LAM_OK;
-    for (size_t ci = 0; ci < K && !rc; ci++) {
-        const lam_contour *c = &L->contours[ci];
-        lam_contour_check *it = &out->items[ci];
-        it->contour = ci;
-        it->area = X.area[ci];
-        it->depth_found = -1;
-        it->parent_found = -1;
-        it->why = WHY_NOPOINT;
-        check_structure(L, ci, X.area[ci], it);
-        if (c->n >= 3) rc = check_material(&X, ci, it);
-        check_nesting(L, ci, it);
-        if (it->problems) {
-            for (size_t k = 0; k < sizeof PROBLEM_ORDER / sizeof *PROBLEM_ORDER; k++)
-                if (it->problems & PROBLEM_ORDER[k]) {
-                    it->why = it->whys[problem_index(PROBLEM_ORDER[k])];
-                    break;
-                }
-            it->ok = 0;
-            out->checked++;
-            out->disagreeing++;
-        } else if (it->edges) {
-            it->ok = 1;
-            it->why = WHY_OK;
-            out->checked++;
-            out->confirmed++;
-        } else {
-            it->ok = -1;
-            out->unchecked++;
-        }
-    }
+    for (size_t ci = 0; ci < L->ncontours && !rc; ci++) rc = check_contour(&X, ci, out);
     if (!rc) rc = check_area(&X, below, out, err);
     else rc = nomem(err);
     layer_ctx_free(&X);
