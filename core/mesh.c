@@ -24,15 +24,20 @@ void lam_mesh_free(lam_mesh *m)
     lam_mesh_init(m);
 }
 
-/* Grow *p (elements of size elem) so it holds at least need elements. */
-static int grow(void **p, size_t *cap, size_t need, size_t elem, lam_error *err)
+static int grow_slow(void **p, size_t *cap, size_t need, size_t elem, lam_error *err)
 {
-    if (need <= *cap) return LAM_OK;
     if (!lam_grow_cap(*cap, need, 16, elem)) return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "mesh too large");
     void *np = lam_grow(*p, cap, need, elem, 16);
     if (!np) return lam_error_nomem(err, NULL);
     *p = np;
     return LAM_OK;
+}
+
+/* Grow *p (elements of size elem) so it holds at least need elements: the
+ * test inline (once per vertex and face), the growth out of line. */
+static inline int grow(void **p, size_t *cap, size_t need, size_t elem, lam_error *err)
+{
+    return need <= *cap ? LAM_OK : grow_slow(p, cap, need, elem, err);
 }
 
 /* Triangles and their face ids grow together so they never disagree. */
