@@ -4,7 +4,8 @@
 #   make test       install missing packages, build, run every test (TAP via prove)
 #   make SAN=1 test the same under AddressSanitizer + UndefinedBehaviorSanitizer
 #   make bench      optimised build and benchmarks against peer tools
-#   make install PREFIX=/usr/local
+#   make install PREFIX=/usr/local [DESTDIR=...]: executable, liblamina.a, lamina.h and
+#                   the headers it names, lamina.pc, profiles, plugins, Lua modules
 
 CC      ?= cc
 PREFIX  ?= /usr/local
@@ -23,7 +24,7 @@ endif
 # Debian packages the build, the tests and `make run` need; `make deps`
 # installs only the missing ones.
 DEPS_PKGS := gcc make perl liblua5.4-dev lua5.4 libyaml-dev libembree-dev libgeos-dev libreadline8 \
-             jq python3 librsvg2-bin tmux
+             jq python3 librsvg2-bin tmux pkg-config
 
 LUA_CFLAGS := -I/usr/include/lua5.4
 LUA_LIBS   := -llua5.4
@@ -36,11 +37,11 @@ LDLIBS   += -lembree3 -lyaml -lgeos_c -ldl -lm
 
 CORE_SRC  := $(sort $(wildcard core/*.c))
 CORE_OBJ  := $(CORE_SRC:%.c=$(BUILD)/%.o)
-# lua/: lamina.c and l_*.c are the binding (also built as the C module
-# lamina.so for a stock lua5.4); main.c, cli*.c and repl.c make the executable.
-BIND_SRC  := $(sort $(wildcard lua/lamina.c lua/l_*.c))
+# Sources by folder: lua/*.c is the binding (also built as the C module
+# lamina.so for a stock lua5.4); lua/cli/*.c is the executable on top of it.
+BIND_SRC  := $(sort $(wildcard lua/*.c))
 BIND_OBJ  := $(BIND_SRC:%.c=$(BUILD)/%.o)
-CLI_SRC   := $(filter-out $(BIND_SRC),$(sort $(wildcard lua/*.c)))
+CLI_SRC   := $(sort $(wildcard lua/cli/*.c))
 CLI_OBJ   := $(CLI_SRC:%.c=$(BUILD)/%.o) $(BIND_OBJ)
 LUAMOD    := $(BUILD)/lamina.so
 UNIT_SRC  := $(sort $(wildcard tests/unit/test_*.c))
@@ -49,6 +50,11 @@ UNIT_BIN  := $(UNIT_SRC:tests/unit/%.c=$(BUILD)/tests/%.t)
 TEST_PLUGIN_SO := $(patsubst tests/plugins/%.c,$(BUILD)/tests/plugins/%.so,$(wildcard tests/plugins/*.c))
 
 LIB     := $(BUILD)/liblamina.a
+# The installed API: core/lamina.h, the headers it names, and the plugin ABI.
+# The other headers of core/ are internal (nest.h, enclose.h, test_hooks.h, ...).
+PUBLIC_H := core/lamina.h $(addprefix core/,$(shell grep -o '^.include "[a-z_]*\.h"' core/lamina.h | cut -d'"' -f2)) \
+            core/lamina_plugin.h
+VERSION  := $(shell sed -n 's/.*LAMINA_VERSION "\(.*\)"/\1/p' core/version.h)
 LAMINA  := $(BUILD)/lamina
 
 # Plugins: plugins/NAME/*.c -> plugins/NAME.so (build-san/plugins/NAME.so
@@ -64,7 +70,7 @@ all: $(LAMINA) $(LIB) $(PLUGIN_SO) $(if $(BIND_SRC),$(LUAMOD))
 
 $(BUILD)/lua/%.o: lua/%.c
 	@mkdir -p $(dir $@)
-	$(CC) $(CPPFLAGS) $(LUA_CFLAGS) $(CFLAGS) -MMD -MP -c $< -o $@
+	$(CC) $(CPPFLAGS) -Ilua $(LUA_CFLAGS) $(CFLAGS) -MMD -MP -c $< -o $@
 
 $(LUAMOD): $(BIND_OBJ) $(LIB)
 	$(CC) $(LDFLAGS) -shared -o $@ $(BIND_OBJ) $(LIB) $(filter-out -llua5.4,$(LDLIBS))
@@ -166,7 +172,10 @@ install: all
 	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/lib $(DESTDIR)$(PREFIX)/include/lamina
 	install -m 755 $(LAMINA) $(DESTDIR)$(PREFIX)/bin/lamina
 	install -m 644 $(LIB) $(DESTDIR)$(PREFIX)/lib/liblamina.a
-	install -m 644 core/*.h $(DESTDIR)$(PREFIX)/include/lamina/
+	install -m 644 $(PUBLIC_H) $(DESTDIR)$(PREFIX)/include/lamina/
+	install -d $(DESTDIR)$(PREFIX)/lib/pkgconfig
+	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|$(VERSION)|' -e 's|@LIBS@|$(strip $(SANFLAGS) $(LDLIBS))|' \
+	  lamina.pc.in > $(DESTDIR)$(PREFIX)/lib/pkgconfig/lamina.pc
 	install -d $(DESTDIR)$(PREFIX)/share/lamina/machines $(DESTDIR)$(PREFIX)/lib/lamina/plugins
 	install -m 644 machines/*.yaml $(DESTDIR)$(PREFIX)/share/lamina/machines/
 	$(if $(PLUGIN_SO),install -m 755 $(PLUGIN_SO) $(DESTDIR)$(PREFIX)/lib/lamina/plugins/)

@@ -159,7 +159,7 @@ int lam_loops_tidy(lam_loops *L, double min_area, int cancel_twins, size_t *sliv
     if (!keys || !drop) {
         free(keys);
         free(drop);
-        return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory assembling contours");
+        return lam_error_nomem(err, "assembling contours");
     }
     size_t nk = 0;
     for (size_t l = 0, off = 0; l < nl; off += L->len[l], l++) {
@@ -286,6 +286,93 @@ static int cmp_order(const void *a, const void *b)
     return p->loop < q->loop ? -1 : p->loop > q->loop;
 }
 
+/* The nesting invariant: a parent is larger than its child
+ * (lam_nest_larger), so following parents always ends, and no contour is
+ * its own ancestor. Checked for every loop, whichever method nested. */
+static int check_parents(const lam_nest_loop *li, size_t nl, lam_error *err)
+{
+    for (size_t l = 0; l < nl; l++) {
+        long p = li[l].parent;
+        if (p < -1 || p >= (long)nl || (p >= 0 && !lam_nest_larger(li, (size_t)p, l)))
+            return lam_error_set(err, LAM_EGEOM, NULL, 0, 0,
+                                 "contour %zu of %zu has contour %ld as its parent, which is not larger "
+                                 "(nesting would loop)", l, nl, p);
+    }
+    return LAM_OK;
+}
+
+/* Depth-first order into order[0..nl): each parent followed by its
+ * children, siblings by their start point (lowest, then leftmost). keys
+ * and stack are the caller's scratch of nl entries. */
+static int tree_order(const lam_loops *L, const lam_nest_loop *li, const size_t *start, size_t nl, order_key *keys,
+                      size_t *stack, size_t *order, lam_error *err)
+{
+    for (size_t l = 0; l < nl; l++) {
+        keys[l].parent = li[l].parent;
+        keys[l].v = L->uv[2 * (li[l].first + start[l]) + 1];
+        keys[l].u = L->uv[2 * (li[l].first + start[l])];
+        keys[l].loop = (uint32_t)l;
+    }
+    qsort(keys, nl, sizeof *keys, cmp_order);
+    /* children of p occupy a contiguous run of keys; find runs by parent */
+    size_t *run_first = calloc(nl + 1, sizeof *run_first), *run_len = calloc(nl + 1, sizeof *run_len);
+    if (!run_first || !run_len) {
+        free(run_first);
+        free(run_len);
+        return lam_error_nomem(err, "assembling contours");
+    }
+    for (size_t k = 0; k < nl; k++) {
+        size_t slot = (size_t)(keys[k].parent + 1); /* 0: roots */
+        if (run_len[slot]++ == 0) run_first[slot] = k;
+    }
+    size_t nout = 0, sp = 0;
+    for (size_t k = run_len[0]; k-- > 0;) stack[sp++] = keys[run_first[0] + k].loop;
+    while (sp) {
+        size_t l = stack[--sp];
+        order[nout++] = l;
+        size_t slot = l + 1;
+        for (size_t k = run_len[slot]; k-- > 0;) stack[sp++] = keys[run_first[slot] + k].loop;
+    }
+    free(run_first);
+    free(run_len);
+    return LAM_OK;
+}
+
+/* Write loop `in` (points src, lowest-leftmost at in_start) as contour c
+ * at dst: from that point, in the direction its kind wants, with its
+ * signed area, perimeter and bounding box. */
+static void write_contour(lam_contour *c, const lam_nest_loop *in, size_t in_start, const double *src, double *dst)
+{
+    size_t n = in->n;
+    /* The signed area decides the direction (SPEC 3.3). The thesis's
+     * turn at the lowest-leftmost vertex agrees on a clean simple loop,
+     * but one vertex sees only its two neighbours: a zigzag or
+     * near-repeated point there turns the wrong way. */
+    int ccw = in->area > 0;
+    int want_ccw = c->kind == LAM_SOLID;
+    for (size_t i = 0; i < n; i++) {
+        /* start at the lowest-leftmost point, walk forward or backward */
+        size_t j = ccw == want_ccw ? (in_start + i) % n : (in_start + n - i) % n;
+        dst[2 * i] = src[2 * j];
+        dst[2 * i + 1] = src[2 * j + 1];
+    }
+    c->area = ccw == want_ccw ? in->area : -in->area;
+    c->perimeter = 0;
+    c->bbox[0] = c->bbox[2] = dst[0];
+    c->bbox[1] = c->bbox[3] = dst[1];
+    for (size_t i = 0; i < n; i++) {
+        size_t j = (i + 1) % n;
+        /* sqrt, not hypot: side lengths are nowhere near overflow, and
+         * hypot's care costs a tenth of a layer's assembly */
+        double du = dst[2 * j] - dst[2 * i], dv = dst[2 * j + 1] - dst[2 * i + 1];
+        c->perimeter += sqrt(du * du + dv * dv);
+        if (dst[2 * i] < c->bbox[0]) c->bbox[0] = dst[2 * i];
+        if (dst[2 * i] > c->bbox[2]) c->bbox[2] = dst[2 * i];
+        if (dst[2 * i + 1] < c->bbox[1]) c->bbox[1] = dst[2 * i + 1];
+        if (dst[2 * i + 1] > c->bbox[3]) c->bbox[3] = dst[2 * i + 1];
+    }
+}
+
 int lam_contours_assign(lam_layer *layer, const lam_loops *L, lam_error *err)
 {
     free(layer->uv);
@@ -306,7 +393,7 @@ int lam_contours_assign(lam_layer *layer, const lam_loops *L, lam_error *err)
     layer->contours = calloc(nl, sizeof *layer->contours);
     int rc = LAM_OK;
     if (!li || !start || !keys || !order || !newidx || !stack || !layer->uv || !layer->contours) {
-        rc = lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory assembling contours");
+        rc = lam_error_nomem(err, "assembling contours");
         goto done;
     }
     size_t off = 0;
@@ -318,94 +405,22 @@ int lam_contours_assign(lam_layer *layer, const lam_loops *L, lam_error *err)
         inner_point(L->uv + 2 * off, L->len[l], start[l], li[l].q);
         off += L->len[l];
     }
-    if ((rc = lam_nest(L->uv, li, nl, err))) goto done;
-    /* The invariant: a parent is larger than its child (lam_nest_larger),
-     * so following parents always ends, and no contour is its own
-     * ancestor. Checked here for every loop, whichever method nested. */
-    for (size_t l = 0; l < nl; l++) {
-        long p = li[l].parent;
-        if (p < -1 || p >= (long)nl || (p >= 0 && !lam_nest_larger(li, (size_t)p, l))) {
-            rc = lam_error_set(err, LAM_EGEOM, NULL, 0, 0,
-                               "contour %zu of %zu has contour %ld as its parent, which is not larger "
-                               "(nesting would loop)", l, nl, p);
-            goto done;
-        }
-    }
-
-    /* Depth-first order: each parent followed by its children, siblings by
-     * their start point (lowest, then leftmost). */
-    for (size_t l = 0; l < nl; l++) {
-        keys[l].parent = li[l].parent;
-        keys[l].v = L->uv[2 * (li[l].first + start[l]) + 1];
-        keys[l].u = L->uv[2 * (li[l].first + start[l])];
-        keys[l].loop = (uint32_t)l;
-    }
-    qsort(keys, nl, sizeof *keys, cmp_order);
-    /* children of p occupy a contiguous run of keys; find runs by parent */
-    size_t *run_first = calloc(nl + 1, sizeof *run_first), *run_len = calloc(nl + 1, sizeof *run_len);
-    if (!run_first || !run_len) {
-        free(run_first);
-        free(run_len);
-        rc = lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory assembling contours");
+    if ((rc = lam_nest(L->uv, li, nl, err)) || (rc = check_parents(li, nl, err)) ||
+        (rc = tree_order(L, li, start, nl, keys, stack, order, err)))
         goto done;
-    }
-    for (size_t k = 0; k < nl; k++) {
-        size_t slot = (size_t)(keys[k].parent + 1); /* 0: roots */
-        if (run_len[slot]++ == 0) run_first[slot] = k;
-    }
-    size_t nout = 0, sp = 0;
-    for (size_t k = run_len[0]; k-- > 0;) stack[sp++] = keys[run_first[0] + k].loop;
-    while (sp) {
-        size_t l = stack[--sp];
-        order[nout++] = l;
-        size_t slot = l + 1;
-        for (size_t k = run_len[slot]; k-- > 0;) stack[sp++] = keys[run_first[slot] + k].loop;
-    }
-    free(run_first);
-    free(run_len);
     for (size_t k = 0; k < nl; k++) newidx[order[k]] = (long)k;
 
     size_t pos = 0;
     for (size_t k = 0; k < nl; k++) {
         const lam_nest_loop *in = &li[order[k]];
-        size_t in_start = start[order[k]];
         lam_contour *c = &layer->contours[k];
-        const double *src = L->uv + 2 * in->first;
-        size_t n = in->n;
         c->first = pos;
-        c->n = n;
+        c->n = in->n;
         c->depth = in->depth;
         c->kind = in->depth % 2 ? LAM_HOLE : LAM_SOLID;
         c->parent = in->parent >= 0 ? newidx[in->parent] : -1;
-        /* The signed area decides the direction (SPEC 3.3). The thesis's
-         * turn at the lowest-leftmost vertex agrees on a clean simple loop,
-         * but one vertex sees only its two neighbours: a zigzag or
-         * near-repeated point there turns the wrong way. */
-        int ccw = in->area > 0;
-        int want_ccw = c->kind == LAM_SOLID;
-        double *dst = layer->uv + 2 * pos;
-        for (size_t i = 0; i < n; i++) {
-            /* start at the lowest-leftmost point, walk forward or backward */
-            size_t j = ccw == want_ccw ? (in_start + i) % n : (in_start + n - i) % n;
-            dst[2 * i] = src[2 * j];
-            dst[2 * i + 1] = src[2 * j + 1];
-        }
-        c->area = ccw == want_ccw ? in->area : -in->area;
-        c->perimeter = 0;
-        c->bbox[0] = c->bbox[2] = dst[0];
-        c->bbox[1] = c->bbox[3] = dst[1];
-        for (size_t i = 0; i < n; i++) {
-            size_t j = (i + 1) % n;
-            /* sqrt, not hypot: side lengths are nowhere near overflow, and
-             * hypot's care costs a tenth of a layer's assembly */
-            double du = dst[2 * j] - dst[2 * i], dv = dst[2 * j + 1] - dst[2 * i + 1];
-            c->perimeter += sqrt(du * du + dv * dv);
-            if (dst[2 * i] < c->bbox[0]) c->bbox[0] = dst[2 * i];
-            if (dst[2 * i] > c->bbox[2]) c->bbox[2] = dst[2 * i];
-            if (dst[2 * i + 1] < c->bbox[1]) c->bbox[1] = dst[2 * i + 1];
-            if (dst[2 * i + 1] > c->bbox[3]) c->bbox[3] = dst[2 * i + 1];
-        }
-        pos += n;
+        write_contour(c, in, start[order[k]], L->uv + 2 * in->first, layer->uv + 2 * pos);
+        pos += in->n;
     }
     layer->npoints = pos;
     layer->ncontours = nl;

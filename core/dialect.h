@@ -38,7 +38,7 @@
  *   exact); text as is. %d/%i on a non-integer field rounds half away from
  *   zero. Exactly %.Nf (or %f) renders with lam_fmt_fixed.
  * - No negative zeros: under f/F a value that would print as "-0.000" prints
- *   as "0.000" (as core/sls.c does for the thesis dialect); -0.0 is positive
+ *   as "0.000", as the thesis's SLS programs have it; -0.0 is positive
  *   under every conversion.
  * - Relative moves: the stage position after a written move is the previous
  *   position plus the dx dy dz as written (read back from the text), so

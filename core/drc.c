@@ -106,7 +106,7 @@ static int regions(const lam_model *m, lam_rule rule, double limit, const findin
  * behind it, void in front? Coincident faces of two shells (the thesis's
  * through hole capped on the cube's own top face) bound nothing: both sides
  * are void. Undecidable points count as real, so nothing is hidden. */
-static int real_surface(lam_validator *v, const double p[3], const double n[3], double tol, lam_error *err)
+static int real_surface(lam_rays *v, const double p[3], const double n[3], double tol, lam_error *err)
 {
     double eps = 50 * tol, in[3], out[3];
     for (int k = 0; k < 3; k++) {
@@ -116,8 +116,8 @@ static int real_surface(lam_validator *v, const double p[3], const double n[3], 
     int wi = 1, wo = 0;
     lam_error scratch;
     (void)err;
-    if (lam_validator_winding(v, in, &wi, &scratch) != LAM_OK) return 1;
-    if (lam_validator_winding(v, out, &wo, &scratch) != LAM_OK) return 1;
+    if (lam_rays_winding(v, in, &wi, &scratch) != LAM_OK) return 1;
+    if (lam_rays_winding(v, out, &wo, &scratch) != LAM_OK) return 1;
     return wi != 0 && wo == 0;
 }
 
@@ -129,19 +129,19 @@ static int cmp_violation(const void *a, const void *b)
     return p->tri < q->tri ? -1 : p->tri > q->tri;
 }
 
-int lam_drc_run(const lam_model *m, lam_validator *val, const lam_drc_opts *o, lam_drc_result *out, lam_error *err)
+int lam_drc_run(const lam_model *m, lam_rays *val, const lam_drc_opts *o, lam_drc_result *out, lam_error *err)
 {
     memset(out, 0, sizeof *out);
     size_t nt = m->mesh.ntris;
     finding *f = calloc(nt + 1, sizeof *f);
-    if (!f) return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory checking design rules");
+    if (!f) return lam_error_nomem(err, "checking design rules");
     double wmin = INFINITY;
     for (size_t v = 0; v < m->mesh.nverts; v++) {
         const double *p = m->mesh.xyz + 3 * v;
         double w = p[0] * o->up[0] + p[1] * o->up[1] + p[2] * o->up[2];
         if (w < wmin) wmin = w;
     }
-    double tol = lam_validator_tolerance(val);
+    double tol = lam_rays_tolerance(val);
     int rc = LAM_OK;
     for (int pass = 0; pass < 2 && !rc; pass++) {
         lam_rule rule = pass == 0 ? LAM_RULE_WALL : LAM_RULE_OVERHANG;
@@ -188,7 +188,7 @@ int lam_drc_run(const lam_model *m, lam_validator *val, const lam_drc_opts *o, l
                 }
                 double in[3] = { -n[0], -n[1], -n[2] }, dist = INFINITY;
                 uint32_t hit;
-                rc = lam_validator_ray(val, p, in, 4 * tol, &dist, &hit, err);
+                rc = lam_rays_cast(val, p, in, 4 * tol, &dist, &hit, err);
                 out->samples++;
                 if (!rc && dist < best) {
                     best = dist;
@@ -201,7 +201,7 @@ int lam_drc_run(const lam_model *m, lam_validator *val, const lam_drc_opts *o, l
                 memcpy(f[t].pos, bpos, sizeof bpos);
             }
         }
-        if (!rc && regions(m, rule, limit, f, out)) rc = lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory");
+        if (!rc && regions(m, rule, limit, f, out)) rc = lam_error_nomem(err, NULL);
     }
     free(f);
     if (rc) {

@@ -48,7 +48,7 @@ const char *lam_rule_name(lam_rule r);
 
 /* Check model m (with a validator built on it) against o. out is
  * overwritten; free with lam_drc_result_free. Errors: LAM_ENOMEM. */
-int lam_drc_run(const lam_model *m, lam_validator *v, const lam_drc_opts *o, lam_drc_result *out, lam_error *err);
+int lam_drc_run(const lam_model *m, lam_rays *v, const lam_drc_opts *o, lam_drc_result *out, lam_error *err);
 void lam_drc_result_free(lam_drc_result *r);
 
 #endif

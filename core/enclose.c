@@ -6,7 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "validate.h"
+#include "rays.h"
 
 /* Samples per inner shell. */
 #define SAMPLES 9
@@ -237,13 +237,13 @@ static int shell_encloses(const lam_model *md, size_t outer, size_t inner)
 static void by_rays(lam_model *md, unsigned char *cand)
 {
     const lam_mesh *m = &md->mesh;
-    lam_validator *v = NULL;
+    lam_rays *v = NULL;
     lam_error verr;
     lam_error_clear(&verr);
-    if (lam_validator_new(md, &v, &verr)) return;
-    /* the offset: the validator's own inset for its test points, well clear
+    if (lam_rays_new(md, &v, &verr)) return;
+    /* the offset: the rays' own inset for its test points, well clear
      * of its float32 tolerance and tiny against the model */
-    double delta = lam_validator_min_inset(v);
+    double delta = lam_rays_min_inset(v);
     for (size_t s = 0; s < md->nshells; s++) {
         if (!cand[s]) continue;
         uint32_t tri[SAMPLES];
@@ -259,25 +259,18 @@ static void by_rays(lam_model *md, unsigned char *cand)
             for (int j = 0; j < 3; j++) pt[j] = (a[j] + b[j] + c[j]) / 3 + delta * nrm[j] / len;
             int wind;
             lam_error_clear(&verr);
-            if (lam_validator_winding(v, pt, &wind, &verr) == LAM_OK) w[nw++] = wind;
+            if (lam_rays_winding(v, pt, &wind, &verr) == LAM_OK) w[nw++] = wind;
         }
         /* the most frequent answer, with a strict majority of the decisive
          * samples (a sample on another shell's surface says nothing) */
-        int best = -1, best_count = 0;
-        for (int i = 0; i < nw; i++) {
-            int count = 0;
-            for (int j = 0; j < nw; j++) count += w[j] == w[i];
-            if (count > best_count) {
-                best_count = count;
-                best = w[i];
-            }
-        }
-        if (best >= 0 && 2 * best_count > nw) {
+        size_t best_count = 0;
+        int best = nw ? lam_rays_vote(w, (size_t)nw, &best_count) : -1;
+        if (best >= 0 && 2 * best_count > (size_t)nw) {
             md->shells[s].enclosing = best;
             cand[s] = 0;
         }
     }
-    lam_validator_free(v);
+    lam_rays_free(v);
 }
 
 int lam_count_enclosing(lam_model *md, lam_error *err)

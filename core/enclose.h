@@ -32,6 +32,7 @@
 #define LAM_ENCLOSE_H
 
 #include "model.h"
+#include "rays.h"
 
 /* Set md->shells[s].enclosing for every shell. md's triangles must be
  * oriented outward per shell, and tri_shell, shell_first/shell_tris and

@@ -38,6 +38,12 @@ int lam_error_set(lam_error *err, int code, const char *file, long line,
     return code;
 }
 
+int lam_error_nomem(lam_error *err, const char *doing)
+{
+    if (doing) return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory %s", doing);
+    return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory");
+}
+
 int lam_error_at_offset(lam_error *err, int code, const char *file,
                         long long offset, const char *fmt, ...)
 {

@@ -3,7 +3,14 @@
  * A function that can fail returns an int status (LAM_OK == 0, else one of
  * the LAM_E* codes) and fills the caller's lam_error with a message and,
  * where there is one, a position in the user's file. core/ never prints and
- * never exits: the caller decides what to do with the error. */
+ * never exits: the caller decides what to do with the error.
+ *
+ * The err rule, for every function of lamina's API that takes one: err is
+ * the last parameter, and it may be NULL, meaning the caller wants the
+ * status code only (the message is dropped). Errors are written through
+ * lam_error_set / lam_error_at_offset / lam_error_clear, which accept
+ * NULL; code that reads a message back (to wrap it) tests err first or
+ * works on a local lam_error. Header comments do not repeat the rule. */
 #ifndef LAM_ERROR_H
 #define LAM_ERROR_H
 
@@ -34,11 +41,14 @@ typedef struct lam_error {
 void lam_error_clear(lam_error *err);
 
 /* Record an error at file:line:column (line/column 0 when unknown, file NULL
- * when none). Returns code so callers can write `return lam_error_set(...)`.
- * err may be NULL (the error is then dropped). */
+ * when none). Returns code so callers can write `return lam_error_set(...)`. */
 int lam_error_set(lam_error *err, int code, const char *file, long line,
                   long column, const char *fmt, ...)
     __attribute__((format(printf, 6, 7)));
+
+/* LAM_ENOMEM with the message "out of memory" followed by " " and doing
+ * when given ("while slicing"). Returns LAM_ENOMEM. */
+int lam_error_nomem(lam_error *err, const char *doing);
 
 /* Record an error at a byte offset of a binary file. Returns code. */
 int lam_error_at_offset(lam_error *err, int code, const char *file,

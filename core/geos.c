@@ -4,6 +4,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "grow.h"
+
 static void on_error(const char *message, void *userdata)
 {
     lam_geos *g = userdata;
@@ -34,19 +36,14 @@ static int add_ring(lam_geos *gc, const GEOSGeometry *ring, lam_loops_builder *b
     n--;
     lam_loops *L = &b->loops;
     if (L->npoints + n > b->cap_points) {
-        size_t cap = b->cap_points ? b->cap_points : 64;
-        while (cap < L->npoints + n) cap *= 2;
-        double *nu = realloc(L->uv, 2 * cap * sizeof *nu);
+        double *nu = lam_grow(L->uv, &b->cap_points, L->npoints + n, 2 * sizeof *nu, 64);
         if (!nu) return LAM_ENOMEM;
         L->uv = nu;
-        b->cap_points = cap;
     }
     if (L->nloops + 1 > b->cap_loops) {
-        size_t cap = b->cap_loops ? 2 * b->cap_loops : 8;
-        size_t *nl = realloc(L->len, cap * sizeof *nl);
+        size_t *nl = lam_grow(L->len, &b->cap_loops, L->nloops + 1, sizeof *nl, 8);
         if (!nl) return LAM_ENOMEM;
         L->len = nl;
-        b->cap_loops = cap;
     }
     double *dst = L->uv + 2 * L->npoints;
     for (unsigned i = 0; i < n; i++) GEOSCoordSeq_getXY_r(gc->h, cs, i, &dst[2 * i], &dst[2 * i + 1]);

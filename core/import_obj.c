@@ -295,6 +295,8 @@ static int obj_name(obj_lex *lx, obj_state *st)
 int lam_import_obj_buf(const char *path, const char *data, size_t len,
                        lam_mesh *mesh, lam_error *err)
 {
+    lam_error own; /* err may be NULL (error.h); messages are wrapped below */
+    if (!err) err = &own;
     static const unsigned char empty[1];
     const unsigned char *d = data ? (const unsigned char *)data : empty;
     if (!data) len = 0;

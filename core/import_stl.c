@@ -359,6 +359,8 @@ static int stl_ascii(const char *path, const unsigned char *data, size_t len,
 int lam_import_stl_buf(const char *path, const unsigned char *data, size_t len,
                        lam_mesh *mesh, int *binary, lam_error *err)
 {
+    lam_error own; /* err may be NULL (error.h); messages are wrapped below */
+    if (!err) err = &own;
     if (binary) *binary = 0;
     if (!data) len = 0;
     uint32_t count = len >= 84 ? rd_u32(data + 80) : 0;

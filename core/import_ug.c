@@ -1316,6 +1316,8 @@ static int import_text(const char *path, char *buf, size_t len, lam_mesh *mesh, 
 
 int lam_import_ug(const char *path, lam_mesh *mesh, lam_error *err)
 {
+    lam_error own; /* err may be NULL (error.h); messages are wrapped below */
+    if (!err) err = &own;
     lam_error_clear(err);
     if (!path || !mesh) return lam_error_set(err, LAM_EUSAGE, NULL, 0, 0, "lam_import_ug: no path or mesh");
     char *data;
@@ -1328,6 +1330,8 @@ int lam_import_ug(const char *path, lam_mesh *mesh, lam_error *err)
 int lam_import_ug_buf(const char *path, const char *data, size_t len,
                       lam_mesh *mesh, lam_error *err)
 {
+    lam_error own; /* err may be NULL (error.h); messages are wrapped below */
+    if (!err) err = &own;
     lam_error_clear(err);
     if (!mesh || (!data && len))
         return lam_error_set(err, LAM_EUSAGE, path, 0, 0, "lam_import_ug_buf: no data or mesh");

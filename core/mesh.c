@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "grow.h"
 #include "prefetch.h"
 
 void lam_mesh_init(lam_mesh *m)
@@ -24,21 +25,20 @@ void lam_mesh_free(lam_mesh *m)
     lam_mesh_init(m);
 }
 
-/* Grow *p (elements of size elem) so it holds at least need elements. */
-static int grow(void **p, size_t *cap, size_t need, size_t elem, lam_error *err)
+static int grow_slow(void **p, size_t *cap, size_t need, size_t elem, lam_error *err)
 {
-    if (need <= *cap) return LAM_OK;
-    size_t ncap = *cap ? *cap : 16;
-    while (ncap < need) {
-        if (ncap > SIZE_MAX / 2 / elem)
-            return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "mesh too large");
-        ncap *= 2;
-    }
-    void *np = realloc(*p, ncap * elem);
-    if (!np) return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory");
+    if (!lam_grow_cap(*cap, need, 16, elem)) return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "mesh too large");
+    void *np = lam_grow(*p, cap, need, elem, 16);
+    if (!np) return lam_error_nomem(err, NULL);
     *p = np;
-    *cap = ncap;
     return LAM_OK;
+}
+
+/* Grow *p (elements of size elem) so it holds at least need elements: the
+ * test inline (once per vertex and face), the growth out of line. */
+static inline int grow(void **p, size_t *cap, size_t need, size_t elem, lam_error *err)
+{
+    return need <= *cap ? LAM_OK : grow_slow(p, cap, need, elem, err);
 }
 
 /* Triangles and their face ids grow together so they never disagree. */
@@ -49,8 +49,8 @@ static int grow_tris(lam_mesh *m, size_t need, lam_error *err)
     int rc = grow((void **)&m->tris, &cap, need, 3 * sizeof *m->tris, err);
     if (rc) return rc;
     if (m->nfaces || m->tri_face) {
-        void *np = realloc(m->tri_face, cap * sizeof *m->tri_face);
-        if (!np) return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory");
+        void *np = lam_realloc_n(m->tri_face, cap, sizeof *m->tri_face);
+        if (!np) return lam_error_nomem(err, NULL);
         m->tri_face = np;
     }
     m->cap_tris = cap;
@@ -124,7 +124,7 @@ int lam_mesh_add_face(lam_mesh *m, const char *name, const char *file,
     if (rc) return rc;
     if (!m->tri_face && m->cap_tris) {
         m->tri_face = malloc(m->cap_tris * sizeof *m->tri_face);
-        if (!m->tri_face) return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory");
+        if (!m->tri_face) return lam_error_nomem(err, NULL);
     }
     lam_face_src *f = &m->faces[m->nfaces];
     /* The file name repeats for every face: share it with the previous face. */
@@ -217,7 +217,7 @@ int lam_mesh_weld(lam_mesh *m, lam_error *err)
     if (!remap || !table) {
         free(remap);
         free(table);
-        return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory welding vertices");
+        return lam_error_nomem(err, "welding vertices");
     }
     const uint32_t unused = UINT32_MAX;
     for (size_t v = 0; v < n; v++) remap[v] = unused;
@@ -287,7 +287,7 @@ int lam_welder_reserve(lam_welder *w, const lam_mesh *m, size_t n, lam_error *er
     while (cap < 2 * n) cap *= 2;
     if (cap == w->cap) return LAM_OK;
     uint64_t *nt = malloc(cap * sizeof *nt);
-    if (!nt) return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory welding vertices");
+    if (!nt) return lam_error_nomem(err, "welding vertices");
     memset(nt, 0xff, cap * sizeof *nt);
     uint64_t *old = w->table;
     size_t oldcap = w->cap;
@@ -319,7 +319,7 @@ int lam_mesh_add_vertex_welded(lam_mesh *m, lam_welder *w, double x, double y, d
     }
     if (!w->recent) {
         w->recent = malloc(LAM_WELDER_RECENT * sizeof *w->recent);
-        if (!w->recent) return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory welding vertices");
+        if (!w->recent) return lam_error_nomem(err, "welding vertices");
         for (size_t k = 0; k < LAM_WELDER_RECENT; k++) w->recent[k].v = UINT32_MAX;
     }
     double p[3] = { x + 0.0, y + 0.0, z + 0.0 };

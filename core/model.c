@@ -11,10 +11,7 @@
 #define NONE UINT32_MAX
 #define PI 3.14159265358979323846
 
-static int oom(lam_error *err)
-{
-    return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory building the model");
-}
+static int oom(lam_error *err) { return lam_error_nomem(err, "building the model"); }
 
 /* Drop triangles that repeat a vertex: they have no area and no edges of
  * their own, and would only confuse adjacency. Returns how many went. */

@@ -7,10 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-static int oom(lam_error *err)
-{
-    return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory classifying contours");
-}
+static int oom(lam_error *err) { return lam_error_nomem(err, "classifying contours"); }
 
 /* ---- each against each other ------------------------------------------- */
 

@@ -175,6 +175,6 @@ int lam_plan_run(lam_slicer *s, const lam_model *m, const lam_plan_opts *o, cons
         lam_layer_free(L);
     }
     if (!rc && sink->end) rc = sink->end(sink->ctx);
-    if (rc && err->code == LAM_OK) lam_error_set(err, rc, NULL, 0, 0, "planning failed");
+    if (rc && err && err->code == LAM_OK) lam_error_set(err, rc, NULL, 0, 0, "planning failed");
     return rc;
 }

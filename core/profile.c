@@ -883,6 +883,8 @@ void lam_profile_free(lam_profile *p)
 
 int lam_profile_load(const char *path, lam_profile **out, lam_error *err)
 {
+    lam_error own; /* err may be NULL (error.h); messages are wrapped below */
+    if (!err) err = &own;
     *out = NULL;
     lam_error scratch;
     if (!err) err = &scratch;
@@ -903,6 +905,8 @@ int lam_profile_load(const char *path, lam_profile **out, lam_error *err)
 
 int lam_profile_load_buf(const char *name, const char *text, size_t len, lam_profile **out, lam_error *err)
 {
+    lam_error own; /* err may be NULL (error.h); messages are wrapped below */
+    if (!err) err = &own;
     *out = NULL;
     lam_error scratch;
     if (!err) err = &scratch;
@@ -933,6 +937,8 @@ int lam_profile_load_buf(const char *name, const char *text, size_t len, lam_pro
 
 int lam_profile_find(const char *name_or_path, lam_profile **out, lam_error *err)
 {
+    lam_error own; /* err may be NULL (error.h); messages are wrapped below */
+    if (!err) err = &own;
     *out = NULL;
     if (is_path(name_or_path)) return lam_profile_load(name_or_path, out, err);
     if (!*name_or_path) return lam_error_set(err, LAM_EINVAL, NULL, 0, 0, "empty machine profile name");

@@ -337,6 +337,8 @@ static const lam_key *find_or_fail(const char *name, lam_error *err)
 
 int lam_profile_set(lam_profile *p, const char *name, const char *text, lam_error *err)
 {
+    lam_error own; /* err may be NULL (error.h); messages are wrapped below */
+    if (!err) err = &own;
     const lam_key *k = find_or_fail(name, err);
     if (!k) return LAM_EINVAL;
     if (k->flags & LAM_KEY_LOADER)

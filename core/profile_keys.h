@@ -4,7 +4,7 @@
  *
  * The table drives everything that knows a key by name: the YAML loader and
  * its messages (profile.c), `lamina machines --show` (lam_profile_dump),
- * `--set KEY=VALUE` and the convenience options (lua/cli_args.c), the Lua
+ * `--set KEY=VALUE` and the convenience options (lua/cli/cli_args.c), the Lua
  * machine fields and machine:override (lua/l_machine.c) and the key
  * reference in machines/README.md (`lamina machines --keys`, checked by a
  * test). Adding a key is one row in profile_keys.c, a field in lam_profile

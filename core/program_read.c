@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "file.h"
+#include "grow.h"
 #include "import.h"
 #include "lexnum.h"
 #include "section.h"
@@ -66,12 +67,9 @@ static int fail_byte(rd *r, int code, size_t at, const char *fmt, ...)
 static int grow(void **arr, size_t *cap, size_t need, size_t elem)
 {
     if (need <= *cap) return 0;
-    size_t c = *cap ? *cap : 64;
-    while (c < need) c *= 2;
-    void *a = realloc(*arr, c * elem);
+    void *a = lam_grow(*arr, cap, need, elem, 64);
     if (!a) return -1;
     *arr = a;
-    *cap = c;
     return 0;
 }
 

@@ -9,15 +9,13 @@
 
 #include "contour.h"
 #include "fill.h"
+#include "grow.h"
 #include "prefetch.h"
 
 #define NONE UINT32_MAX
 
 
-static int nomem(lam_error *err)
-{
-    return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory while slicing");
-}
+static int nomem(lam_error *err) { return lam_error_nomem(err, "while slicing"); }
 
 /* ---- frames --------------------------------------------------------------- */
 
@@ -336,76 +334,50 @@ static int snap_cuts(lam_slicer *s, size_t nv)
     return 0;
 }
 
-int lam_slicer_new(const lam_model *m, const lam_slice_opts *opts, lam_slicer **out, lam_error *err)
+/* The vertices' (u, v, w) in the frame: straight from the mesh when the
+ * frame's axes are coordinate axes, else computed once. 0, or -1 when out
+ * of memory. */
+static int frame_coords(lam_slicer *s, const lam_model *m, const lam_frame *f)
 {
-    *out = NULL;
-    lam_slicer *s = calloc(1, sizeof *s);
-    if (!s) return nomem(err);
-    s->m = m;
-    s->o = *opts;
-    s->o.planes = NULL; /* the copy must not point at the caller's arrays */
-    s->o.widths = NULL;
-    double size = model_size(m);
-    if (!(s->o.gap >= 0)) s->o.gap = lam_default_gap(size, s->o.gap_limit);
-    s->min_area = (LAM_SLIVER_REL * size) * (LAM_SLIVER_REL * size);
-    int rc = LAM_OK;
-    size_t nv = m->mesh.nverts, ne = m->edges.n;
-    int ku = unit_axis(opts->frame.u), kv = unit_axis(opts->frame.v), kw = unit_axis(opts->frame.w);
+    size_t nv = m->mesh.nverts;
+    int ku = unit_axis(f->u), kv = unit_axis(f->v), kw = unit_axis(f->w);
     if (ku >= 0 && kv >= 0 && kw >= 0) {
         s->pu = m->mesh.xyz + ku;
         s->pv = m->mesh.xyz + kv;
         s->pw = m->mesh.xyz + kw;
-    } else if ((s->wuv = malloc(3 * nv * sizeof *s->wuv + 1))) {
-        s->pw = s->wuv;
-        s->pu = s->wuv + 1;
-        s->pv = s->wuv + 2;
-        for (size_t v = 0; v < nv; v++) {
-            const double *p = m->mesh.xyz + 3 * v;
-            s->wuv[3 * v] = dot_exact(p, opts->frame.w);
-            s->wuv[3 * v + 1] = dot_exact(p, opts->frame.u);
-            s->wuv[3 * v + 2] = dot_exact(p, opts->frame.v);
-        }
+        return 0;
     }
-    if (!s->pw) {
-        rc = nomem(err);
-        goto fail;
-    }
-    double wmin = INFINITY, wmax = -INFINITY;
+    if (!(s->wuv = malloc(3 * nv * sizeof *s->wuv + 1))) return -1;
+    s->pw = s->wuv;
+    s->pu = s->wuv + 1;
+    s->pv = s->wuv + 2;
     for (size_t v = 0; v < nv; v++) {
-        double h = W(s, v);
-        if (h < wmin) wmin = h;
-        if (h > wmax) wmax = h;
+        const double *p = m->mesh.xyz + 3 * v;
+        s->wuv[3 * v] = dot_exact(p, f->w);
+        s->wuv[3 * v + 1] = dot_exact(p, f->u);
+        s->wuv[3 * v + 2] = dot_exact(p, f->v);
     }
-    s->o.planes = opts->planes;
-    s->o.widths = opts->widths;
-    rc = make_planes(s, wmin, wmax, err);
-    s->o.planes = NULL;
-    s->o.widths = NULL;
-    if (rc) goto fail;
-    /* The schedule (Minetto et al.): each edge goes into the bucket of the
-     * first layer whose cut it crosses, found by binary search over the cut
-     * heights, so the run costs O(E log S) instead of a sort of all edges.
-     * Edges that cross no cut (horizontal ones, and short ones between two
-     * cuts) are left out entirely. */
-    size_t S = s->nlayers;
+    return 0;
+}
+
+/* The schedule (Minetto et al.): each edge goes into the bucket of the
+ * first layer whose cut it crosses, found by binary search over the cut
+ * heights, so the run costs O(E log S) instead of a sort of all edges.
+ * Edges that cross no cut (horizontal ones, and short ones between two
+ * cuts) are left out entirely. */
+static int schedule(lam_slicer *s, lam_cut cut, lam_error *err)
+{
+    size_t S = s->nlayers, nv = s->m->mesh.nverts, ne = s->m->edges.n;
     s->cuts = malloc(S * sizeof *s->cuts + 1);
     s->layer_first = calloc(S + 2, sizeof *s->layer_first);
     uint32_t *bucket = malloc(ne * sizeof *bucket + 1);
-    if (!s->cuts || !s->layer_first || !bucket) {
-        free(bucket);
-        rc = nomem(err);
-        goto fail;
-    }
-    s->up = opts->cut != LAM_CUT_CEILING;
+    if (!s->cuts || !s->layer_first || !bucket) goto oom;
+    s->up = cut != LAM_CUT_CEILING;
     for (size_t i = 0; i < S; i++) {
         double lo = s->planes[i], hi = s->planes[i + 1];
-        s->cuts[i] = opts->cut == LAM_CUT_FLOOR ? lo : opts->cut == LAM_CUT_CEILING ? hi : lo + (hi - lo) / 2;
+        s->cuts[i] = cut == LAM_CUT_FLOOR ? lo : cut == LAM_CUT_CEILING ? hi : lo + (hi - lo) / 2;
     }
-    if (snap_cuts(s, nv)) {
-        free(bucket);
-        rc = nomem(err);
-        goto fail;
-    }
+    if (snap_cuts(s, nv)) goto oom;
     double c0 = s->cuts[0], step = cut_step(s);
     for (size_t e = 0; e < ne; e++) {
         double lo = edge_lo(s, (uint32_t)e), hi = edge_hi(s, (uint32_t)e);
@@ -420,16 +392,47 @@ int lam_slicer_new(const lam_model *m, const lam_slice_opts *opts, lam_slicer **
     for (size_t i = 0; i < S; i++) s->layer_first[i + 1] += s->layer_first[i];
     s->norder = s->layer_first[S];
     s->order = malloc(s->norder * sizeof *s->order + 1);
-    if (!s->order) {
-        free(bucket);
-        rc = nomem(err);
-        goto fail;
-    }
+    if (!s->order) goto oom;
     for (size_t e = 0; e < ne; e++)
         if (bucket[e] != NONE) s->order[s->layer_first[bucket[e]]++] = (uint32_t)e;
     for (size_t i = S; i > 0; i--) s->layer_first[i] = s->layer_first[i - 1];
     s->layer_first[0] = 0;
     free(bucket);
+    return LAM_OK;
+oom:
+    free(bucket);
+    return nomem(err);
+}
+
+int lam_slicer_new(const lam_model *m, const lam_slice_opts *opts, lam_slicer **out, lam_error *err)
+{
+    *out = NULL;
+    lam_slicer *s = calloc(1, sizeof *s);
+    if (!s) return nomem(err);
+    s->m = m;
+    s->o = *opts;
+    s->o.planes = NULL; /* the copy must not point at the caller's arrays */
+    s->o.widths = NULL;
+    double size = model_size(m);
+    if (!(s->o.gap >= 0)) s->o.gap = lam_default_gap(size, s->o.gap_limit);
+    s->min_area = (LAM_SLIVER_REL * size) * (LAM_SLIVER_REL * size);
+    int rc = LAM_OK;
+    if (frame_coords(s, m, &opts->frame)) {
+        rc = nomem(err);
+        goto fail;
+    }
+    double wmin = INFINITY, wmax = -INFINITY;
+    for (size_t v = 0; v < m->mesh.nverts; v++) {
+        double h = W(s, v);
+        if (h < wmin) wmin = h;
+        if (h > wmax) wmax = h;
+    }
+    s->o.planes = opts->planes;
+    s->o.widths = opts->widths;
+    rc = make_planes(s, wmin, wmax, err);
+    s->o.planes = NULL;
+    s->o.widths = NULL;
+    if (rc || (rc = schedule(s, opts->cut, err))) goto fail;
     *out = s;
     return LAM_OK;
 fail:
@@ -494,7 +497,7 @@ void lam_layer_free(lam_layer *l)
 
 static int grow_u32(uint32_t **p, size_t n, lam_error *err)
 {
-    uint32_t *np = realloc(*p, (n + 1) * sizeof **p);
+    uint32_t *np = lam_realloc_n(*p, n + 1, sizeof **p);
     if (!np) return nomem(err);
     *p = np;
     return LAM_OK;
@@ -503,12 +506,12 @@ static int grow_u32(uint32_t **p, size_t n, lam_error *err)
 static int reserve_active(lam_slicer *s, size_t n, lam_error *err)
 {
     if (n <= s->cap_active) return LAM_OK;
-    size_t cap = s->cap_active ? s->cap_active : 64;
-    while (cap < n) cap *= 2;
+    size_t cap = lam_grow_cap(s->cap_active, n, 64, 2 * sizeof *s->pts);
+    if (!cap) return nomem(err);
     if (grow_u32(&s->active, cap, err) || grow_u32(&s->in_first, cap + 1, err) ||
         grow_u32(&s->indeg, cap, err))
         return LAM_ENOMEM;
-    double *np = realloc(s->pts, 2 * cap * sizeof *np);
+    double *np = lam_realloc_n(s->pts, cap, 2 * sizeof *np);
     if (!np) return nomem(err);
     s->pts = np;
     s->cap_active = cap;
@@ -518,8 +521,8 @@ static int reserve_active(lam_slicer *s, size_t n, lam_error *err)
 static int reserve_segs(lam_slicer *s, size_t n, lam_error *err)
 {
     if (n <= s->cap_seg) return LAM_OK;
-    size_t cap = s->cap_seg ? s->cap_seg : 64;
-    while (cap < n) cap *= 2;
+    size_t cap = lam_grow_cap(s->cap_seg, n, 64, sizeof *s->seg_in);
+    if (!cap) return nomem(err);
     if (grow_u32(&s->seg_in, cap, err) || grow_u32(&s->seg_out, cap, err) || grow_u32(&s->in_seg, cap, err))
         return LAM_ENOMEM;
     unsigned char *nu = realloc(s->used, cap);
@@ -540,11 +543,9 @@ typedef struct chains {
 static int chains_point(chains *c, double u, double v, lam_error *err)
 {
     if (c->npts == c->cap_pts) {
-        size_t cap = c->cap_pts ? 2 * c->cap_pts : 256;
-        double *np = realloc(c->uv, 2 * cap * sizeof *np);
+        double *np = lam_grow(c->uv, &c->cap_pts, c->npts + 1, 2 * sizeof *np, 256);
         if (!np) return nomem(err);
         c->uv = np;
-        c->cap_pts = cap;
     }
     /* consecutive equal points are one point: no zero-length segment */
     size_t start = c->npts - c->len[c->n - 1];
@@ -560,8 +561,8 @@ static int chains_point(chains *c, double u, double v, lam_error *err)
 static int chains_begin(chains *c, lam_error *err)
 {
     if (c->n == c->cap_n) {
-        size_t cap = c->cap_n ? 2 * c->cap_n : 16;
-        size_t *nl = realloc(c->len, cap * sizeof *nl);
+        size_t cap = lam_grow_cap(c->cap_n, c->n + 1, 16, sizeof *c->len);
+        size_t *nl = cap ? lam_realloc_n(c->len, cap, sizeof *nl) : NULL;
         if (!nl) return nomem(err);
         c->len = nl;
         unsigned char *nc = realloc(c->closed, cap);
@@ -796,89 +797,69 @@ static const double *chain_last(const chains *c, const size_t *off, size_t i)
     return c->uv + 2 * (off[i] + c->len[i] - 1);
 }
 
-/* Turn the layer's chains into closed loops: closed chains as they are,
- * open ones joined end-to-start, nearest pairs first, when the gap is at
- * most `gap`. What stays open is recorded in the layer. */
-static int close_gaps(const chains *c, double gap, lam_layer *L, lam_loops *out, lam_error *err)
+/* The candidate joins: every open chain's end with every open chain's
+ * start (starts sorted by u) at most gap away, into *pairs. */
+static int find_pairs(const chains *c, const size_t *off, const skey *starts, size_t nstarts, double gap,
+                      gpair **pairs, size_t *npairs, lam_error *err)
 {
-    int rc = LAM_OK;
+    size_t cap_pairs = 0;
+    for (size_t i = 0; i < c->n; i++) {
+        if (c->closed[i] || c->len[i] == 0) continue;
+        const double *e = chain_last(c, off, i);
+        /* starts within gap along u, by binary search */
+        size_t lo = 0, hi = nstarts;
+        while (lo < hi) {
+            size_t mid = (lo + hi) / 2;
+            if (starts[mid].u < e[0] - gap) lo = mid + 1;
+            else hi = mid;
+        }
+        for (size_t k = lo; k < nstarts && starts[k].u <= e[0] + gap; k++) {
+            const double *f = chain_first(c, off, starts[k].chain);
+            double d = hypot(f[0] - e[0], f[1] - e[1]);
+            if (d > gap) continue;
+            if (*npairs == cap_pairs) {
+                gpair *np = lam_grow(*pairs, &cap_pairs, *npairs + 1, sizeof *np, 16);
+                if (!np) return nomem(err);
+                *pairs = np;
+            }
+            (*pairs)[*npairs].d = d;
+            (*pairs)[*npairs].from = (uint32_t)i;
+            (*pairs)[*npairs].to = starts[k].chain;
+            (*npairs)++;
+        }
+    }
+    return LAM_OK;
+}
+
+/* Join nearest pairs first, each end and each start at most once. */
+static void join_pairs(gpair *pairs, size_t npairs, uint32_t *succ, uint32_t *pred, lam_layer *L)
+{
+    if (npairs) qsort(pairs, npairs, sizeof *pairs, cmp_gpair);
+    for (size_t p = 0; p < npairs; p++) {
+        uint32_t a = pairs[p].from, b = pairs[p].to;
+        if (succ[a] != NONE || pred[b] != NONE) continue;
+        succ[a] = b;
+        pred[b] = a;
+        if (pairs[p].d > 0) {
+            L->gaps_closed++;
+            if (pairs[p].d > L->max_gap) L->max_gap = pairs[p].d;
+        }
+    }
+}
+
+/* Emit closed chains, then cycles of joined open chains, into out (marked
+ * done); groups that stay open are left for report_open. */
+static void emit_loops(const chains *c, const size_t *off, const uint32_t *succ, unsigned char *done,
+                       lam_loops *out)
+{
     size_t n = c->n;
-    size_t *off = malloc((n + 1) * sizeof *off);
-    uint32_t *succ = malloc((n + 1) * sizeof *succ), *pred = malloc((n + 1) * sizeof *pred);
-    skey *starts = malloc((n + 1) * sizeof *starts);
-    unsigned char *done = calloc(n + 1, 1);
-    gpair *pairs = NULL;
-    size_t npairs = 0, cap_pairs = 0;
-    out->uv = malloc((2 * c->npts + 2) * sizeof *out->uv);
-    out->len = malloc((n + 1) * sizeof *out->len);
-    out->nloops = out->npoints = 0;
-    if (!off || !succ || !pred || !starts || !done || !out->uv || !out->len) {
-        rc = nomem(err);
-        goto done;
-    }
-    size_t nstarts = 0;
-    for (size_t i = 0, o = 0; i < n; i++) {
-        off[i] = o;
-        o += c->len[i];
-        succ[i] = pred[i] = NONE;
-        if (!c->closed[i] && c->len[i] > 0) {
-            starts[nstarts].u = chain_first(c, off, i)[0];
-            starts[nstarts].chain = (uint32_t)i;
-            nstarts++;
-        }
-    }
-    if (gap > 0 && nstarts) {
-        qsort(starts, nstarts, sizeof *starts, cmp_skey);
-        for (size_t i = 0; i < n; i++) {
-            if (c->closed[i] || c->len[i] == 0) continue;
-            const double *e = chain_last(c, off, i);
-            /* starts within gap along u, by binary search */
-            size_t lo = 0, hi = nstarts;
-            while (lo < hi) {
-                size_t mid = (lo + hi) / 2;
-                if (starts[mid].u < e[0] - gap) lo = mid + 1;
-                else hi = mid;
-            }
-            for (size_t k = lo; k < nstarts && starts[k].u <= e[0] + gap; k++) {
-                const double *f = chain_first(c, off, starts[k].chain);
-                double d = hypot(f[0] - e[0], f[1] - e[1]);
-                if (d > gap) continue;
-                if (npairs == cap_pairs) {
-                    cap_pairs = cap_pairs ? 2 * cap_pairs : 16;
-                    gpair *np = realloc(pairs, cap_pairs * sizeof *np);
-                    if (!np) {
-                        rc = nomem(err);
-                        goto done;
-                    }
-                    pairs = np;
-                }
-                pairs[npairs].d = d;
-                pairs[npairs].from = (uint32_t)i;
-                pairs[npairs].to = starts[k].chain;
-                npairs++;
-            }
-        }
-        if (npairs) qsort(pairs, npairs, sizeof *pairs, cmp_gpair);
-        for (size_t p = 0; p < npairs; p++) {
-            uint32_t a = pairs[p].from, b = pairs[p].to;
-            if (succ[a] != NONE || pred[b] != NONE) continue;
-            succ[a] = b;
-            pred[b] = a;
-            if (pairs[p].d > 0) {
-                L->gaps_closed++;
-                if (pairs[p].d > L->max_gap) L->max_gap = pairs[p].d;
-            }
-        }
-    }
-    /* emit: closed chains, then cycles of joined open chains; heads of
-     * groups that stayed open are reported */
     for (size_t i = 0; i < n; i++) {
         if (done[i] || c->len[i] == 0) continue;
         if (!c->closed[i]) {
             /* find whether i's group is a cycle: walk forward */
             size_t j = i, steps = 0;
             while (succ[j] != NONE && succ[j] != i && steps++ < n) j = succ[j];
-            if (succ[j] != i) continue; /* open group: handled below from its head */
+            if (succ[j] != i) continue; /* open group: handled by report_open from its head */
         }
         size_t first = out->npoints;
         size_t j = i;
@@ -899,7 +880,13 @@ static int close_gaps(const chains *c, double gap, lam_layer *L, lam_loops *out,
         out->npoints = first + len;
         out->len[out->nloops++] = len; /* a point or a line: lam_loops_tidy drops and counts it */
     }
-    for (size_t i = 0; i < n; i++) {
+}
+
+/* Record each group that stayed open, from its head, in L->open. */
+static int report_open(const chains *c, const size_t *off, const uint32_t *succ, const uint32_t *pred,
+                       unsigned char *done, lam_layer *L, lam_error *err)
+{
+    for (size_t i = 0; i < c->n; i++) {
         if (done[i] || c->closed[i] || pred[i] != NONE || c->len[i] == 0) continue;
         size_t j = i;
         while (succ[j] != NONE) {
@@ -907,16 +894,54 @@ static int close_gaps(const chains *c, double gap, lam_layer *L, lam_loops *out,
             j = succ[j];
         }
         done[j] = 1;
-        lam_open_end *no = realloc(L->open, (L->nopen + 1) * sizeof *no);
-        if (!no) {
-            rc = nomem(err);
-            goto done;
-        }
+        lam_open_end *no = lam_realloc_n(L->open, L->nopen + 1, sizeof *no);
+        if (!no) return nomem(err);
         L->open = no;
         memcpy(L->open[L->nopen].start, chain_first(c, off, i), 2 * sizeof(double));
         memcpy(L->open[L->nopen].end, chain_last(c, off, j), 2 * sizeof(double));
         L->nopen++;
     }
+    return LAM_OK;
+}
+
+/* Turn the layer's chains into closed loops: closed chains as they are,
+ * open ones joined end-to-start, nearest pairs first, when the gap is at
+ * most `gap`. What stays open is recorded in the layer. */
+static int close_gaps(const chains *c, double gap, lam_layer *L, lam_loops *out, lam_error *err)
+{
+    int rc = LAM_OK;
+    size_t n = c->n;
+    size_t *off = malloc((n + 1) * sizeof *off);
+    uint32_t *succ = malloc((n + 1) * sizeof *succ), *pred = malloc((n + 1) * sizeof *pred);
+    skey *starts = malloc((n + 1) * sizeof *starts);
+    unsigned char *done = calloc(n + 1, 1);
+    gpair *pairs = NULL;
+    size_t npairs = 0;
+    out->uv = malloc((2 * c->npts + 2) * sizeof *out->uv);
+    out->len = malloc((n + 1) * sizeof *out->len);
+    out->nloops = out->npoints = 0;
+    if (!off || !succ || !pred || !starts || !done || !out->uv || !out->len) {
+        rc = nomem(err);
+        goto done;
+    }
+    size_t nstarts = 0;
+    for (size_t i = 0, o = 0; i < n; i++) {
+        off[i] = o;
+        o += c->len[i];
+        succ[i] = pred[i] = NONE;
+        if (!c->closed[i] && c->len[i] > 0) {
+            starts[nstarts].u = chain_first(c, off, i)[0];
+            starts[nstarts].chain = (uint32_t)i;
+            nstarts++;
+        }
+    }
+    if (gap > 0 && nstarts) {
+        qsort(starts, nstarts, sizeof *starts, cmp_skey);
+        if ((rc = find_pairs(c, off, starts, nstarts, gap, &pairs, &npairs, err))) goto done;
+        join_pairs(pairs, npairs, succ, pred, L);
+    }
+    emit_loops(c, off, succ, done, out);
+    rc = report_open(c, off, succ, pred, done, L, err);
 done:
     free(off);
     free(succ);

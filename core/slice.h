@@ -5,10 +5,12 @@
  * of the slab), in the layer frame (u, v, w), which is right-handed so
  * "counter-clockwise" means seen from +w.
  *
- * Sweep: edges sorted by their lower end are inserted into an active set as
- * the cut heights rise and dropped lazily once below the plane, so a run
- * costs O(E log E + S + K) for E edges, S layers and K segments out — never
- * a pass over all triangles per layer. Layers come out one at a time
+ * Sweep: each edge that crosses a cut is scheduled into the bucket of the
+ * first layer whose cut it crosses (a binary search over the cut heights),
+ * inserted into an active set when the sweep reaches that layer and
+ * dropped lazily once below the plane, so a run costs O(E log S + S + K)
+ * for E edges, S layers and K segments out — never a sort of all edges,
+ * nor a pass over all triangles per layer. Layers come out one at a time
  * (lam_slicer_next), so memory is the model plus the layers in flight.
  *
  * Robustness (SPEC 3.2): a vertex exactly on a cutting plane is treated as

@@ -1,5 +1,6 @@
 /* The layer check of validate.h: what a layer's contours say against the
  * model (direction, ancestry, nesting, material by rays, net area). */
+#include "test_hooks.h"
 #include "validate.h"
 
 #include <math.h>
@@ -9,10 +10,7 @@
 
 #include "section.h"
 
-static int nomem(lam_error *err)
-{
-    return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory while validating");
-}
+static int nomem(lam_error *err) { return lam_error_nomem(err, "while validating"); }
 
 /* ---- a grid of the layer's edges ------------------------------------------------ */
 
@@ -355,12 +353,12 @@ static void check_nesting(const lam_layer *L, size_t ci, lam_contour_check *it)
 
 /* Winding at (u, v) in the cut plane, taken on the slab's side. LAM_OK,
  * LAM_ENOMEM, or LAM_EGEOM when it cannot be decided. */
-static int layer_point(lam_validator *v, const lam_frame *f, double cut, int below, const double uv[2], double xyz[3],
+static int layer_point(lam_rays *v, const lam_frame *f, double cut, int below, const double uv[2], double xyz[3],
                        int *w)
 {
     lam_error scratch;
     lam_error_clear(&scratch);
-    return lam_validator_winding_section(v, f, uv[0], uv[1], cut, below, xyz, w, &scratch);
+    return lam_rays_winding_section(v, f, uv[0], uv[1], cut, below, xyz, w, &scratch);
 }
 
 /* The longest edges of a contour (ties: the first), at most EDGES_TRIED. */
@@ -387,7 +385,7 @@ static size_t longest_edges(const double *pts, size_t n, size_t cand[EDGES_TRIED
 }
 
 typedef struct layer_ctx {
-    lam_validator *v;
+    lam_rays *v;
     const lam_layer *L;
     const lam_frame *f;
     const lam_validate_opts *o;
@@ -417,7 +415,7 @@ static int check_material(layer_ctx *X, size_t ci, lam_contour_check *it)
         double len = clen[q];
         double m[2] = { a[0] + (b[0] - a[0]) / 2, a[1] + (b[1] - a[1]) / 2 };
         double nl[2] = { -(b[1] - a[1]) / len, (b[0] - a[0]) / len };
-        double r = fmin(lam_validator_target_inset(X->v), len / 4);
+        double r = fmin(lam_rays_target_inset(X->v), len / 4);
         double d = fmin(r, clearance(&X->G, c->first + i, m, nl, 2 * r) / 2);
         double side_uv[2][2];
         /* no edge of the layer nearer either point than d / 2 (a vertex
@@ -498,7 +496,7 @@ static int check_area(layer_ctx *X, int below, lam_layer_check *out, lam_error *
         return LAM_OK;
     }
     lam_section_index *sec;
-    int rc = lam_validator_section(X->v, X->f, &sec, err);
+    int rc = lam_rays_section(X->v, X->f, &sec, err);
     if (rc) return rc;
     lam_section_measure sm;
     lam_section_measure_at(sec, L->cut, below, &sm);
@@ -509,7 +507,7 @@ static int check_area(layer_ctx *X, int below, lam_layer_check *out, lam_error *
     }
     double both = per + sm.perimeter;
     out->area_tolerance = 1e-9 * (sum_abs + fabs(sm.area)) + 2 * X->o->quantum_uv * both +
-                          X->o->quantum_h * sm.rate + 1e-12 * lam_validator_scale(X->v) * both;
+                          X->o->quantum_h * sm.rate + 1e-12 * lam_rays_scale(X->v) * both;
     out->area_checked = 1;
     if (X->o->fill_nonzero && sm.solid_shells >= 2) {
         out->area_why = AREA_ONE_SIDED;
@@ -535,7 +533,71 @@ static void layer_ctx_free(layer_ctx *X)
  * would do wrong first. */
 static const unsigned PROBLEM_ORDER[] = { LAM_VP_ANCESTRY, LAM_VP_DIRECTION, LAM_VP_MATERIAL, LAM_VP_NESTING };
 
-int lam_validate_layer(lam_validator *v, const lam_layer *L, const lam_frame *f, const lam_validate_opts *o,
+/* The per-layer scratch of X (areas, point owners, nesting marks, the
+ * edge grid) and out's items, and each contour's signed area. 0, or -1
+ * when out of memory (then nothing is left to free in out). */
+static int layer_ctx_init(layer_ctx *X, const lam_layer *L, lam_layer_check *out)
+{
+    size_t K = L->ncontours, P = L->npoints;
+    if (!K) return 0;
+    out->items = calloc(K, sizeof *out->items);
+    X->area = malloc(K * sizeof *X->area);
+    X->N.npoints = P;
+    X->N.loop_of = malloc(P * sizeof *X->N.loop_of);
+    X->N.seen = calloc(P, sizeof *X->N.seen);
+    X->N.odd = calloc(K, 1);
+    X->N.touched = malloc(K * sizeof *X->N.touched);
+    if (!out->items || !X->area || !X->N.loop_of || !X->N.seen || !X->N.odd || !X->N.touched ||
+        egrid_build(&X->G, L)) {
+        lam_layer_check_free(out);
+        return -1;
+    }
+    out->nitems = K;
+    for (size_t ci = 0; ci < K; ci++) {
+        const lam_contour *c = &L->contours[ci];
+        X->area[ci] = c->n >= 3 ? lam_section_loop_area(L->uv + 2 * c->first, c->n) : 0;
+        for (size_t i = 0; i < c->n; i++) X->N.loop_of[c->first + i] = ci;
+    }
+    return 0;
+}
+
+/* Check contour ci into out->items[ci] and count it. 0, or -1 when out of
+ * memory. */
+static int check_contour(layer_ctx *X, size_t ci, lam_layer_check *out)
+{
+    const lam_layer *L = X->L;
+    const lam_contour *c = &L->contours[ci];
+    lam_contour_check *it = &out->items[ci];
+    it->contour = ci;
+    it->area = X->area[ci];
+    it->depth_found = -1;
+    it->parent_found = -1;
+    it->why = WHY_NOPOINT;
+    check_structure(L, ci, X->area[ci], it);
+    int rc = c->n >= 3 ? check_material(X, ci, it) : 0;
+    check_nesting(L, ci, it);
+    if (it->problems) {
+        for (size_t k = 0; k < sizeof PROBLEM_ORDER / sizeof *PROBLEM_ORDER; k++)
+            if (it->problems & PROBLEM_ORDER[k]) {
+                it->why = it->whys[problem_index(PROBLEM_ORDER[k])];
+                break;
+            }
+        it->ok = 0;
+        out->checked++;
+        out->disagreeing++;
+    } else if (it->edges) {
+        it->ok = 1;
+        it->why = WHY_OK;
+        out->checked++;
+        out->confirmed++;
+    } else {
+        it->ok = -1;
+        out->unchecked++;
+    }
+    return rc;
+}
+
+int lam_validate_layer(lam_rays *v, const lam_layer *L, const lam_frame *f, const lam_validate_opts *o,
                        lam_layer_check *out, lam_error *err)
 {
     memset(out, 0, sizeof *out);
@@ -553,60 +615,13 @@ int lam_validate_layer(lam_validator *v, const lam_layer *L, const lam_frame *f,
     X.o = o;
     int below = L->cut >= L->ceiling && L->ceiling > L->floor;
     X.below = below;
-    X.dmin = fmax(lam_validator_min_inset(v), 10 * o->quantum_uv);
-    size_t K = L->ncontours, P = L->npoints;
-    if (K) {
-        out->items = calloc(K, sizeof *out->items);
-        X.area = malloc(K * sizeof *X.area);
-        X.N.npoints = P;
-        X.N.loop_of = malloc(P * sizeof *X.N.loop_of);
-        X.N.seen = calloc(P, sizeof *X.N.seen);
-        X.N.odd = calloc(K, 1);
-        X.N.touched = malloc(K * sizeof *X.N.touched);
-        if (!out->items || !X.area || !X.N.loop_of || !X.N.seen || !X.N.odd || !X.N.touched ||
-            egrid_build(&X.G, L)) {
-            layer_ctx_free(&X);
-            lam_layer_check_free(out);
-            return nomem(err);
-        }
-        out->nitems = K;
-    }
-    for (size_t ci = 0; ci < K; ci++) {
-        const lam_contour *c = &L->contours[ci];
-        X.area[ci] = c->n >= 3 ? lam_section_loop_area(L->uv + 2 * c->first, c->n) : 0;
-        for (size_t i = 0; i < c->n; i++) X.N.loop_of[c->first + i] = ci;
+    X.dmin = fmax(lam_rays_min_inset(v), 10 * o->quantum_uv);
+    if (layer_ctx_init(&X, L, out)) {
+        layer_ctx_free(&X);
+        return nomem(err);
     }
     int rc = LAM_OK;
-    for (size_t ci = 0; ci < K && !rc; ci++) {
-        const lam_contour *c = &L->contours[ci];
-        lam_contour_check *it = &out->items[ci];
-        it->contour = ci;
-        it->area = X.area[ci];
-        it->depth_found = -1;
-        it->parent_found = -1;
-        it->why = WHY_NOPOINT;
-        check_structure(L, ci, X.area[ci], it);
-        if (c->n >= 3) rc = check_material(&X, ci, it);
-        check_nesting(L, ci, it);
-        if (it->problems) {
-            for (size_t k = 0; k < sizeof PROBLEM_ORDER / sizeof *PROBLEM_ORDER; k++)
-                if (it->problems & PROBLEM_ORDER[k]) {
-                    it->why = it->whys[problem_index(PROBLEM_ORDER[k])];
-                    break;
-                }
-            it->ok = 0;
-            out->checked++;
-            out->disagreeing++;
-        } else if (it->edges) {
-            it->ok = 1;
-            it->why = WHY_OK;
-            out->checked++;
-            out->confirmed++;
-        } else {
-            it->ok = -1;
-            out->unchecked++;
-        }
-    }
+    for (size_t ci = 0; ci < L->ncontours && !rc; ci++) rc = check_contour(&X, ci, out);
     if (!rc) rc = check_area(&X, below, out, err);
     else rc = nomem(err);
     layer_ctx_free(&X);

@@ -15,6 +15,8 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "grow.h"
+
 enum kind { W_FILE, W_DEVICE, W_STREAM, W_MEMORY };
 
 struct lam_writer {
@@ -279,15 +281,12 @@ int lam_writer_write(lam_writer *w, const void *data, size_t len)
     w->written += len;
     if (w->kind == W_MEMORY) {
         if (w->len + len + 1 > w->cap) {
-            size_t cap = w->cap ? w->cap : 4096;
-            while (cap < w->len + len + 1) cap *= 2;
-            char *nb = realloc(w->buf, cap);
+            char *nb = lam_grow(w->buf, &w->cap, w->len + len + 1, 1, 4096);
             if (!nb) {
                 w->failed = ENOMEM;
                 return LAM_ENOMEM;
             }
             w->buf = nb;
-            w->cap = cap;
         }
         memcpy(w->buf + w->len, data, len);
         w->len += len;

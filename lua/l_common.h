@@ -46,7 +46,7 @@
 #define LAM_PLAN    "lamina.plan"
 
 
-/* Set by the SIGINT handler of cli_lua.c while Lua code runs, cleared when
+/* Set by the SIGINT handler of lua/cli/cli_lua.c while Lua code runs, cleared when
  * that code returns; long C loops of the binding (slicing, planning) poll
  * it between layers and raise "interrupted". Nothing sets it in a stock
  * lua5.4. */

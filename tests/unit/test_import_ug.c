@@ -470,11 +470,28 @@ static void test_errors(void)
     check_error("include without name", "include ;", LAM_ESYNTAX, 1, 9, "expected file name after 'include'");
 }
 
+/* err may be NULL (error.h): a failing import still fails, and nothing
+ * reads through the NULL (this crashed where a message is wrapped: an
+ * include cycle, a bad number, an unknown vertex). */
+static void test_null_err(void)
+{
+    static const char *const bad[] = { "v a 1 2 3; f (a b c);", "v a 1e400 0 0;", "include \"nowhere\";",
+                                       "v a 1 2", NULL };
+    for (int i = 0; bad[i]; i++) {
+        lam_mesh m;
+        lam_mesh_init(&m);
+        int rc = lam_import_ug_buf("null.ug", bad[i], strlen(bad[i]), &m, NULL);
+        ok(rc != LAM_OK, "NULL err: '%s' still fails (rc %d)", bad[i], rc);
+        lam_mesh_free(&m);
+    }
+}
+
 int main(void)
 {
     const char *t = getenv("TESTS");
     snprintf(tests_dir, sizeof tests_dir, "%s", t && *t ? t : "tests");
     test_thesis_cube_hole();
+    test_null_err();
     test_frame_island();
     test_transforms();
     test_syntax();

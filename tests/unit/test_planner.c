@@ -41,6 +41,7 @@ static op *push(rec *r, int kind)
 static int s_begin(void *c, const lam_job_info *j) { ((rec *)c)->job = *j; return 0; }
 static int s_layer(void *c, const lam_layer_info *l) { push(c, OP_LAYER)->v[2] = l->z; return 0; }
 static int s_layer_end(void *c, const lam_layer_info *l) { push(c, OP_LAYER_END)->v[2] = l->z; return 0; }
+static int s_fail(void *c, const lam_layer_info *l) { (void)c; (void)l; return LAM_EIO; }
 static int s_feed(void *c, double rate) { push(c, OP_FEED)->v[0] = rate; return 0; }
 static int s_laser(void *c, int on) { push(c, OP_LASER)->on = on; return 0; }
 static int s_move(void *c, int dep, const double p[3])
@@ -395,6 +396,23 @@ int main(void)
         lam_layer_free(L);
     }
     lam_slicer_free(s);
+
+    /* err NULL (error.h): a sink that fails gives the status code alone, and
+     * the planner does not read through the missing lam_error */
+    {
+        lam_slice_opts_init(&so);
+        so.width = 0.5;
+        ok(lam_slicer_new(cube, &so, &s, NULL) == LAM_OK, "a slicer with err NULL");
+        lam_plan_opts_init(&po);
+        po.kind = LAM_PLAN_LADRP;
+        po.bead = 0.1;
+        lam_sink failing = recorder(&r);
+        failing.layer = s_fail;
+        is_int(lam_plan_run(s, cube, &po, &failing, NULL, NULL, NULL), LAM_EIO,
+               "a failing sink with err NULL: its status code");
+        free(r.ops);
+        lam_slicer_free(s);
+    }
 
     lam_model_free(cube);
     lam_model_free(hole);

@@ -14,6 +14,7 @@
 #include "model.h"
 #include "meshes.h"
 #include "slice.h"
+#include "test_hooks.h"
 #include "validate.h"
 
 #include <stdint.h>
@@ -21,26 +22,26 @@
 
 /* ---- helpers ----------------------------------------------------------------- */
 
-static lam_validator *validator(const lam_model *m, const char *what)
+static lam_rays *validator(const lam_model *m, const char *what)
 {
     lam_error err;
     lam_error_clear(&err);
-    lam_validator *v = NULL;
-    int rc = m ? lam_validator_new(m, &v, &err) : LAM_EUSAGE;
+    lam_rays *v = NULL;
+    int rc = m ? lam_rays_new(m, &v, &err) : LAM_EUSAGE;
     ok(rc == LAM_OK && v, "validator for %s", what);
     if (rc && m) diag("%s", err.msg);
     return rc ? NULL : v;
 }
 
 /* Winding at p, or -99 on an error (printed). */
-static int wind(lam_validator *v, double x, double y, double z)
+static int wind(lam_rays *v, double x, double y, double z)
 {
     double p[3] = { x, y, z };
     int w = -99;
     lam_error err;
     lam_error_clear(&err);
     if (!v) return -99;
-    if (lam_validator_winding(v, p, &w, &err)) {
+    if (lam_rays_winding(v, p, &w, &err)) {
         diag("winding at (%g, %g, %g): %s", x, y, z, err.msg);
         return -99;
     }
@@ -53,7 +54,7 @@ typedef struct pt {
     const char *what;
 } pt;
 
-static void windings(lam_validator *v, const pt *pts, size_t n, const char *model)
+static void windings(lam_rays *v, const pt *pts, size_t n, const char *model)
 {
     for (size_t i = 0; i < n; i++)
         is_int(wind(v, pts[i].p[0], pts[i].p[1], pts[i].p[2]), pts[i].w, "%s: winding %d %s", model,
@@ -63,7 +64,7 @@ static void windings(lam_validator *v, const pt *pts, size_t n, const char *mode
 /* ---- layers -------------------------------------------------------------------- */
 
 /* lam_validate_layer with the default options but the fill rule. */
-static int validate_layer(lam_validator *v, const lam_layer *L, const lam_frame *f, int fill_nonzero,
+static int validate_layer(lam_rays *v, const lam_layer *L, const lam_frame *f, int fill_nonzero,
                           lam_layer_check *out, lam_error *err)
 {
     lam_validate_opts o;
@@ -103,7 +104,7 @@ static int mislabelled(const lam_layer *L, size_t c)
  * contour flip_c of layer flip_l first. The checks of the first nkept
  * layers are kept in kept[] (zeroed first; the caller frees them).
  * Unexpected results are printed unless quiet. */
-static tally slice_validate(const lam_model *m, lam_validator *v, const lam_slice_opts *o, size_t flip_l,
+static tally slice_validate(const lam_model *m, lam_rays *v, const lam_slice_opts *o, size_t flip_l,
                             size_t flip_c, lam_layer_check *kept, size_t nkept, int quiet, const char *what)
 {
     tally t = { 0 };
@@ -165,7 +166,7 @@ static const char *cut_name(lam_cut c)
 /* Every layer along x, y and z, with every cut and each width: all contours
  * checked, none disagreeing -- except contours the slicer mislabels (see
  * mislabelled()), which must all be reported. */
-static void all_layers_confirmed(const lam_model *m, lam_validator *v, const double *widths, size_t nw,
+static void all_layers_confirmed(const lam_model *m, lam_rays *v, const double *widths, size_t nw,
                                  int fill_nonzero, const char *name)
 {
     static const char axes[3] = { 'x', 'y', 'z' };
@@ -221,7 +222,7 @@ static void all_layers_confirmed(const lam_model *m, lam_validator *v, const dou
  * edge or a face diagonal of the unit cube, for every direction k: inside
  * points have winding 1, outside 0. Points within 1e-3 of the surface are
  * left out. */
-static void rays_through_features(lam_validator *v)
+static void rays_through_features(lam_rays *v)
 {
     double feat[64][3];
     size_t nf = 0;
@@ -253,9 +254,9 @@ static void rays_through_features(lam_validator *v)
     static const double S[3] = { 0.3, 0.55, 0.8 };
     size_t tested = 0, wrong = 0, in = 0;
     for (size_t i = 0; i < nf; i++)
-        for (size_t k = 0; lam_validator_direction(k); k++)
+        for (size_t k = 0; lam_rays_direction(k); k++)
             for (int si = 0; si < 3; si++) {
-                const double *d = lam_validator_direction(k);
+                const double *d = lam_rays_direction(k);
                 double p[3];
                 int inside = 1, outside = 0;
                 for (int j = 0; j < 3; j++) {
@@ -285,7 +286,7 @@ static void test_unit_cube(void)
     lam_mesh_init(&mesh);
     add_box(&mesh, 0, 0, 0, 1, 1, 1, 0, -1);
     lam_model *m = build_model(&mesh, "unit cube");
-    lam_validator *v = validator(m, "unit cube");
+    lam_rays *v = validator(m, "unit cube");
     /* +1 inside proves the sign convention end to end: each crossing must
      * agree with Embree's Ng = (v1 - v0) x (v2 - v0), or every ray would be
      * discarded and no winding decided */
@@ -307,38 +308,38 @@ static void test_unit_cube(void)
         int w = 7;
         lam_error err;
         lam_error_clear(&err);
-        int rc = lam_validator_winding(v, p, &w, &err);
+        int rc = lam_rays_winding(v, p, &w, &err);
         ok(rc == LAM_EGEOM && strstr(err.msg, "on the surface") && w == 7,
            "a point on the top face has no winding number (LAM_EGEOM, '%s')", err.msg);
         rays_through_features(v);
-        lam_validator_stats s;
-        lam_validator_get_stats(v, &s);
+        lam_rays_stats s;
+        lam_rays_get_stats(v, &s);
         diag("unit cube: %zu points, %zu rays, %zu re-cast, %zu rays discarded (grazing or mixed signs), "
              "%zu on the surface, %zu undecided",
              s.points, s.rays, s.recasts, s.unreliable, s.surface, s.undecided);
         /* the same answers every time, from a second validator too */
-        lam_validator *v2 = validator(m, "unit cube, again");
+        lam_rays *v2 = validator(m, "unit cube, again");
         int same = v2 != NULL;
         for (int i = 0; i < 200 && same; i++) {
             double q[3] = { -0.31 + 1.6 * (i % 7) / 6.0, -0.29 + 1.6 * (i % 11) / 10.0,
                             -0.27 + 1.6 * (i % 13) / 12.0 };
             int a = -1, b = -2, c = -3;
-            int ra = lam_validator_winding(v, q, &a, &err), rb = lam_validator_winding(v, q, &b, &err),
-                rc2 = lam_validator_winding(v2, q, &c, &err);
+            int ra = lam_rays_winding(v, q, &a, &err), rb = lam_rays_winding(v, q, &b, &err),
+                rc2 = lam_rays_winding(v2, q, &c, &err);
             same = ra == LAM_OK && rb == LAM_OK && rc2 == LAM_OK && a == b && b == c;
         }
         ok(same, "deterministic: 200 points give the same windings twice and from a second validator");
-        lam_validator_free(v2);
+        lam_rays_free(v2);
     }
-    ok(lam_validator_direction(0) && !lam_validator_direction(16), "sixteen fixed ray directions");
-    lam_validator_free(v);
+    ok(lam_rays_direction(0) && !lam_rays_direction(16), "sixteen fixed ray directions");
+    lam_rays_free(v);
     lam_model_free(m);
 }
 
 static void test_thesis_models(void)
 {
     lam_model *m = load_model("thesis_cube_hole.ug");
-    lam_validator *v = validator(m, "thesis_cube_hole.ug");
+    lam_rays *v = validator(m, "thesis_cube_hole.ug");
     static const pt H[] = {
         { { 0, 0, 1 }, 0, "in the hole" },
         { { 0.2, -0.3, 0.4 }, 0, "in the hole, off centre" },
@@ -355,7 +356,7 @@ static void test_thesis_models(void)
         int w = 0;
         lam_error err;
         lam_error_clear(&err);
-        ok(lam_validator_winding(v, p, &w, &err) == LAM_EGEOM && strstr(err.msg, "on the surface"),
+        ok(lam_rays_winding(v, p, &w, &err) == LAM_EGEOM && strstr(err.msg, "on the surface"),
            "thesis_cube_hole: a point on the hole's edge has no winding number");
     }
     static const double wh[] = { 1, 0.5, 0.25, 0.3 };
@@ -409,7 +410,7 @@ static void test_thesis_models(void)
         }
         lam_layer_check_free(&c);
     }
-    lam_validator_free(v);
+    lam_rays_free(v);
     lam_model_free(m);
 
     m = load_model("frame_island.ug");
@@ -427,14 +428,14 @@ static void test_thesis_models(void)
     windings(v, F, sizeof F / sizeof F[0], "frame_island");
     static const double wf[] = { 5, 2.5, 1 };
     all_layers_confirmed(m, v, wf, 3, 0, "frame_island");
-    lam_validator_free(v);
+    lam_rays_free(v);
     lam_model_free(m);
 
     m = load_model("thesis_cube.ug");
     v = validator(m, "thesis_cube.ug");
     static const double wc[] = { 1, 0.5, 0.3 };
     all_layers_confirmed(m, v, wc, 3, 0, "thesis_cube");
-    lam_validator_free(v);
+    lam_rays_free(v);
     lam_model_free(m);
 }
 
@@ -448,7 +449,7 @@ static void test_cavity_and_thin_wall(void)
     add_box(&mesh, 0, 0, 0, 4, 4, 4, 0, -1);
     add_box(&mesh, 1, 1, 1, 3, 3, 3, 0, -1);
     lam_model *m = build_model(&mesh, "box with a cavity");
-    lam_validator *v = validator(m, "box with a cavity");
+    lam_rays *v = validator(m, "box with a cavity");
     static const pt C[] = {
         { { 2, 2, 2 }, 0, "in the cavity" },
         { { 0.5, 2, 2 }, 1, "in the wall" },
@@ -458,7 +459,7 @@ static void test_cavity_and_thin_wall(void)
     windings(v, C, sizeof C / sizeof C[0], "box with a cavity");
     static const double w[] = { 1, 0.5 };
     all_layers_confirmed(m, v, w, 2, 0, "box with a cavity");
-    lam_validator_free(v);
+    lam_rays_free(v);
     lam_model_free(m);
 
     /* a square tube, one shell, wall 0.01 thick on a model 10 across: the
@@ -502,7 +503,7 @@ static void test_cavity_and_thin_wall(void)
     windings(v, T, sizeof T / sizeof T[0], "thin-walled tube");
     static const double wt[] = { 2.5, 1 };
     all_layers_confirmed(m, v, wt, 2, 0, "thin-walled tube");
-    lam_validator_free(v);
+    lam_rays_free(v);
     lam_model_free(m);
 }
 
@@ -511,11 +512,11 @@ static void test_cavity_and_thin_wall(void)
 static void test_overlap(void)
 {
     lam_model *fm = load_model("validate/overlap_cubes.ug");
-    lam_validator *fv = validator(fm, "validate/overlap_cubes.ug");
+    lam_rays *fv = validator(fm, "validate/overlap_cubes.ug");
     if (fm) is_int(fm->nshells, 2, "overlap_cubes.ug: two shells");
     is_int(wind(fv, 1.5, 1.5, 1.5), 2, "overlap_cubes.ug: winding 2 where the cubes overlap");
     is_int(wind(fv, 2.5, 1.5, 2.5), 1, "overlap_cubes.ug: winding 1 in the second only");
-    lam_validator_free(fv);
+    lam_rays_free(fv);
     lam_model_free(fm);
 
     lam_mesh mesh;
@@ -523,7 +524,7 @@ static void test_overlap(void)
     add_box(&mesh, 0, 0, 0, 2, 2, 2, 0, -1);
     add_box(&mesh, 1, 1, 1, 3, 3, 3, 0, -1);
     lam_model *m = build_model(&mesh, "overlapping cubes");
-    lam_validator *v = validator(m, "overlapping cubes");
+    lam_rays *v = validator(m, "overlapping cubes");
     static const pt P[] = {
         { { 1.5, 1.5, 1.5 }, 2, "where they overlap" },
         { { 0.5, 0.5, 0.5 }, 1, "in the first only" },
@@ -533,7 +534,7 @@ static void test_overlap(void)
     windings(v, P, sizeof P / sizeof P[0], "overlapping cubes");
     if (!m || !v) {
         ok(0, "overlapping cubes: layers");
-        lam_validator_free(v);
+        lam_rays_free(v);
         lam_model_free(m);
         return;
     }
@@ -631,7 +632,7 @@ static void test_overlap(void)
     }
     free(L.uv);
     free(L.contours);
-    lam_validator_free(v);
+    lam_rays_free(v);
     lam_model_free(m);
 }
 
@@ -643,9 +644,9 @@ static void test_sphere(void)
     const double pi = acos(-1.0);
     int seg = 48, rings = 24;
     lam_model *m = uv_sphere(10, seg, rings, 0, "uv sphere");
-    lam_validator *v = validator(m, "uv sphere");
+    lam_rays *v = validator(m, "uv sphere");
     if (!m || !v) {
-        lam_validator_free(v);
+        lam_rays_free(v);
         lam_model_free(m);
         return;
     }
@@ -666,11 +667,11 @@ static void test_sphere(void)
     ok(wrong == 0 && tested > 1000, "uv sphere: %zu random points, windings right", tested);
     static const double w[] = { 0.5, 0.35 };
     all_layers_confirmed(m, v, w, 2, 0, "uv sphere");
-    lam_validator_stats s;
-    lam_validator_get_stats(v, &s);
+    lam_rays_stats s;
+    lam_rays_get_stats(v, &s);
     diag("uv sphere: %zu points, %zu rays, %zu re-cast, %zu rays discarded, %zu on the surface, %zu undecided",
          s.points, s.rays, s.recasts, s.unreliable, s.surface, s.undecided);
-    lam_validator_free(v);
+    lam_rays_free(v);
     lam_model_free(m);
 }
 
@@ -691,12 +692,12 @@ static void test_scales(void)
         add_box(&mesh, o, o, o, o + 4 * k, o + 4 * k, o + 4 * k, 0, -1);
         add_box(&mesh, o + k, o + k, o + k, o + 3 * k, o + 3 * k, o + 3 * k, BOX_INWARD, -1);
         lam_model *m = build_model_quiet(&mesh, cases[i].name);
-        lam_validator *v = validator(m, cases[i].name);
+        lam_rays *v = validator(m, cases[i].name);
         /* 0.3 nm: plane 10 rounds an ulp below the hole's top face, and
          * is put on it (slice.c, snap_cuts) */
         double widths[] = { 0.5 * k, 0.35 * k, 0.3 * k };
         all_layers_confirmed(m, v, widths, 3, 0, cases[i].name);
-        lam_validator_free(v);
+        lam_rays_free(v);
         lam_model_free(m);
     }
 }

@@ -117,8 +117,8 @@ static run_tally run(lam_model *m, const double d[3], const double *planes, size
     o.nplanes = np;
     o.cut = cut;
     lam_slicer *s = NULL;
-    lam_validator *v = NULL;
-    if (lam_slicer_new(m, &o, &s, &err) || lam_validator_new(m, &v, &err)) {
+    lam_rays *v = NULL;
+    if (lam_slicer_new(m, &o, &s, &err) || lam_rays_new(m, &v, &err)) {
         diag("%s: %s", what, err.msg);
         t.disagreeing = 1000;
         lam_slicer_free(s);
@@ -154,7 +154,7 @@ static run_tally run(lam_model *m, const double d[3], const double *planes, size
         }
         lam_layer_check_free(&c);
     }
-    lam_validator_free(v);
+    lam_rays_free(v);
     lam_slicer_free(s);
     return t;
 }
@@ -289,7 +289,7 @@ static void hand_layer(hand *h)
     h->L.ncontours = 2;
 }
 
-static int check(lam_validator *v, hand *h, lam_layer_check *c)
+static int check(lam_rays *v, hand *h, lam_layer_check *c)
 {
     lam_frame f;
     lam_error err;
@@ -304,9 +304,9 @@ static int check(lam_validator *v, hand *h, lam_layer_check *c)
 static void test_what_is_written(void)
 {
     lam_model *m = load_model("thesis_cube_hole.ug");
-    lam_validator *v = NULL;
+    lam_rays *v = NULL;
     lam_error err;
-    if (!m || lam_validator_new(m, &v, &err)) {
+    if (!m || lam_rays_new(m, &v, &err)) {
         ok(0, "validator for thesis_cube_hole.ug");
         lam_model_free(m);
         return;
@@ -404,7 +404,7 @@ static void test_what_is_written(void)
            "read back: the hole written as a solid (counter-clockwise): material, nesting and area disagree");
         lam_layer_check_free(&c);
     }
-    lam_validator_free(v);
+    lam_rays_free(v);
     lam_model_free(m);
 }
 

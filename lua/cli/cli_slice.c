@@ -62,7 +62,7 @@ static const char usage_text[] =
 typedef struct report {
     const char *path;
     lam_svg *svg;
-    lam_validator *v;        /* --validate */
+    lam_rays *v;        /* --validate */
     const lam_frame *frame;
     int fill_nonzero;
     vreport vr;
@@ -145,7 +145,7 @@ int cmd_slice(int argc, char **argv)
         goto done;
     }
     if (a.validate) {
-        if (lam_validator_new(m, &rep.v, &err)) {
+        if (lam_rays_new(m, &rep.v, &err)) {
             rc = cli_fail(&err);
             goto done;
         }
@@ -214,7 +214,7 @@ done:
     if (sink.destroy) sink.destroy(sink.ctx);
     lam_writer_abort(w);
     lam_svg_free(rep.svg);
-    lam_validator_free(rep.v);
+    lam_rays_free(rep.v);
     lam_slicer_free(s);
     lam_model_free(m);
     lam_profile_free(prof);

@@ -19,7 +19,7 @@
  * Without a terminal on standard input there is no prompt and no banner:
  * statements are read line by line and values printed, so the loop can be
  * driven from a pipe. */
-#include "cli_lua.h"
+#include "repl.h"
 
 #include <dlfcn.h>
 #include <errno.h>
@@ -32,6 +32,8 @@
 
 #include <lauxlib.h>
 
+#include "cli.h"
+#include "cli_lua.h"
 #include "l_common.h"
 
 #define PROMPT1 "> "
@@ -316,7 +318,8 @@ static void print_results(repl *r)
     fflush(stdout);
 }
 
-int lam_repl(lua_State *L)
+/* The loop on standard input until end of file; returns an exit code. */
+static int repl_loop(lua_State *L)
 {
     repl r;
     memset(&r, 0, sizeof r);
@@ -355,4 +358,30 @@ int lam_repl(lua_State *L)
         r.ed.history_truncate_file(*hist, HISTORY_LINES);
     sigaction(SIGINT, &old, NULL);
     return 0;
+}
+
+static const char repl_usage[] =
+    "usage: lamina repl\n"
+    "An interactive Lua 5.4 prompt with the lamina module loaded (also plain\n"
+    "`lamina` on a terminal). Expressions and `=expr` print their values;\n"
+    "an incomplete statement continues on the next line; Ctrl-C interrupts a\n"
+    "running command (or abandons the line being typed), Ctrl-D quits.\n"
+    "Line editing and history (~/.lamina_history, or $LAMINA_HISTORY) come\n"
+    "from GNU readline or libedit when installed.\n";
+
+int cmd_repl(int argc, char **argv)
+{
+    if (argc >= 2 && (strcmp(argv[1], "-h") == 0 || strcmp(argv[1], "--help") == 0)) {
+        fputs(repl_usage, stdout);
+        return EXIT_OK;
+    }
+    if (argc >= 2) return cli_usage("repl", "unexpected argument '%s'", argv[1]);
+    return lam_cli_host("repl", repl_loop);
+}
+
+int lua_main_default(void)
+{
+    if (!isatty(STDIN_FILENO)) return cli_usage(NULL, "no command given");
+    char *argv[] = { "repl", NULL };
+    return cmd_repl(1, argv);
 }

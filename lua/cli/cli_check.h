@@ -25,7 +25,7 @@ typedef struct vsource {
 } vsource;
 
 /* Check one layer and report it. Returns LAM_OK or an error code. */
-int vreport_layer(vreport *r, lam_validator *v, const lam_layer *L, const lam_frame *f, const lam_validate_opts *o,
+int vreport_layer(vreport *r, lam_rays *v, const lam_layer *L, const lam_frame *f, const lam_validate_opts *o,
                   const vsource *src, lam_error *err);
 
 /* The report's last line (text) or closing fields (JSON), and the exit

@@ -1,4 +1,4 @@
-/* lamina run / lamina -e / lamina repl: a Lua 5.4 state with the lamina
+/* lamina run / lamina -e, and the host of lamina repl: a Lua 5.4 state with the lamina
  * module, in the manner of lua.c (arg table, traceback on errors, Ctrl-C
  * interrupts the running code). */
 #include "cli_lua.h"
@@ -202,6 +202,7 @@ typedef struct runargs {
     char **argv;
     int status;
     int safe;
+    int (*body)(lua_State *L); /* lam_cli_host's */
 } runargs;
 
 /* In a sandbox: the recipe's os.exit(n), or a memory error said plainly. */
@@ -326,7 +327,7 @@ int cmd_run(int argc, char **argv)
     }
     if (limits && !safe) return cli_usage("run", "--allow, --out, --memory and --time go with --safe");
     if (i >= argc) return cli_usage("run", "no recipe given");
-    runargs a = { argv[i], argc - i - 1, argv + i + 1, EXIT_OK, safe };
+    runargs a = { argv[i], argc - i - 1, argv + i + 1, EXIT_OK, safe, NULL };
     if (!safe) return protected_run(NULL, run_main, &a);
     char msg[1024];
     lua_State *L = lam_lua_sandbox_open(&so, msg, sizeof msg);
@@ -369,43 +370,22 @@ int cmd_eval(int argc, char **argv)
         if (strcmp(argv[i], "-e") != 0) return cli_usage(NULL, "unexpected '%s' after -e CODE (give -e CODE ...)", argv[i]);
         if (i + 1 >= argc) return cli_usage(NULL, "-e needs Lua code");
     }
-    runargs a = { "", argc, argv, EXIT_OK, 0 };
+    runargs a = { "", argc, argv, EXIT_OK, 0, NULL };
     return protected_run(NULL, eval_main, &a);
 }
 
-/* ---- lamina repl ----------------------------------------------------------- */
+/* ---- the host of other Lua commands (lamina repl) ------------------------- */
 
-static const char repl_usage[] =
-    "usage: lamina repl\n"
-    "An interactive Lua 5.4 prompt with the lamina module loaded (also plain\n"
-    "`lamina` on a terminal). Expressions and `=expr` print their values;\n"
-    "an incomplete statement continues on the next line; Ctrl-C interrupts a\n"
-    "running command (or abandons the line being typed), Ctrl-D quits.\n"
-    "Line editing and history (~/.lamina_history, or $LAMINA_HISTORY) come\n"
-    "from GNU readline or libedit when installed.\n";
-
-static int repl_main(lua_State *L)
+static int host_main(lua_State *L)
 {
     runargs *a = lua_touserdata(L, 1);
-    set_arg(L, "repl", "", 0, NULL);
-    a->status = lam_repl(L);
+    set_arg(L, a->script, "", 0, NULL);
+    a->status = a->body(L);
     return 0;
 }
 
-int cmd_repl(int argc, char **argv)
+int lam_cli_host(const char *cmd, int (*body)(lua_State *L))
 {
-    if (argc >= 2 && (strcmp(argv[1], "-h") == 0 || strcmp(argv[1], "--help") == 0)) {
-        fputs(repl_usage, stdout);
-        return EXIT_OK;
-    }
-    if (argc >= 2) return cli_usage("repl", "unexpected argument '%s'", argv[1]);
-    runargs a = { "", 0, NULL, EXIT_OK, 0 };
-    return protected_run(NULL, repl_main, &a);
-}
-
-int lua_main_default(void)
-{
-    if (!isatty(STDIN_FILENO)) return cli_usage(NULL, "no command given");
-    char *argv[] = { "repl", NULL };
-    return cmd_repl(1, argv);
+    runargs a = { cmd, 0, NULL, EXIT_OK, 0, body };
+    return protected_run(NULL, host_main, &a);
 }

@@ -75,11 +75,11 @@ int cmd_check(int argc, char **argv)
     lam_error_clear(&err);
     lam_profile *prof = NULL;
     lam_model *m = NULL;
-    lam_validator *v = NULL;
+    lam_rays *v = NULL;
     lam_drc_result res;
     memset(&res, 0, sizeof res);
     if ((rc = cli_profile("check", &a, &prof, NULL))) goto done;
-    if (lam_model_load(a.path, &m, &err) || lam_validator_new(m, &v, &err)) {
+    if (lam_model_load(a.path, &m, &err) || lam_rays_new(m, &v, &err)) {
         rc = cli_fail(&err);
         goto done;
     }
@@ -149,7 +149,7 @@ int cmd_check(int argc, char **argv)
 done:
     fflush(stdout);
     lam_drc_result_free(&res);
-    lam_validator_free(v);
+    lam_rays_free(v);
     lam_model_free(m);
     lam_profile_free(prof);
     cli_args_free(&a);

@@ -3,6 +3,7 @@
 #include "cli.h"
 #include "cli_args.h"
 #include "dialect.h"
+#include "grow.h"
 #include "profile.h"
 #include "writer.h"
 
@@ -72,8 +73,7 @@ static int collect(entry **out, size_t *count)
                 continue;
             }
             if (n == cap) {
-                cap = cap ? 2 * cap : 16;
-                entry *ne = realloc(e, cap * sizeof *ne);
+                entry *ne = lam_grow(e, &cap, n + 1, sizeof *ne, 16);
                 if (!ne) {
                     free(name);
                     free(path);

@@ -1,5 +1,5 @@
-/* Embree validation of sliced layers; see validate.h for the rules. */
-#include "validate.h"
+/* The Embree scene, the ray cast and the winding vote; see rays.h. */
+#include "rays.h"
 
 #include <embree3/rtcore.h>
 #include <float.h>
@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "grow.h"
 #include "section.h"
 
 /* ---- fixed ray directions ------------------------------------------------------ */
@@ -40,9 +41,9 @@ static const double DIRS[NDIRS][3] = {
     { 0.49617714029765869, -0.22146782033974469, 0.83950000000000002 },
 };
 
-const double *lam_validator_direction(size_t k) { return k < NDIRS ? DIRS[k] : NULL; }
+const double *lam_rays_direction(size_t k) { return k < NDIRS ? DIRS[k] : NULL; }
 
-/* ---- the validator ------------------------------------------------------------ */
+/* ---- the scene ------------------------------------------------------------------ */
 
 typedef struct hit {
     double s;          /* distance from the query point along the ray */
@@ -51,7 +52,7 @@ typedef struct hit {
     int ng;            /* sign of dir . Ng (Embree's float normal) */
 } hit;
 
-struct lam_validator {
+struct lam_rays {
     const lam_model *m;
     RTCDevice dev;
     RTCScene scene;
@@ -73,20 +74,17 @@ struct lam_validator {
     int nomem;
     int ecode;              /* first Embree error reported to the callback */
     char emsg[256];
-    lam_validator_stats st;
+    lam_rays_stats st;
 };
 
 /* Intersection context handed to the filter: Embree's first, so the
- * filter gets back to the validator from args->context. */
+ * filter gets back to the lam_rays from args->context. */
 typedef struct ray_ctx {
     struct RTCIntersectContext rtc;
-    lam_validator *v;
+    lam_rays *v;
 } ray_ctx;
 
-static int nomem(lam_error *err)
-{
-    return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory while validating");
-}
+static int nomem(lam_error *err) { return lam_error_nomem(err, "while validating"); }
 
 static const char *rtc_error_name(enum RTCError e)
 {
@@ -104,7 +102,7 @@ static const char *rtc_error_name(enum RTCError e)
 
 static void on_rtc_error(void *user, enum RTCError code, const char *str)
 {
-    lam_validator *v = user;
+    lam_rays *v = user;
     if (v->ecode != RTC_ERROR_NONE) return;
     v->ecode = (int)code;
     snprintf(v->emsg, sizeof v->emsg, "%s%s%s", rtc_error_name(code), str && *str ? ": " : "",
@@ -117,7 +115,7 @@ static void on_rtc_error(void *user, enum RTCError code, const char *str)
 static void gather(const struct RTCFilterFunctionNArguments *a)
 {
     ray_ctx *c = (ray_ctx *)a->context;
-    lam_validator *v = c->v;
+    lam_rays *v = c->v;
     const unsigned N = a->N;
     const float *ray = (const float *)a->ray;
     const float *hf = (const float *)a->hit;
@@ -126,14 +124,12 @@ static void gather(const struct RTCFilterFunctionNArguments *a)
         if (!a->valid[i]) continue;
         a->valid[i] = 0;
         if (v->nhits == v->cap) {
-            size_t cap = v->cap ? 2 * v->cap : 64;
-            hit *h = realloc(v->hits, cap * sizeof *h);
+            hit *h = lam_grow(v->hits, &v->cap, v->nhits + 1, sizeof *h, 64);
             if (!h) {
                 v->nomem = 1;
                 continue;
             }
             v->hits = h;
-            v->cap = cap;
         }
         double dot = (double)ray[4 * N + i] * hf[0 * N + i] + (double)ray[5 * N + i] * hf[1 * N + i] +
                      (double)ray[6 * N + i] * hf[2 * N + i];
@@ -145,14 +141,14 @@ static void gather(const struct RTCFilterFunctionNArguments *a)
     }
 }
 
-int lam_validator_new(const lam_model *m, lam_validator **out, lam_error *err)
+int lam_rays_new(const lam_model *m, lam_rays **out, lam_error *err)
 {
     *out = NULL;
     if (!m) return lam_error_set(err, LAM_EUSAGE, NULL, 0, 0, "no model to validate against");
     const lam_mesh *mesh = &m->mesh;
     if (mesh->nverts > UINT32_MAX)
         return lam_error_set(err, LAM_EGEOM, NULL, 0, 0, "too many vertices for Embree");
-    lam_validator *v = calloc(1, sizeof *v);
+    lam_rays *v = calloc(1, sizeof *v);
     if (!v) return nomem(err);
     v->m = m;
     v->ecode = RTC_ERROR_NONE;
@@ -234,14 +230,14 @@ int lam_validator_new(const lam_model *m, lam_validator **out, lam_error *err)
     }
     if (v->ecode != RTC_ERROR_NONE) {
         int rc = lam_error_set(err, LAM_EGEOM, NULL, 0, 0, "Embree: %s", v->emsg);
-        lam_validator_free(v);
+        lam_rays_free(v);
         return rc;
     }
     *out = v;
     return LAM_OK;
 }
 
-void lam_validator_free(lam_validator *v)
+void lam_rays_free(lam_rays *v)
 {
     if (!v) return;
     if (v->scene) rtcReleaseScene(v->scene);
@@ -251,12 +247,12 @@ void lam_validator_free(lam_validator *v)
     free(v);
 }
 
-double lam_validator_tolerance(const lam_validator *v) { return v->tol; }
-double lam_validator_min_inset(const lam_validator *v) { return v->dmin; }
-double lam_validator_target_inset(const lam_validator *v) { return v->dtarget; }
-double lam_validator_scale(const lam_validator *v) { return v->scale; }
+double lam_rays_tolerance(const lam_rays *v) { return v->tol; }
+double lam_rays_min_inset(const lam_rays *v) { return v->dmin; }
+double lam_rays_target_inset(const lam_rays *v) { return v->dtarget; }
+double lam_rays_scale(const lam_rays *v) { return v->scale; }
 
-int lam_validator_section(lam_validator *v, const lam_frame *f, lam_section_index **out, lam_error *err)
+int lam_rays_section(lam_rays *v, const lam_frame *f, lam_section_index **out, lam_error *err)
 {
     if (v->sec && !memcmp(lam_section_index_frame(v->sec), f, sizeof *f)) {
         *out = v->sec;
@@ -269,7 +265,7 @@ int lam_validator_section(lam_validator *v, const lam_frame *f, lam_section_inde
     return rc;
 }
 
-void lam_validator_get_stats(const lam_validator *v, lam_validator_stats *st) { *st = v->st; }
+void lam_rays_get_stats(const lam_rays *v, lam_rays_stats *st) { *st = v->st; }
 
 /* ---- one ray ------------------------------------------------------------------- */
 
@@ -291,7 +287,7 @@ static int by_s(const void *a, const void *b)
 
 /* Sign of dir . n for triangle t, n from the model's double vertices;
  * 2 for a degenerate triangle (no normal). */
-static int tri_sign(const lam_validator *v, uint32_t t, const double d[3])
+static int tri_sign(const lam_rays *v, uint32_t t, const double d[3])
 {
     const lam_mesh *m = &v->m->mesh;
     const double *a = m->xyz + 3 * (size_t)m->tris[3 * (size_t)t];
@@ -309,7 +305,7 @@ static int tri_sign(const lam_validator *v, uint32_t t, const double d[3])
 /* Triangle t's unit normal (model's double vertices) into n and the signed
  * distance of p from its plane (> 0 on the normal's side); 0 for a
  * degenerate triangle (n then zero). */
-static int tri_plane(const lam_validator *v, uint32_t t, const double p[3], double n[3], double *dist)
+static int tri_plane(const lam_rays *v, uint32_t t, const double p[3], double n[3], double *dist)
 {
     const lam_mesh *m = &v->m->mesh;
     const double *a = m->xyz + 3 * (size_t)m->tris[3 * (size_t)t];
@@ -330,7 +326,7 @@ static int tri_plane(const lam_validator *v, uint32_t t, const double p[3], doub
 /* Cast one ray from o along d, gathering every hit into v->hits (the
  * filter rejects each hit so traversal goes on). Non-zero when the hit list
  * could not grow. */
-static int trace(lam_validator *v, const float o[3], const float d[3])
+static int trace(lam_rays *v, const float o[3], const float d[3])
 {
     struct RTCRayHit rh;
     memset(&rh, 0, sizeof rh);
@@ -376,7 +372,7 @@ static double dot_skip(const double *p, const double *a)
  * compared with h as the slicer compares them (a face lying in the plane is
  * on the far side of the symbolic step); 0 when it passes through q itself
  * or stands on edge. */
-static int tri_side(const lam_validator *v, uint32_t t, const section_pt *q)
+static int tri_side(const lam_rays *v, uint32_t t, const section_pt *q)
 {
     const lam_mesh *m = &v->m->mesh;
     double U[3], V[3], W[3];
@@ -400,7 +396,7 @@ static int tri_side(const lam_validator *v, uint32_t t, const section_pt *q)
 
 /* Cast direction k from p (a section point q when not NULL); on CAST_OK *w
  * is the winding along that ray. */
-static int cast_dir(lam_validator *v, const double p[3], const section_pt *q, int k, int *w)
+static int cast_dir(lam_rays *v, const double p[3], const section_pt *q, int k, int *w)
 {
     const double *d = v->dird[k];
     /* start a little behind p, so that a surface through p is seen in
@@ -490,8 +486,8 @@ static int cast_dir(lam_validator *v, const double p[3], const section_pt *q, in
     return CAST_OK;
 }
 
-int lam_validator_ray(lam_validator *v, const double p[3], const double d[3], double tmin, double *t, uint32_t *tri,
-                      lam_error *err)
+int lam_rays_cast(lam_rays *v, const double p[3], const double d[3], double tmin, double *t, uint32_t *tri,
+                  lam_error *err)
 {
     *t = INFINITY;
     if (tri) *tri = UINT32_MAX;
@@ -513,7 +509,23 @@ int lam_validator_ray(lam_validator *v, const double p[3], const double d[3], do
 
 enum { W_DECIDED, W_SURFACE, W_UNDECIDED, W_NOMEM };
 
-static int winding_at(lam_validator *v, const double p[3], const section_pt *q, int *w)
+int lam_rays_vote(const int *w, size_t n, size_t *count)
+{
+    int best = w[0];
+    size_t bestn = 0;
+    for (size_t i = 0; i < n; i++) {
+        size_t c = 0;
+        for (size_t j = 0; j < n; j++) c += w[j] == w[i];
+        if (c > bestn) {
+            bestn = c;
+            best = w[i];
+        }
+    }
+    *count = bestn;
+    return best;
+}
+
+static int winding_at(lam_rays *v, const double p[3], const section_pt *q, int *w)
 {
     int vals[NDIRS];
     int nrel = 0;
@@ -537,16 +549,9 @@ static int winding_at(lam_validator *v, const double p[3], const section_pt *q, 
         if (r == CAST_OK) vals[nrel++] = x;
         else v->st.unreliable++;
     }
-    int best = 0, bestn = 0;
-    for (int i = 0; i < nrel; i++) {
-        int c = 0;
-        for (int j = 0; j < nrel; j++) c += vals[j] == vals[i];
-        if (c > bestn) {
-            bestn = c;
-            best = vals[i];
-        }
-    }
-    if (bestn >= 3 && 2 * bestn > nrel) {
+    size_t bestn = 0;
+    int best = nrel ? lam_rays_vote(vals, (size_t)nrel, &bestn) : 0;
+    if (bestn >= 3 && 2 * bestn > (size_t)nrel) {
         *w = best;
         return W_DECIDED;
     }
@@ -554,15 +559,15 @@ static int winding_at(lam_validator *v, const double p[3], const section_pt *q, 
     return W_UNDECIDED;
 }
 
-static int winding_result(lam_validator *v, const double p[3], const section_pt *q, int *winding,
+static int winding_result(lam_rays *v, const double p[3], const section_pt *q, int *winding,
                           lam_error *err);
 
-int lam_validator_winding(lam_validator *v, const double p[3], int *winding, lam_error *err)
+int lam_rays_winding(lam_rays *v, const double p[3], int *winding, lam_error *err)
 {
     return winding_result(v, p, NULL, winding, err);
 }
 
-int lam_validator_winding_section(lam_validator *v, const lam_frame *f, double u, double w, double h, int below,
+int lam_rays_winding_section(lam_rays *v, const lam_frame *f, double u, double w, double h, int below,
                                   double xyz[3], int *winding, lam_error *err)
 {
     section_pt q = { f, u, w, h, below };
@@ -570,7 +575,7 @@ int lam_validator_winding_section(lam_validator *v, const lam_frame *f, double u
     return winding_result(v, xyz, &q, winding, err);
 }
 
-static int winding_result(lam_validator *v, const double p[3], const section_pt *q, int *winding,
+static int winding_result(lam_rays *v, const double p[3], const section_pt *q, int *winding,
                           lam_error *err)
 {
     int w = 0;

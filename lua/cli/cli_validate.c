@@ -123,7 +123,7 @@ static void json_contour(FILE *out, const lam_layer *L, const lam_contour_check 
     fputs("]}", out);
 }
 
-int vreport_layer(vreport *r, lam_validator *v, const lam_layer *L, const lam_frame *f, const lam_validate_opts *o,
+int vreport_layer(vreport *r, lam_rays *v, const lam_layer *L, const lam_frame *f, const lam_validate_opts *o,
                   const vsource *src, lam_error *err)
 {
     lam_layer_check chk;
@@ -192,14 +192,14 @@ int vreport_finish(vreport *r, const char *what)
 }
 
 /* The layers of a program read back, each checked as it is written. */
-static int validate_program(const args *a, const lam_plan_opts *po, lam_validator *v, vreport *r, lam_error *err)
+static int validate_program(const args *a, const lam_plan_opts *po, lam_rays *v, vreport *r, lam_error *err)
 {
     lam_program *p = NULL;
     int rc = lam_program_read(a->program, &p, err);
     if (rc) return rc;
     const lam_frame *f = &a->so.frame;
     lam_section_index *sec = NULL;
-    if ((rc = lam_validator_section(v, f, &sec, err))) {
+    if ((rc = lam_rays_section(v, f, &sec, err))) {
         lam_program_free(p);
         return rc;
     }
@@ -253,7 +253,7 @@ int cmd_validate(int argc, char **argv)
     lam_profile *prof = NULL;
     lam_model *m = NULL;
     lam_slicer *s = NULL;
-    lam_validator *v = NULL;
+    lam_rays *v = NULL;
     vreport r;
     memset(&r, 0, sizeof r);
     r.out = stdout;
@@ -272,7 +272,7 @@ int cmd_validate(int argc, char **argv)
         rc = cli_fail(&err);
         goto done;
     }
-    if (lam_validator_new(m, &v, &err)) {
+    if (lam_rays_new(m, &v, &err)) {
         rc = cli_fail(&err);
         goto done;
     }
@@ -322,7 +322,7 @@ int cmd_validate(int argc, char **argv)
     }
 done:
     fflush(stdout);
-    lam_validator_free(v);
+    lam_rays_free(v);
     lam_slicer_free(s);
     lam_model_free(m);
     lam_profile_free(prof);

@@ -1,6 +1,7 @@
 /* The `lamina` executable: dispatch to one command per file (cli_*.c). */
 #include "cli.h"
 #include "cli_lua.h"
+#include "repl.h"
 #include "version.h"
 #include "writer.h"
 

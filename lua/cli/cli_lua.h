@@ -1,6 +1,6 @@
 /* The Lua side of the `lamina` command line: recipes (`lamina run`),
- * one-liners (`lamina -e`) and the interactive prompt (`lamina repl`, and
- * plain `lamina` on a terminal). */
+ * one-liners (`lamina -e`), and the Lua state they share with the
+ * interactive prompt (repl.h). */
 #ifndef LAM_CLI_LUA_H
 #define LAM_CLI_LUA_H
 
@@ -13,14 +13,7 @@ int cmd_run(int argc, char **argv);
 /* lamina -e CODE [-e CODE ...]: argv[0] is "-e". */
 int cmd_eval(int argc, char **argv);
 
-/* lamina repl: argv[0] is "repl". */
-int cmd_repl(int argc, char **argv);
-
-/* Plain `lamina` without arguments: the prompt when standard input is a
- * terminal, otherwise the usual "no command given" usage error. */
-int lua_main_default(void);
-
-/* ---- shared by cli_lua.c and repl.c ---------------------------------- */
+/* ---- the host that `run`, `-e` and repl.c share ----------------------- */
 
 /* A new Lua state with the standard libraries, `lamina` loaded (global
  * and package.loaded) and lamina's Lua directories on package.path.
@@ -38,8 +31,10 @@ int lam_cli_docall(lua_State *L, int narg, int nres);
  * for option errors), else 1. */
 int lam_cli_report(lua_State *L, int prefix);
 
-/* The read-eval-print loop on standard input until end of file (repl.c).
- * Returns an exit code. */
-int lam_repl(lua_State *L);
+/* Run body(L) protected in a new state (lam_cli_newstate) whose global
+ * `arg` is set as for `lamina CMD`, then close the state. Returns body's
+ * exit code, or 1 when the state cannot be made or body raises. This is
+ * how repl.c runs without cli_lua.c knowing about it. */
+int lam_cli_host(const char *cmd, int (*body)(lua_State *L));
 
 #endif

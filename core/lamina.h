@@ -1,0 +1,42 @@
+/* lamina's public C API: include this one header and link with
+ * `pkg-config --cflags --libs lamina`.
+ *
+ * A library user loads a mesh (import.h), builds a model (model.h), slices
+ * it (slice.h: layers of contours, contour.h), may offset, fill or check
+ * the layers (offset.h, fill.h, section.h, validate.h, drc.h, rays.h), plans
+ * them for a machine profile (profile.h, planner.h, plan.h, dialect.h) and
+ * writes programs or previews through a lam_writer (writer.h, svg.h).
+ * Every fallible function returns LAM_OK or a LAM_E* code with the message
+ * in a lam_error (error.h). Plugins are written against lamina_plugin.h
+ * alone, which does not need this library.
+ *
+ * The headers not included here (nest.h, enclose.h, geos.h, lexnum.h,
+ * fmt.h, paths.h, prefetch.h, grow.h, test_hooks.h) are internal to core/
+ * and not installed. */
+#ifndef LAMINA_H
+#define LAMINA_H
+
+#include "version.h"
+#include "error.h"
+#include "mesh.h"
+#include "import.h"
+#include "model.h"
+#include "slice.h"
+#include "contour.h"
+#include "fill.h"
+#include "offset.h"
+#include "section.h"
+#include "rays.h"
+#include "validate.h"
+#include "drc.h"
+#include "writer.h"
+#include "plan.h"
+#include "dialect.h"
+#include "profile.h"
+#include "profile_keys.h"
+#include "planner.h"
+#include "plugin.h"
+#include "program_read.h"
+#include "svg.h"
+
+#endif
