@@ -1,7 +1,7 @@
 /* lamina's public C API: include this one header and link with
  * `pkg-config --cflags --libs lamina`.
  *
- * A library user loads a mesh (import.h), builds a model (model.h), slices
+ * A library user loads a mesh (import.h; file.h: the input size limits), builds a model (model.h), slices
  * it (slice.h: layers of contours, contour.h), may offset, fill or check
  * the layers (offset.h, fill.h, section.h, validate.h, drc.h, rays.h), plans
  * them for a machine profile (profile.h, planner.h, plan.h, dialect.h) and
@@ -19,6 +19,7 @@
 #include "version.h"
 #include "error.h"
 #include "mesh.h"
+#include "file.h"
 #include "import.h"
 #include "model.h"
 #include "slice.h"
