@@ -44,8 +44,9 @@
  *   brace comments nest (a slash-star inside them means nothing), slash-star
  *   comments do not nest. Columns count bytes from 1. The importer keeps a
  *   private copy of the text and NUL-terminates each word in place, so
- *   names go to the mesh and to strtod without copying. Numbers are whatever
- *   strtod reads when it consumes the whole word.
+ *   names go to the mesh and to the number reader without copying. Numbers
+ *   are what lexnum.h reads when it consumes the whole word (decimal, no
+ *   locale), or C's hexadecimal spellings.
  * - Errors point at the offending token; an unterminated comment at its
  *   opening; a definition left open at end of file at its `def`; an include
  *   that cannot be read, or closes a cycle, at its `include`; a vertex that
@@ -594,10 +595,16 @@ static int expect_semi(ug_parser *p, const char *after)
     return expected(p, &t, what);
 }
 
-/* The whole word is a number strtod reads. */
+/* The whole word is a number: decimals by lexnum.h (whatever the C
+ * locale's decimal separator; nan and inf read as such so that the caller
+ * can say "not a finite number"), and C's hexadecimal spellings (0x10),
+ * which Unigrafix files have always been read with, by strtod. */
 static int parse_number(const ug_token *t, double *out)
 {
     if (t->kind != TK_WORD) return 0;
+    if (lam_parse_number((const unsigned char *)t->s, t->len, out) == LAM_OK) return 1;
+    const char *h = t->s + (t->s[0] == '-' || t->s[0] == '+');
+    if (h[0] != '0' || (h[1] != 'x' && h[1] != 'X')) return 0;
     char *end;
     double v = strtod(t->s, &end);
     if (end != t->s + t->len) return 0;
