@@ -1,5 +1,8 @@
 #include "cli.h"
 
+#include "dialect.h"
+#include "fmt.h"
+
 #include <math.h>
 #include <stdarg.h>
 #include <stdlib.h>
@@ -43,19 +46,10 @@ void cli_json_string(FILE *f, const char *s)
 
 const char *cli_num(char *buf, size_t size, double x)
 {
-    if (x == 0) x = 0; /* no "-0" */
-    double ax = fabs(x);
-    if (ax >= 1e-4 && ax < 1e15) {
-        /* plain decimals, as few as read back exactly */
-        for (int dec = 0; dec <= 20; dec++) {
-            snprintf(buf, size, "%.*f", dec, x);
-            if (strtod(buf, NULL) == x) return buf;
-        }
-    }
-    for (int prec = 1; prec <= 17; prec++) {
-        snprintf(buf, size, "%.*g", prec, x);
-        if (strtod(buf, NULL) == x) return buf;
-    }
+    /* the one shortest round-trip printer (dialect.h) */
+    char tmp[LAM_FMT_MAX];
+    lam_dialect_number(tmp, x);
+    snprintf(buf, size, "%s", tmp);
     return buf;
 }
 
