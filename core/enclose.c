@@ -16,11 +16,6 @@
  * milliseconds. */
 #define PAIRWISE_WORK 4e6
 
-static int oom(lam_error *err)
-{
-    return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory building the model");
-}
-
 static int bbox_inside(const double *in, const double *out)
 {
     for (int j = 0; j < 3; j++)
@@ -282,7 +277,7 @@ int lam_count_enclosing(lam_model *md, lam_error *err)
     unsigned char *cand = calloc(ns, 1);
     if (!cand || tree_build(md, &t)) {
         free(cand);
-        return oom(err);
+        return lam_error_nomem(err, "building the model");
     }
     /* the work the pairwise test would do, and who has a candidate at all;
      * past the budget only the first candidate of each shell is looked

@@ -32,6 +32,7 @@
  * index 0, index out of range, fewer than 3 vertices, non-finite
  * coordinates; LAM_EGEOM from the triangulation. Linear time. */
 #include "import.h"
+#include "grow.h"
 #include "lexnum.h"
 
 #include <math.h>
@@ -242,11 +243,9 @@ static int obj_face(obj_lex *lx, lam_mesh *m, obj_state *st)
                             nfile == 1 ? "vertex" : "vertices");
         size_t one_based = v > 0 ? (size_t)v : nfile + 1 - (size_t)-v;
         if (nv == st->cap) {
-            size_t ncap = st->cap ? 2 * st->cap : 16;
-            uint32_t *ni = realloc(st->idx, ncap * sizeof *ni);
+            uint32_t *ni = lam_grow(st->idx, &st->cap, nv + 1, sizeof *ni, 16);
             if (!ni) return at_error(lx, LAM_ENOMEM, fline, fcol, "out of memory reading a face");
             st->idx = ni;
-            st->cap = ncap;
         }
         st->idx[nv++] = (uint32_t)(st->base + one_based - 1);
     }

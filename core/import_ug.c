@@ -53,6 +53,7 @@
  *   a transform sends to infinity at the vertex's name.
  */
 #include "import.h"
+#include "grow.h"
 #include "lexnum.h"
 
 #include <errno.h>
@@ -78,18 +79,11 @@
 static int reserve_(void *arrp, size_t *cap, size_t need, size_t elem)
 {
     if (need <= *cap) return 0;
-    size_t n = *cap ? *cap : 8;
-    while (n < need) {
-        if (n > SIZE_MAX / 2) return -1;
-        n *= 2;
-    }
-    if (n > SIZE_MAX / elem) return -1;
     void *p;
     memcpy(&p, arrp, sizeof p);
-    void *q = realloc(p, n * elem);
+    void *q = lam_grow(p, cap, need, elem, 8); /* grow.h: the one doubling rule */
     if (!q) return -1;
     memcpy(arrp, &q, sizeof q);
-    *cap = n;
     return 0;
 }
 #define RESERVE(arr, cap, need) reserve_(&(arr), &(cap), (need), sizeof *(arr))
@@ -261,7 +255,7 @@ static int error_at(ug_import *imp, int code, const ug_file *f, long line, long 
 
 static int nomem(ug_import *imp)
 {
-    return lam_error_set(imp->err, LAM_ENOMEM, NULL, 0, 0, "out of memory reading Unigrafix");
+    return lam_error_nomem(imp->err, "reading Unigrafix");
 }
 
 static void mark_next(ug_scope *s)

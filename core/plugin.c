@@ -1,5 +1,7 @@
 #include "plugin.h"
 
+#include "grow.h"
+
 #include <dlfcn.h>
 #include <errno.h>
 #include <stdarg.h>
@@ -178,7 +180,7 @@ static char *dir_of(const char *path)
 static int safe_plugin(const char *path, lam_error *err)
 {
     char *dir = dir_of(path);
-    if (!dir) return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory");
+    if (!dir) return lam_error_nomem(err, NULL);
     int rc = safe_mode(dir, "directory", err);
     free(dir);
     return rc ? rc : safe_mode(path, "file", err);
@@ -198,11 +200,9 @@ int lam_plugin_load(const char *path, lam_error *err)
         if (plugins[i]->dev == st.st_dev && plugins[i]->ino == st.st_ino) return LAM_OK;
 
     if (nplugins == cap_plugins) {
-        size_t cap = cap_plugins ? 2 * cap_plugins : 8;
-        plugin **np = realloc(plugins, cap * sizeof *np);
-        if (!np) return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory");
+        plugin **np = lam_grow(plugins, &cap_plugins, nplugins + 1, sizeof *np, 8);
+        if (!np) return lam_error_nomem(err, NULL);
         plugins = np;
-        cap_plugins = cap;
     }
     plugin *p = calloc(1, sizeof *p);
     /* "./x.so", not "x.so": dlopen must not search the library path */
@@ -210,7 +210,7 @@ int lam_plugin_load(const char *path, lam_error *err)
     if (p) p->path = malloc(len + 3);
     if (!p || !p->path) {
         free(p);
-        return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory");
+        return lam_error_nomem(err, NULL);
     }
     snprintf(p->path, len + 3, "%s%s", strchr(path, '/') ? "" : "./", path);
     p->dev = st.st_dev;
@@ -365,7 +365,7 @@ static int load_named(const char *name, char **dirs, size_t ndirs, lam_error *er
     for (size_t d = 0; d < ndirs; d++) {
         size_t need = strlen(dirs[d]) + strlen(name) + 5;
         char *full = malloc(need);
-        if (!full) return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory");
+        if (!full) return lam_error_nomem(err, NULL);
         snprintf(full, need, "%s/%s.so", dirs[d], name);
         struct stat st;
         if (stat(full, &st) != 0) {
@@ -540,7 +540,7 @@ int lam_plugin_writer_sink(const char *name, lam_writer *w, lam_error *err, lam_
         we = find_writer(name);
     }
     plugin_sink *s = calloc(1, sizeof *s);
-    if (!s) return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory");
+    if (!s) return lam_error_nomem(err, NULL);
     s->we = we;
     s->out.w = w;
     s->err = err;
