@@ -117,6 +117,7 @@ typedef struct lplan {
     char name[128], process[8];
     double travel, deposit;  /* LADRP: stage travel and deposit lengths (layer plane) */
     size_t deposits;         /* LADRP: deposit moves */
+    lam_scan_time time;      /* SLS: the build-time estimate (hatch.h) */
 } lplan;
 
 /* Checked accessors: raise the usual "bad argument" error for a wrong type

@@ -28,6 +28,8 @@ typedef struct planjob {
     lam_sink sink;
     int have_sink;
     lam_error err;           /* the sink reports through it: it must not move */
+    lam_sls_state st;        /* SLS planning's state (its hatch vectors) */
+    int have_st;
 } planjob;
 
 static void job_release(planjob *j)
@@ -36,6 +38,8 @@ static void job_release(planjob *j)
     j->have_sink = 0;
     lam_writer_abort(j->w);
     j->w = NULL;
+    if (j->have_st) lam_sls_state_free(&j->st);
+    j->have_st = 0;
 }
 
 static int job_gc(lua_State *L)
@@ -169,7 +173,10 @@ int lam_lua_plan(lua_State *L)
     rc = s->begin ? s->begin(s->ctx, &job) : LAM_OK;
     double pos[3] = { job.origin[0], job.origin[1], job.origin[2] };
     int laser = -1;
-    size_t next_id = 1;
+    lam_sls_state *st = &j->st;
+    lam_sls_state_init(st);
+    j->have_st = 1;
+    size_t nskin = o.scan.skin_layers > 0 ? (size_t)o.scan.skin_layers : 0;
     for (size_t i = 0; i < n && !rc; i++) {
         lam_lua_check_interrupt(L);
         const lam_layer *ly = ls[i];
@@ -177,17 +184,25 @@ int lam_lua_plan(lua_State *L)
         if (s->layer) rc = s->layer(s->ctx, &li);
         if (!rc) {
             if (o.kind == LAM_PLAN_LADRP) {
-                lam_ladrp_stats st;
-                rc = lam_plan_ladrp_layer(ly, &run->frame, &o, s, pos, &laser, &st, &j->err);
-                pl->travel += st.travel_length;
-                pl->deposit += st.deposit_length;
-                pl->deposits += st.deposits;
+                lam_ladrp_stats lst;
+                rc = lam_plan_ladrp_layer(ly, &run->frame, &o, s, pos, &laser, &lst, &j->err);
+                pl->travel += lst.travel_length;
+                pl->deposit += lst.deposit_length;
+                pl->deposits += lst.deposits;
             } else {
-                rc = lam_plan_sls_layer(ly, &run->frame, &o, s, &next_id, &j->err);
+                /* skins look at the neighbours in the list given */
+                const lam_layer *below[LAM_SKIN_MAX], *above[LAM_SKIN_MAX];
+                size_t nb = 0, na = 0;
+                for (size_t k = 1; k <= nskin && k <= i; k++) below[nb++] = ls[i - k];
+                for (size_t k = 1; k <= nskin && i + k < n; k++) above[na++] = ls[i + k];
+                rc = lam_plan_sls_layer(ly, below, nb, above, na, &run->frame, &o, s, NULL, st, &j->err);
+                lam_scan_time_add(&pl->time, &st->time);
             }
         }
         if (!rc && s->layer_end) rc = s->layer_end(s->ctx, &li);
     }
+    lam_sls_state_free(st);
+    j->have_st = 0;
     if (!rc && s->end) rc = s->end(s->ctx);
     if (s->destroy) s->destroy(s->ctx);
     j->have_sink = 0;
