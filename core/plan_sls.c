@@ -108,9 +108,12 @@ static int emit_hatches(const lam_layer *L, const lam_hatches *h, const lam_fram
 
 int lam_plan_sls_layer(const lam_layer *L, const lam_layer *const *below, size_t nbelow,
                        const lam_layer *const *above, size_t nabove, const lam_frame *f,
-                       const lam_plan_opts *o, const lam_sink *sink, const lam_hatches *given,
+                       const lam_plan_opts *opts, const lam_sink *sink, const lam_hatches *given,
                        lam_sls_state *st, lam_error *err)
 {
+    lam_plan_opts oc = *opts;
+    const lam_plan_opts *o = &oc;
+    oc.scan.compensation = opts->beam_offset ? opts->bead / 2 : 0;
     memset(&st->time, 0, sizeof st->time);
     st->have_pos = 0; /* the scanner starts each layer at its first path */
     st->time.layers = 1;

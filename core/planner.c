@@ -16,6 +16,13 @@ void lam_plan_opts_init(lam_plan_opts *o)
     o->units = "mm";
     o->bead = 1;
     o->alternate = 1;
+    o->scan.contour_count = 1;
+    o->scan.contours_first = 1;
+    for (int t = 0; t < LAM_VEC_TYPES; t++) {
+        o->scan.type[t].distance = 0.1;
+        o->scan.type[t].stripe_width = 10;
+        o->scan.type[t].island_size = 5;
+    }
 }
 
 void lam_plan_opts_from_profile(lam_plan_opts *o, const lam_profile *p)
@@ -38,7 +45,6 @@ void lam_plan_opts_from_profile(lam_plan_opts *o, const lam_profile *p)
     o->islands = p->islands;
     o->beam_offset = p->beam_offset;
     o->scan = p->scan;
-    o->scan.compensation = sls && p->beam_offset ? p->spot_width / 2 : 0;
 }
 
 void lam_job_label(const char *path, char *buf, size_t size)

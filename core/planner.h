@@ -59,12 +59,14 @@ typedef struct lam_plan_opts {
     int beam_offset;             /* contours moved inward by half the spot (holes
                                     outward), so the beam's edge traces the part */
     lam_scan_cfg scan;           /* SLS: contour passes, hatching, skins, exposure
-                                    and time (hatch.h); scan.compensation is half
-                                    the spot with beam_offset, else 0 */
+                                    and time (hatch.h); the planner sets
+                                    scan.compensation: half the spot with
+                                    beam_offset, else 0 */
     lam_scan_time *time;         /* SLS: if not NULL, the job's estimate is added here */
 } lam_plan_opts;
 
-/* Defaults: SLS, bead 1, rates 0, model frame, edge, 0 degrees, alternate. */
+/* Defaults: SLS, bead 1, rates 0, model frame, edge, 0 degrees, alternate;
+ * one contour pass, contours first, no hatching. */
 void lam_plan_opts_init(lam_plan_opts *o);
 
 struct lam_profile;

@@ -90,6 +90,7 @@ typedef struct lrun {
     double uvbox[4];         /* the model's extent in the layer frame */
     double wmin, wmax;       /* first and last plane */
     double bbox[6];          /* the model's bounding box (model frame) */
+    char label[128];         /* the part's name for programs (lam_job_label) */
 } lrun;
 
 typedef struct llayer {

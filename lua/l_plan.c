@@ -161,6 +161,7 @@ int lam_lua_plan(lua_State *L)
     job.bead = o.bead;
     job.rate = o.rate;
     job.travel_rate = o.travel_rate;
+    job.label = run->label;
     if (o.frame_machine) {
         const double bb[6] = { run->uvbox[0], run->uvbox[1], run->wmin, run->uvbox[2], run->uvbox[3], run->wmax };
         memcpy(job.bbox, bb, sizeof bb);
