@@ -26,6 +26,14 @@ int lam_scan_hatches(const lam_scan_cfg *cfg)
     return 0;
 }
 
+int lam_scan_estimates(const lam_scan_cfg *cfg)
+{
+    if (lam_scan_hatches(cfg) || cfg->recoat_time > 0) return 1;
+    for (int t = 0; t < LAM_VEC_TYPES; t++)
+        if (cfg->type[t].exposure.speed > 0 || cfg->type[t].exposure.exposure_time > 0) return 1;
+    return 0;
+}
+
 /* ---- the vector store ----------------------------------------------------- */
 
 void lam_hatches_clear(lam_hatches *h)

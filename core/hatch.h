@@ -94,6 +94,10 @@ typedef struct lam_scan_cfg {
 /* Whether cfg hatches anything: some hatch type's strategy is not none. */
 int lam_scan_hatches(const lam_scan_cfg *cfg);
 
+/* Whether a build-time estimate means something for cfg: it hatches, or
+ * gives a speed, a point exposure time or a recoat time. */
+int lam_scan_estimates(const lam_scan_cfg *cfg);
+
 /* A block: consecutive vectors of one type (one stripe, one island, or a
  * whole region for lines). */
 typedef struct lam_hatch_block {

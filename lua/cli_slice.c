@@ -94,6 +94,16 @@ static int on_layer(void *ctx, const lam_layer *L, lam_error *err)
     return r->svg ? lam_svg_add(r->svg, L, err) : LAM_OK;
 }
 
+/* The build-time summary of a powder-bed job (hatch.h's estimate). */
+static void cli_print_estimate(const char *path, const lam_scan_time *t)
+{
+    fprintf(stderr,
+            "lamina: %s: %zu layers, %zu contour passes, %zu hatch vectors, %.6g exposed, %.6g jumped; "
+            "estimated build time %.6g s (exposure %.6g s, jumps %.6g s, recoating %.6g s)\n",
+            path, t->layers, t->contours, t->vectors, t->exposure_length, t->jump_length, lam_scan_time_total(t),
+            t->exposure, t->jump, t->recoat);
+}
+
 int cmd_slice(int argc, char **argv)
 {
     args a;
@@ -152,6 +162,9 @@ int cmd_slice(int argc, char **argv)
         rc = err.code == LAM_EUSAGE ? cli_usage("slice", "%s", err.msg) : cli_fail(&err);
         goto done;
     }
+    lam_scan_time est;
+    memset(&est, 0, sizeof est);
+    po.time = &est;
     if (lam_plan_run(s, m, &po, &sink, on_layer, &rep, &err)) {
         rc = err.code == LAM_EUSAGE ? cli_usage("slice", "%s", err.msg) : cli_fail(&err);
         goto done;
@@ -178,6 +191,7 @@ int cmd_slice(int argc, char **argv)
             goto done;
         }
     }
+    if (po.kind == LAM_PLAN_SLS && lam_scan_estimates(&po.scan)) cli_print_estimate(a.path, &est);
     if (rep.svg && lam_svg_save(rep.svg, a.svg, &err)) {
         rc = cli_fail(&err);
         goto done;
