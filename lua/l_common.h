@@ -119,6 +119,7 @@ typedef struct lplan {
     double travel, deposit;  /* LADRP: stage travel and deposit lengths (layer plane) */
     size_t deposits;         /* LADRP: deposit moves */
     lam_scan_time time;      /* SLS: the build-time estimate (hatch.h) */
+    double *layer_time;      /* SLS: each layer's estimate, seconds (owned) */
 } lplan;
 
 /* Checked accessors: raise the usual "bad argument" error for a wrong type

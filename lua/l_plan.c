@@ -145,6 +145,7 @@ int lam_lua_plan(lua_State *L)
                            (lua_Integer)ls[i]->index + 1, LAM_LUA_MAX_LINES);
 
     lam_error_clear(&j->err);
+    if (!(pl->layer_time = calloc(n, sizeof *pl->layer_time))) return luaL_error(L, "out of memory");
     if (lam_writer_memory(&j->w, &j->err)) return lam_lua_fail(L, &j->err);
     int text = !p.writer || strcmp(p.writer, "text") == 0;
     int rc = text ? lam_dialect_sink(&p.dialect, j->w, &j->err, &j->sink)
@@ -198,6 +199,7 @@ int lam_lua_plan(lua_State *L)
                 for (size_t k = 1; k <= nskin && i + k < n; k++) above[na++] = ls[i + k];
                 rc = lam_plan_sls_layer(ly, below, nb, above, na, &run->frame, &o, s, NULL, st, &j->err);
                 lam_scan_time_add(&pl->time, &st->time);
+                pl->layer_time[i] = lam_scan_time_total(&st->time);
             }
         }
         if (!rc && s->layer_end) rc = s->layer_end(s->ctx, &li);
@@ -237,6 +239,8 @@ static int p_gc(lua_State *L)
     lplan *pl = LAM_CHECKUD(L, 1, lplan, LAM_PLAN, LAM_TAG_PLAN);
     free(pl->data);
     pl->data = NULL;
+    free(pl->layer_time);
+    pl->layer_time = NULL;
     return 0;
 }
 
@@ -273,7 +277,32 @@ static int p_fields(lua_State *L)
     else if (strcmp(k, "travel") == 0) lua_pushnumber(L, pl->travel);
     else if (strcmp(k, "deposit") == 0) lua_pushnumber(L, pl->deposit);
     else if (strcmp(k, "deposits") == 0) lua_pushinteger(L, (lua_Integer)pl->deposits);
-    else lua_pushnil(L);
+    else if (strcmp(k, "time") == 0) {
+        const lam_scan_time *t = &pl->time;
+        lua_createtable(L, 0, 9);
+        lua_pushnumber(L, lam_scan_time_total(t));
+        lua_setfield(L, -2, "total");
+        lua_pushnumber(L, t->exposure);
+        lua_setfield(L, -2, "exposure");
+        lua_pushnumber(L, t->jump);
+        lua_setfield(L, -2, "jumps");
+        lua_pushnumber(L, t->recoat);
+        lua_setfield(L, -2, "recoat");
+        lua_pushinteger(L, (lua_Integer)t->vectors);
+        lua_setfield(L, -2, "vectors");
+        lua_pushinteger(L, (lua_Integer)t->contours);
+        lua_setfield(L, -2, "contours");
+        lua_pushnumber(L, t->exposure_length);
+        lua_setfield(L, -2, "exposed");
+        lua_pushnumber(L, t->jump_length);
+        lua_setfield(L, -2, "jumped");
+        lua_createtable(L, (int)pl->layers, 0);
+        for (size_t i = 0; i < pl->layers && pl->layer_time; i++) {
+            lua_pushnumber(L, pl->layer_time[i]);
+            lua_rawseti(L, -2, (lua_Integer)i + 1);
+        }
+        lua_setfield(L, -2, "layers");
+    } else lua_pushnil(L);
     return 1;
 }
 
