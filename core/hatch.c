@@ -543,7 +543,9 @@ void lam_scan_time_path(lam_scan_time *t, const lam_scan_cfg *cfg, const lam_exp
     if (contour) t->contours++;
     else t->vectors++;
     t->exposure_length += length;
-    if (e->point_distance > 0 && e->exposure_time > 0) t->exposure += (floor(length / e->point_distance) + 1) * e->exposure_time;
+    /* points from one end to the other; a closed contour's last is its first */
+    if (e->point_distance > 0 && e->exposure_time > 0)
+        t->exposure += fmax(1, floor(length / e->point_distance) + (contour ? 0 : 1)) * e->exposure_time;
     else if (e->speed > 0) t->exposure += length / e->speed;
     pos[0] = end[0];
     pos[1] = end[1];

@@ -149,8 +149,9 @@ double lam_scan_time_total(const lam_scan_time *t);
 void lam_scan_time_add(lam_scan_time *a, const lam_scan_time *b);
 
 /* The scanner's part of the estimate: exposing a path of `length` with e
- * (length / speed, or for point exposure (floor(length / point_distance) +
- * 1) points x exposure_time; 0 without a speed), and the jump from the
+ * (length / speed, or for point exposure floor(length / point_distance)
+ * + 1 points (a closed contour: one fewer, at least one) x exposure_time;
+ * 0 without a speed), and the jump from the
  * previous path's end (none before a layer's first path): distance /
  * jump_speed + jump_delay. pos/have_pos is the scanner, updated to `end`. */
 void lam_scan_time_path(lam_scan_time *t, const lam_scan_cfg *cfg, const lam_exposure *e, const double start[2],

@@ -529,7 +529,9 @@ static int read_cli_binary(rd *r, size_t data)
         if (r->n - at < 2) return fail_byte(r, LAM_ESYNTAX, at, "a command id cut short by the end of the file");
         unsigned cmd = rd_u16(r->s + at);
         at += 2;
-        int longform = cmd == 127 || cmd == 130 || cmd == 131;
+        /* CLI 2.0: 127 layer, 130 polyline, 132 hatches long (int32/float32);
+         * 128, 129, 131 their short forms (uint16) */
+        int longform = cmd == 127 || cmd == 130 || cmd == 132;
         size_t w = longform ? 4 : 2;
         if (cmd == 127 || cmd == 128) {
             if (r->n - at < w) return fail_byte(r, LAM_ESYNTAX, cmd_at, "a layer command cut short by the end of the file");

@@ -11,7 +11,8 @@
  *   $$LAYERS are read over. Binary: after the header, little-endian
  *   commands 127 (layer, float32 z), 128 (layer, uint16 z), 130 (polyline,
  *   int32 id dir n, n float32 pairs), 129 (polyline, uint16 id dir n and
- *   pairs); hatches 131 and 132 are read over. A polyline must be closed
+ *   pairs); hatches 132 (int32 id n, n float32 quadruples) and 131 (uint16)
+ *   are read over. A polyline must be closed
  *   (its last point repeats its first, which is then dropped) and have dir
  *   0 (clockwise, hole) or 1 (counter-clockwise, solid): dir 2 (an open
  *   line) is not a contour. $$LAYERS, when given, must count the layers.

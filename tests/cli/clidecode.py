@@ -6,6 +6,11 @@ usage: clidecode.py FILE.cli"""
 import struct
 import sys
 
+def num(v):
+    """%.5f without a negative zero, as lamina's ASCII writer"""
+    s = "%.5f" % v
+    return "0.00000" if s == "-0.00000" else s
+
 data = open(sys.argv[1], "rb").read()
 end = data.index(b"$$HEADEREND") + len(b"$$HEADEREND")
 header = data[:end].decode("ascii").split("\n")
@@ -23,19 +28,19 @@ while pos < len(data):
     if cmd == 127:
         (z,) = struct.unpack_from("<f", data, pos)
         pos += 4
-        print("$$LAYER/%.5f" % z)
+        print("$$LAYER/%s" % num(z))
     elif cmd == 130:
         pid, pdir, n = struct.unpack_from("<iii", data, pos)
         pos += 12
         xy = struct.unpack_from("<%df" % (2 * n), data, pos)
         pos += 8 * n
-        print("$$POLYLINE/%d,%d,%d,%s" % (pid, pdir, n, ",".join("%.5f" % v for v in xy)))
+        print("$$POLYLINE/%d,%d,%d,%s" % (pid, pdir, n, ",".join(num(v) for v in xy)))
     elif cmd == 132:
         pid, n = struct.unpack_from("<ii", data, pos)
         pos += 8
         xy = struct.unpack_from("<%df" % (4 * n), data, pos)
         pos += 16 * n
-        print("$$HATCHES/%d,%d,%s" % (pid, n, ",".join("%.5f" % v for v in xy)))
+        print("$$HATCHES/%d,%d,%s" % (pid, n, ",".join(num(v) for v in xy)))
     else:
         sys.exit("unknown command %d at byte %d" % (cmd, pos - 2))
 print("$$GEOMETRYEND")
