@@ -106,11 +106,22 @@ int lam_lua_plan(lua_State *L)
     luaL_checktype(L, 2, LUA_TTABLE);
     lam_lua_overrides ovr;
     memset(&ovr, 0, sizeof ovr);
+    lua_settop(L, 3);
+    lhatchctl *ctl = NULL;
     if (!lua_isnoneornil(L, 3)) {
         luaL_checktype(L, 3, LUA_TTABLE);
+        ctl = lam_lua_hatch_split(L, 3);                    /* at 4 (or nil) */
         lam_lua_read_overrides(L, 3, 3, LAM_KEY_PLAN, &ovr); /* may run metamethods: before any pointer */
+    } else {
+        lua_pushnil(L);
     }
-    lua_settop(L, 3);
+    if (ctl) {
+        /* the recipe's functions run now, before any pointer is kept */
+        lam_profile base = lam_lua_checkmachine(L, 1)->p;
+        lam_lua_apply_overrides(&ovr, &base);
+        lam_lua_hatch_prepare(L, ctl, 2, &base);
+    }
+    lua_settop(L, 4);
     lua_Unsigned nl = lua_rawlen(L, 2);
     if (nl == 0) luaL_argerror(L, 2, "no layers to plan (an empty table)");
     if (nl > LAM_LUA_MAX_LAYERS) luaL_argerror(L, 2, "too many layers");
@@ -183,11 +194,17 @@ int lam_lua_plan(lua_State *L)
         lam_lua_check_interrupt(L);
         const lam_layer *ly = ls[i];
         lam_layer_info li = { ly->index, ly->cut, ly->width, ly->floor, ly->ceiling };
+        lam_plan_opts oi = o;
+        if (ctl) {
+            lam_profile pi = p;
+            lam_lua_hatch_profile(ctl, i, &pi);
+            lam_lua_plan_opts(&pi, &oi);
+        }
         if (s->layer) rc = s->layer(s->ctx, &li);
         if (!rc) {
             if (o.kind == LAM_PLAN_LADRP) {
                 lam_ladrp_stats lst;
-                rc = lam_plan_ladrp_layer(ly, &run->frame, &o, s, pos, &laser, &lst, &j->err);
+                rc = lam_plan_ladrp_layer(ly, &run->frame, &oi, s, pos, &laser, &lst, &j->err);
                 pl->travel += lst.travel_length;
                 pl->deposit += lst.deposit_length;
                 pl->deposits += lst.deposits;
@@ -197,7 +214,8 @@ int lam_lua_plan(lua_State *L)
                 size_t nb = 0, na = 0;
                 for (size_t k = 1; k <= nskin && k <= i; k++) below[nb++] = ls[i - k];
                 for (size_t k = 1; k <= nskin && i + k < n; k++) above[na++] = ls[i + k];
-                rc = lam_plan_sls_layer(ly, below, nb, above, na, &run->frame, &o, s, NULL, st, &j->err);
+                rc = lam_plan_sls_layer(ly, below, nb, above, na, &run->frame, &oi, s, lam_lua_hatch_given(ctl, i), st,
+                                        &j->err);
                 lam_scan_time_add(&pl->time, &st->time);
                 pl->layer_time[i] = lam_scan_time_total(&st->time);
             }
