@@ -526,6 +526,7 @@ void lam_scan_time_add(lam_scan_time *a, const lam_scan_time *b)
     a->jumps += b->jumps;
     a->exposure_length += b->exposure_length;
     a->jump_length += b->jump_length;
+    a->hatch_length += b->hatch_length;
     a->exposure += b->exposure;
     a->jump += b->jump;
     a->recoat += b->recoat;
@@ -541,7 +542,7 @@ void lam_scan_time_path(lam_scan_time *t, const lam_scan_cfg *cfg, const lam_exp
         t->jump += (cfg->jump_speed > 0 ? j / cfg->jump_speed : 0) + cfg->jump_delay;
     }
     if (contour) t->contours++;
-    else t->vectors++;
+    else t->vectors++, t->hatch_length += length;
     t->exposure_length += length;
     /* points from one end to the other; a closed contour's last is its first */
     if (e->point_distance > 0 && e->exposure_time > 0)

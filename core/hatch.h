@@ -139,6 +139,7 @@ int lam_hatches_add(lam_hatches *h, double u0, double v0, double u1, double v1);
 typedef struct lam_scan_time {
     size_t layers, contours, vectors, jumps;
     double exposure_length, jump_length;    /* model units */
+    double hatch_length;                    /* of exposure_length: the hatch vectors' */
     double exposure, jump, recoat;          /* seconds */
 } lam_scan_time;
 

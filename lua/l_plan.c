@@ -314,6 +314,8 @@ static int p_fields(lua_State *L)
         lua_setfield(L, -2, "exposed");
         lua_pushnumber(L, t->jump_length);
         lua_setfield(L, -2, "jumped");
+        lua_pushnumber(L, t->hatch_length);
+        lua_setfield(L, -2, "hatched");
         lua_createtable(L, (int)pl->layers, 0);
         for (size_t i = 0; i < pl->layers && pl->layer_time; i++) {
             lua_pushnumber(L, pl->layer_time[i]);
