@@ -267,6 +267,14 @@ static int read_sls(rd *r)
     long loops = 0;
     char b[64];
     while (next_statement(r, &l, &t, &i)) {
+        if (tok_is(&t, "hatches")) {
+            /* a block of hatch vectors (not contours): read over to endhatches */
+            long hline = l.no, hcol = t.col;
+            do {
+                if (!next_statement(r, &l, &t, &i)) return expect_more(r, "'endhatches'", "hatches", hline, hcol);
+            } while (!tok_is(&t, "endhatches"));
+            continue;
+        }
         if (!tok_is(&t, "contour"))
             return fail_at(r, LAM_ESYNTAX, l.no, t.col, "expected 'contour', got %s", shown(b, sizeof b, &t));
         long cline = l.no, ccol = t.col;

@@ -21,7 +21,7 @@
  * - Otherwise the SLS dialect of the thesis (the sls-contours profile and
  *   `lamina slice` without a profile): blocks "contour Z", then one or more
  *   "loop N", N lines "X Y Z", "endloop", then "endcontour"; blank lines
- *   between. Each loop is a contour of the program; consecutive contours
+ *   between; hatch blocks "hatches ..." to "endhatches" are read over. Each loop is a contour of the program; consecutive contours
  *   with the same Z make a layer. The dialect writes no label: a loop's
  *   direction is its label (counter-clockwise solid, clockwise hole).
  *

@@ -170,6 +170,16 @@ for model in "$M/frame_island.ug" "$TMP/torus.stl"; do
     is "$RC" 0 "validate --program reads the hatched binary program back ($(basename "$model"))"
 done
 
+# the SLS text program with hatches reads back (hatch blocks read over)
+"$LAMINA" slice "$M/frame_island.ug" -w 2 -s hatch_strategy=islands -s hatch_distance=1 -o "$TMP/h.sls" 2>/dev/null
+run "$LAMINA" validate "$M/frame_island.ug" -w 2 --program "$TMP/h.sls"
+is "$RC" 0 "validate --program reads a hatched SLS program back"
+like "$OUT" "10 layers, 30 contours checked, 30 confirmed" "... every contour of it"
+printf 'hatches core 1 0\n1 2 3 4 5 6\n' >"$TMP/open.sls"
+run "$LAMINA" validate "$M/frame_island.ug" -w 2 --program "$TMP/open.sls"
+like "$RC $ERR" "^1 .*open\.sls:3:1: the file ends where 'endhatches' was expected \(in the hatches at 1:1\)" \
+    "an unfinished hatch block: file:line:column"
+
 # errors: a hatch distance that would make an endless program
 run "$LAMINA" slice "$M/frame_island.ug" -s hatch_strategy=lines -s hatch_distance=1e-7 -o "$TMP/x.cli"
 ok $((RC == 0)) "a hatch distance of 1e-7: an error, not an endless program"
