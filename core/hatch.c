@@ -203,7 +203,7 @@ static int scan(hatcher *h, const GEOSGeometry *g, double c, double s, double d)
     int rc = polygon_crossings(h, g, c, s, d);
     if (rc) return rc;
     if (h->ncr > 2 * MAX_VECTORS) return LAM_EUSAGE;
-    qsort(h->cr, h->ncr, sizeof *h->cr, cmp_crossing);
+    if (h->ncr) qsort(h->cr, h->ncr, sizeof *h->cr, cmp_crossing);
     for (size_t i = 0; i + 1 < h->ncr; i++) {
         if (h->cr[i].k != h->cr[i + 1].k) continue;
         if (h->cr[i + 1].x > h->cr[i].x && (rc = add_seg(h, h->cr[i].k, h->cr[i].x, h->cr[i + 1].x))) return rc;
