@@ -91,7 +91,7 @@ check() { # check MODEL SLICE-OPTIONS -- CHECK-OPTIONS
 for model in "$TMP/sphere.stl" "$TMP/torus.stl" "$M/frame_island.ug"; do
     case $model in
         *frame*) w=4 h=0.5 S=7 W=9 ;;
-        *) w=0.5 h=0.1 S=1.5 W=2 ;;
+        *) w=1 h=0.1 S=1.5 W=2 ;;
     esac
     check "$model" -w $w -s hatch_strategy=lines -s hatch_distance=$h -s hatch_angle=10 -- \
         --distance $h --angle 10 --increment 67 --coverage 1

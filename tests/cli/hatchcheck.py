@@ -259,7 +259,7 @@ for li, L in enumerate(layers):
             if not all_in(above, x, y):
                 return "upskin"
             return "core"
-        for k, bi, v in vecs:
+        for k, bi, v in vecs[::3]:   # every third vector: enough, and quick
             mx, my = (v[0] + v[2]) / 2, (v[1] + v[3]) / 2
             if any(near(Ea, mx, my, HS) for Ea in around):
                 continue
@@ -273,7 +273,7 @@ for li, L in enumerate(layers):
         xs = [p[0] for Lp in loops for p in Lp]
         ys = [p[1] for Lp in loops for p in Lp]
         if xs:
-            g = max(H / 2, (max(xs) - min(xs)) / 80, (max(ys) - min(ys)) / 80)
+            g = max(H / 2, (max(xs) - min(xs)) / 50, (max(ys) - min(ys)) / 50)
             x = min(xs) + g / 2
             while x < max(xs):
                 y = min(ys) + g / 3
