@@ -149,6 +149,7 @@ int lam_plan_run(lam_slicer *s, const lam_model *m, const lam_plan_opts *o, cons
                 for (size_t k = 1; k <= n && k <= cur; k++) below[nb++] = win[cur - k];
                 for (size_t k = 1; k <= n && cur + k < have; k++) above[na++] = win[cur + k];
                 rc = lam_plan_sls_layer(L, below, nb, above, na, f, o, sink, NULL, &st, err);
+                if (!rc && o->layer_time) o->layer_time[L->index] = lam_scan_time_total(&st.time);
             }
         }
         if (!rc && sink->layer_end) rc = sink->layer_end(sink->ctx, &li);

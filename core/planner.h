@@ -63,6 +63,8 @@ typedef struct lam_plan_opts {
                                     scan.compensation: half the spot with
                                     beam_offset, else 0 */
     lam_scan_time *time;         /* SLS: if not NULL, the job's estimate is added here */
+    double *layer_time;          /* SLS (lam_plan_run): if not NULL, room for every
+                                    layer: each one's estimate, seconds */
 } lam_plan_opts;
 
 /* Defaults: SLS, bead 1, rates 0, model frame, edge, 0 degrees, alternate;

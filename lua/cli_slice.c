@@ -28,7 +28,7 @@ static const char usage_text[] =
     "                          [--first-line edge|center] [--angle DEG] [--angle-step DEG]\n"
     "                          [--min-deposit LEN] [--no-alternate] [--perimeters N] [--islands]\n"
     "                          [--beam-offset] [--frame model|machine] [--fill evenodd|nonzero]\n"
-    "                          [--validate] [--svg FILE] [-o FILE]\n"
+    "                          [--validate] [--svg FILE] [-o FILE [--json]]\n"
     "  -m, --machine    machine profile: a shipped name (see 'lamina machines') or a path\n"
     "                   (default: the thesis's SLS contours)\n"
     "  -s, --set        KEY=VALUE: any key of the machine profile, checked as in its YAML\n"
@@ -41,6 +41,8 @@ static const char usage_text[] =
     "      --validate   check every label with Embree first; write nothing if any disagrees\n"
     "      --svg        write a contact sheet of the layers\n"
     "  -o, --output     program file (default: standard output)\n"
+    "      --json       the build-time estimate of a powder-bed job as JSON on standard output\n"
+    "                   (with -o; without --json it is a line on standard error)\n"
     "Values: --name=VALUE or --name VALUE; -- ends the options. The profile's values are\n"
     "defaults that -s and the options below override.\n";
 
@@ -94,6 +96,20 @@ static int on_layer(void *ctx, const lam_layer *L, lam_error *err)
     return r->svg ? lam_svg_add(r->svg, L, err) : LAM_OK;
 }
 
+/* The estimate as JSON: the job's and each layer's total. */
+static void cli_json_estimate(const char *path, const lam_scan_time *t, const double *layer, size_t n)
+{
+    printf("{\"model\": ");
+    cli_json_string(stdout, path);
+    printf(", \"layers\": %zu, \"contour_passes\": %zu, \"hatch_vectors\": %zu, \"exposed\": %.17g, "
+           "\"hatched\": %.17g, \"jumped\": %.17g, \"time\": {\"total\": %.17g, \"exposure\": %.17g, "
+           "\"jumps\": %.17g, \"recoat\": %.17g}, \"layer_times\": [",
+           t->layers, t->contours, t->vectors, t->exposure_length, t->hatch_length, t->jump_length,
+           lam_scan_time_total(t), t->exposure, t->jump, t->recoat);
+    for (size_t i = 0; i < n; i++) printf("%s%.17g", i ? ", " : "", layer[i]);
+    printf("]}\n");
+}
+
 /* The build-time summary of a powder-bed job (hatch.h's estimate). */
 static void cli_print_estimate(const char *path, const lam_scan_time *t)
 {
@@ -107,7 +123,8 @@ static void cli_print_estimate(const char *path, const lam_scan_time *t)
 int cmd_slice(int argc, char **argv)
 {
     args a;
-    int rc = cli_parse_args("slice", usage_text, OPT_MODEL | OPT_SLICE | OPT_SET | OPT_PLAN | OPT_SVG, argc, argv, &a);
+    int rc = cli_parse_args("slice", usage_text, OPT_MODEL | OPT_SLICE | OPT_SET | OPT_PLAN | OPT_SVG | OPT_JSON, argc, argv,
+                            &a);
     if (rc) {
         cli_args_free(&a);
         return rc < 0 ? EXIT_OK : rc;
@@ -119,6 +136,7 @@ int cmd_slice(int argc, char **argv)
     lam_slicer *s = NULL;
     lam_writer *w = NULL;
     lam_sink sink = { 0 };
+    double *layer_time = NULL;
     report rep;
     memset(&rep, 0, sizeof rep);
     rep.path = a.path;
@@ -165,6 +183,17 @@ int cmd_slice(int argc, char **argv)
     lam_scan_time est;
     memset(&est, 0, sizeof est);
     po.time = &est;
+    if (a.json && (!a.out || !strcmp(a.out, "-"))) {
+        rc = cli_usage("slice", "--json writes the estimate to standard output: give the program a file (-o FILE)");
+        goto done;
+    }
+    size_t nl = lam_slicer_count(s);
+    if (a.json && po.kind == LAM_PLAN_SLS && !(layer_time = calloc(nl ? nl : 1, sizeof *layer_time))) {
+        lam_error_set(&err, LAM_ENOMEM, NULL, 0, 0, "out of memory");
+        rc = cli_fail(&err);
+        goto done;
+    }
+    po.layer_time = layer_time;
     if (lam_plan_run(s, m, &po, &sink, on_layer, &rep, &err)) {
         rc = err.code == LAM_EUSAGE ? cli_usage("slice", "%s", err.msg) : cli_fail(&err);
         goto done;
@@ -191,7 +220,7 @@ int cmd_slice(int argc, char **argv)
             goto done;
         }
     }
-    if (po.kind == LAM_PLAN_SLS && lam_scan_estimates(&po.scan)) cli_print_estimate(a.path, &est);
+    if (po.kind == LAM_PLAN_SLS && !a.json && lam_scan_estimates(&po.scan)) cli_print_estimate(a.path, &est);
     if (rep.svg && lam_svg_save(rep.svg, a.svg, &err)) {
         rc = cli_fail(&err);
         goto done;
@@ -200,8 +229,10 @@ int cmd_slice(int argc, char **argv)
         lam_writer *tmp = w;
         w = NULL;
         if (lam_writer_commit(tmp, &err)) rc = cli_fail(&err);
+        else if (a.json && po.kind == LAM_PLAN_SLS) cli_json_estimate(a.path, &est, layer_time, lam_slicer_count(s));
     }
 done:
+    free(layer_time);
     if (sink.destroy) sink.destroy(sink.ctx);
     lam_writer_abort(w);
     lam_svg_free(rep.svg);
