@@ -17,6 +17,7 @@
 static const char *const cmd_names[LAM_CMD_COUNT] = {
     "preamble", "postamble", "layer", "layer_end", "feed", "laser_on", "laser_off", "travel", "deposit",
     "contour_begin", "contour_end", "loop_begin", "loop_end", "vertex", "polyline", "separator",
+    "hatches_begin", "hatch", "hatches_end", "hatches",
 };
 
 const char *lam_cmd_name(lam_cmd c)
@@ -30,6 +31,7 @@ enum field {
     F_INDEX, F_NUMBER, F_Z, F_WIDTH, F_FLOOR, F_CEILING,
     F_DX, F_DY, F_DZ, F_X, F_Y, F_I,
     F_ID, F_DIR, F_KIND, F_DEPTH, F_N, F_POINTS,
+    F_LABEL, F_POWER, F_SPEED, F_POINT_DISTANCE, F_EXPOSURE_TIME, F_ANGLE, F_X0, F_Y0, F_Z0, F_X1, F_Y1, F_Z1,
     F_COUNT
 };
 
@@ -39,6 +41,7 @@ static const char *const field_names[F_COUNT] = {
     "index", "number", "z", "width", "floor", "ceiling",
     "dx", "dy", "dz", "x", "y", "i",
     "id", "dir", "kind", "depth", "n", "points",
+    "label", "power", "speed", "point_distance", "exposure_time", "angle", "x0", "y0", "z0", "x1", "y1", "z1",
 };
 
 enum ftype { T_INT, T_NUM, T_TEXT, T_POINTS };
@@ -49,7 +52,7 @@ static enum ftype field_type(int f)
     case F_INDEX: case F_NUMBER: case F_LAYERS: case F_DIMENSION: case F_N: case F_ID: case F_DIR:
     case F_DEPTH: case F_I:
         return T_INT;
-    case F_NAME: case F_PROCESS: case F_UNITS: case F_KIND:
+    case F_NAME: case F_PROCESS: case F_UNITS: case F_KIND: case F_LABEL:
         return T_TEXT;
     case F_POINTS:
         return T_POINTS;
@@ -60,10 +63,14 @@ static enum ftype field_type(int f)
 
 #define B(f) ((uint64_t)1 << (f))
 
+#define EXPOSURE " power speed point_distance exposure_time"
+
 /* The fields of each command, in the order dialect.h lists them. */
 static const char *const cmd_field_text[LAM_CMD_COUNT] = {
-    [LAM_CMD_PREAMBLE] = "name process units layers dimension bead rate travel_rate xmin ymin zmin xmax ymax zmax",
-    [LAM_CMD_POSTAMBLE] = "name process units layers dimension bead rate travel_rate xmin ymin zmin xmax ymax zmax",
+    [LAM_CMD_PREAMBLE] = "name process units layers dimension bead rate travel_rate xmin ymin zmin xmax ymax zmax "
+                         "label",
+    [LAM_CMD_POSTAMBLE] = "name process units layers dimension bead rate travel_rate xmin ymin zmin xmax ymax zmax "
+                          "label",
     [LAM_CMD_LAYER] = "index number z width floor ceiling",
     [LAM_CMD_LAYER_END] = "index number z width floor ceiling",
     [LAM_CMD_FEED] = "rate",
@@ -71,13 +78,17 @@ static const char *const cmd_field_text[LAM_CMD_COUNT] = {
     [LAM_CMD_LASER_OFF] = "rate",
     [LAM_CMD_TRAVEL] = "dx dy dz x y z rate",
     [LAM_CMD_DEPOSIT] = "dx dy dz x y z rate",
-    [LAM_CMD_CONTOUR_BEGIN] = "index id dir kind depth n z points",
-    [LAM_CMD_CONTOUR_END] = "index id dir kind depth n z points",
+    [LAM_CMD_CONTOUR_BEGIN] = "index id dir kind depth n z points" EXPOSURE,
+    [LAM_CMD_CONTOUR_END] = "index id dir kind depth n z points" EXPOSURE,
     [LAM_CMD_LOOP_BEGIN] = "n z",
     [LAM_CMD_LOOP_END] = "n z",
     [LAM_CMD_VERTEX] = "x y z i",
-    [LAM_CMD_POLYLINE] = "index id dir kind depth n z points",
+    [LAM_CMD_POLYLINE] = "index id dir kind depth n z points" EXPOSURE,
     [LAM_CMD_SEPARATOR] = "",
+    [LAM_CMD_HATCHES_BEGIN] = "index id kind n z angle points" EXPOSURE,
+    [LAM_CMD_HATCH] = "x0 y0 z0 x1 y1 z1 i power speed",
+    [LAM_CMD_HATCHES_END] = "index id kind n z angle points" EXPOSURE,
+    [LAM_CMD_HATCHES] = "index id kind n z angle points" EXPOSURE,
 };
 
 const char *lam_cmd_fields(lam_cmd c)
@@ -540,7 +551,7 @@ typedef struct dsink {
     lam_writer *w;
     lam_error *err;
     lam_job_info job;
-    char *name, *process, *units;   /* copies of the job's strings */
+    char *name, *process, *units, *label;   /* copies of the job's strings */
     double pos[3];                  /* the stage position as the machine knows it */
     size_t blocks;                  /* contour blocks written */
     size_t layer_index, in_layer;   /* contours seen in the current layer */
@@ -576,6 +587,7 @@ static void job_vals(const dsink *s, vals *v)
     v->text[F_NAME] = s->name;
     v->text[F_PROCESS] = s->process;
     v->text[F_UNITS] = s->units;
+    v->text[F_LABEL] = s->label;
     v->num[F_LAYERS] = (double)s->job.layers;
     v->num[F_DIMENSION] = 3;
     v->num[F_BEAD] = s->job.bead;
@@ -596,10 +608,12 @@ static int d_begin(void *ctx, const lam_job_info *job)
     free(s->name);
     free(s->process);
     free(s->units);
+    free(s->label);
     s->name = dup_or_empty(job->name);
     s->process = dup_or_empty(job->process);
     s->units = dup_or_empty(job->units);
-    if (!s->name || !s->process || !s->units) return lam_error_set(s->err, LAM_ENOMEM, NULL, 0, 0, "out of memory");
+    s->label = dup_or_empty(job->label ? job->label : "part");
+    if (!s->name || !s->process || !s->units || !s->label) return lam_error_set(s->err, LAM_ENOMEM, NULL, 0, 0, "out of memory");
     memcpy(s->pos, job->origin, sizeof s->pos);
     s->blocks = 0;
     vals v;
@@ -701,6 +715,10 @@ static int d_contour(void *ctx, const lam_contour_info *ci)
     }
     v.npts = ci->n;
     v.close = close;
+    v.num[F_POWER] = ci->power;
+    v.num[F_SPEED] = ci->speed;
+    v.num[F_POINT_DISTANCE] = ci->point_distance;
+    v.num[F_EXPOSURE_TIME] = ci->exposure_time;
     if ((rc = emit(s, LAM_CMD_CONTOUR_BEGIN, &v, NULL, NULL))) return rc;
     if ((rc = emit(s, LAM_CMD_LOOP_BEGIN, &v, NULL, NULL))) return rc;
     if (d->cmd[LAM_CMD_VERTEX].present) {
@@ -721,6 +739,51 @@ static int d_contour(void *ctx, const lam_contour_info *ci)
     return emit(s, LAM_CMD_POLYLINE, &v, NULL, NULL);
 }
 
+static int d_hatches(void *ctx, const lam_hatch_info *h)
+{
+    dsink *s = ctx;
+    const lam_dialect *d = s->d;
+    int rc = LAM_OK;
+    size_t index = s->in_layer++;
+    vals v;
+    memset(&v, 0, sizeof v);
+    if (s->blocks++ > 0 && (rc = emit(s, LAM_CMD_SEPARATOR, &v, NULL, NULL))) return rc;
+    v.num[F_INDEX] = (double)index;
+    v.num[F_ID] = (double)h->id;
+    v.text[F_KIND] = h->kind;
+    v.num[F_N] = (double)h->n;
+    v.num[F_Z] = h->z;
+    v.num[F_ANGLE] = h->angle;
+    v.num[F_POWER] = h->power;
+    v.num[F_SPEED] = h->speed;
+    v.num[F_POINT_DISTANCE] = h->point_distance;
+    v.num[F_EXPOSURE_TIME] = h->exposure_time;
+    if (h->uv) {
+        v.uv = h->uv;
+        v.uv_stride = 2;
+    } else {
+        v.uv = h->xyz;
+        v.uv_stride = 3;
+    }
+    v.npts = 2 * h->n;
+    if ((rc = emit(s, LAM_CMD_HATCHES_BEGIN, &v, NULL, NULL))) return rc;
+    if (d->cmd[LAM_CMD_HATCH].present) {
+        vals pv;
+        memset(&pv, 0, sizeof pv);
+        pv.num[F_POWER] = h->power;
+        pv.num[F_SPEED] = h->speed;
+        for (size_t k = 0; k < h->n && !rc; k++) {
+            const double *p = h->xyz + 6 * k;
+            for (int j = 0; j < 3; j++) pv.num[F_X0 + j] = p[j], pv.num[F_X1 + j] = p[3 + j];
+            pv.num[F_I] = (double)k;
+            rc = emit(s, LAM_CMD_HATCH, &pv, NULL, NULL);
+        }
+        if (rc) return rc;
+    }
+    if ((rc = emit(s, LAM_CMD_HATCHES_END, &v, NULL, NULL))) return rc;
+    return emit(s, LAM_CMD_HATCHES, &v, NULL, NULL);
+}
+
 static int d_end(void *ctx)
 {
     dsink *s = ctx;
@@ -737,6 +800,7 @@ static void d_destroy(void *ctx)
     free(s->name);
     free(s->process);
     free(s->units);
+    free(s->label);
     free(s->b.s);
     free(s);
 }
@@ -757,6 +821,7 @@ int lam_dialect_sink(const lam_dialect *d, lam_writer *w, lam_error *err, lam_si
     out->laser = d_laser;
     out->move = d_move;
     out->contour = d_contour;
+    out->hatches = d_hatches;
     out->end = d_end;
     out->destroy = d_destroy;
     return LAM_OK;

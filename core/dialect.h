@@ -11,18 +11,29 @@
  *
  * Fields by command:
  *   preamble, postamble   name process units layers dimension bead rate travel_rate
- *                         xmin ymin zmin xmax ymax zmax
+ *                         xmin ymin zmin xmax ymax zmax label
  *   layer, layer_end      index number z width floor ceiling
  *   feed                  rate
  *   laser_on, laser_off   rate
  *   travel, deposit       dx dy dz x y z rate
  *   contour_begin, contour_end, polyline
  *                         index id dir kind depth n z points
+ *                         power speed point_distance exposure_time
+ *   hatches_begin, hatches_end, hatches
+ *                         index id kind n z angle points
+ *                         power speed point_distance exposure_time
+ *   hatch                 x0 y0 z0 x1 y1 z1 i power speed
  *   loop_begin, loop_end  n z
  *   vertex                x y z i
  *   separator             (none: written between two contour blocks)
  * `dir` is 1 for solids (counter-clockwise) and 0 for holes; `kind` is the
- * text "solid" or "hole"; `number` is index + 1; `points` expands to
+ * text "solid" or "hole" (hatch commands: "core", "upskin" or "downskin");
+ * `id` is the part's id (1 for the one model of a job) and `label` its name
+ * (the model file's name without directory and extension, characters other
+ * than letters, digits, `_`, `-` and `.` made `_`); a hatch block's `n`
+ * counts its vectors and its `points` are x0,y0,x1,y1 per vector;
+ * `power speed point_distance exposure_time` are the exposure of the
+ * vector type (profile keys, sections contour:, upskin:, downskin:); `number` is index + 1; `points` expands to
  * x,y,x,y,... (layer-plane coordinates in the output frame, each number with
  * the field's format, default %.6f), repeating the first point when the
  * dialect says `close_polylines: true`; `n` counts the points written.
@@ -60,6 +71,7 @@ typedef enum lam_cmd {
     LAM_CMD_FEED, LAM_CMD_LASER_ON, LAM_CMD_LASER_OFF, LAM_CMD_TRAVEL, LAM_CMD_DEPOSIT,
     LAM_CMD_CONTOUR_BEGIN, LAM_CMD_CONTOUR_END, LAM_CMD_LOOP_BEGIN, LAM_CMD_LOOP_END,
     LAM_CMD_VERTEX, LAM_CMD_POLYLINE, LAM_CMD_SEPARATOR,
+    LAM_CMD_HATCHES_BEGIN, LAM_CMD_HATCH, LAM_CMD_HATCHES_END, LAM_CMD_HATCHES,
     LAM_CMD_COUNT
 } lam_cmd;
 

@@ -1,5 +1,7 @@
 #include "geos.h"
 
+#include "slice.h"
+
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -78,4 +80,53 @@ void lam_loops_builder_free(lam_loops_builder *b)
     free(b->loops.uv);
     free(b->loops.len);
     memset(b, 0, sizeof *b);
+}
+
+static GEOSGeometry *ring_of(lam_geos *c, const lam_layer *L, const lam_contour *k)
+{
+    GEOSCoordSequence *cs = GEOSCoordSeq_create_r(c->h, (unsigned)(k->n + 1), 2);
+    if (!cs) return NULL;
+    for (size_t i = 0; i <= k->n; i++) {
+        const double *p = L->uv + 2 * (k->first + i % k->n);
+        GEOSCoordSeq_setXY_r(c->h, cs, (unsigned)i, p[0], p[1]);
+    }
+    return GEOSGeom_createLinearRing_r(c->h, cs);
+}
+
+GEOSGeometry *lam_geos_layer_region(lam_geos *c, const lam_layer *L)
+{
+    size_t n = L->ncontours;
+    GEOSGeometry **polys = calloc(n + 1, sizeof *polys);
+    GEOSGeometry **holes = calloc(n + 1, sizeof *holes);
+    if (!polys || !holes) {
+        free(polys);
+        free(holes);
+        return NULL;
+    }
+    unsigned np = 0;
+    int bad = 0;
+    for (size_t i = 0; i < n && !bad; i++) {
+        if (L->contours[i].kind != LAM_SOLID) continue;
+        unsigned nh = 0;
+        for (size_t j = 0; j < n && !bad; j++)
+            if (L->contours[j].parent == (long)i && L->contours[j].kind == LAM_HOLE)
+                bad = !(holes[nh++] = ring_of(c, L, &L->contours[j]));
+        GEOSGeometry *shell = bad ? NULL : ring_of(c, L, &L->contours[i]);
+        GEOSGeometry *p = shell ? GEOSGeom_createPolygon_r(c->h, shell, holes, nh) : NULL;
+        if (!p) {
+            for (unsigned k = 0; k < nh; k++)
+                if (holes[k]) GEOSGeom_destroy_r(c->h, holes[k]);
+            if (shell) GEOSGeom_destroy_r(c->h, shell);
+            bad = 1;
+            break;
+        }
+        polys[np++] = p;
+    }
+    free(holes);
+    GEOSGeometry *mp = NULL;
+    if (!bad) mp = GEOSGeom_createCollection_r(c->h, GEOS_MULTIPOLYGON, polys, np);
+    if (!mp)
+        for (unsigned k = 0; k < np; k++) GEOSGeom_destroy_r(c->h, polys[k]);
+    free(polys);
+    return mp;
 }

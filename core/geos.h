@@ -29,6 +29,13 @@ typedef struct lam_loops_builder {
  * LAM_EGEOM. */
 int lam_geos_add_polygons(lam_geos *gc, const GEOSGeometry *g, lam_loops_builder *b);
 
+struct lam_layer;
+
+/* The layer's material as a GEOS MultiPolygon (caller destroys): every
+ * solid with the holes directly inside it (islands inside holes are solids
+ * of their own). NULL when GEOS fails (out of memory, a bad ring). */
+GEOSGeometry *lam_geos_layer_region(lam_geos *g, const struct lam_layer *L);
+
 /* Free a builder's arrays. */
 void lam_loops_builder_free(lam_loops_builder *b);
 

@@ -1,10 +1,11 @@
 /* lamina's public C API: include this one header and link with
  * `pkg-config --cflags --libs lamina`.
  *
- * A library user loads a mesh (import.h; file.h: the input size limits), builds a model (model.h), slices
- * it (slice.h: layers of contours, contour.h), may offset, fill or check
- * the layers (offset.h, fill.h, section.h, validate.h, drc.h, rays.h), plans
- * them for a machine profile (profile.h, planner.h, plan.h, dialect.h) and
+ * A library user loads a mesh (import.h; file.h: the input size limits),
+ * builds a model (model.h), slices it (slice.h: layers of contours,
+ * contour.h), may offset, fill or check the layers (offset.h, fill.h,
+ * section.h, validate.h, drc.h, rays.h), plans them for a machine profile
+ * (profile.h, planner.h, plan.h, hatch.h: scan strategies, dialect.h) and
  * writes programs or previews through a lam_writer (writer.h, svg.h).
  * Every fallible function returns LAM_OK or a LAM_E* code with the message
  * in a lam_error (error.h). Plugins are written against lamina_plugin.h
@@ -32,6 +33,7 @@
 #include "drc.h"
 #include "writer.h"
 #include "plan.h"
+#include "hatch.h"
 #include "dialect.h"
 #include "profile.h"
 #include "profile_keys.h"

@@ -31,6 +31,7 @@ struct lamina_job {
     size_t layers;
     double bbox[6];            /* min xyz, max xyz (output frame) */
     double bead;               /* bead or spot width */
+    const char *label;         /* the part's name (CLI $$LABEL text) */
 };
 
 /* Output bytes go through the host: the host owns the file (atomic: it
@@ -52,6 +53,10 @@ struct lamina_writer {
     int (*end)(void *state);
     /* Free state after a failure elsewhere; nothing more is written. */
     void (*abort)(void *state);
+    /* One block of n hatch vectors, 4 doubles each (x0 y0 x1 y1, layer
+     * plane) of part `id` (optional: a writer without it refuses jobs
+     * with hatches). */
+    int (*hatches)(void *state, size_t id, const double *xy, size_t n);
 };
 
 struct lamina_host {

@@ -7,57 +7,6 @@
 #include "contour.h"
 #include "geos.h"
 
-static GEOSGeometry *ring_of(lam_geos *c, const lam_layer *L, const lam_contour *k)
-{
-    GEOSCoordSequence *cs = GEOSCoordSeq_create_r(c->h, (unsigned)(k->n + 1), 2);
-    if (!cs) return NULL;
-    for (size_t i = 0; i <= k->n; i++) {
-        const double *p = L->uv + 2 * (k->first + i % k->n);
-        GEOSCoordSeq_setXY_r(c->h, cs, (unsigned)i, p[0], p[1]);
-    }
-    return GEOSGeom_createLinearRing_r(c->h, cs);
-}
-
-/* The layer's material as GEOS polygons: every solid with the holes directly
- * inside it (islands inside holes are solids of their own). */
-static GEOSGeometry *material(lam_geos *c, const lam_layer *L)
-{
-    size_t n = L->ncontours;
-    GEOSGeometry **polys = calloc(n + 1, sizeof *polys);
-    GEOSGeometry **holes = calloc(n + 1, sizeof *holes);
-    if (!polys || !holes) {
-        free(polys);
-        free(holes);
-        return NULL;
-    }
-    unsigned np = 0;
-    int bad = 0;
-    for (size_t i = 0; i < n && !bad; i++) {
-        if (L->contours[i].kind != LAM_SOLID) continue;
-        unsigned nh = 0;
-        for (size_t j = 0; j < n && !bad; j++)
-            if (L->contours[j].parent == (long)i && L->contours[j].kind == LAM_HOLE)
-                bad = !(holes[nh++] = ring_of(c, L, &L->contours[j]));
-        GEOSGeometry *shell = bad ? NULL : ring_of(c, L, &L->contours[i]);
-        GEOSGeometry *p = shell ? GEOSGeom_createPolygon_r(c->h, shell, holes, nh) : NULL;
-        if (!p) {
-            for (unsigned k = 0; k < nh; k++)
-                if (holes[k]) GEOSGeom_destroy_r(c->h, holes[k]);
-            if (shell) GEOSGeom_destroy_r(c->h, shell);
-            bad = 1;
-            break;
-        }
-        polys[np++] = p;
-    }
-    free(holes);
-    GEOSGeometry *mp = NULL;
-    if (!bad) mp = GEOSGeom_createCollection_r(c->h, GEOS_MULTIPOLYGON, polys, np);
-    if (!mp)
-        for (unsigned k = 0; k < np; k++) GEOSGeom_destroy_r(c->h, polys[k]);
-    free(polys);
-    return mp;
-}
-
 int lam_layer_offset(const lam_layer *L, double distance, lam_layer **out, lam_error *err)
 {
     *out = NULL;
@@ -79,7 +28,7 @@ int lam_layer_offset(const lam_layer *L, double distance, lam_layer **out, lam_e
     }
     int rc = LAM_OK;
     lam_loops_builder loops = { 0 };
-    GEOSGeometry *mp = material(&c, L), *buf = NULL;
+    GEOSGeometry *mp = lam_geos_layer_region(&c, L), *buf = NULL;
     if (!mp) rc = LAM_EGEOM;
     if (!rc && !(buf = GEOSBufferWithStyle_r(c.h, mp, distance, 8, GEOSBUF_CAP_FLAT, GEOSBUF_JOIN_MITRE, 2.0)))
         rc = LAM_EGEOM;

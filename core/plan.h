@@ -26,7 +26,14 @@ typedef struct lam_job_info {
     double travel_rate;      /* travel feed rate */
     double origin[3];        /* where the stage starts: the model origin in the layer
                                 plane, at the first layer's build height (output frame) */
+    const char *label;       /* the part's name (lam_job_label), NULL: "part" */
 } lam_job_info;
+
+/* The part's name for a job from a model's path: the file's name without
+ * directory and extension, characters other than letters, digits, `_`,
+ * `-` and `.` replaced by `_` (CLI's $$LABEL text); "part" when that
+ * leaves nothing. Written into buf (size > 1). */
+void lam_job_label(const char *path, char *buf, size_t size);
 
 typedef struct lam_layer_info {
     size_t index;            /* 0-based */
@@ -36,14 +43,29 @@ typedef struct lam_layer_info {
 
 /* One closed contour for contour-based processes (SLS, CLI). */
 typedef struct lam_contour_info {
-    size_t id;               /* 1-based within the job */
+    size_t id;               /* the part's id (1: one model per job), the same for all its
+                                contours and hatches (CLI's $$LABEL id) */
     int solid;               /* 1 solid (counter-clockwise), 0 hole (clockwise) */
     int depth;
     double z;                /* build height */
     const double *xyz;       /* n points, 3 doubles each, output frame, no repeated closing point */
     const double *uv;        /* the same points in the layer frame (2 doubles each) */
     size_t n;
+    double power, speed, point_distance, exposure_time;   /* the contour's exposure */
 } lam_contour_info;
+
+/* One block of hatch vectors (a region, a stripe or an island). */
+typedef struct lam_hatch_info {
+    size_t id;               /* the part's id, as lam_contour_info's */
+    int type;                /* lam_vec_type (hatch.h): 1 core, 2 up-skin, 3 down-skin */
+    const char *kind;        /* "core", "upskin", "downskin" */
+    double z;                /* build height */
+    const double *xyz;       /* 2 points per vector (start, end), 3 doubles each, output frame */
+    const double *uv;        /* the same in the layer frame, 4 doubles per vector */
+    size_t n;                /* vectors */
+    double angle;            /* hatch direction, degrees in the layer plane */
+    double power, speed, point_distance, exposure_time;
+} lam_hatch_info;
 
 typedef struct lam_sink {
     void *ctx;
@@ -60,6 +82,8 @@ typedef struct lam_sink {
     int (*end)(void *ctx);
     /* release ctx; called exactly once, after end or instead of it */
     void (*destroy)(void *ctx);
+    /* a block of hatch vectors (NULL: the sink ignores hatches) */
+    int (*hatches)(void *ctx, const lam_hatch_info *h);
 } lam_sink;
 
 #endif

@@ -5,6 +5,7 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 void lam_plan_opts_init(lam_plan_opts *o)
@@ -15,6 +16,13 @@ void lam_plan_opts_init(lam_plan_opts *o)
     o->units = "mm";
     o->bead = 1;
     o->alternate = 1;
+    o->scan.contour_count = 1;
+    o->scan.contours_first = 1;
+    for (int t = 0; t < LAM_VEC_TYPES; t++) {
+        o->scan.type[t].distance = 0.1;
+        o->scan.type[t].stripe_width = 10;
+        o->scan.type[t].island_size = 5;
+    }
 }
 
 void lam_plan_opts_from_profile(lam_plan_opts *o, const lam_profile *p)
@@ -36,6 +44,24 @@ void lam_plan_opts_from_profile(lam_plan_opts *o, const lam_profile *p)
     o->perimeters = p->perimeters;
     o->islands = p->islands;
     o->beam_offset = p->beam_offset;
+    o->scan = p->scan;
+}
+
+void lam_job_label(const char *path, char *buf, size_t size)
+{
+    const char *base = path ? strrchr(path, '/') : NULL;
+    base = base ? base + 1 : path ? path : "";
+    const char *dot = strrchr(base, '.');
+    size_t n = dot && dot != base ? (size_t)(dot - base) : strlen(base);
+    if (n >= size) n = size - 1;
+    for (size_t i = 0; i < n; i++) {
+        char c = base[i];
+        int ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' || c == '-' ||
+                 c == '.';
+        buf[i] = ok ? c : '_';
+    }
+    buf[n] = '\0';
+    if (!n) snprintf(buf, size, "part");
 }
 
 /* ---- estimates ------------------------------------------------------------ */
@@ -138,6 +164,9 @@ int lam_plan_run(lam_slicer *s, const lam_model *m, const lam_plan_opts *o, cons
     job.rate = o->rate;
     job.travel_rate = o->travel_rate;
     job_bbox(s, m, o, job.bbox);
+    char label[128];
+    lam_job_label(m->path, label, sizeof label);
+    job.label = label;
     /* the stage starts at the model origin of the first layer's plane */
     double cut0 = job.layers ? lam_slicer_cut(s, 0) : 0;
     if (o->frame_machine) {
@@ -149,31 +178,59 @@ int lam_plan_run(lam_slicer *s, const lam_model *m, const lam_plan_opts *o, cons
     int rc = sink->begin ? sink->begin(sink->ctx, &job) : LAM_OK;
     double pos[3] = { job.origin[0], job.origin[1], job.origin[2] };
     int laser = -1;
-    size_t next_id = 1;
+    lam_sls_state st;
+    lam_sls_state_init(&st);
+    /* SLS skins need the layers around: a window of up to skin_layers
+     * below and above the layer being planned, which is win[cur] */
+    size_t n = o->kind == LAM_PLAN_SLS && o->scan.skin_layers > 0 ? (size_t)o->scan.skin_layers : 0;
+    lam_layer **win = calloc(2 * n + 2, sizeof *win);
+    size_t have = 0, cur = 0;
+    int more = 1;
+    if (!win) rc = lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory planning");
     while (!rc) {
-        lam_layer *L;
-        if ((rc = lam_slicer_next(s, &L, err))) break;
-        if (!L) break;
-        if (cb) rc = cb(cbctx, L, err);
+        while (!rc && more && have < cur + n + 1) {
+            lam_layer *L;
+            if ((rc = lam_slicer_next(s, &L, err))) break;
+            if (!L) {
+                more = 0;
+                break;
+            }
+            win[have++] = L;
+            if (cb) rc = cb(cbctx, L, err);
+        }
+        if (rc || cur >= have) break;
+        lam_layer *L = win[cur];
         lam_layer_info li = { L->index, L->cut, L->width, L->floor, L->ceiling };
         if (!rc && sink->layer) rc = sink->layer(sink->ctx, &li);
         if (!rc) {
             if (o->kind == LAM_PLAN_LADRP) {
-                lam_ladrp_stats st;
-                rc = lam_plan_ladrp_layer(L, f, o, sink, pos, &laser, &st, err);
+                lam_ladrp_stats ls;
+                rc = lam_plan_ladrp_layer(L, f, o, sink, pos, &laser, &ls, err);
                 if (o->totals) {
-                    o->totals->lines += st.lines;
-                    o->totals->deposits += st.deposits;
-                    o->totals->deposit_length += st.deposit_length;
-                    o->totals->travel_length += st.travel_length;
+                    o->totals->lines += ls.lines;
+                    o->totals->deposits += ls.deposits;
+                    o->totals->deposit_length += ls.deposit_length;
+                    o->totals->travel_length += ls.travel_length;
                 }
             } else {
-                rc = lam_plan_sls_layer(L, f, o, sink, &next_id, err);
+                const lam_layer *below[LAM_SKIN_MAX], *above[LAM_SKIN_MAX];
+                size_t nb = 0, na = 0;
+                for (size_t k = 1; k <= n && k <= cur; k++) below[nb++] = win[cur - k];
+                for (size_t k = 1; k <= n && cur + k < have; k++) above[na++] = win[cur + k];
+                rc = lam_plan_sls_layer(L, below, nb, above, na, f, o, sink, NULL, &st, err);
+                if (!rc && o->layer_time) o->layer_time[L->index] = lam_scan_time_total(&st.time);
             }
         }
         if (!rc && sink->layer_end) rc = sink->layer_end(sink->ctx, &li);
-        lam_layer_free(L);
+        if (++cur > n) {
+            lam_layer_free(win[0]);
+            memmove(win, win + 1, (have - 1) * sizeof *win);
+            have--, cur--;
+        }
     }
+    for (size_t k = 0; win && k < have; k++) lam_layer_free(win[k]);
+    free(win);
+    lam_sls_state_free(&st);
     if (!rc && sink->end) rc = sink->end(sink->ctx);
     if (rc && err && err->code == LAM_OK) lam_error_set(err, rc, NULL, 0, 0, "planning failed");
     return rc;

@@ -16,10 +16,14 @@
  *
  * SLS (thesis 4.2, SPEC 4.2): every contour of the layer as one block,
  * solids counter-clockwise, holes clockwise, in the layer's order;
- * optionally offset by half the spot width (beam compensation). */
+ * optionally offset by half the spot width (beam compensation). With
+ * scan strategies (SPEC 4.5, hatch.h): contour_count passes (the first
+ * at the compensation, each next contour_distance further in) and the
+ * hatch blocks of the layer, contours first or last. */
 #ifndef LAM_PLANNER_H
 #define LAM_PLANNER_H
 
+#include "hatch.h"
 #include "plan.h"
 #include "slice.h"
 
@@ -56,9 +60,17 @@ typedef struct lam_plan_opts {
                                     outward), so the beam's edge traces the part */
     unsigned long long max_output; /* lam_plan_run refuses a job estimated to write
                                       more (lam_plan_check_estimate); 0: the default */
+    lam_scan_cfg scan;           /* SLS: contour passes, hatching, skins, exposure
+                                    and time (hatch.h); the planner sets
+                                    scan.compensation: half the spot with
+                                    beam_offset, else 0 */
+    lam_scan_time *time;         /* SLS: if not NULL, the job's estimate is added here */
+    double *layer_time;          /* SLS (lam_plan_run): if not NULL, room for every
+                                    layer: each one's estimate, seconds */
 } lam_plan_opts;
 
-/* Defaults: SLS, bead 1, rates 0, model frame, edge, 0 degrees, alternate. */
+/* Defaults: SLS, bead 1, rates 0, model frame, edge, 0 degrees, alternate;
+ * one contour pass, contours first, no hatching. */
 void lam_plan_opts_init(lam_plan_opts *o);
 
 struct lam_profile;
@@ -124,7 +136,27 @@ int lam_plan_run(lam_slicer *s, const lam_model *m, const lam_plan_opts *o, cons
 int lam_plan_ladrp_layer(const lam_layer *L, const lam_frame *f, const lam_plan_opts *o,
                          const lam_sink *sink, double pos[3], int *laser, lam_ladrp_stats *st,
                          lam_error *err);
-int lam_plan_sls_layer(const lam_layer *L, const lam_frame *f, const lam_plan_opts *o,
-                       const lam_sink *sink, size_t *next_id, lam_error *err);
+
+/* What SLS planning carries from layer to layer. */
+typedef struct lam_sls_state {
+    size_t part;             /* the part id of every contour and hatch block (1) */
+    double pos[2];           /* the scanner (layer plane), for jumps */
+    int have_pos;
+    lam_scan_time time;      /* the last layer planned */
+    lam_hatches hatches;     /* the last layer's hatch vectors (owned) */
+} lam_sls_state;
+
+void lam_sls_state_init(lam_sls_state *st);
+void lam_sls_state_free(lam_sls_state *st);
+
+/* Plan SLS layer L; below[0..nbelow) and above[0..nabove) are the layers
+ * next to it, nearest first (for skins; only o->scan.skin_layers of each
+ * are looked at; fewer means the model ends there). st->time is set to the
+ * layer's estimate (and added to *o->time). When `given` is not NULL its
+ * vectors are planned instead of hatching L (a recipe's own hatcher). */
+int lam_plan_sls_layer(const lam_layer *L, const lam_layer *const *below, size_t nbelow,
+                       const lam_layer *const *above, size_t nabove, const lam_frame *f,
+                       const lam_plan_opts *o, const lam_sink *sink, const lam_hatches *given,
+                       lam_sls_state *st, lam_error *err);
 
 #endif

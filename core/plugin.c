@@ -449,6 +449,7 @@ static int ps_begin(void *ctx, const lam_job_info *job)
     j.layers = job->layers;
     memcpy(j.bbox, job->bbox, sizeof j.bbox);
     j.bead = job->bead;
+    j.label = job->label ? job->label : "part";
     s->we->owner->msg[0] = '\0';
     s->state = s->we->w.begin(&s->out, &j);
     if (!s->state) return writer_result(s, 1, "begin");
@@ -477,6 +478,17 @@ static int ps_contour(void *ctx, const lam_contour_info *c)
     if (!s->state) return not_running(s, "contour");
     s->we->owner->msg[0] = '\0';
     return writer_result(s, s->we->w.polyline(s->state, c->id, c->solid, c->uv, c->n), "polyline");
+}
+
+static int ps_hatches(void *ctx, const lam_hatch_info *h)
+{
+    plugin_sink *s = ctx;
+    if (!s->state) return not_running(s, "hatches");
+    if (!s->we->w.hatches)
+        return lam_error_set(s->err, LAM_EUSAGE, NULL, 0, 0, "writer %s cannot write hatches (set hatch_strategy: none)",
+                             s->we->w.name);
+    s->we->owner->msg[0] = '\0';
+    return writer_result(s, s->we->w.hatches(s->state, h->id, h->uv, h->n), "hatches");
 }
 
 static int ps_end(void *ctx)
@@ -552,6 +564,7 @@ int lam_plugin_writer_sink(const char *name, lam_writer *w, lam_error *err, lam_
     out->laser = ps_laser;
     out->move = ps_move;
     out->contour = ps_contour;
+    out->hatches = ps_hatches;
     out->end = ps_end;
     out->destroy = ps_destroy;
     return LAM_OK;

@@ -16,6 +16,7 @@
 
 #include "dialect.h"
 #include "error.h"
+#include "hatch.h"
 
 typedef enum lam_process { LAM_PROCESS_LADRP, LAM_PROCESS_SLS } lam_process;
 typedef enum lam_first_line { LAM_FIRST_EDGE, LAM_FIRST_CENTER } lam_first_line;
@@ -44,6 +45,8 @@ typedef struct lam_profile {
     int islands;                 /* raster island by island, nearest next; default false */
     /* SLS */
     int beam_offset;             /* contours inset by spot/2, default false */
+    lam_scan_cfg scan;           /* hatching, skins, exposure, time (hatch.h);
+                                    scan.compensation is not a key: the planner's */
     /* design rules (optional) */
     double max_overhang_deg;     /* 0 when absent */
     char *writer;                /* "text" (default: the dialect) or a plugin writer name; never NULL */

@@ -12,7 +12,12 @@ static const char sls_contours_yaml[] =
     "#   endloop\n"
     "#   endcontour\n"
     "# with a blank line between contours. Byte for byte what `lamina slice`\n"
-    "# writes without a profile.\n"
+    "# writes without a profile. Beyond the thesis, with hatching on\n"
+    "# (hatch_strategy, SPEC 4.5) each block of hatch vectors (a region, stripe\n"
+    "# or island) is written as\n"
+    "#   hatches KIND N Z       (KIND core, upskin or downskin; N vectors)\n"
+    "#   X0 Y0 Z0 X1 Y1 Z1      (N lines, each exposed from its first point)\n"
+    "#   endhatches\n"
     "name: sls-contours\n"
     "description: SLS contours of the thesis (contour/loop/endloop/endcontour)\n"
     "process: sls\n"
@@ -25,7 +30,10 @@ static const char sls_contours_yaml[] =
     "  vertex: \"{x:%.6f} {y:%.6f} {z:%.6f}\"\n"
     "  loop_end: \"endloop\"\n"
     "  contour_end: \"endcontour\"\n"
-    "  separator: \"\"           # an empty line between two contours\n";
+    "  hatches_begin: \"hatches {kind} {n} {z:%.6f}\"\n"
+    "  hatch: \"{x0:%.6f} {y0:%.6f} {z0:%.6f} {x1:%.6f} {y1:%.6f} {z1:%.6f}\"\n"
+    "  hatches_end: \"endhatches\"\n"
+    "  separator: \"\"           # an empty line between two blocks\n";
 
 const char *lam_profile_builtin_sls_text(void)
 {

@@ -24,6 +24,50 @@ static const char *const process_choices[] = { "ladrp", "sls", NULL };         /
 static const char *const cut_choices[] = { "floor", "middle", "ceiling", NULL }; /* lam_cut */
 static const char *const frame_choices[] = { "model", "machine", NULL };
 static const char *const first_line_choices[] = { "edge", "center", NULL };     /* lam_first_line */
+static const char *const strategy_choices[] = { "none", "lines", "stripes", "islands", NULL }; /* lam_strategy */
+static const char *const order_choices[] = { "meander", "unidirectional", "greedy", NULL };    /* lam_hatch_order */
+static const char *const island_order_choices[] = { "sequential", "checker", "random", NULL }; /* lam_island_order */
+
+/* The hatch and exposure keys of one vector type: at the top level for the
+ * core (with defaults), in a section (`upskin.hatch_distance`) for the
+ * others, each following the top-level key when not given. */
+#define SCAN(sec, T, key, f, ty, fl, l, h, ch, dflt, text)                                                   \
+    { .name = sec key, .type = ty, .flags = LAM_KEY_PLAN | (fl), .lo = l, .hi = h, .choices = ch,              \
+      .def = sec[0] ? NULL : dflt, .follows = sec[0] ? key : NULL, .offset = AT(scan.type[T].f), .doc = text }
+#define EXPOSURE_ROWS(sec, T, who)                                                                             \
+    SCAN(sec, T, "power", exposure.power, LAM_KEY_NUMBER, 0, 0, HUGE_VAL, NULL, "0", who ": laser power"),      \
+    SCAN(sec, T, "speed", exposure.speed, LAM_KEY_NUMBER, 0, 0, HUGE_VAL, NULL, "0",                            \
+         who ": scan speed, units per second (0: unknown, no exposure time)"),                                \
+    SCAN(sec, T, "point_distance", exposure.point_distance, LAM_KEY_NUMBER, 0, 0, HUGE_VAL, NULL, "0",          \
+         who ": point exposure: distance between points (0: continuous scanning)"),                           \
+    SCAN(sec, T, "exposure_time", exposure.exposure_time, LAM_KEY_NUMBER, 0, 0, HUGE_VAL, NULL, "0",            \
+         who ": point exposure: seconds per point")
+#define HATCH_ROWS(sec, T, who)                                                                                \
+    SCAN(sec, T, "hatch_strategy", strategy, LAM_KEY_CHOICE, 0, 0, 0, strategy_choices, "none",                 \
+         who ": hatching: none (contours only), lines, stripes or islands"),                                  \
+    SCAN(sec, T, "hatch_distance", distance, LAM_KEY_NUMBER, LAM_KEY_ABOVE, 0, HUGE_VAL, NULL, "0.1",           \
+         who ": distance between hatch vectors"),                                                             \
+    SCAN(sec, T, "hatch_angle", angle, LAM_KEY_NUMBER, 0, -HUGE_VAL, HUGE_VAL, NULL, "0",                       \
+         who ": hatch direction of the first layer, degrees counter-clockwise from u"),                       \
+    SCAN(sec, T, "layer_angle_increment", angle_increment, LAM_KEY_NUMBER, 0, -HUGE_VAL, HUGE_VAL, NULL, "67",  \
+         who ": degrees added to the hatch angle per layer"),                                                 \
+    SCAN(sec, T, "hatch_order", order, LAM_KEY_CHOICE, 0, 0, 0, order_choices, "meander",                       \
+         who ": meander (alternate), unidirectional or greedy (nearest next end)"),                           \
+    SCAN(sec, T, "min_vector", min_vector, LAM_KEY_NUMBER, 0, 0, HUGE_VAL, NULL, "0",                           \
+         who ": hatch vectors shorter than this are dropped"),                                                \
+    SCAN(sec, T, "stripe_width", stripe_width, LAM_KEY_NUMBER, LAM_KEY_ABOVE, 0, HUGE_VAL, NULL, "10",          \
+         who ": stripes: width of a band"),                                                                   \
+    SCAN(sec, T, "stripe_overlap", stripe_overlap, LAM_KEY_NUMBER, 0, 0, HUGE_VAL, NULL, "0",                   \
+         who ": stripes: how far neighbouring bands overlap"),                                                \
+    SCAN(sec, T, "island_size", island_size, LAM_KEY_NUMBER, LAM_KEY_ABOVE, 0, HUGE_VAL, NULL, "5",             \
+         who ": islands: side of a square"),                                                                  \
+    SCAN(sec, T, "island_overlap", island_overlap, LAM_KEY_NUMBER, 0, 0, HUGE_VAL, NULL, "0",                   \
+         who ": islands: how far neighbouring squares overlap"),                                              \
+    SCAN(sec, T, "island_order", island_order, LAM_KEY_CHOICE, 0, 0, 0, island_order_choices, "sequential",     \
+         who ": islands: sequential, checker (even squares first) or random"),                                \
+    SCAN(sec, T, "seed", seed, LAM_KEY_INTEGER, 0, 0, 2147483647, NULL, "0",                                    \
+         who ": seed of the random island order (the same seed, the same program)"),                          \
+    EXPOSURE_ROWS(sec, T, who)
 
 #define TEMPLATE(c, key, when)                                                                                 \
     { .name = "dialect." key, .type = LAM_KEY_TEMPLATE, .flags = LAM_KEY_FIXED | LAM_KEY_OPTIONAL, .cmd = c, \
@@ -84,6 +128,29 @@ const lam_key lam_profile_keys[] = {
              "instead of whole scan lines across the layer: less travel between islands" },
     { .name = "beam_offset", .type = LAM_KEY_BOOLEAN, .flags = LAM_KEY_PLAN, .def = "false",
       .option = "beam-offset", .offset = AT(beam_offset), .doc = "sls: inset contours by half the spot" },
+    HATCH_ROWS("", LAM_VEC_CORE, "sls, core"),
+    { .name = "contour_count", .type = LAM_KEY_INTEGER, .flags = LAM_KEY_PLAN, .lo = 0, .hi = 1000, .def = "1",
+      .offset = AT(scan.contour_count), .doc = "sls: contour passes round the region (the first offset by the spot "
+                                                "compensation when `beam_offset`)" },
+    { .name = "contour_distance", .type = LAM_KEY_NUMBER, .flags = LAM_KEY_PLAN, .lo = 0, .hi = HUGE_VAL,
+      .follows = "spot_width", .offset = AT(scan.contour_distance), .doc = "sls: each next contour pass this much further in" },
+    { .name = "hatch_offset", .type = LAM_KEY_NUMBER, .flags = LAM_KEY_PLAN, .lo = 0, .hi = HUGE_VAL, .def = "0",
+      .offset = AT(scan.hatch_offset), .doc = "sls: distance from the innermost contour pass to the hatched area" },
+    { .name = "contours_first", .type = LAM_KEY_BOOLEAN, .flags = LAM_KEY_PLAN, .def = "true",
+      .offset = AT(scan.contours_first), .doc = "sls: contour passes before the hatches (false: after)" },
+    { .name = "skin_layers", .type = LAM_KEY_INTEGER, .flags = LAM_KEY_PLAN, .lo = 0, .hi = LAM_SKIN_MAX, .def = "0",
+      .offset = AT(scan.skin_layers),
+      .doc = "sls: how many layers deep up-skin and down-skin reach (0: no skins, all core)" },
+    { .name = "jump_speed", .type = LAM_KEY_NUMBER, .flags = LAM_KEY_PLAN, .lo = 0, .hi = HUGE_VAL, .def = "0",
+      .offset = AT(scan.jump_speed), .doc = "sls: scanner speed between vectors, units per second (0: jumps take "
+                                             "only their delay)" },
+    { .name = "jump_delay", .type = LAM_KEY_NUMBER, .flags = LAM_KEY_PLAN, .lo = 0, .hi = HUGE_VAL, .def = "0",
+      .offset = AT(scan.jump_delay), .doc = "sls: seconds added to every jump" },
+    { .name = "recoat_time", .type = LAM_KEY_NUMBER, .flags = LAM_KEY_PLAN, .lo = 0, .hi = HUGE_VAL, .def = "0",
+      .offset = AT(scan.recoat_time), .doc = "sls: seconds to spread each layer's powder" },
+    EXPOSURE_ROWS("contour.", LAM_VEC_CONTOUR, "sls, contour passes"),
+    HATCH_ROWS("upskin.", LAM_VEC_UPSKIN, "sls, up-skin"),
+    HATCH_ROWS("downskin.", LAM_VEC_DOWNSKIN, "sls, down-skin"),
     { .name = "max_overhang_deg", .type = LAM_KEY_NUMBER, .flags = LAM_KEY_OPTIONAL, .lo = 0, .hi = 90,
       .offset = AT(max_overhang_deg), .doc = "design rule for `lamina check`, degrees from the vertical (0: no rule)" },
     { .name = "writer", .type = LAM_KEY_STRING, .flags = LAM_KEY_NONEMPTY | LAM_KEY_FIXED, .def = "text",
@@ -108,7 +175,11 @@ const lam_key lam_profile_keys[] = {
     TEMPLATE(LAM_CMD_LOOP_END, "loop_end", "after the points"),
     TEMPLATE(LAM_CMD_VERTEX, "vertex", "each point of the contour"),
     TEMPLATE(LAM_CMD_POLYLINE, "polyline", "after `contour_end`: the whole contour as one line"),
-    TEMPLATE(LAM_CMD_SEPARATOR, "separator", "between two contour blocks (not before the first)"),
+    TEMPLATE(LAM_CMD_SEPARATOR, "separator", "between two contour or hatch blocks (not before the first)"),
+    TEMPLATE(LAM_CMD_HATCHES_BEGIN, "hatches_begin", "a block of hatch vectors starts (a region, stripe or island)"),
+    TEMPLATE(LAM_CMD_HATCH, "hatch", "each hatch vector of the block"),
+    TEMPLATE(LAM_CMD_HATCHES_END, "hatches_end", "after the block's vectors"),
+    TEMPLATE(LAM_CMD_HATCHES, "hatches", "after `hatches_end`: the whole block as one line"),
 };
 
 const size_t lam_profile_nkeys = sizeof lam_profile_keys / sizeof lam_profile_keys[0];

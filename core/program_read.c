@@ -266,6 +266,14 @@ static int read_sls(rd *r)
     long loops = 0;
     char b[64];
     while (next_statement(r, &l, &t, &i)) {
+        if (tok_is(&t, "hatches")) {
+            /* a block of hatch vectors (not contours): read over to endhatches */
+            long hline = l.no, hcol = t.col;
+            do {
+                if (!next_statement(r, &l, &t, &i)) return expect_more(r, "'endhatches'", "hatches", hline, hcol);
+            } while (!tok_is(&t, "endhatches"));
+            continue;
+        }
         if (!tok_is(&t, "contour"))
             return fail_at(r, LAM_ESYNTAX, l.no, t.col, "expected 'contour', got %s", shown(b, sizeof b, &t));
         long cline = l.no, ccol = t.col;
@@ -528,7 +536,9 @@ static int read_cli_binary(rd *r, size_t data)
         if (r->n - at < 2) return fail_byte(r, LAM_ESYNTAX, at, "a command id cut short by the end of the file");
         unsigned cmd = rd_u16(r->s + at);
         at += 2;
-        int longform = cmd == 127 || cmd == 130 || cmd == 131;
+        /* CLI 2.0: 127 layer, 130 polyline, 132 hatches long (int32/float32);
+         * 128, 129, 131 their short forms (uint16) */
+        int longform = cmd == 127 || cmd == 130 || cmd == 132;
         size_t w = longform ? 4 : 2;
         if (cmd == 127 || cmd == 128) {
             if (r->n - at < w) return fail_byte(r, LAM_ESYNTAX, cmd_at, "a layer command cut short by the end of the file");

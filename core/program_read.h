@@ -11,7 +11,8 @@
  *   $$LAYERS are read over. Binary: after the header, little-endian
  *   commands 127 (layer, float32 z), 128 (layer, uint16 z), 130 (polyline,
  *   int32 id dir n, n float32 pairs), 129 (polyline, uint16 id dir n and
- *   pairs); hatches 131 and 132 are read over. A polyline must be closed
+ *   pairs); hatches 132 (int32 id n, n float32 quadruples) and 131 (uint16)
+ *   are read over. A polyline must be closed
  *   (its last point repeats its first, which is then dropped) and have dir
  *   0 (clockwise, hole) or 1 (counter-clockwise, solid): dir 2 (an open
  *   line) is not a contour. $$LAYERS, when given, must count the layers.
@@ -20,7 +21,7 @@
  * - Otherwise the SLS dialect of the thesis (the sls-contours profile and
  *   `lamina slice` without a profile): blocks "contour Z", then one or more
  *   "loop N", N lines "X Y Z", "endloop", then "endcontour"; blank lines
- *   between. Each loop is a contour of the program; consecutive contours
+ *   between; hatch blocks "hatches ..." to "endhatches" are read over. Each loop is a contour of the program; consecutive contours
  *   with the same Z make a layer. The dialect writes no label: a loop's
  *   direction is its label (counter-clockwise solid, clockwise hole).
  *

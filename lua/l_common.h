@@ -134,6 +134,7 @@ typedef struct lrun {
     double uvbox[4];         /* the model's extent in the layer frame */
     double wmin, wmax;       /* first and last plane */
     double bbox[6];          /* the model's bounding box (model frame) */
+    char label[128];         /* the part's name for programs (lam_job_label) */
 } lrun;
 
 typedef struct llayer {
@@ -161,6 +162,8 @@ typedef struct lplan {
     char name[128], process[8];
     double travel, deposit;  /* LADRP: stage travel and deposit lengths (layer plane) */
     size_t deposits;         /* LADRP: deposit moves */
+    lam_scan_time time;      /* SLS: the build-time estimate (hatch.h) */
+    double *layer_time;      /* SLS: each layer's estimate, seconds (owned) */
 } lplan;
 
 /* Checked accessors: raise the usual "bad argument" error for a wrong type
@@ -215,6 +218,34 @@ typedef struct lam_lua_overrides {
 void lam_lua_read_overrides(lua_State *L, int t, int arg, unsigned need, const char *const *extra,
                             lam_lua_overrides *o);
 void lam_lua_apply_overrides(const lam_lua_overrides *o, lam_profile *p);
+
+/* Push the value of row k in p, as Lua sees it: nil for an optional value
+ * not given. */
+void lam_lua_push_key(lua_State *L, const lam_profile *p, const lam_key *k);
+
+/* Lua control of an SLS plan's hatching (l_hatch.c), from machine:plan's
+ * options `layer` (function(layer, i) -> the keys to change for that
+ * layer), `hatcher` (function(layer, params) -> vectors) and `order`
+ * (function(vectors, layer, params) -> vectors). Vectors are a sequence
+ * of {x0, y0, x1, y1 [, kind = "core"|"upskin"|"downskin"]} in the layer
+ * plane; consecutive vectors of one kind make a block. */
+typedef struct lhatchctl lhatchctl;
+
+/* Take the three functions out of the options table at index opts
+ * (replaced in place by a copy without them, so the key checks see only
+ * profile keys); pushes a control object (or nil when none is given) and
+ * returns it, NULL for none. */
+lhatchctl *lam_lua_hatch_split(lua_State *L, int opts);
+
+/* Run the functions for every layer of the table at index layers (checked
+ * layers, in order), with the machine's profile p and its plan options
+ * base: called before any pointer is taken that a collection could free. */
+void lam_lua_hatch_prepare(lua_State *L, lhatchctl *c, int layers, const lam_profile *p);
+
+/* Layer i's profile (p with the layer's overrides) and hatch vectors
+ * (NULL: the planner hatches). */
+void lam_lua_hatch_profile(const lhatchctl *c, size_t i, lam_profile *p);
+const lam_hatches *lam_lua_hatch_given(const lhatchctl *c, size_t i);
 
 /* ---- errors and options ----------------------------------------------- */
 

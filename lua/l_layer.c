@@ -189,6 +189,7 @@ int lam_lua_slice(lua_State *L)
     r->wmin = lam_slicer_planes(r->s)[0];
     r->wmax = lam_slicer_planes(r->s)[r->nlayers];
     memcpy(r->bbox, m->stats.bbox, sizeof r->bbox);
+    lam_job_label(m->path, r->label, sizeof r->label);
 
     lua_createtable(L, r->nlayers < INT_MAX ? (int)r->nlayers : 0, 0);
     int result = lua_gettop(L);

@@ -187,9 +187,7 @@ static int mc_tostring(lua_State *L)
     return 1;
 }
 
-/* The value of row k in p, as Lua sees it: nil for an optional value not
- * given. */
-static void push_key(lua_State *L, const lam_profile *p, const lam_key *k)
+void lam_lua_push_key(lua_State *L, const lam_profile *p, const lam_key *k)
 {
     const char *at = (const char *)p + k->offset;
     double x = lam_key_get(p, k);
@@ -225,7 +223,7 @@ static int mc_fields(lua_State *L)
     const lam_profile *p = &lam_lua_checkmachine(L, 1)->p;
     const char *name = lua_tostring(L, 2);
     const lam_key *k = lua_key(name);
-    if (k) push_key(L, p, k);
+    if (k) lam_lua_push_key(L, p, k);
     else if (name && strcmp(name, "path") == 0) lua_pushstring(L, p->path);
     else lua_pushnil(L);
     return 1;

@@ -28,6 +28,8 @@ typedef struct planjob {
     lam_sink sink;
     int have_sink;
     lam_error err;           /* the sink reports through it: it must not move */
+    lam_sls_state st;        /* SLS planning's state (its hatch vectors) */
+    int have_st;
 } planjob;
 
 static void job_release(planjob *j)
@@ -36,6 +38,8 @@ static void job_release(planjob *j)
     j->have_sink = 0;
     lam_writer_abort(j->w);
     j->w = NULL;
+    if (j->have_st) lam_sls_state_free(&j->st);
+    j->have_st = 0;
 }
 
 static int job_gc(lua_State *L)
@@ -105,14 +109,25 @@ int lam_lua_plan(lua_State *L)
     lam_lua_overrides ovr;
     memset(&ovr, 0, sizeof ovr);
     double max_output = 0;
+    lua_settop(L, 3);
+    lhatchctl *ctl = NULL;
     if (!lua_isnoneornil(L, 3)) {
         luaL_checktype(L, 3, LUA_TTABLE);
+        ctl = lam_lua_hatch_split(L, 3); /* at 4 (or nil) */
         static const char *const own[] = { "max_output", NULL }; /* read here, not a profile key */
         lam_lua_read_overrides(L, 3, 3, LAM_KEY_PLAN, own, &ovr); /* may run metamethods: before any pointer */
         if (lam_lua_numfield(L, 3, 3, "max_output", &max_output) && !(max_output >= 1 && max_output < 1.8e19))
             lam_lua_opterror(L, 3, "max_output must be a number of bytes >= 1, got %.14g", max_output);
+    } else {
+        lua_pushnil(L);
     }
-    lua_settop(L, 3);
+    if (ctl) {
+        /* the recipe's functions run now, before any pointer is kept */
+        lam_profile base = lam_lua_checkmachine(L, 1)->p;
+        lam_lua_apply_overrides(&ovr, &base);
+        lam_lua_hatch_prepare(L, ctl, 2, &base);
+    }
+    lua_settop(L, 4);
     lua_Unsigned nl = lua_rawlen(L, 2);
     if (nl == 0) luaL_argerror(L, 2, "no layers to plan (an empty table)");
     if (nl > SIZE_MAX / sizeof(void *)) luaL_argerror(L, 2, "too many layers");
@@ -147,6 +162,7 @@ int lam_lua_plan(lua_State *L)
         luaL_error(L, "plan: %s (raise the limit with the option max_output)", j->err.msg);
 
     lam_error_clear(&j->err);
+    if (!(pl->layer_time = calloc(n, sizeof *pl->layer_time))) return luaL_error(L, "out of memory");
     if (lam_writer_memory(&j->w, &j->err)) return lam_lua_fail(L, &j->err);
     lam_writer_set_limit(j->w, o.max_output ? o.max_output : LAM_DEFAULT_MAX_OUTPUT);
     int text = !p.writer || strcmp(p.writer, "text") == 0;
@@ -164,6 +180,7 @@ int lam_lua_plan(lua_State *L)
     job.bead = o.bead;
     job.rate = o.rate;
     job.travel_rate = o.travel_rate;
+    job.label = run->label;
     if (o.frame_machine) {
         const double bb[6] = { run->uvbox[0], run->uvbox[1], run->wmin, run->uvbox[2], run->uvbox[3], run->wmax };
         memcpy(job.bbox, bb, sizeof bb);
@@ -176,25 +193,44 @@ int lam_lua_plan(lua_State *L)
     rc = s->begin ? s->begin(s->ctx, &job) : LAM_OK;
     double pos[3] = { job.origin[0], job.origin[1], job.origin[2] };
     int laser = -1;
-    size_t next_id = 1;
+    lam_sls_state *st = &j->st;
+    lam_sls_state_init(st);
+    j->have_st = 1;
+    size_t nskin = o.scan.skin_layers > 0 ? (size_t)o.scan.skin_layers : 0;
     for (size_t i = 0; i < n && !rc; i++) {
         lam_lua_check_interrupt(L);
         const lam_layer *ly = ls[i];
         lam_layer_info li = { ly->index, ly->cut, ly->width, ly->floor, ly->ceiling };
+        lam_plan_opts oi = o;
+        if (ctl) {
+            lam_profile pi = p;
+            lam_lua_hatch_profile(ctl, i, &pi);
+            lam_lua_plan_opts(&pi, &oi);
+        }
         if (s->layer) rc = s->layer(s->ctx, &li);
         if (!rc) {
             if (o.kind == LAM_PLAN_LADRP) {
-                lam_ladrp_stats st;
-                rc = lam_plan_ladrp_layer(ly, &run->frame, &o, s, pos, &laser, &st, &j->err);
-                pl->travel += st.travel_length;
-                pl->deposit += st.deposit_length;
-                pl->deposits += st.deposits;
+                lam_ladrp_stats lst;
+                rc = lam_plan_ladrp_layer(ly, &run->frame, &oi, s, pos, &laser, &lst, &j->err);
+                pl->travel += lst.travel_length;
+                pl->deposit += lst.deposit_length;
+                pl->deposits += lst.deposits;
             } else {
-                rc = lam_plan_sls_layer(ly, &run->frame, &o, s, &next_id, &j->err);
+                /* skins look at the neighbours in the list given */
+                const lam_layer *below[LAM_SKIN_MAX], *above[LAM_SKIN_MAX];
+                size_t nb = 0, na = 0;
+                for (size_t k = 1; k <= nskin && k <= i; k++) below[nb++] = ls[i - k];
+                for (size_t k = 1; k <= nskin && i + k < n; k++) above[na++] = ls[i + k];
+                rc = lam_plan_sls_layer(ly, below, nb, above, na, &run->frame, &oi, s, lam_lua_hatch_given(ctl, i), st,
+                                        &j->err);
+                lam_scan_time_add(&pl->time, &st->time);
+                pl->layer_time[i] = lam_scan_time_total(&st->time);
             }
         }
         if (!rc && s->layer_end) rc = s->layer_end(s->ctx, &li);
     }
+    lam_sls_state_free(st);
+    j->have_st = 0;
     if (!rc && s->end) rc = s->end(s->ctx);
     if (s->destroy) s->destroy(s->ctx);
     j->have_sink = 0;
@@ -228,6 +264,8 @@ static int p_gc(lua_State *L)
     lplan *pl = LAM_CHECKUD(L, 1, lplan, LAM_PLAN, LAM_TAG_PLAN);
     free(pl->data);
     pl->data = NULL;
+    free(pl->layer_time);
+    pl->layer_time = NULL;
     return 0;
 }
 
@@ -264,7 +302,34 @@ static int p_fields(lua_State *L)
     else if (strcmp(k, "travel") == 0) lua_pushnumber(L, pl->travel);
     else if (strcmp(k, "deposit") == 0) lua_pushnumber(L, pl->deposit);
     else if (strcmp(k, "deposits") == 0) lua_pushinteger(L, (lua_Integer)pl->deposits);
-    else lua_pushnil(L);
+    else if (strcmp(k, "time") == 0) {
+        const lam_scan_time *t = &pl->time;
+        lua_createtable(L, 0, 9);
+        lua_pushnumber(L, lam_scan_time_total(t));
+        lua_setfield(L, -2, "total");
+        lua_pushnumber(L, t->exposure);
+        lua_setfield(L, -2, "exposure");
+        lua_pushnumber(L, t->jump);
+        lua_setfield(L, -2, "jumps");
+        lua_pushnumber(L, t->recoat);
+        lua_setfield(L, -2, "recoat");
+        lua_pushinteger(L, (lua_Integer)t->vectors);
+        lua_setfield(L, -2, "vectors");
+        lua_pushinteger(L, (lua_Integer)t->contours);
+        lua_setfield(L, -2, "contours");
+        lua_pushnumber(L, t->exposure_length);
+        lua_setfield(L, -2, "exposed");
+        lua_pushnumber(L, t->jump_length);
+        lua_setfield(L, -2, "jumped");
+        lua_pushnumber(L, t->hatch_length);
+        lua_setfield(L, -2, "hatched");
+        lua_createtable(L, (int)pl->layers, 0);
+        for (size_t i = 0; i < pl->layers && pl->layer_time; i++) {
+            lua_pushnumber(L, pl->layer_time[i]);
+            lua_rawseti(L, -2, (lua_Integer)i + 1);
+        }
+        lua_setfield(L, -2, "layers");
+    } else lua_pushnil(L);
     return 1;
 }
 

@@ -39,7 +39,7 @@ static const char usage_text[] =
     "                          [--min-deposit LEN] [--no-alternate] [--perimeters N] [--islands]\n"
     "                          [--beam-offset] [--frame model|machine] [--fill evenodd|nonzero]\n"
     "                          [--validate] [--max-layers N] [--max-output SIZE]\n"
-    "                          [--svg FILE] [-o FILE]\n"
+    "                          [--svg FILE] [-o FILE [--json]]\n"
     "  -m, --machine    machine profile: a shipped name (see 'lamina machines') or a path\n"
     "                   (default: the thesis's SLS contours)\n"
     "  -s, --set        KEY=VALUE: any key of the machine profile, checked as in its YAML\n"
@@ -55,6 +55,8 @@ static const char usage_text[] =
     "                   1024; default 4G), estimated before planning and as written\n"
     "      --svg        write a contact sheet of the layers\n"
     "  -o, --output     program file (default: standard output)\n"
+    "      --json       the build-time estimate of a powder-bed job as JSON on standard output\n"
+    "                   (with -o; without --json it is a line on standard error)\n"
     "Values: --name=VALUE or --name VALUE; -- ends the options. The profile's values are\n"
     "defaults that -s and the options below override.\n";
 
@@ -108,10 +110,35 @@ static int on_layer(void *ctx, const lam_layer *L, lam_error *err)
     return r->svg ? lam_svg_add(r->svg, L, err) : LAM_OK;
 }
 
+/* The estimate as JSON: the job's and each layer's total. */
+static void cli_json_estimate(const char *path, const lam_scan_time *t, const double *layer, size_t n)
+{
+    printf("{\"model\": ");
+    cli_json_string(stdout, path);
+    printf(", \"layers\": %zu, \"contour_passes\": %zu, \"hatch_vectors\": %zu, \"exposed\": %.17g, "
+           "\"hatched\": %.17g, \"jumped\": %.17g, \"time\": {\"total\": %.17g, \"exposure\": %.17g, "
+           "\"jumps\": %.17g, \"recoat\": %.17g}, \"layer_times\": [",
+           t->layers, t->contours, t->vectors, t->exposure_length, t->hatch_length, t->jump_length,
+           lam_scan_time_total(t), t->exposure, t->jump, t->recoat);
+    for (size_t i = 0; i < n; i++) printf("%s%.17g", i ? ", " : "", layer[i]);
+    printf("]}\n");
+}
+
+/* The build-time summary of a powder-bed job (hatch.h's estimate). */
+static void cli_print_estimate(const char *path, const lam_scan_time *t)
+{
+    fprintf(stderr,
+            "lamina: %s: %zu layers, %zu contour passes, %zu hatch vectors, %.6g exposed, %.6g jumped; "
+            "estimated build time %.6g s (exposure %.6g s, jumps %.6g s, recoating %.6g s)\n",
+            path, t->layers, t->contours, t->vectors, t->exposure_length, t->jump_length, lam_scan_time_total(t),
+            t->exposure, t->jump, t->recoat);
+}
+
 int cmd_slice(int argc, char **argv)
 {
     args a;
-    int rc = cli_parse_args("slice", usage_text, OPT_MODEL | OPT_SLICE | OPT_SET | OPT_PLAN | OPT_SVG, argc, argv, &a);
+    int rc = cli_parse_args("slice", usage_text, OPT_MODEL | OPT_SLICE | OPT_SET | OPT_PLAN | OPT_SVG | OPT_JSON, argc, argv,
+                            &a);
     if (rc) {
         cli_args_free(&a);
         return rc < 0 ? EXIT_OK : rc;
@@ -129,6 +156,7 @@ int cmd_slice(int argc, char **argv)
     lam_slicer *s = NULL;
     lam_writer *w = NULL;
     lam_sink sink = { 0 };
+    double *layer_time = NULL;
     report rep;
     memset(&rep, 0, sizeof rep);
     rep.path = a.path;
@@ -173,6 +201,20 @@ int cmd_slice(int argc, char **argv)
         rc = err.code == LAM_EUSAGE ? cli_usage("slice", "%s", err.msg) : cli_fail(&err);
         goto done;
     }
+    lam_scan_time est;
+    memset(&est, 0, sizeof est);
+    po.time = &est;
+    if (a.json && (!a.out || !strcmp(a.out, "-"))) {
+        rc = cli_usage("slice", "--json writes the estimate to standard output: give the program a file (-o FILE)");
+        goto done;
+    }
+    size_t nl = lam_slicer_count(s);
+    if (a.json && po.kind == LAM_PLAN_SLS && !(layer_time = calloc(nl ? nl : 1, sizeof *layer_time))) {
+        lam_error_set(&err, LAM_ENOMEM, NULL, 0, 0, "out of memory");
+        rc = cli_fail(&err);
+        goto done;
+    }
+    po.layer_time = layer_time;
     if (lam_plan_run(s, m, &po, &sink, on_layer, &rep, &err)) {
         rc = err.code == LAM_EUSAGE ? cli_usage("slice", "%s", err.msg)
                                     : cli_fail_limit(&err, lam_writer_over_limit(w), CLI_RAISE_OUTPUT);
@@ -200,6 +242,7 @@ int cmd_slice(int argc, char **argv)
             goto done;
         }
     }
+    if (po.kind == LAM_PLAN_SLS && !a.json && lam_scan_estimates(&po.scan)) cli_print_estimate(a.path, &est);
     if (rep.svg && lam_svg_save(rep.svg, a.svg, &err)) {
         rc = cli_fail(&err);
         goto done;
@@ -209,8 +252,10 @@ int cmd_slice(int argc, char **argv)
         w = NULL;
         int over = lam_writer_over_limit(tmp);
         if (lam_writer_commit(tmp, &err)) rc = cli_fail_limit(&err, over, CLI_RAISE_OUTPUT);
+        else if (a.json && po.kind == LAM_PLAN_SLS) cli_json_estimate(a.path, &est, layer_time, lam_slicer_count(s));
     }
 done:
+    free(layer_time);
     if (sink.destroy) sink.destroy(sink.ctx);
     lam_writer_abort(w);
     lam_svg_free(rep.svg);

@@ -6,7 +6,9 @@
  *     $$BINARY
  *     $$UNITS/00000001.000000      millimetres per coordinate unit
  *     $$VERSION/200
+ *     $$DIMENSION/x1,y1,z1,x2,y2,z2   the job's bounding box (%.5f)
  *     $$LAYERS/<n>
+ *     $$LABEL/1,<part name>
  *     $$HEADEREND
  *
  * (lines end with "\n"; binary data follows "$$HEADEREND" immediately),
@@ -14,8 +16,9 @@
  *
  *     127  start layer long   float32 z
  *     130  polyline long      int32 id, int32 dir, int32 n, n x (float32 x, float32 y)
+ *     132  hatches long       int32 id, int32 n, n x (float32 x0, y0, x1, y1)
  *
- * dir is 1 for counter-clockwise (solid) and 0 for clockwise (hole)
+ * id is the part's id (1: the job's one model, as $$LABEL says); dir is 1 for counter-clockwise (solid) and 0 for clockwise (hole)
  * contours; every polyline is closed by repeating its first point, which n
  * counts (as the ASCII profile's $$POLYLINE/id,dir,n,... with
  * close_polylines). Nothing follows the last polyline: CLI binary has no
@@ -37,6 +40,7 @@ _Static_assert(sizeof(float) == 4 && FLT_MANT_DIG == 24 && FLT_MAX_EXP == 128,
 
 #define CMD_LAYER_LONG 127
 #define CMD_POLYLINE_LONG 130
+#define CMD_HATCHES_LONG 132
 
 static const struct lamina_host *host;
 
@@ -152,10 +156,15 @@ static void *cli_begin(struct lamina_out *out, const struct lamina_job *job)
     }
     c->out = out;
     c->layers = job->layers;
-    char head[256];
+    char head[1024];
+    const char *label = "part";
+    if (job->size >= offsetof(struct lamina_job, label) + sizeof job->label && job->label && *job->label)
+        label = job->label;
+    const double *b = job->bbox;
     int n = snprintf(head, sizeof head,
-                     "$$HEADERSTART\n$$BINARY\n$$UNITS/%015.6f\n$$VERSION/200\n$$LAYERS/%zu\n$$HEADEREND",
-                     mm, job->layers);
+                     "$$HEADERSTART\n$$BINARY\n$$UNITS/%015.6f\n$$VERSION/200\n"
+                     "$$DIMENSION/%.5f,%.5f,%.5f,%.5f,%.5f,%.5f\n$$LAYERS/%zu\n$$LABEL/1,%.200s\n$$HEADEREND",
+                     mm, b[0], b[1], b[2], b[3], b[4], b[5], job->layers, label);
     if (n < 0 || (size_t)n >= sizeof head || reserve(c, (size_t)n) != 0) {
         host->set_error(host, "cli-binary: cannot format the header");
         cli_free(c);
@@ -233,6 +242,38 @@ static int cli_polyline(void *state, size_t id, int solid, const double *xy, siz
     return flush(c);
 }
 
+static int cli_hatches(void *state, size_t id, const double *xy, size_t n)
+{
+    cli *c = state;
+    if (c->failed) return 1;
+    if (c->layers_written == 0) {
+        host->set_error(host, "cli-binary: hatches before the first layer");
+        return 1;
+    }
+    if (n == 0) return 0;
+    if (!xy || id > INT32_MAX || n >= (size_t)INT32_MAX || n > (SIZE_MAX - 10) / 16) {
+        host->set_error(host, "cli-binary: a block of %zu hatches exceeds the format's int32 fields", n);
+        return 1;
+    }
+    if (reserve(c, 2 + 8 + 16 * n) != 0) {
+        host->set_error(host, "cli-binary: out of memory");
+        return 1;
+    }
+    put_u16(c, CMD_HATCHES_LONG);
+    put_i32(c, (int32_t)id);
+    put_i32(c, (int32_t)n);
+    for (size_t i = 0; i < 4 * n; i++) {
+        float f;
+        if (to_f32(xy[i], &f) != 0) {
+            c->len = 0;
+            host->set_error(host, "cli-binary: hatch coordinate %g does not fit float32", xy[i]);
+            return 1;
+        }
+        put_f32(c, f);
+    }
+    return flush(c);
+}
+
 static int cli_end(void *state)
 {
     cli *c = state;
@@ -260,6 +301,7 @@ static const struct lamina_writer cli_writer = {
     .polyline = cli_polyline,
     .end = cli_end,
     .abort = cli_abort,
+    .hatches = cli_hatches,
 };
 
 int lamina_plugin_init(const struct lamina_host *h);

@@ -94,3 +94,33 @@ vt=$(cut -d' ' -f1 "$work/v.txt" | median); vm=$(cut -d' ' -f2 "$work/v.txt" | m
 st=$(cut -d' ' -f1 "$work/s.txt" | median)
 awk -v vt="$vt" -v vm="$vm" -v st="$st" 'BEGIN {
     printf "validate sphere (400 layers): %.3f s, %.1f MB peak (slice alone %.3f s)\n", vt, vm / 1024, st }'
+
+# Hatching: the sphere at 0.03 layers, hatch distance 0.1, islands (5 mm,
+# checker order), binary CLI; against PrusaSlicer writing 100% rectilinear
+# G-code for the same part and layer height, when it is installed.
+hatch=(slice "$work/sphere.stl" -m cli-binary -w 0.03 -s hatch_strategy=islands -s hatch_distance=0.1
+       -s island_size=5 -s island_order=checker)
+: >"$work/h.txt"; : >"$work/p.txt"
+prusa=$(command -v prusa-slicer || command -v PrusaSlicer || true)
+for ((r = 0; r < 3; r++)); do
+    fresh "$work/sphere.cli"
+    measure "$LAMINA" "${hatch[@]}" -o "$work/sphere.cli" >>"$work/h.txt"
+    if [ -n "$prusa" ]; then
+        fresh "$work/sphere.gcode"
+        measure "$prusa" --export-gcode --layer-height 0.03 --first-layer-height 0.03 --fill-density 100% \
+            --fill-pattern rectilinear --top-solid-layers 0 --bottom-solid-layers 0 \
+            "$work/sphere.stl" -o "$work/sphere.gcode" >>"$work/p.txt"
+    fi
+done
+ht=$(cut -d' ' -f1 "$work/h.txt" | median); hm=$(cut -d' ' -f2 "$work/h.txt" | median)
+"$LAMINA" "${hatch[@]}" -o "$work/sphere.cli" 2>"$work/hatch.err"
+awk -v t="$ht" -v m="$hm" 'BEGIN { printf "hatch sphere (1334 layers of 0.03, islands, 0.1 apart): lamina %.3f s, %.1f MB peak\n", t, m / 1024 }'
+sed 's/^lamina: [^:]*: /  /' "$work/hatch.err"
+if [ -n "$prusa" ]; then
+    pt=$(cut -d' ' -f1 "$work/p.txt" | median); pm=$(cut -d' ' -f2 "$work/p.txt" | median)
+    awk -v t="$ht" -v m="$hm" -v pt="$pt" -v pm="$pm" 'BEGIN {
+        printf "  PrusaSlicer 100%% rectilinear: %.3f s, %.1f MB peak: lamina %.1fx faster at %.2f of its memory\n",
+               pt, pm / 1024, pt / t, m / pm }'
+else
+    echo "  (PrusaSlicer is not installed: the hatching comparison is skipped; apt-get install prusa-slicer to run it)"
+fi

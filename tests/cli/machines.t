@@ -7,8 +7,9 @@ MF="$M/machines"
 
 run "$LAMINA" machines
 is "$RC" 0 "machines: exit 0"
-is "$(wc -l <<<"$OUT")" 5 "machines: the five shipped profiles"
+is "$(wc -l <<<"$OUT")" 6 "machines: the six shipped profiles"
 like "$OUT" '^cli-ascii +sls +Common Layer Interface' "cli-ascii listed: sls, description"
+like "$OUT" $'\nlpbf-cli +sls +LPBF machine' "lpbf-cli listed: sls, description"
 like "$OUT" $'\ncreol-ladrp +ladrp +LADRP stage of the thesis' "creol-ladrp listed: ladrp, description"
 like "$OUT" $'\nded-gcode +ladrp +DED cell' "ded-gcode listed"
 like "$OUT" $'\nsls-contours +sls +SLS contours of the thesis' "sls-contours listed"
@@ -21,7 +22,7 @@ cp "$MF/base.yaml" "$TMP/m/zz-base.yaml"
 echo "not a profile" >"$TMP/m/notes.txt"
 run env LAMINA_MACHINES="$TMP/m" "$LAMINA" machines
 is "$RC" 0 "LAMINA_MACHINES: exit 0"
-is "$(wc -l <<<"$OUT")" 6 "LAMINA_MACHINES: five shipped plus one, the shadowed one once"
+is "$(wc -l <<<"$OUT")" 7 "LAMINA_MACHINES: six shipped plus one, the shadowed one once"
 like "$OUT" $'\ncreol-ladrp +ladrp +my own thesis cell' "LAMINA_MACHINES: its creol-ladrp wins"
 like "$OUT" $'\nzz-base +ladrp +$' "LAMINA_MACHINES: its own profile listed (no description)"
 run env LAMINA_MACHINES="$TMP/m" "$LAMINA" machines --show creol-ladrp
@@ -32,7 +33,7 @@ cp "$MF/bead_zero.yaml" "$TMP/m/broken.yaml"
 run env LAMINA_MACHINES="$TMP/m" "$LAMINA" machines
 is "$RC" 1 "a broken profile: exit 1"
 like "$ERR" 'broken\.yaml:3:13: bead_width must be greater than 0' "a broken profile: file:line:col on stderr"
-is "$(wc -l <<<"$OUT")" 6 "a broken profile: the others are listed"
+is "$(wc -l <<<"$OUT")" 7 "a broken profile: the others are listed"
 
 # --show: valid YAML that loads again as the same profile.
 for name in creol-ladrp sls-contours ded-gcode cli-ascii; do

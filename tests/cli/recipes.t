@@ -20,7 +20,7 @@ cmp_ok() {
 }
 
 # ---- every recipe: header, --help, bad arguments ----------------------------------
-for r in default adaptive aligned best_axis scan_orders; do
+for r in default adaptive aligned best_axis scan_orders hatching; do
     head=$(head -n 3 "$R/$r.lua")
     like "$head" "^-- $r\.lua: .+" "$r: a header comment says what it does"
     like "$head" "lamina run recipes/$r\.lua" "$r: and how to run it"
@@ -196,4 +196,23 @@ like "$RC $ERR" "^2 lamina: scan_orders\.lua: sls-contours is an sls machine, no
 run "$LAMINA" run "$R/scan_orders.lua" --machine no-such-machine
 like "$RC $ERR" "^1 lamina: scan_orders\.lua: .*unknown machine" "scan_orders: an unknown machine"
 
+# ---- hatching.lua ------------------------------------------------------------
+run "$LAMINA" run "$R/hatching.lua" --width 4 --distance 0.5 --skins 0
+is "$RC" 0 "hatching: runs on the frame with its island"
+like "$OUT" "5 layers, machine lpbf-cli \(hatch distance 0.5, no skins\)" "hatching: 5 layers of 4, no skins"
+col() { awk -v s="$1" -v c="$2" '{ l = substr($0, 1, 22); sub(/ +$/, "", l) } l == s { n = split($0, f, / +/); print f[n - 4 + c] }' <<<"$OUT"; }
+for s in "lines" "lines unidirectional" "lines greedy" "lines, recipe order"; do
+    is "$(col "$s" 1) $(col "$s" 2)" "$(col lines 1) $(col lines 2)" "hatching: $s: the same vectors as lines"
+done
+# the frame's volume is 16000: the 5 layers of 4 hold 4000 of area; the
+# hatches (0.5 apart) cover it but for the contour passes' band (0.16 in)
+cmp_ok "$(col lines 2)" ">" 7200 "hatching: length x 0.5 covers over 90% of the 4000"
+cmp_ok "$(col lines 2)" "<" 8000 "hatching: ... and not more than all of it"
+cmp_ok "$(col 'lines greedy' 3)" "<" "$(col lines 3)" "hatching: greedy jumps less than meander"
+cmp_ok "$(col lines 3)" "<" "$(col 'lines unidirectional' 3)" "hatching: meander jumps less than unidirectional"
+cmp_ok "$(col stripes 1)" ">" "$(col lines 1)" "hatching: stripes cut the lines into more vectors"
+cmp_ok "$(col 'islands checker' 1)" ">" "$(col stripes 1)" "hatching: islands (5 wide) more than stripes (10)"
+like "$OUT" "islands random +[0-9]+ +[0-9.]+ +[0-9.]+ +[0-9.]+" "hatching: every island order"
+run "$LAMINA" run "$R/hatching.lua" --machine creol-ladrp
+like "$RC $ERR" "^2 .*creol-ladrp is an ladrp machine, not sls" "hatching: an LADRP machine is refused"
 done_testing

@@ -31,7 +31,7 @@ run "$LAMINA" validate "$ov" -w 0.5 --fill nonzero
 is "$RC" 0 "non-zero fill: one merged outline, confirmed"
 run "$LAMINA" slice "$ov" -w 0.5 --fill nonzero -m cli-ascii
 is "$(grep -c POLYLINE <<<"$OUT")" 6 "non-zero: one outline per layer"
-like "$OUT" '\$\$POLYLINE/3,1,9,' "the merged overlap layer is an 8-corner outline (closed: 9 points)"
+like "$OUT" '\$\$POLYLINE/1,1,9,' "the merged overlap layer is an 8-corner outline (closed: 9 points; part id 1)"
 
 # slice --validate writes nothing when a label disagrees.
 run "$LAMINA" slice "$ov" -w 0.5 --validate -o "$TMP/ov.sls"
@@ -106,14 +106,14 @@ perl -pe 'if (!$done && s{^\$\$POLYLINE/(\d+),1,(\d+),(.*)$}{my @p = split /,/, 
     "$TMP/ok.cli" >"$TMP/flip.cli"
 run "$LAMINA" validate "$M/thesis_cube_hole.ug" --program "$TMP/flip.cli"
 is "$RC" 3 "a CLI polyline labelled solid (dir 1) but written clockwise: exit 3"
-like "$OUT" '^  contour 0 \(solid, \S*flip\.cli:9:1\) direction: written clockwise but labelled solid' \
+like "$OUT" '^  contour 0 \(solid, \S*flip\.cli:11:1\) direction: written clockwise but labelled solid' \
     "... named as written clockwise but labelled solid, at its line"
 # and its direction field flipped instead (points right, label wrong)
 sed '0,/^\$\$POLYLINE\/1,1,/s//$$POLYLINE\/1,0,/' "$TMP/ok.cli" >"$TMP/dir.cli"
 run "$LAMINA" validate "$M/thesis_cube_hole.ug" --program "$TMP/dir.cli" --json
 is "$RC" 3 "a CLI polyline with its direction field flipped: exit 3"
 is "$(jq -c '[.layers[0].disagreements[0] | .contour, .line, (.problems | map(.check) | join(","))]' <<<"$OUT")" \
-    '[0,9,"material,direction,nesting"]' "... JSON names the contour, its line and each check that fails"
+    '[0,11,"material,direction,nesting"]' "... JSON names the contour, its line and each check that fails"
 # a binary CLI with one polyline's direction byte flipped
 "$LAMINA" slice "$M/thesis_cube_hole.ug" -w 0.5 -m cli-binary -o "$TMP/ok.bcli"
 python3 - "$TMP/ok.bcli" "$TMP/flip.bcli" <<'PY'

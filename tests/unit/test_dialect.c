@@ -390,9 +390,9 @@ static void test_contours(void)
     static const double sq_uv[] = { -1, -1, 1, -1, 1, 1, -1, 1 };
     static const double hole_xyz[] = { -0.5, -0.5, 0.5, -0.5, 0.5, 0.5, 0.5, 0.5, 0.5 };
     static const double hole_uv[] = { -0.5, -0.5, -0.5, 0.5, 0.5, 0.5 };
-    lam_contour_info a = { 1, 1, 0, 0.5, sq_xyz, sq_uv, 4 };
-    lam_contour_info b = { 2, 0, 1, 0.5, hole_xyz, hole_uv, 3 };
-    lam_contour_info c = { 3, 1, 0, 1.5, sq_xyz, sq_uv, 4 };
+    lam_contour_info a = { 1, 1, 0, 0.5, sq_xyz, sq_uv, 4, 0, 0, 0, 0 };
+    lam_contour_info b = { 2, 0, 1, 0.5, hole_xyz, hole_uv, 3, 0, 0, 0, 0 };
+    lam_contour_info c = { 3, 1, 0, 1.5, sq_xyz, sq_uv, 4, 0, 0, 0, 0 };
     lam_layer_info L0 = { 0, 0.5, 1, 0, 1 }, L1 = { 1, 1.5, 1, 1, 2 };
 
     run r;
@@ -453,7 +453,7 @@ static void test_contours(void)
     set(&r.d, LAM_CMD_POLYLINE, "P {n} {points}");
     run_start(&r);
     r.sink.begin(r.sink.ctx, &j);
-    lam_contour_info nouv = { 9, 1, 0, 0.5, hole_xyz, NULL, 3 };
+    lam_contour_info nouv = { 9, 1, 0, 0.5, hole_xyz, NULL, 3, 0, 0, 0, 0 };
     r.sink.contour(r.sink.ctx, &nouv);
     out = run_take(&r);
     is_str(out, "P 3 -0.500000,-0.500000,-0.500000,0.500000,0.500000,0.500000\n", "points default %%.6f, open");
@@ -496,7 +496,8 @@ int main(void)
 {
     static const char *const names[] = { "preamble", "postamble", "layer", "layer_end", "feed", "laser_on",
                                          "laser_off", "travel", "deposit", "contour_begin", "contour_end",
-                                         "loop_begin", "loop_end", "vertex", "polyline", "separator" };
+                                         "loop_begin", "loop_end", "vertex", "polyline", "separator",
+                                         "hatches_begin", "hatch", "hatches_end", "hatches" };
     int good = 1;
     for (int c = 0; c < LAM_CMD_COUNT; c++) good &= strcmp(lam_cmd_name((lam_cmd)c), names[c]) == 0;
     ok(good, "command names");

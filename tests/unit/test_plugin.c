@@ -373,7 +373,10 @@ static void test_cli_bytes(void)
     is_int(rc, LAM_OK, "cli-binary: a 2-layer job runs");
     if (rc) diag("%s", err.msg);
 
-    const char *hdr = "$$HEADERSTART\n$$BINARY\n$$UNITS/00000001.000000\n$$VERSION/200\n$$LAYERS/2\n$$HEADEREND";
+    /* no label given: the part is called "part"; the box is the job's */
+    const char *hdr = "$$HEADERSTART\n$$BINARY\n$$UNITS/00000001.000000\n$$VERSION/200\n"
+                      "$$DIMENSION/10.00000,20.00000,0.00000,12.00000,22.00000,2.00000\n$$LAYERS/2\n$$LABEL/1,part\n"
+                      "$$HEADEREND";
     ok(data && len > strlen(hdr) && memcmp(data, hdr, strlen(hdr)) == 0, "header is exactly the CLI header");
     /* layer commands: 2 x (2 + 4); polylines: 4 x (2 + 12 + 5 * 8) */
     is_int(len, strlen(hdr) + 2 * 6 + 4 * 54, "file size: header + 2 layers + 4 closed polylines");

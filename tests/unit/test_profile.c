@@ -208,7 +208,7 @@ static void cli_script(const lam_sink *s)
     static const double uv[] = { 0, 0, 10, 0, 10, 5, 0, 5 };
     lam_layer_info L = { 0, 0.05, 0.1, 0, 0.1 };
     s->layer(s->ctx, &L);
-    lam_contour_info c = { 1, 1, 0, 0.05, xyz, uv, 4 };
+    lam_contour_info c = { 1, 1, 0, 0.05, xyz, uv, 4, 0, 0, 0, 0 };
     s->contour(s->ctx, &c);
     s->layer_end(s->ctx, &L);
 }
@@ -246,7 +246,9 @@ static void test_dialect_programs(void)
         job.layers = 1;
         char *out = program(p, &job, cli_script);
         is_str(out,
-               "$$HEADERSTART\n$$ASCII\n$$UNITS/1\n$$VERSION/200\n$$LAYERS/1\n$$HEADEREND\n$$GEOMETRYSTART\n"
+               "$$HEADERSTART\n$$ASCII\n$$UNITS/1\n$$VERSION/200\n"
+               "$$DIMENSION/0.00000,0.00000,0.00000,10.00000,5.00000,1.00000\n$$LAYERS/1\n$$LABEL/1,part\n"
+               "$$HEADEREND\n$$GEOMETRYSTART\n"
                "$$LAYER/0.05000\n"
                "$$POLYLINE/1,1,5,0.00000,0.00000,10.00000,0.00000,10.00000,5.00000,0.00000,5.00000,0.00000,0.00000\n"
                "$$GEOMETRYEND\n",
@@ -321,7 +323,7 @@ static int sls_same(const char *model, const double dir[3], double width, lam_cu
             for (size_t i = 0; i < c->n; i++)
                 lam_frame_to_model(&o.frame, L->uv[2 * (c->first + i)], L->uv[2 * (c->first + i) + 1], L->cut,
                                    xyz + 3 * i);
-            lam_contour_info ci = { id++, c->kind == LAM_SOLID, c->depth, L->cut, xyz, L->uv + 2 * c->first, c->n };
+            lam_contour_info ci = { id++, c->kind == LAM_SOLID, c->depth, L->cut, xyz, L->uv + 2 * c->first, c->n, 0, 0, 0, 0 };
             sink.contour(sink.ctx, &ci);
             free(xyz);
         }
