@@ -805,7 +805,7 @@ static void d_destroy(void *ctx)
     free(s);
 }
 
-int lam_dialect_sink(const lam_dialect *d, lam_writer *w, lam_error *err, lam_sink *out)
+int lam_dialect_sink(const lam_dialect *d, lam_writer *w, lam_sink *out, lam_error *err)
 {
     memset(out, 0, sizeof *out);
     dsink *s = calloc(1, sizeof *s);

@@ -109,7 +109,7 @@ void lam_dialect_free(lam_dialect *d);
  * from the stage position, which starts at job->origin. The `rate` field of
  * travel/deposit/laser commands is the job's travel_rate or rate. Errors go
  * to err, which must outlive the sink. */
-int lam_dialect_sink(const lam_dialect *d, lam_writer *w, lam_error *err, lam_sink *out);
+int lam_dialect_sink(const lam_dialect *d, lam_writer *w, lam_sink *out, lam_error *err);
 
 /* The default rendering of a number field: the fewest significant digits
  * (1..17) that read back as exactly x, in the notation %.17g would choose

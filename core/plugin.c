@@ -535,7 +535,7 @@ static void ps_destroy(void *ctx)
     free(s);
 }
 
-int lam_plugin_writer_sink(const char *name, lam_writer *w, lam_error *err, lam_sink *out)
+int lam_plugin_writer_sink(const char *name, lam_writer *w, lam_sink *out, lam_error *err)
 {
     memset(out, 0, sizeof *out);
     if (!name || !*name) return lam_error_set(err, LAM_EUSAGE, NULL, 0, 0, "no writer name given");

@@ -51,7 +51,7 @@ int lam_plugin_load(const char *path, lam_error *err);
  * searched), what lam_plugin_load returns for NAME.so, LAM_ENOMEM. Sink calls return LAM_EUSAGE (misuse), LAM_EIO (the
  * output could not be written) or LAM_EINVAL (the writer refused, with its
  * message). */
-int lam_plugin_writer_sink(const char *name, lam_writer *w, lam_error *err, lam_sink *out);
+int lam_plugin_writer_sink(const char *name, lam_writer *w, lam_sink *out, lam_error *err);
 
 /* Unload every plugin (dlclose) and empty the registry. Any sink or writer
  * name obtained before becomes invalid. For tests and leak checks. */

@@ -166,8 +166,8 @@ int lam_lua_plan(lua_State *L)
     if (lam_writer_memory(&j->w, &j->err)) return lam_lua_fail(L, &j->err);
     lam_writer_set_limit(j->w, o.max_output ? o.max_output : LAM_DEFAULT_MAX_OUTPUT);
     int text = !p.writer || strcmp(p.writer, "text") == 0;
-    int rc = text ? lam_dialect_sink(&p.dialect, j->w, &j->err, &j->sink)
-                  : lam_plugin_writer_sink(p.writer, j->w, &j->err, &j->sink);
+    int rc = text ? lam_dialect_sink(&p.dialect, j->w, &j->sink, &j->err)
+                  : lam_plugin_writer_sink(p.writer, j->w, &j->sink, &j->err);
     if (rc) return lam_lua_fail(L, &j->err);
     j->have_sink = 1;
 

@@ -195,8 +195,8 @@ int cmd_slice(int argc, char **argv)
         goto done;
     }
     lam_writer_set_limit(w, a.max_output ? a.max_output : LAM_DEFAULT_MAX_OUTPUT);
-    int src = !prof->writer || !strcmp(prof->writer, "text") ? lam_dialect_sink(&prof->dialect, w, &err, &sink)
-                                                             : lam_plugin_writer_sink(prof->writer, w, &err, &sink);
+    int src = !prof->writer || !strcmp(prof->writer, "text") ? lam_dialect_sink(&prof->dialect, w, &sink, &err)
+                                                             : lam_plugin_writer_sink(prof->writer, w, &sink, &err);
     if (src) {
         rc = err.code == LAM_EUSAGE ? cli_usage("slice", "%s", err.msg) : cli_fail(&err);
         goto done;

@@ -82,7 +82,7 @@ static void plan(const lam_model *md, const lam_profile *p, int layers, int obli
     lam_sink sink;
     memset(&sink, 0, sizeof sink);
     if (lam_slicer_new(md, &o, &s, &err) == LAM_OK && lam_writer_memory(&w, &err) == LAM_OK &&
-        lam_dialect_sink(&p->dialect, w, &err, &sink) == LAM_OK)
+        lam_dialect_sink(&p->dialect, w, &sink, &err) == LAM_OK)
         (void)lam_plan_run(s, md, &po, &sink, NULL, NULL, &err);
     if (sink.destroy) sink.destroy(sink.ctx);
     if (w) lam_writer_abort(w);

@@ -85,7 +85,7 @@ typedef struct run {
 static void run_start(run *r)
 {
     lam_error_clear(&r->err);
-    if (lam_writer_memory(&r->w, &r->err) || lam_dialect_sink(&r->d, r->w, &r->err, &r->sink)) abort();
+    if (lam_writer_memory(&r->w, &r->err) || lam_dialect_sink(&r->d, r->w, &r->sink, &r->err)) abort();
 }
 
 /* Finish as a planner does (end, then destroy: the sink's output is
@@ -478,7 +478,7 @@ static void test_write_failure(void)
     lam_error_clear(&err);
     lam_writer_stream(f, "/dev/full", &w, &err);
     lam_sink s;
-    lam_dialect_sink(&d, w, &err, &s);
+    lam_dialect_sink(&d, w, &s, &err);
     lam_job_info j = job();
     /* the sink buffers: the failure shows at the latest when end returns */
     int rc1 = s.begin(s.ctx, &j);

@@ -212,7 +212,7 @@ static int run_job(const char *writer, const char *machine, const char *units, s
     *len = 0;
     if (lam_writer_memory(&w, err)) return err->code;
     lam_sink s;
-    int rc = lam_plugin_writer_sink(writer, w, err, &s);
+    int rc = lam_plugin_writer_sink(writer, w, &s, err);
     if (rc) {
         lam_writer_abort(w);
         return rc;
@@ -299,7 +299,7 @@ static void test_registry(void)
     lam_writer *w;
     lam_writer_memory(&w, &err);
     lam_sink s;
-    int rc = lam_plugin_writer_sink("cli-binary", w, &err, &s);
+    int rc = lam_plugin_writer_sink("cli-binary", w, &s, &err);
     is_int(rc, LAM_OK, "cli-binary found as cli-binary.so in the plugin directories");
     if (rc) diag("%s", err.msg);
     ok(rc == LAM_OK && s.ctx && s.begin && s.destroy, "the sink is filled in");
@@ -309,22 +309,22 @@ static void test_registry(void)
     ok(!writer_listed("old-writer"), "old-writer.so, in a later directory, was not loaded");
     ok(!getenv("LAMINA_CTOR_RAN"), "no other plugin file was opened (ctor.so's constructor did not run)");
     lam_writer_memory(&w, &err);
-    rc = lam_plugin_writer_sink("old-writer", w, &err, &s);
+    rc = lam_plugin_writer_sink("old-writer", w, &s, &err);
     is_int(rc, LAM_OK, "old-writer found as old-writer.so in <exe dir>/plugins");
     if (rc == LAM_OK) s.destroy(s.ctx);
     lam_writer_abort(w);
     ok(!getenv("LAMINA_CTOR_RAN"), "... and still no other file opened");
     lam_writer_memory(&w, &err);
-    rc = lam_plugin_writer_sink("no_abi", w, &err, &s);
+    rc = lam_plugin_writer_sink("no_abi", w, &s, &err);
     ok(rc == LAM_EFORMAT && has(err.msg, "lamina_plugin_abi"), "writer no_abi: no_abi.so refused (%s)", err.msg);
     lam_writer_abort(w);
     lam_writer_memory(&w, &err);
-    rc = lam_plugin_writer_sink("ctor", w, &err, &s);
+    rc = lam_plugin_writer_sink("ctor", w, &s, &err);
     ok(rc == LAM_EINVAL && has(err.msg, "does not provide writer 'ctor'"), "a plugin without the named writer (%s)",
        err.msg);
     lam_writer_abort(w);
     lam_writer_memory(&w, &err);
-    rc = lam_plugin_writer_sink("../plugins/cli-binary", w, &err, &s);
+    rc = lam_plugin_writer_sink("../plugins/cli-binary", w, &s, &err);
     ok(rc == LAM_EINVAL && has(err.msg, "letters, digits"), "a writer name with '/' is no file name (%s)", err.msg);
     lam_writer_abort(w);
     size_t count = lam_plugin_writers(NULL, 0);
@@ -354,7 +354,7 @@ static void test_registry(void)
     lam_error_clear(&err);
     lam_writer_memory(&w, &err);
     memset(&s, 0xff, sizeof s);
-    rc = lam_plugin_writer_sink("no-such-writer", w, &err, &s);
+    rc = lam_plugin_writer_sink("no-such-writer", w, &s, &err);
     is_int(rc, LAM_EINVAL, "unknown writer: LAM_EINVAL");
     contains(err.msg, "unknown writer 'no-such-writer'", "unknown writer: message names it");
     contains(err.msg, "no no-such-writer.so in", "unknown writer: message says which file was looked for");
@@ -455,7 +455,7 @@ static void test_sink_rules(void)
     lam_writer *w;
     lam_writer_memory(&w, &err);
     lam_sink s;
-    int rc = lam_plugin_writer_sink("cli-binary", w, &err, &s);
+    int rc = lam_plugin_writer_sink("cli-binary", w, &s, &err);
     is_int(rc, LAM_OK, "cli-binary sink");
     if (rc) return;
 
@@ -494,7 +494,7 @@ static void test_sink_rules(void)
 
     /* the size rule: old-writer's declared size ends before abort */
     lam_writer_memory(&w, &err);
-    rc = lam_plugin_writer_sink("old-writer", w, &err, &s);
+    rc = lam_plugin_writer_sink("old-writer", w, &s, &err);
     is_int(rc, LAM_OK, "old-writer sink");
     if (rc == LAM_OK) {
         job.name = "old";
@@ -527,7 +527,7 @@ static void test_sink_rules(void)
     if (full) {
         setvbuf(full, NULL, _IONBF, 0);
         lam_writer_stream(full, "/dev/full", &w, &err);
-        rc = lam_plugin_writer_sink("cli-binary", w, &err, &s);
+        rc = lam_plugin_writer_sink("cli-binary", w, &s, &err);
         lam_error_clear(&err);
         int brc = s.begin(s.ctx, &job);
         is_int(brc, LAM_EIO, "write failure: LAM_EIO");

@@ -61,7 +61,7 @@ static char *program(const lam_profile *p, const lam_job_info *job, script_fn sc
     lam_writer *w;
     lam_error err;
     lam_sink s;
-    if (lam_writer_memory(&w, &err) || lam_dialect_sink(&p->dialect, w, &err, &s)) abort();
+    if (lam_writer_memory(&w, &err) || lam_dialect_sink(&p->dialect, w, &s, &err)) abort();
     s.begin(s.ctx, job);
     script(&s);
     s.end(s.ctx);
@@ -303,7 +303,7 @@ static int sls_same(const char *model, const double dir[3], double width, lam_cu
     lam_writer_memory(&wa, &err);
     lam_writer_memory(&wb, &err);
     lam_sink sink;
-    lam_dialect_sink(&p->dialect, wb, &err, &sink);
+    lam_dialect_sink(&p->dialect, wb, &sink, &err);
     lam_job_info job;
     memset(&job, 0, sizeof job);
     job.name = p->name;
