@@ -80,7 +80,7 @@ int lam_read_file(const char *path, lam_read_limit limit, char **data, size_t *l
     *data = NULL;
     *len = 0;
     struct stat st;
-    int fd, rc = open_regular(path, limit, &st, &fd, err);
+    int fd = -1, rc = open_regular(path, limit, &st, &fd, err);
     if (rc) return rc;
     /* the size is a hint (the file may change): read up to one byte past
      * the limit to see it grow */
@@ -121,7 +121,7 @@ int lam_map_file(const char *path, lam_read_limit limit, char **data, size_t *le
 {
     *mapped = 0;
     struct stat st;
-    int fd, rc = open_regular(path, limit, &st, &fd, err);
+    int fd = -1, rc = open_regular(path, limit, &st, &fd, err);
     if (rc) return rc;
     long page = sysconf(_SC_PAGESIZE);
     /* Only when the size is not a whole number of pages: the system
