@@ -21,8 +21,7 @@ size_t lam_max_input(void)
     if (*end == 'K' || *end == 'k') shift = 10, end++;
     else if (*end == 'M' || *end == 'm') shift = 20, end++;
     else if (*end == 'G' || *end == 'g') shift = 30, end++;
-    if (end == s || *end || errno || s[0] == '-' || n == 0 || n > (SIZE_MAX / 2) >> shift)
-        return LAM_MAX_INPUT_DEFAULT;
+    if (end == s || *end || errno || s[0] == '-' || n == 0 || n > (SIZE_MAX / 2) >> shift) return 0;
     return (size_t)n << shift;
 }
 
@@ -53,6 +52,9 @@ void lam_file_set_gate(lam_file_gate g, void *ctx, lam_file_gate *old_gate, void
 /* Open a regular file within the limit for reading into *fd. */
 static int open_regular(const char *path, lam_read_limit limit, struct stat *st, int *fd_out, lam_error *err)
 {
+    if (limit.bytes == 0) /* a limit from the environment that is not a size */
+        return lam_error_set(err, LAM_EINVAL, path, 0, 0,
+                             "cannot read: LAMINA_MAX_INPUT is not a size (bytes, or a number with K, M or G)");
     if (gate) {
         int rc = gate(gate_ctx, path, err);
         if (rc) return rc;

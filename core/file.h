@@ -23,8 +23,10 @@
 /* Largest machine profile in bytes: a profile is a page of text. */
 #define LAM_MAX_PROFILE_BYTES ((size_t)4 << 20)
 
-/* The model size limit: LAMINA_MAX_INPUT when it is set to a valid size,
- * else LAM_MAX_INPUT_DEFAULT. */
+/* The model size limit: LAMINA_MAX_INPUT when it is set, else
+ * LAM_MAX_INPUT_DEFAULT; 0 when LAMINA_MAX_INPUT is set to something that is
+ * not a size (every read with that limit then fails and says so, rather
+ * than quietly using the default). */
 size_t lam_max_input(void);
 
 /* What a limited read is for: names it in messages ("a model") and says how

@@ -82,6 +82,11 @@ run env LAMINA_MAX_INPUT=1K "$LAMINA" info "$M/thesis_cube_binary.stl"
 is "$RC" 0 "LAMINA_MAX_INPUT=1K: a 684-byte STL fits"
 run env LAMINA_MAX_INPUT=500 "$LAMINA" info "$M/thesis_cube_binary.stl"
 like "$RC $ERR" '^1 lamina: .*thesis_cube_binary\.stl: too large for a model: 684 bytes, the limit is 500; set LAMINA_MAX_INPUT' "LAMINA_MAX_INPUT=500: refused, saying how to raise it"
+for bad in 12Q -5 abc 0; do
+    run env LAMINA_MAX_INPUT=$bad "$LAMINA" info "$M/thesis_cube_binary.stl"
+    like "$RC $ERR" '^1 lamina: .*thesis_cube_binary\.stl: cannot read: LAMINA_MAX_INPUT is not a size' \
+        "LAMINA_MAX_INPUT=$bad: refused, not the default quietly"
+done
 run env LAMINA_MAX_INPUT=500 "$LAMINA" info cube.ug
 is "$RC" 0 "the cube's $(wc -c < cube.ug)-byte .ug fits in 500 bytes"
 printf 'include cube.ug;\n' > inc_cube.ug
