@@ -688,19 +688,33 @@ static int d_move(void *ctx, int deposit, const double xyz[3])
     return rc;
 }
 
+/* A contour or hatch block starts: the separator between blocks, and the
+ * fields every block has (its index in the layer, its part id, its
+ * exposure). Fills v. */
+static int block_start(dsink *s, vals *v, double id, double power, double speed, double point_distance,
+                       double exposure_time)
+{
+    size_t index = s->in_layer++;
+    memset(v, 0, sizeof *v);
+    int rc = s->blocks++ > 0 ? emit(s, LAM_CMD_SEPARATOR, v, NULL, NULL) : LAM_OK;
+    v->num[F_INDEX] = (double)index;
+    v->num[F_ID] = id;
+    v->num[F_POWER] = power;
+    v->num[F_SPEED] = speed;
+    v->num[F_POINT_DISTANCE] = point_distance;
+    v->num[F_EXPOSURE_TIME] = exposure_time;
+    return rc;
+}
+
 static int d_contour(void *ctx, const lam_contour_info *ci)
 {
     dsink *s = ctx;
     const lam_dialect *d = s->d;
-    int rc = LAM_OK;
-    size_t index = s->in_layer++;
     vals v;
-    memset(&v, 0, sizeof v);
-    if (s->blocks++ > 0 && (rc = emit(s, LAM_CMD_SEPARATOR, &v, NULL, NULL))) return rc;
+    int rc = block_start(s, &v, (double)ci->id, ci->power, ci->speed, ci->point_distance, ci->exposure_time);
+    if (rc) return rc;
     int close = d->close_polylines && ci->n > 0;
     size_t written = ci->n + (close ? 1 : 0);
-    v.num[F_INDEX] = (double)index;
-    v.num[F_ID] = (double)ci->id;
     v.num[F_DIR] = ci->solid ? 1 : 0;
     v.text[F_KIND] = ci->solid ? "solid" : "hole";
     v.num[F_DEPTH] = ci->depth;
@@ -715,10 +729,6 @@ static int d_contour(void *ctx, const lam_contour_info *ci)
     }
     v.npts = ci->n;
     v.close = close;
-    v.num[F_POWER] = ci->power;
-    v.num[F_SPEED] = ci->speed;
-    v.num[F_POINT_DISTANCE] = ci->point_distance;
-    v.num[F_EXPOSURE_TIME] = ci->exposure_time;
     if ((rc = emit(s, LAM_CMD_CONTOUR_BEGIN, &v, NULL, NULL))) return rc;
     if ((rc = emit(s, LAM_CMD_LOOP_BEGIN, &v, NULL, NULL))) return rc;
     if (d->cmd[LAM_CMD_VERTEX].present) {
@@ -743,21 +753,13 @@ static int d_hatches(void *ctx, const lam_hatch_info *h)
 {
     dsink *s = ctx;
     const lam_dialect *d = s->d;
-    int rc = LAM_OK;
-    size_t index = s->in_layer++;
     vals v;
-    memset(&v, 0, sizeof v);
-    if (s->blocks++ > 0 && (rc = emit(s, LAM_CMD_SEPARATOR, &v, NULL, NULL))) return rc;
-    v.num[F_INDEX] = (double)index;
-    v.num[F_ID] = (double)h->id;
+    int rc = block_start(s, &v, (double)h->id, h->power, h->speed, h->point_distance, h->exposure_time);
+    if (rc) return rc;
     v.text[F_KIND] = h->kind;
     v.num[F_N] = (double)h->n;
     v.num[F_Z] = h->z;
     v.num[F_ANGLE] = h->angle;
-    v.num[F_POWER] = h->power;
-    v.num[F_SPEED] = h->speed;
-    v.num[F_POINT_DISTANCE] = h->point_distance;
-    v.num[F_EXPOSURE_TIME] = h->exposure_time;
     if (h->uv) {
         v.uv = h->uv;
         v.uv_stride = 2;
