@@ -182,13 +182,12 @@ static int push_lit(lam_template *t, size_t *cap, const char *text, size_t n)
 static int perr(lam_error *err, size_t *offset, size_t at, const char *fmt, ...) __attribute__((format(printf, 4, 5)));
 static int perr(lam_error *err, size_t *offset, size_t at, const char *fmt, ...)
 {
-    char msg[900];
+    if (offset) *offset = at;
     va_list ap;
     va_start(ap, fmt);
-    vsnprintf(msg, sizeof msg, fmt, ap);
+    int rc = lam_error_vset(err, LAM_EINVAL, NULL, 0, 0, -1, fmt, ap);
     va_end(ap);
-    if (offset) *offset = at;
-    return lam_error_set(err, LAM_EINVAL, NULL, 0, 0, "%s", msg);
+    return rc;
 }
 
 /* Parse the conversion spec text[at..] (starting at '%') for field f up to the

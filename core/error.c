@@ -22,20 +22,31 @@ static void set_file(lam_error *err, const char *file)
         err->file[0] = '\0';
 }
 
-int lam_error_set(lam_error *err, int code, const char *file, long line,
-                  long column, const char *fmt, ...)
+int lam_error_vset(lam_error *err, int code, const char *file, long line, long column, long long offset,
+                   const char *fmt, va_list ap)
 {
     if (!err) return code;
+    /* formatted aside first: an argument may be err's own message or file
+     * (a message wrapped with its context) */
+    char msg[sizeof err->msg];
+    vsnprintf(msg, sizeof msg, fmt, ap);
     err->code = code;
     set_file(err, file);
     err->line = line;
     err->column = column;
-    err->offset = -1;
+    err->offset = offset;
+    memcpy(err->msg, msg, sizeof msg);
+    return code;
+}
+
+int lam_error_set(lam_error *err, int code, const char *file, long line,
+                  long column, const char *fmt, ...)
+{
     va_list ap;
     va_start(ap, fmt);
-    vsnprintf(err->msg, sizeof err->msg, fmt, ap);
+    int rc = lam_error_vset(err, code, file, line, column, -1, fmt, ap);
     va_end(ap);
-    return code;
+    return rc;
 }
 
 int lam_error_nomem(lam_error *err, const char *doing)
@@ -47,16 +58,11 @@ int lam_error_nomem(lam_error *err, const char *doing)
 int lam_error_at_offset(lam_error *err, int code, const char *file,
                         long long offset, const char *fmt, ...)
 {
-    if (!err) return code;
-    err->code = code;
-    set_file(err, file);
-    err->line = err->column = 0;
-    err->offset = offset;
     va_list ap;
     va_start(ap, fmt);
-    vsnprintf(err->msg, sizeof err->msg, fmt, ap);
+    int rc = lam_error_vset(err, code, file, 0, 0, offset, fmt, ap);
     va_end(ap);
-    return code;
+    return rc;
 }
 
 const char *lam_error_format(const lam_error *err, char *buf, size_t size)

@@ -14,6 +14,8 @@
 #ifndef LAM_ERROR_H
 #define LAM_ERROR_H
 
+#include <stdarg.h>
+
 #include <stddef.h>
 
 enum lam_status {
@@ -45,6 +47,11 @@ void lam_error_clear(lam_error *err);
 int lam_error_set(lam_error *err, int code, const char *file, long line,
                   long column, const char *fmt, ...)
     __attribute__((format(printf, 6, 7)));
+
+/* The same with a va_list, and the byte offset (-1 when none): for a
+ * module's own error helpers. The arguments may point into err itself. */
+int lam_error_vset(lam_error *err, int code, const char *file, long line, long column, long long offset,
+                   const char *fmt, va_list ap);
 
 /* LAM_ENOMEM with the message "out of memory" followed by " " and doing
  * when given ("while slicing"). Returns LAM_ENOMEM. */

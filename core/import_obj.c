@@ -139,12 +139,11 @@ static int at_error(const obj_lex *lx, int code, long line, long col, const char
 
 static int at_error(const obj_lex *lx, int code, long line, long col, const char *fmt, ...)
 {
-    char msg[768];
     va_list ap;
     va_start(ap, fmt);
-    vsnprintf(msg, sizeof msg, fmt, ap);
+    int rc = lam_error_vset(lx->err, code, lx->path, line, col, -1, fmt, ap);
     va_end(ap);
-    return lam_error_set(lx->err, code, lx->path, line, col, "%s", msg);
+    return rc;
 }
 
 /* Relocate an error from the mesh (which knows no position) to the `f`. */

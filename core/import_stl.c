@@ -204,12 +204,11 @@ static int lex_error(const stl_lex *lx, int code, const char *fmt, ...)
 /* An error at the token last read. */
 static int lex_error(const stl_lex *lx, int code, const char *fmt, ...)
 {
-    char msg[768];
     va_list ap;
     va_start(ap, fmt);
-    vsnprintf(msg, sizeof msg, fmt, ap);
+    int rc = lam_error_vset(lx->err, code, lx->path, lx->tline, lx->tcol, -1, fmt, ap);
     va_end(ap);
-    return lam_error_set(lx->err, code, lx->path, lx->tline, lx->tcol, "%s", msg);
+    return rc;
 }
 
 static int expect_kw(stl_lex *lx, const char *kw, const char *what)

@@ -236,9 +236,7 @@ static const char *file_name(const ug_file *f)
 static int verror(ug_import *imp, int code, const ug_file *f, long line, long col,
                   const char *fmt, va_list ap)
 {
-    char msg[sizeof imp->err->msg];
-    vsnprintf(msg, sizeof msg, fmt, ap);
-    return lam_error_set(imp->err, code, f ? f->path : NULL, line, col, "%s", msg);
+    return lam_error_vset(imp->err, code, f ? f->path : NULL, line, col, -1, fmt, ap);
 }
 
 static int error_at(ug_import *imp, int code, const ug_file *f, long line, long col,

@@ -36,7 +36,7 @@ static int emit_contours(const lam_layer *L, const lam_layer *C, const lam_frame
     for (size_t k = 0; k < C->ncontours; k++)
         if (C->contours[k].n > maxn) maxn = C->contours[k].n;
     double *xyz = malloc((3 * maxn + 1) * sizeof *xyz);
-    if (!xyz) return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory planning a layer");
+    if (!xyz) return lam_error_nomem(err, "planning a layer");
     const lam_exposure *e = &o->scan.type[LAM_VEC_CONTOUR].exposure;
     int rc = LAM_OK;
     for (size_t k = 0; k < C->ncontours && !rc; k++) {
@@ -84,7 +84,7 @@ static int emit_hatches(const lam_layer *L, const lam_hatches *h, const lam_fram
     for (size_t b = 0; b < h->nblocks; b++)
         if (h->blocks[b].n > maxn) maxn = h->blocks[b].n;
     double *xyz = malloc((6 * maxn + 1) * sizeof *xyz);
-    if (!xyz) return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory planning a layer");
+    if (!xyz) return lam_error_nomem(err, "planning a layer");
     int rc = LAM_OK;
     for (size_t b = 0; b < h->nblocks && !rc; b++) {
         const lam_hatch_block *B = &h->blocks[b];

@@ -78,17 +78,16 @@ static int at(const src *s, yaml_mark_t m, int code, const char *fmt, ...) __att
 
 static int at(const src *s, yaml_mark_t m, int code, const char *fmt, ...)
 {
-    char msg[1000];
     va_list ap;
     va_start(ap, fmt);
-    vsnprintf(msg, sizeof msg, fmt, ap);
+    int rc = lam_error_vset(s->err, code, s->path, (long)m.line + 1, (long)m.column + 1, -1, fmt, ap);
     va_end(ap);
-    return lam_error_set(s->err, code, s->path, (long)m.line + 1, (long)m.column + 1, "%s", msg);
+    return rc;
 }
 
 static int oom_err(lam_error *err)
 {
-    return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory");
+    return lam_error_nomem(err, NULL);
 }
 #define oom() oom_err(s->err)
 

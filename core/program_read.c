@@ -43,23 +43,21 @@ static int nomem(rd *r) { return lam_error_set(r->err, LAM_ENOMEM, r->path, 0, 0
 static int fail_at(rd *r, int code, long lineno, long col, const char *fmt, ...) __attribute__((format(printf, 5, 6)));
 static int fail_at(rd *r, int code, long lineno, long col, const char *fmt, ...)
 {
-    char msg[512];
     va_list ap;
     va_start(ap, fmt);
-    vsnprintf(msg, sizeof msg, fmt, ap);
+    int rc = lam_error_vset(r->err, code, r->path, lineno, col, -1, fmt, ap);
     va_end(ap);
-    return lam_error_set(r->err, code, r->path, lineno, col, "%s", msg);
+    return rc;
 }
 
 static int fail_byte(rd *r, int code, size_t at, const char *fmt, ...) __attribute__((format(printf, 4, 5)));
 static int fail_byte(rd *r, int code, size_t at, const char *fmt, ...)
 {
-    char msg[512];
     va_list ap;
     va_start(ap, fmt);
-    vsnprintf(msg, sizeof msg, fmt, ap);
+    int rc = lam_error_vset(r->err, code, r->path, 0, 0, (long long)at, fmt, ap);
     va_end(ap);
-    return lam_error_at_offset(r->err, code, r->path, (long long)at, "%s", msg);
+    return rc;
 }
 
 /* ---- growing the program --------------------------------------------------------- */
