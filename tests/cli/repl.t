@@ -114,8 +114,9 @@ prompt r
 ok $? "and the prompt comes back"
 
 # Ctrl-C: a Lua loop
-type_line r 'while true do end'
-sleep 0.5
+# (each long statement prints a line first: the interrupt is sent once it runs)
+type_line r 'print("spinning") while true do end'
+wait_for r '^spinning$'
 tm send-keys -t r C-c
 wait_for r 'interrupted'
 rc=$?; ok $rc "Ctrl-C interrupts a Lua loop"; show_on_failure $rc r
@@ -126,8 +127,8 @@ tm send-keys -t r C-l 2>/dev/null; tm clear-history -t r
 # Ctrl-C: a long slice (the binding stops between layers)
 type_line r 'c = lamina.load("models/thesis_cube.ug")'
 prompt r
-type_line r 'for i = 1, 1000 do layers = c:slice{width = 2e-5} end'
-sleep 1
+type_line r 'print("slicing") for i = 1, 1000 do layers = c:slice{width = 2e-5} end'
+wait_for r '^slicing$' 20
 tm send-keys -t r C-c
 wait_for r 'interrupted' 20
 rc=$?; ok $rc "Ctrl-C interrupts a long slice"; show_on_failure $rc r
