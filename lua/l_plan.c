@@ -10,12 +10,14 @@
  * memory: plan:text() returns it, plan:write(path) writes it atomically. */
 #include "l_common.h"
 
+#include <limits.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "dialect.h"
 #include "plugin.h"
+#include "record.h"
 #include "writer.h"
 
 #define LAM_PLANJOB "lamina.planjob"
@@ -30,6 +32,8 @@ typedef struct planjob {
     lam_error err;           /* the sink reports through it: it must not move */
     lam_sls_state st;        /* SLS planning's state (its hatch vectors) */
     int have_st;
+    lam_record rec;          /* what was planned, per layer: handed to the plan */
+    lam_sink tee;            /* records into rec, then writes into sink */
 } planjob;
 
 static void job_release(planjob *j)
@@ -40,6 +44,7 @@ static void job_release(planjob *j)
     j->w = NULL;
     if (j->have_st) lam_sls_state_free(&j->st);
     j->have_st = 0;
+    lam_record_free(&j->rec);
 }
 
 static int job_gc(lua_State *L)
@@ -170,6 +175,7 @@ int lam_lua_plan(lua_State *L)
                   : lam_plugin_writer_sink(p.writer, j->w, &j->sink, &j->err);
     if (rc) return lam_lua_fail(L, &j->err);
     j->have_sink = 1;
+    lam_record_sink(&j->rec, &j->sink, &run->frame, o.frame_machine, &j->err, &j->tee);
 
     lam_job_info job;
     memset(&job, 0, sizeof job);
@@ -189,7 +195,7 @@ int lam_lua_plan(lua_State *L)
         memcpy(job.bbox, run->bbox, sizeof job.bbox);
         lam_frame_to_model(&run->frame, 0, 0, ls[0]->cut, job.origin);
     }
-    const lam_sink *s = &j->sink;
+    const lam_sink *s = &j->tee;
     rc = s->begin ? s->begin(s->ctx, &job) : LAM_OK;
     double pos[3] = { job.origin[0], job.origin[1], job.origin[2] };
     int laser = -1;
@@ -215,6 +221,11 @@ int lam_lua_plan(lua_State *L)
                 pl->travel += lst.travel_length;
                 pl->deposit += lst.deposit_length;
                 pl->deposits += lst.deposits;
+                lam_rec_layer *rl = lam_record_current(&j->rec);
+                if (rl) {
+                    rl->deposit = lst.deposit_length;
+                    rl->travel = lst.travel_length;
+                }
             } else {
                 /* skins look at the neighbours in the list given */
                 const lam_layer *below[LAM_SKIN_MAX], *above[LAM_SKIN_MAX];
@@ -225,6 +236,12 @@ int lam_lua_plan(lua_State *L)
                                         &j->err);
                 lam_scan_time_add(&pl->time, &st->time);
                 pl->layer_time[i] = lam_scan_time_total(&st->time);
+                lam_rec_layer *rl = lam_record_current(&j->rec);
+                if (rl) {
+                    rl->deposit = st->time.exposure_length;
+                    rl->travel = st->time.jump_length;
+                    rl->time = pl->layer_time[i];
+                }
             }
         }
         if (!rc && s->layer_end) rc = s->layer_end(s->ctx, &li);
@@ -232,7 +249,7 @@ int lam_lua_plan(lua_State *L)
     lam_sls_state_free(st);
     j->have_st = 0;
     if (!rc && s->end) rc = s->end(s->ctx);
-    if (s->destroy) s->destroy(s->ctx);
+    if (j->sink.destroy) j->sink.destroy(j->sink.ctx);
     j->have_sink = 0;
     if (rc) {
         if (j->err.code == LAM_OK) lam_error_set(&j->err, rc, NULL, 0, 0, "planning failed");
@@ -246,6 +263,10 @@ int lam_lua_plan(lua_State *L)
     pl->binary = !text;
     snprintf(pl->name, sizeof pl->name, "%s", p.name ? p.name : "");
     snprintf(pl->process, sizeof pl->process, "%s", job.process);
+    pl->rec = malloc(sizeof *pl->rec);
+    if (!pl->rec) return luaL_error(L, "out of memory");
+    *pl->rec = j->rec; /* the plan owns the record now */
+    memset(&j->rec, 0, sizeof j->rec);
     lua_settop(L, plan);
     return 1;
 }
@@ -266,6 +287,9 @@ static int p_gc(lua_State *L)
     pl->data = NULL;
     free(pl->layer_time);
     pl->layer_time = NULL;
+    lam_record_free(pl->rec);
+    free(pl->rec);
+    pl->rec = NULL;
     return 0;
 }
 
@@ -358,6 +382,67 @@ static int p_write(lua_State *L)
     return 1;
 }
 
+/* plan:layer(i) -> { index, z, deposit, travel, time, contours, vectors } | nil
+ * (tables made now from the record: nothing refers back to the plan) */
+static int p_layer(lua_State *L)
+{
+    lplan *pl = check(L, 1);
+    lua_Integer i = luaL_checkinteger(L, 2);
+    if (!pl->rec || i < 1 || (lua_Unsigned)i > pl->rec->nlayers) {
+        lua_pushnil(L);
+        return 1;
+    }
+    /* copied out first: building tables may run a finalizer */
+    lam_rec_layer ly = pl->rec->layers[i - 1];
+    lua_createtable(L, 0, 8);
+    lua_pushinteger(L, (lua_Integer)ly.index + 1);
+    lua_setfield(L, -2, "index");
+    lua_pushnumber(L, ly.z);
+    lua_setfield(L, -2, "z");
+    lua_pushnumber(L, ly.deposit);
+    lua_setfield(L, -2, "deposit");
+    lua_pushnumber(L, ly.travel);
+    lua_setfield(L, -2, "travel");
+    lua_pushnumber(L, ly.time);
+    lua_setfield(L, -2, "time");
+    lua_createtable(L, (int)(ly.nc < INT_MAX ? ly.nc : 0), 0);
+    for (size_t k = 0; k < ly.nc; k++) {
+        pl = check(L, 1);
+        lam_rec_contour c = pl->rec->contours[ly.c0 + k];
+        lua_createtable(L, c.n < INT_MAX / 2 ? (int)(2 * c.n) : 0, 3);
+        lua_pushstring(L, c.solid ? "solid" : "hole");
+        lua_setfield(L, -2, "kind");
+        lua_pushinteger(L, c.depth);
+        lua_setfield(L, -2, "depth");
+        lua_pushinteger(L, (lua_Integer)c.order);
+        lua_setfield(L, -2, "order");
+        for (size_t q = 0; q < 2 * c.n; q++) {
+            pl = check(L, 1);
+            lua_pushnumber(L, pl->rec->pts[2 * c.first + q]);
+            lua_rawseti(L, -2, (lua_Integer)q + 1);
+        }
+        lua_rawseti(L, -2, (lua_Integer)k + 1);
+    }
+    lua_setfield(L, -2, "contours");
+    lua_createtable(L, (int)(ly.nv < INT_MAX ? ly.nv : 0), 0);
+    for (size_t k = 0; k < ly.nv; k++) {
+        pl = check(L, 1);
+        lam_rec_vector v = pl->rec->vectors[ly.v0 + k];
+        lua_createtable(L, 4, 2);
+        for (int q = 0; q < 4; q++) {
+            lua_pushnumber(L, v.uv[q]);
+            lua_rawseti(L, -2, q + 1);
+        }
+        lua_pushstring(L, lam_rec_kind_name(v.kind));
+        lua_setfield(L, -2, "kind");
+        lua_pushinteger(L, (lua_Integer)v.order);
+        lua_setfield(L, -2, "order");
+        lua_rawseti(L, -2, (lua_Integer)k + 1);
+    }
+    lua_setfield(L, -2, "vectors");
+    return 1;
+}
+
 static const luaL_Reg plan_meta[] = {
     { "__gc", p_gc },
     { "__tostring", p_tostring },
@@ -368,6 +453,7 @@ static const luaL_Reg plan_meta[] = {
 static const luaL_Reg plan_methods[] = {
     { "text", p_text },
     { "write", p_write },
+    { "layer", p_layer },
     { NULL, NULL },
 };
 
