@@ -44,6 +44,7 @@
 #define LAM_CONTOUR "lamina.contour"
 #define LAM_MACHINE "lamina.machine"
 #define LAM_PLAN    "lamina.plan"
+#define LAM_LAYERS  "lamina.layers"  /* the metatable of model:slice's list (a plain table) */
 
 
 /* Set by the SIGINT handler of lua/cli/cli_lua.c while Lua code runs, cleared when

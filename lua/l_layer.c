@@ -215,6 +215,7 @@ int lam_lua_slice(lua_State *L)
         lua_rawseti(L, result, k);
     }
     lua_settop(L, result);   /* drop the last, empty layer userdata */
+    luaL_setmetatable(L, LAM_LAYERS);
     lua_replace(L, run - 1); /* the result over the options table */
     lua_closeslot(L, run);   /* unpins the model (freeing it if it was finalized meanwhile) */
     lua_settop(L, run - 1);
@@ -445,8 +446,44 @@ static const luaL_Reg run_meta[] = {
     { NULL, NULL },
 };
 
+/* A list of layers (what model:slice returns) prints as a summary: "12
+ * layers of thesis_cube_hole.ug, z 0 .. 2" (the first layer's floor to the
+ * last one's ceiling, from what the table holds now; the file's name
+ * without its directory). It stays a plain table otherwise. */
+static int layers_tostring(lua_State *L)
+{
+    luaL_checktype(L, 1, LUA_TTABLE);
+    lua_Integer n = (lua_Integer)lua_rawlen(L, 1);
+    lua_rawgeti(L, 1, 1);
+    lua_rawgeti(L, 1, n);
+    if (n == 0 || !LAM_TESTUD(L, -2, llayer, LAM_LAYER, LAM_TAG_LAYER) ||
+        !LAM_TESTUD(L, -1, llayer, LAM_LAYER, LAM_TAG_LAYER)) {
+        lua_pushfstring(L, "%I layer%s", n, n == 1 ? "" : "s");
+        return 1;
+    }
+    char lo[32], hi[32], name[256];
+    snprintf(lo, sizeof lo, LUA_NUMBER_FMT, (LUAI_UACNUMBER)lam_lua_checklayer(L, -2)->floor);
+    snprintf(hi, sizeof hi, LUA_NUMBER_FMT, (LUAI_UACNUMBER)lam_lua_checklayer(L, -1)->ceiling);
+    lam_lua_layerrun(L, -2);       /* raises for a collected layer */
+    lua_getiuservalue(L, -2, 1);   /* the run */
+    lua_getiuservalue(L, -1, 1);   /* its model */
+    const char *path = lam_lua_checkmodel(L, -1)->m->path;
+    const char *base = strrchr(path, '/');
+    snprintf(name, sizeof name, "%s", base ? base + 1 : path);
+    lua_pushfstring(L, "%I layer%s of %s, z %s .. %s", n, n == 1 ? "" : "s", name, lo, hi);
+    return 1;
+}
+
+static const luaL_Reg layers_meta[] = {
+    { "__tostring", layers_tostring },
+    { NULL, NULL },
+};
+
 void lam_lua_open_layer(lua_State *L)
 {
+    luaL_newmetatable(L, LAM_LAYERS);
+    luaL_setfuncs(L, layers_meta, 0);
+    lua_pop(L, 1);
     luaL_newmetatable(L, LAM_RUN);
     luaL_setfuncs(L, run_meta, 0);
     lua_pop(L, 1);
