@@ -42,7 +42,10 @@ CORE_OBJ  := $(CORE_SRC:%.c=$(BUILD)/%.o)
 BIND_SRC  := $(sort $(wildcard lua/*.c))
 BIND_OBJ  := $(BIND_SRC:%.c=$(BUILD)/%.o)
 CLI_SRC   := $(sort $(wildcard lua/cli/*.c))
-CLI_OBJ   := $(CLI_SRC:%.c=$(BUILD)/%.o) $(BIND_OBJ)
+# help(x) in the REPL: lua/API.md's entries as a C table, made at build
+# time (lua/cli/help.awk), so help and the document cannot drift apart
+HELP_C    := $(BUILD)/lua/cli/help_text.c
+CLI_OBJ   := $(CLI_SRC:%.c=$(BUILD)/%.o) $(HELP_C:.c=.o) $(BIND_OBJ)
 LUAMOD    := $(BUILD)/lamina.so
 UNIT_SRC  := $(sort $(wildcard tests/unit/test_*.c))
 UNIT_BIN  := $(UNIT_SRC:tests/unit/%.c=$(BUILD)/tests/%.t)
@@ -71,6 +74,13 @@ all: $(LAMINA) $(LIB) $(PLUGIN_SO) $(if $(BIND_SRC),$(LUAMOD))
 $(BUILD)/lua/%.o: lua/%.c
 	@mkdir -p $(dir $@)
 	$(CC) $(CPPFLAGS) -Ilua $(LUA_CFLAGS) $(CFLAGS) -MMD -MP -c $< -o $@
+
+$(HELP_C): lua/API.md lua/cli/help.awk
+	@mkdir -p $(dir $@)
+	awk -f lua/cli/help.awk lua/API.md > $@.tmp && mv $@.tmp $@
+
+$(HELP_C:.c=.o): $(HELP_C) lua/cli/help.h
+	$(CC) $(CPPFLAGS) -Ilua/cli $(LUA_CFLAGS) $(CFLAGS) -c $< -o $@
 
 $(LUAMOD): $(BIND_OBJ) $(LIB)
 	$(CC) $(LDFLAGS) -shared -o $@ $(BIND_OBJ) $(LIB) $(filter-out -llua5.4,$(LDLIBS))

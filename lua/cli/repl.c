@@ -34,6 +34,8 @@
 
 #include "cli.h"
 #include "cli_lua.h"
+#include "complete.h"
+#include "help.h"
 #include "l_common.h"
 
 #define PROMPT1 "> "
@@ -57,6 +59,11 @@ typedef struct editor {
     int *catch_signals;
     int (**getc_function)(FILE *);
     const char **readline_name;
+    /* completion (complete.h) */
+    char **(**attempted_completion)(const char *, int, int);
+    const char **word_breaks;
+    int *append_character;
+    int *completion_over;
 } editor;
 
 static volatile sig_atomic_t prompt_interrupted = 0;
@@ -98,6 +105,51 @@ static int ed_getc(FILE *f)
     }
 }
 
+/* ---- Tab completion ------------------------------------------------------ */
+
+static lua_State *complete_L;   /* the REPL's state, for the editor's callback */
+static editor *complete_ed;
+
+/* The editor's completion hook: lam_complete's names, in the form it
+ * wants (the common prefix first, then the matches; one match alone), and
+ * never file names. */
+static char **ed_complete(const char *text, int start, int end)
+{
+    (void)start;
+    (void)end;
+    if (complete_ed->append_character) *complete_ed->append_character = 0;
+    if (complete_ed->completion_over) *complete_ed->completion_over = 1;
+    char **m = complete_L ? lam_complete(complete_L, text) : NULL;
+    if (!m) return NULL;
+    size_t n = 0;
+    while (m[n]) n++;
+    char **out = malloc((n + 2) * sizeof *out);
+    size_t common = strlen(m[0]);
+    for (size_t i = 1; i < n; i++) {
+        size_t k = 0;
+        while (k < common && m[i][k] == m[0][k]) k++;
+        common = k;
+    }
+    char *prefix = n > 1 ? strndup(m[0], common) : NULL;
+    if (!out || (n > 1 && !prefix)) {
+        for (size_t i = 0; i < n; i++) free(m[i]);
+        free(m);
+        free(out);
+        free(prefix);
+        return NULL;
+    }
+    if (n == 1) {
+        out[0] = m[0];
+        out[1] = NULL;
+    } else {
+        out[0] = prefix;
+        memcpy(out + 1, m, n * sizeof *m);
+        out[n + 1] = NULL;
+    }
+    free(m);
+    return out;
+}
+
 #define SYM(field, name) (*(void **)(&ed->field) = dlsym(ed->lib, name))
 
 static int try_editor(editor *ed, const char *lib)
@@ -118,10 +170,19 @@ static int try_editor(editor *ed, const char *lib)
     ed->catch_signals = dlsym(ed->lib, "rl_catch_signals");
     ed->getc_function = dlsym(ed->lib, "rl_getc_function");
     ed->readline_name = dlsym(ed->lib, "rl_readline_name");
+    ed->attempted_completion = dlsym(ed->lib, "rl_attempted_completion_function");
+    ed->word_breaks = dlsym(ed->lib, "rl_completer_word_break_characters");
+    ed->append_character = dlsym(ed->lib, "rl_completion_append_character");
+    ed->completion_over = dlsym(ed->lib, "rl_attempted_completion_over");
     ed->name = lib;
     if (ed->catch_signals) *ed->catch_signals = 0;
     if (ed->getc_function) *ed->getc_function = ed_getc;
     if (ed->readline_name) *ed->readline_name = "lamina";
+    if (ed->attempted_completion && ed->word_breaks) {
+        complete_ed = ed;
+        *ed->attempted_completion = ed_complete;
+        *ed->word_breaks = lam_complete_breaks;
+    }
     if (ed->stifle_history) ed->stifle_history(HISTORY_LINES);
     return 1;
 }
@@ -326,6 +387,8 @@ static int repl_loop(lua_State *L)
     r.L = L;
     r.base = lua_gettop(L) + 1;
     r.tty = isatty(STDIN_FILENO);
+    lam_help_open(L);
+    complete_L = L;
     if (r.tty) load_editor(&r.ed);
     struct sigaction sa, old;
     memset(&sa, 0, sizeof sa);
@@ -357,6 +420,7 @@ static int repl_loop(lua_State *L)
     if (*hist && r.ed.write_history && r.ed.write_history(*hist) == 0 && r.ed.history_truncate_file)
         r.ed.history_truncate_file(*hist, HISTORY_LINES);
     sigaction(SIGINT, &old, NULL);
+    complete_L = NULL;
     return 0;
 }
 
