@@ -153,6 +153,57 @@ wait_for r '^nil$'
 ok $? "the abandoned statement did not run"
 prompt r
 
+# help(x): the API.md entry of a function, found by identity
+type_line r 'help(lamina.load)'
+wait_for r '^lamina\.load\(path\) → model \| nil, message$' && wait_for r '^Load a model: Unigrafix'
+rc=$?; ok $rc "help(lamina.load) prints its entry of lua/API.md"; show_on_failure $rc r
+prompt r
+type_line r 'help(m)'
+wait_for r '^Methods \(help "name" for one\): model:bbox, .*model:slice'
+rc=$?; ok $rc "help(object): the type's entry and its methods"; show_on_failure $rc r
+prompt r
+type_line r 'help(12)'
+wait_for r '^help: no help for this number'
+ok $? "help(value without docs) says so"
+prompt r
+
+# a list of layers prints as a summary: 2 units tall, 12 layers of 1/6
+type_line r 'layers = m:slice{width = 1/6}'
+prompt r
+type_line r 'layers'
+wait_for r '^12 layers of thesis_cube_hole\.ug, z 0 \.\. 2$'
+rc=$?; ok $rc "a layer list prints as a summary"; show_on_failure $rc r
+prompt r
+type_line r '=#layers, layers[12].index'
+wait_for r '^12[[:space:]]+12$'
+ok $? "and is still a list"
+prompt r
+
+if [ $editing -eq 1 ]; then
+    # Tab completes globals' fields, and methods of a userdata after ':'
+    tm send-keys -t r -l 'lamina.lo'
+    tm send-keys -t r Tab
+    wait_for r '^> lamina\.load$'
+    rc=$?; ok $rc "Tab completes lamina.lo to lamina.load"; show_on_failure $rc r
+    tm send-keys -t r -l '("models/thesis_cube.ug").volume'
+    tm send-keys -t r Enter
+    wait_for r '^8\.0$'
+    ok $? "the completed line runs"
+    prompt r
+    tm send-keys -t r -l 'm:sli'
+    tm send-keys -t r Tab
+    wait_for r '^> m:slice$'
+    rc=$?; ok $rc "Tab completes a method of a userdata"; show_on_failure $rc r
+    tm send-keys -t r C-u
+    prompt r
+    tm send-keys -t r -l 'lamina.m'
+    tm send-keys -t r Tab Tab
+    wait_for r 'lamina\.machine_keys +lamina\.machines +lamina\.mkdir'
+    rc=$?; ok $rc "Tab Tab lists the choices"; show_on_failure $rc r
+    tm send-keys -t r C-u
+    prompt r
+fi
+
 if [ $editing -eq 1 ]; then
     # line editing: backspace, beginning of line
     tm send-keys -t r -l '=6*8'
