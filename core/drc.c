@@ -1,4 +1,5 @@
 #include "drc.h"
+#include "profile.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -216,4 +217,12 @@ void lam_drc_result_free(lam_drc_result *r)
 {
     free(r->items);
     memset(r, 0, sizeof *r);
+}
+
+void lam_drc_opts_from_profile(lam_drc_opts *o, const lam_profile *p, const double up[3])
+{
+    memset(o, 0, sizeof *o);
+    o->min_wall = p->process == LAM_PROCESS_LADRP ? p->bead_width : p->spot_width;
+    o->max_overhang_deg = p->max_overhang_deg;
+    memcpy(o->up, up, sizeof o->up);
 }

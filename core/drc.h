@@ -43,6 +43,14 @@ typedef struct lam_drc_result {
     size_t samples;           /* wall-thickness rays cast */
 } lam_drc_result;
 
+struct lam_profile;
+
+/* The rules of machine profile p for building along `up` (unit length):
+ * the wall at least its bead (LADRP) or spot (SLS) width, overhangs at
+ * most its max_overhang_deg (0: that rule off). What `lamina check -m` and
+ * Lua's model:check(machine) check. */
+void lam_drc_opts_from_profile(lam_drc_opts *o, const struct lam_profile *p, const double up[3]);
+
 /* The rule's short name: "min_wall" or "max_overhang". */
 const char *lam_rule_name(lam_rule r);
 

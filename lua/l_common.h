@@ -200,6 +200,15 @@ int lam_lua_machines(lua_State *L);        /* lamina.machines (l_machine.c) */
 int lam_lua_machine_keys(lua_State *L);    /* lamina.machine_keys (l_machine.c) */
 int lam_lua_plan(lua_State *L);            /* machine:plan (l_plan.c) */
 
+/* The option `axis` of table t (argument arg): "x", "y", "z" or a
+ * direction {dx, dy, dz}, as model:slice takes it (z when absent); a bad
+ * value raises. */
+void lam_lua_get_axis(lua_State *L, int t, int arg, lam_frame *f);
+
+/* model:validate{...} and model:check(machine [, opts]) (l_check.c) */
+int lam_lua_validate(lua_State *L);
+int lam_lua_check(lua_State *L);
+
 /* Fill plan options from a machine profile's values. */
 void lam_lua_plan_opts(const lam_profile *p, lam_plan_opts *o);
 

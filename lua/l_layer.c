@@ -43,7 +43,7 @@ static const char *const slice_keys[] = { "axis", "width", "widths", "planes", "
 static const char *const cut_names[] = { "floor", "middle", "ceiling", NULL };
 static const char *const fill_names[] = { "evenodd", "nonzero", NULL };
 
-static void get_axis(lua_State *L, int t, lam_frame *f)
+void lam_lua_get_axis(lua_State *L, int t, int arg, lam_frame *f)
 {
     lam_error err;
     lam_error_clear(&err);
@@ -53,7 +53,7 @@ static void get_axis(lua_State *L, int t, lam_frame *f)
     } else if (ty == LUA_TSTRING) {
         const char *s = lua_tostring(L, -1);
         if (strlen(s) != 1 || !strchr("xyzXYZ", s[0]) || lam_frame_axis((char)(s[0] | 0x20), f, &err))
-            lam_lua_opterror(L, 2, "axis must be 'x', 'y', 'z' or a direction {dx, dy, dz}, got '%s'", s);
+            lam_lua_opterror(L, arg, "axis must be 'x', 'y', 'z' or a direction {dx, dy, dz}, got '%s'", s);
     } else if (ty == LUA_TTABLE) {
         double d[3];
         int ok = lua_rawlen(L, -1) == 3;
@@ -63,11 +63,11 @@ static void get_axis(lua_State *L, int t, lam_frame *f)
             ok = ok && isfinite(d[j]);
             lua_pop(L, 1);
         }
-        if (!ok) lam_lua_opterror(L, 2, "axis as a direction must be {dx, dy, dz}: three finite numbers");
-        if (lam_frame_direction(d, f, &err)) lam_lua_opterror(L, 2, "axis: %s", err.msg);
+        if (!ok) lam_lua_opterror(L, arg, "axis as a direction must be {dx, dy, dz}: three finite numbers");
+        if (lam_frame_direction(d, f, &err)) lam_lua_opterror(L, arg, "axis: %s", err.msg);
     } else {
         char b[64];
-        lam_lua_opterror(L, 2, "axis must be 'x', 'y', 'z' or a direction {dx, dy, dz}, got %s",
+        lam_lua_opterror(L, arg, "axis must be 'x', 'y', 'z' or a direction {dx, dy, dz}, got %s",
                          lam_lua_describe(L, -1, b, sizeof b));
     }
     lua_pop(L, 1);
@@ -125,7 +125,7 @@ int lam_lua_slice(lua_State *L)
     lam_lua_checkkeys(L, 2, 2, slice_keys);
     lam_slice_opts o;
     lam_slice_opts_init(&o);
-    get_axis(L, 2, &o.frame);
+    lam_lua_get_axis(L, 2, 2, &o.frame);
     if (lua_getfield(L, 2, "machine") != LUA_TNIL) {
         lmachine *mc = LAM_TESTUD(L, -1, lmachine, LAM_MACHINE, LAM_TAG_MACHINE);
         char b[64];

@@ -84,10 +84,7 @@ int cmd_check(int argc, char **argv)
         goto done;
     }
     lam_drc_opts o;
-    memset(&o, 0, sizeof o);
-    o.min_wall = prof->process == LAM_PROCESS_LADRP ? prof->bead_width : prof->spot_width;
-    o.max_overhang_deg = prof->max_overhang_deg;
-    memcpy(o.up, a.so.frame.w, sizeof o.up);
+    lam_drc_opts_from_profile(&o, prof, a.so.frame.w);
     if (lam_drc_run(m, v, &o, &res, &err)) {
         rc = cli_fail(&err);
         goto done;
