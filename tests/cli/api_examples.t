@@ -29,11 +29,17 @@ for ex in "$TMP/ex"/*.lua; do
     if [ $rc -ne 0 ]; then sed 's/^/#   /' "$TMP/err"; fi
 done
 
-# Every module function and every method appears in an example.
+# Every module function and every method appears in an example, as does
+# every function of the shipped Lua modules (lua/lamina/*.lua); every
+# method has a heading of its own (what help(x) shows).
 cat "$TMP/ex"/*.lua > "$TMP/all_examples.lua"
-run "$LAMINA" run - "$TMP/all_examples.lua" <<'LUA'
+modules=$(cd "$ROOT/lua/lamina" && ls *.lua | sed 's/\.lua$//')
+run "$LAMINA" run - "$TMP/all_examples.lua" "$DOC" $modules <<'LUA'
 local f = assert(io.open(arg[1]))
 local text = f:read("a")
+f:close()
+f = assert(io.open(arg[2]))
+local doc = f:read("a")
 f:close()
 local missing = {}
 for name, v in pairs(lamina) do
@@ -48,6 +54,24 @@ for _, class in ipairs{"model", "layer", "contour", "machine", "plan"} do
   for name in pairs(methods) do
     if not text:find(":" .. name .. "(", 1, true) and not text:find(":" .. name .. "{", 1, true) then
       missing[#missing + 1] = class .. ":" .. name
+    end
+  end
+end
+-- and lamina's own Lua modules (lua/lamina/*.lua), by their short names
+for i = 3, #arg do
+  local mod = arg[i]
+  for name, v in pairs(require("lamina." .. mod)) do
+    if type(v) == "function" and not text:find(mod .. "." .. name .. "(", 1, true) then
+      missing[#missing + 1] = "lamina." .. mod .. "." .. name
+    end
+  end
+end
+for _, class in ipairs{"model", "layer", "contour", "machine", "plan"} do
+  local mt = debug.getregistry()["lamina." .. class]
+  local _, methods = debug.getupvalue(mt.__index, 1)
+  for name in pairs(methods) do
+    if not doc:find("### `" .. class .. ":" .. name, 1, true) then
+      missing[#missing + 1] = class .. ":" .. name .. " (no heading: help cannot find it)"
     end
   end
 end
