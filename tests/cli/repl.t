@@ -3,7 +3,9 @@
 # test types into it and reads the screen. Checks the banner, =expr and
 # bare expressions, continued statements, line editing and history
 # (readline), Ctrl-C interrupting a Lua loop and a long slice and
-# abandoning a line, errors, Ctrl-D, and plain `lamina` on a terminal.
+# abandoning a line, errors, Ctrl-D, and plain `lamina` on a terminal;
+# help(x) (also checked through a pipe against lua/API.md itself), Tab
+# completion, and a layer list's summary.
 #
 # Independent of the checkout's path and of line wrapping: every program
 # runs in the test's own folder, where `models` is a link to the test
@@ -261,5 +263,29 @@ tm send-keys -t p C-d
 t=0
 while [ ! -s "$TMP/p.status" ] && [ $t -lt 100 ]; do sleep 0.1; t=$((t + 1)); done
 is "$(cat "$TMP/p.status" 2>/dev/null)" "0" "plain lamina: Ctrl-D quits, exit 0"
+
+# help() without a terminal (the loop reads a pipe): what it prints is
+# API.md's entry, line for line (perl cuts the section out of the file here)
+ROOT=$(cd "$TESTS/.." && pwd)
+section() { # section HEADING-PREFIX: API.md from that heading to the next
+    H="$1" perl -ne 'if (/^#/) { $in = index($_, $ENV{H}) == 0 } print if $in' "$ROOT/lua/API.md" |
+        sed -e '1s/^#* //' -e '1s/`//g' | sed -e :a -e '/^\n*$/{$d;N;ba' -e '}'
+}
+printf 'help(lamina.load)\n' | (cd "$ROOT" && "$LAMINA" repl) >"$TMP/help.out" 2>&1
+section '### `lamina.load(' >"$TMP/help.want"
+diff "$TMP/help.want" "$TMP/help.out" >"$TMP/help.diff"
+rc=$?; ok $rc "help(lamina.load) is API.md's entry, line for line"
+[ $rc -eq 0 ] || sed 's/^/#   /' "$TMP/help.diff" | head -10
+printf 'axes = require "lamina.axes"\nhelp(axes.measures)\n' | "$LAMINA" repl >"$TMP/help.out" 2>&1
+section '### `axes.measures(' >"$TMP/help.want"
+diff "$TMP/help.want" "$TMP/help.out" >/dev/null
+ok $? "help(a function of a lamina Lua module) is its entry"
+printf 'help(lamina.machine("creol-ladrp").plan)\n' | "$LAMINA" repl >"$TMP/help.out" 2>&1
+like "$(head -1 "$TMP/help.out")" '^machine:plan\(layers \[, opts\]\) → plan \| nil, message$' "help(a method taken from an object)"
+printf 'help "bbox"\nhelp "conventions"\nhelp "nothing_like_it"\nhelp()\n' | "$LAMINA" repl >"$TMP/help.out" 2>&1
+like "$(cat "$TMP/help.out")" '^help: .bbox. is in model:bbox, layer:bbox, contour:bbox$' "help of a short name lists its entries"
+like "$(cat "$TMP/help.out")" '^Conventions$' "help of a topic"
+like "$(cat "$TMP/help.out")" "^help: no help for 'nothing_like_it'" "help of nothing known says so"
+like "$(cat "$TMP/help.out")" '^  .*plan:layer' "help() lists the topics"
 
 done_testing
