@@ -456,21 +456,26 @@ static int layers_tostring(lua_State *L)
     lua_Integer n = (lua_Integer)lua_rawlen(L, 1);
     lua_rawgeti(L, 1, 1);
     lua_rawgeti(L, 1, n);
-    if (n == 0 || !LAM_TESTUD(L, -2, llayer, LAM_LAYER, LAM_TAG_LAYER) ||
-        !LAM_TESTUD(L, -1, llayer, LAM_LAYER, LAM_TAG_LAYER)) {
+    /* printing never raises: a finalized layer or model just says less */
+    llayer *first = LAM_TESTUD(L, -2, llayer, LAM_LAYER, LAM_TAG_LAYER);
+    llayer *last = LAM_TESTUD(L, -1, llayer, LAM_LAYER, LAM_TAG_LAYER);
+    if (n == 0 || !first || !first->L || !last || !last->L) {
         lua_pushfstring(L, "%I layer%s", n, n == 1 ? "" : "s");
         return 1;
     }
-    char lo[32], hi[32], name[256];
-    snprintf(lo, sizeof lo, LUA_NUMBER_FMT, (LUAI_UACNUMBER)lam_lua_checklayer(L, -2)->floor);
-    snprintf(hi, sizeof hi, LUA_NUMBER_FMT, (LUAI_UACNUMBER)lam_lua_checklayer(L, -1)->ceiling);
-    lam_lua_layerrun(L, -2);       /* raises for a collected layer */
-    lua_getiuservalue(L, -2, 1);   /* the run */
-    lua_getiuservalue(L, -1, 1);   /* its model */
-    const char *path = lam_lua_checkmodel(L, -1)->m->path;
-    const char *base = strrchr(path, '/');
-    snprintf(name, sizeof name, "%s", base ? base + 1 : path);
-    lua_pushfstring(L, "%I layer%s of %s, z %s .. %s", n, n == 1 ? "" : "s", name, lo, hi);
+    char lo[32], hi[32], name[256] = "";
+    snprintf(lo, sizeof lo, LUA_NUMBER_FMT, (LUAI_UACNUMBER)first->L->floor);
+    snprintf(hi, sizeof hi, LUA_NUMBER_FMT, (LUAI_UACNUMBER)last->L->ceiling);
+    lua_getiuservalue(L, -2, 1); /* the run */
+    if (LAM_TESTUD(L, -1, lrun, LAM_RUN, LAM_TAG_RUN)) {
+        lua_getiuservalue(L, -1, 1); /* its model */
+        lmodel *mu = LAM_TESTUD(L, -1, lmodel, LAM_MODEL, LAM_TAG_MODEL);
+        if (mu && mu->m && mu->m->path) {
+            const char *base = strrchr(mu->m->path, '/');
+            snprintf(name, sizeof name, " of %s", base ? base + 1 : mu->m->path);
+        }
+    }
+    lua_pushfstring(L, "%I layer%s%s, z %s .. %s", n, n == 1 ? "" : "s", name, lo, hi);
     return 1;
 }
 

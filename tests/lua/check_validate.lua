@@ -78,4 +78,28 @@ T.ok(shelf:check(lamina.machine("creol-ladrp")).ok, "without max_overhang_deg th
 T.raises("unknown", "check's options are checked", shelf.check, shelf, p45, {up = "x"})
 T.raises("lamina.machine expected", "check wants a machine", shelf.check, shelf, "creol-ladrp")
 
+-- objects finalized by hand (or by options' metamethods) raise, never crash
+do
+  local m = assert(lamina.load(M .. "thesis_cube_hole.ug"))
+  local evil = setmetatable({}, {__index = function() getmetatable(m).__gc(m) end})
+  local ok, err = pcall(m.validate, m, evil)
+  T.ok(not ok and tostring(err):find("collected", 1, true), "validate: options that finalize the model",
+       tostring(err))
+  local m2 = assert(lamina.load(M .. "drc/shelf.ug"))
+  local p = lamina.machine("creol-ladrp")
+  local evil2 = setmetatable({}, {__index = function() getmetatable(p).__gc(p); getmetatable(m2).__gc(m2) end})
+  ok, err = pcall(m2.check, m2, p, evil2)
+  T.ok(not ok and tostring(err):find("collected", 1, true), "check: options that finalize the machine and model",
+       tostring(err))
+  local m3 = assert(lamina.load(M .. "thesis_cube_hole.ug"))
+  local ls = m3:slice{width = 1}
+  getmetatable(ls[1]).__gc(ls[1])
+  ok, err = pcall(m3.validate, m3, {layers = ls})
+  T.ok(not ok and tostring(err):find("collected", 1, true), "validate: a finalized layer", tostring(err))
+  T.is(tostring(ls), "2 layers", "the list of a finalized layer still prints")
+  local ls2 = m3:slice{width = 1}
+  getmetatable(m3).__gc(m3)
+  T.is(tostring(ls2), "2 layers, z 0 .. 2", "and the list of a finalized model, without its name")
+end
+
 T.done()

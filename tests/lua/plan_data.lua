@@ -175,4 +175,9 @@ sub = nil
 collectgarbage(); collectgarbage()
 T.is(#kept.contours, 1, "a layer's data outlives its plan")
 
+-- a plan finalized by hand: plan:layer raises
+local gone = cli:plan(run)
+getmetatable(gone).__gc(gone)
+T.raises("attempt to use a collected lamina.plan", "plan:layer on a finalized plan", gone.layer, gone, 1)
+
 T.done()
