@@ -16,6 +16,10 @@
  *   as Python does) and its character input goes through ed_getc, which
  *   ends the line when SIGINT arrives.
  *
+ * - help(x) (help.h) prints lua/API.md's entry for x; Tab completes names,
+ *   fields and methods (complete.h) through the editor's
+ *   rl_attempted_completion_function, when the library has it.
+ *
  * Without a terminal on standard input there is no prompt and no banner:
  * statements are read line by line and values printed, so the loop can be
  * driven from a pipe. */
@@ -430,8 +434,10 @@ static const char repl_usage[] =
     "`lamina` on a terminal). Expressions and `=expr` print their values;\n"
     "an incomplete statement continues on the next line; Ctrl-C interrupts a\n"
     "running command (or abandons the line being typed), Ctrl-D quits.\n"
-    "Line editing and history (~/.lamina_history, or $LAMINA_HISTORY) come\n"
-    "from GNU readline or libedit when installed.\n";
+    "Line editing, Tab completion and history (~/.lamina_history, or\n"
+    "$LAMINA_HISTORY) come from GNU readline or libedit when installed.\n"
+    "help() lists the topics of lua/API.md; help(x) prints the entry of a\n"
+    "function, method or object (help(lamina.load), help(m)).\n";
 
 int cmd_repl(int argc, char **argv)
 {
