@@ -1,8 +1,12 @@
 #include "fmt.h"
 
+#include "error.h"
+#include "lexnum.h"
+
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 static const char pairs[] = "00010203040506070809101112131415161718192021222324252627282930313233343536373839"
@@ -79,4 +83,30 @@ size_t lam_fmt_fixed(char *buf, double x, int d)
     }
     buf[len] = '\0';
     return len;
+}
+
+const char *lam_fmt_num(char *buf, double x, int digits)
+{
+    if (digits < 1) digits = 1;
+    if (digits > 17) digits = 17; /* 17 digits read back as any double */
+    if (x == 0) x = 0;            /* no "-0" */
+    if (!isfinite(x)) {
+        snprintf(buf, LAM_FMT_NUM, "%g", x);
+        return buf;
+    }
+    char e[LAM_FMT_NUM];
+    int prec = 1;
+    for (;; prec++) {
+        int n = snprintf(e, sizeof e, "%.*e", prec - 1, x);
+        double back;
+        if (prec == digits ||
+            (lam_parse_number((const unsigned char *)e, (size_t)n, &back) == LAM_OK && back == x))
+            break;
+    }
+    /* the decimal exponent of those digits decides the notation, as %.17g
+     * decides it: plain decimals for 1e-4 <= |x| < 1e17 */
+    int exp10 = atoi(strchr(e, 'e') + 1);
+    if (exp10 >= -4 && exp10 < 17 && prec < exp10 + 1) prec = exp10 + 1;
+    snprintf(buf, LAM_FMT_NUM, "%.*g", prec, x);
+    return buf;
 }
