@@ -110,3 +110,12 @@ const char *lam_fmt_num(char *buf, double x, int digits)
     snprintf(buf, LAM_FMT_NUM, "%.*g", prec, x);
     return buf;
 }
+
+const char *lam_fmt_bytes(char *buf, size_t size, double n)
+{
+    static const char *const unit[] = { "bytes", "kB", "MB", "GB", "TB", "PB", "EB" };
+    int u = 0;
+    while (n >= 1024 && u < 6) n /= 1024, u++;
+    snprintf(buf, size, u ? "%.3g %s" : "%.0f %s", n, unit[u]);
+    return buf;
+}

@@ -31,6 +31,10 @@ const char *lam_fmt_num(char *buf, double x, int digits);
  * LAM_NUM drops arithmetic noise (15 digits), LAM_NUM_EXACT never does
  * (17: for numbers whose last bits are the point, such as two heights
  * that differ by an ulp). */
+/* A byte count for people, in powers of 1024 as the size limits:
+ * "512 bytes", "1.5 kB", "16 GB" (three significant digits). Returns buf. */
+const char *lam_fmt_bytes(char *buf, size_t size, double n);
+
 #define LAM_NUM(x) lam_fmt_num((char[LAM_FMT_NUM]){ 0 }, (x), 15)
 #define LAM_NUM_EXACT(x) lam_fmt_num((char[LAM_FMT_NUM]){ 0 }, (x), 17)
 

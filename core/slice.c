@@ -9,6 +9,7 @@
 
 #include "contour.h"
 #include "fill.h"
+#include "fmt.h"
 #include "grow.h"
 #include "prefetch.h"
 
@@ -189,8 +190,8 @@ static int make_planes(lam_slicer *s, double wmin, double wmax, lam_error *err)
                 return lam_error_set(err, LAM_EUSAGE, NULL, 0, 0, "plane %zu is not a finite number", i + 1);
             if (i && !(o->planes[i] > o->planes[i - 1]))
                 return lam_error_set(err, LAM_EUSAGE, NULL, 0, 0,
-                                     "planes must increase strictly (plane %zu is %g after %g)", i + 1,
-                                     o->planes[i], o->planes[i - 1]);
+                                     "planes must increase strictly (plane %zu is %s after %s)", i + 1,
+                                     LAM_NUM(o->planes[i]), LAM_NUM(o->planes[i - 1]));
         }
         n = o->nplanes;
         s->planes = malloc(n * sizeof *s->planes);
@@ -204,24 +205,26 @@ static int make_planes(lam_slicer *s, double wmin, double wmax, lam_error *err)
         s->planes[0] = wmin;
         for (size_t i = 0; i < o->nwidths; i++) {
             if (!(o->widths[i] > 0) || !isfinite(o->widths[i]))
-                return lam_error_set(err, LAM_EUSAGE, NULL, 0, 0, "width %zu must be a positive number (got %g)",
-                                     i + 1, o->widths[i]);
+                return lam_error_set(err, LAM_EUSAGE, NULL, 0, 0, "width %zu must be a positive number (got %s)",
+                                     i + 1, LAM_NUM(o->widths[i]));
             s->planes[i + 1] = s->planes[i] + o->widths[i];
         }
         if (s->planes[n - 1] < wmax)
             return lam_error_set(err, LAM_EUSAGE, NULL, 0, 0,
-                                 "the widths add up to %g but the model spans %g along the axis",
-                                 s->planes[n - 1] - wmin, wmax - wmin);
+                                 "the widths add up to %s but the model spans %s along the axis",
+                                 LAM_NUM_EXACT(s->planes[n - 1] - wmin), LAM_NUM_EXACT(wmax - wmin));
     } else {
         if (o->width < 0 || isnan(o->width) || isinf(o->width))
-            return lam_error_set(err, LAM_EUSAGE, NULL, 0, 0, "layer width must be a positive number (got %g)", o->width);
+            return lam_error_set(err, LAM_EUSAGE, NULL, 0, 0, "layer width must be a positive number (got %s)",
+                                 LAM_NUM(o->width));
         double w = o->width > 0 ? o->width : lam_default_width(wmax - wmin);
         if (!(w > 0) || !isfinite(w))
-            return lam_error_set(err, LAM_EUSAGE, NULL, 0, 0, "layer width must be a positive number (got %g)", o->width);
+            return lam_error_set(err, LAM_EUSAGE, NULL, 0, 0, "layer width must be a positive number (got %s)",
+                                 LAM_NUM(o->width));
         double q = (wmax - wmin) / w;
         if (q > (double)max) {
             char what[64];
-            snprintf(what, sizeof what, "width %g", w);
+            snprintf(what, sizeof what, "width %s", LAM_NUM(w));
             return too_many(ceil(q), max, what, err);
         }
         /* an extent that is a whole number of layers up to rounding gets
