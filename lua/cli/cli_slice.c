@@ -92,9 +92,8 @@ static int on_layer(void *ctx, const lam_layer *L, lam_error *err)
                     L->open[k].end[1]);
     if (L->gaps_closed) {
         if (r->gap_layers++ < notes)
-            fprintf(stderr, "lamina: %s: layer %zu (h=%s): closed %zu gap%s, largest %g (gap tolerance %s)\n", r->path,
-                    L->index + 1, LAM_NUM(L->cut), L->gaps_closed, L->gaps_closed == 1 ? "" : "s", L->max_gap,
-                    LAM_NUM(L->gap));
+            fprintf(stderr, "lamina: %s: layer %zu (h=%s): closed %zu gap%s, largest %g (gap tolerance %g)\n", r->path,
+                    L->index + 1, LAM_NUM(L->cut), L->gaps_closed, L->gaps_closed == 1 ? "" : "s", L->max_gap, L->gap);
         r->gaps_total += L->gaps_closed;
         if (L->max_gap > r->gap_max) r->gap_max = L->max_gap;
     }
@@ -239,8 +238,8 @@ int cmd_slice(int argc, char **argv)
     }
     size_t notes = cli_progress_notes(&rep.progress);
     if (notes && rep.gap_layers > notes)
-        fprintf(stderr, "lamina: %s: closed %zu gaps in %zu layers, largest %g (gap tolerance %s)\n", a.path,
-                rep.gaps_total, rep.gap_layers, rep.gap_max, LAM_NUM(lam_slicer_gap(s)));
+        fprintf(stderr, "lamina: %s: closed %zu gaps in %zu layers, largest %g (gap tolerance %g)\n", a.path,
+                rep.gaps_total, rep.gap_layers, rep.gap_max, lam_slicer_gap(s));
     if (notes && rep.degenerate_layers > notes)
         fprintf(stderr, "lamina: %s: dropped %zu loops of no area, cancelled %zu coincident loops, in %zu layers\n",
                 a.path, rep.slivers, rep.twins, rep.degenerate_layers);
@@ -252,8 +251,8 @@ int cmd_slice(int argc, char **argv)
         goto done;
     }
     if (rep.open_total) {
-        fprintf(stderr, "lamina: %s: %zu outline%s stayed open (gap tolerance %s)%s\n", a.path, rep.open_total,
-                rep.open_total == 1 ? "" : "s", LAM_NUM(lam_slicer_gap(s)),
+        fprintf(stderr, "lamina: %s: %zu outline%s stayed open (gap tolerance %g)%s\n", a.path, rep.open_total,
+                rep.open_total == 1 ? "" : "s", lam_slicer_gap(s),
                 a.allow_open ? "; dropped (--allow-open)" : "; use --gap to close larger gaps or --allow-open to drop them");
         if (!a.allow_open) {
             rc = EXIT_INPUT;

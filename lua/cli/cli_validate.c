@@ -340,8 +340,8 @@ int cmd_validate(int argc, char **argv)
     rc = vreport_finish(&r, a.path);
     if (r.json) printf(",\"open_outlines\":%zu}\n", open);
     if (open && !a.allow_open) {
-        fprintf(stderr, "lamina: %s: %zu outline%s stayed open (gap tolerance %s); use --gap or --allow-open\n", a.path,
-                open, open == 1 ? "" : "s", LAM_NUM(lam_slicer_gap(s)));
+        fprintf(stderr, "lamina: %s: %zu outline%s stayed open (gap tolerance %g); use --gap or --allow-open\n", a.path,
+                open, open == 1 ? "" : "s", lam_slicer_gap(s));
         rc = EXIT_INPUT;
     }
 done:

@@ -37,7 +37,9 @@ int cli_size_sense(const char *path, const lam_profile *machine, const lam_model
     if (po) {
         lam_job_estimate e;
         lam_plan_estimate(s, po, &e);
-        if (e.bytes > CLI_SENSE_BYTES) {
+        /* past the limit the run is refused with the same numbers */
+        double limit = po->max_output ? (double)po->max_output : (double)LAM_DEFAULT_MAX_OUTPUT;
+        if (e.bytes > CLI_SENSE_BYTES && e.bytes <= limit) {
             char a[32], l[32];
             fprintf(stderr, "lamina: warning: %s: the program will be about %s (%zu layers), more than %s "
                             "(--max-output SIZE refuses larger programs)\n",

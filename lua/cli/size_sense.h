@@ -11,7 +11,8 @@
  *   describe: drawn in µm, or in mm for a profile in cm or m) or less than
  *   0.5 mm (drawn in m or in inches for a profile in mm). The built-in
  *   profile stands for no machine, so its mm are no unit to check;
- * - a program estimated (lam_plan_estimate) at more than 1 GB. */
+ * - a program estimated (lam_plan_estimate) at more than 1 GB, and within
+ *   --max-output (past it the run is refused with the estimate). */
 #ifndef LAM_CLI_SIZE_SENSE_H
 #define LAM_CLI_SIZE_SENSE_H
 
