@@ -119,3 +119,10 @@ const char *lam_fmt_bytes(char *buf, size_t size, double n)
     snprintf(buf, size, u ? "%.3g %s" : "%.0f %s", n, unit[u]);
     return buf;
 }
+
+void lam_fmt_pair(char *a, char *b, double x, double y)
+{
+    lam_fmt_num(a, x, 15);
+    lam_fmt_num(b, y, 15);
+    if (x != y && !strcmp(a, b)) lam_fmt_num(a, x, 17), lam_fmt_num(b, y, 17);
+}

@@ -188,10 +188,12 @@ static int make_planes(lam_slicer *s, double wmin, double wmax, lam_error *err)
         for (size_t i = 0; i < o->nplanes; i++) {
             if (!isfinite(o->planes[i]))
                 return lam_error_set(err, LAM_EUSAGE, NULL, 0, 0, "plane %zu is not a finite number", i + 1);
-            if (i && !(o->planes[i] > o->planes[i - 1]))
-                return lam_error_set(err, LAM_EUSAGE, NULL, 0, 0,
-                                     "planes must increase strictly (plane %zu is %s after %s)", i + 1,
-                                     LAM_NUM(o->planes[i]), LAM_NUM(o->planes[i - 1]));
+            if (i && !(o->planes[i] > o->planes[i - 1])) {
+                char a[LAM_FMT_NUM], b[LAM_FMT_NUM];
+                lam_fmt_pair(a, b, o->planes[i], o->planes[i - 1]);
+                return lam_error_set(err, LAM_EUSAGE, NULL, 0, 0, "planes must increase strictly (plane %zu is %s after %s)",
+                                     i + 1, a, b);
+            }
         }
         n = o->nplanes;
         s->planes = malloc(n * sizeof *s->planes);
@@ -209,10 +211,17 @@ static int make_planes(lam_slicer *s, double wmin, double wmax, lam_error *err)
                                      i + 1, LAM_NUM(o->widths[i]));
             s->planes[i + 1] = s->planes[i] + o->widths[i];
         }
-        if (s->planes[n - 1] < wmax)
+        if (s->planes[n - 1] < wmax) {
+            char a[LAM_FMT_NUM], b[LAM_FMT_NUM], c[LAM_FMT_NUM], d[LAM_FMT_NUM];
+            lam_fmt_pair(a, b, s->planes[n - 1] - wmin, wmax - wmin);
+            /* the sums may round to one number while the ends differ */
+            lam_fmt_pair(c, d, s->planes[n - 1], wmax);
+            int same = !strcmp(a, b);
             return lam_error_set(err, LAM_EUSAGE, NULL, 0, 0,
-                                 "the widths add up to %s but the model spans %s along the axis",
-                                 LAM_NUM_EXACT(s->planes[n - 1] - wmin), LAM_NUM_EXACT(wmax - wmin));
+                                 "the widths add up to %s but the model spans %s along the axis%s%s%s%s%s", a, b,
+                                 same ? " (they end at " : "", same ? c : "", same ? ", the model at " : "",
+                                 same ? d : "", same ? ")" : "");
+        }
     } else {
         if (o->width < 0 || isnan(o->width) || isinf(o->width))
             return lam_error_set(err, LAM_EUSAGE, NULL, 0, 0, "layer width must be a positive number (got %s)",
