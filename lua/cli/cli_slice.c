@@ -110,7 +110,6 @@ static int on_layer(void *ctx, const lam_layer *L, lam_error *err)
         r->twins += L->twins;
     }
     if (r->v) {
-        r->vr.progress = &r->progress;
         lam_validate_opts vo;
         lam_validate_opts_init(&vo);
         vo.fill_nonzero = r->fill_nonzero;
@@ -171,7 +170,8 @@ int cmd_slice(int argc, char **argv)
     memset(&rep, 0, sizeof rep);
     rep.path = a.path;
     rep.vr.out = stderr;
-    cli_progress_init(&rep.progress, a.talk);
+    cli_progress_init(&rep.progress, a.talk, !a.out || !strcmp(a.out, "-"));
+    rep.vr.progress = &rep.progress;
 
     lam_plan_opts po;
     if ((rc = cli_profile("slice", &a, &prof, &po))) goto done;

@@ -272,7 +272,7 @@ int cmd_validate(int argc, char **argv)
     r.verbose = a.talk >= 0;
     r.first = 1;
     cli_progress progress;
-    cli_progress_init(&progress, a.talk);
+    cli_progress_init(&progress, a.talk, a.json);
     r.progress = &progress;
     lam_plan_opts po;
     lam_plan_opts_init(&po);

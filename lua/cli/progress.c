@@ -21,11 +21,11 @@ static double now(void)
     return (double)t.tv_sec + (double)t.tv_nsec * 1e-9;
 }
 
-void cli_progress_init(cli_progress *p, int level)
+void cli_progress_init(cli_progress *p, int level, int stdout_data)
 {
     memset(p, 0, sizeof *p);
     p->level = level;
-    p->tty = level >= 0 && isatty(STDERR_FILENO);
+    p->tty = level >= 0 && isatty(STDERR_FILENO) && !(stdout_data && isatty(STDOUT_FILENO));
     p->interval = INTERVAL;
     p->delay = DELAY;
     const char *env = getenv("LAMINA_PROGRESS_INTERVAL");

@@ -10,7 +10,9 @@
  * short run shows none), cut to the terminal's width, and erased before
  * any other message and at the end. LAMINA_PROGRESS_INTERVAL=SECONDS sets
  * the least time between redraws; 0 draws at every layer from the first
- * (the tests use it). One line per process: the commands run on one
+ * (the tests use it). Nor is there a line when the command's data (a
+ * program, JSON) goes to standard output on a terminal: it would land in
+ * the middle of it. One line per process: the commands run on one
  * thread. */
 #ifndef LAM_CLI_PROGRESS_H
 #define LAM_CLI_PROGRESS_H
@@ -29,9 +31,11 @@ typedef struct cli_progress {
     int hidden;           /* erased for a message: redraw at the next step */
 } cli_progress;
 
-/* Set p up for a command run with level -1 (-q), 0 or 1 (-v); starts the
- * first stage's clock. Draws nothing. */
-void cli_progress_init(cli_progress *p, int level);
+/* Set p up for a command run with level -1 (-q), 0 or 1 (-v);
+ * stdout_data: the command writes its data to standard output (no line
+ * when that is a terminal). Starts the first stage's clock; draws
+ * nothing. */
+void cli_progress_init(cli_progress *p, int level, int stdout_data);
 
 /* A run of `total` layers begins: `verb` it does to model `path`
  * ("slicing", "part.stl"). */

@@ -81,6 +81,17 @@ finish quiet
 is "$STATUS" 0 "-q: the slice succeeds"
 is "$(draws quiet 2000)" 0 "-q: no progress line on a terminal"
 
+# ... nor when the data goes to standard output on the terminal: the line
+# would land in the middle of it
+start tout env LAMINA_PROGRESS_INTERVAL=0 "$LAMINA" slice models/thesis_cube_hole.ug -w 0.01
+finish tout
+is "$STATUS" 0 "the program to the terminal: the slice succeeds"
+like "$SCREEN" '^contour 1\.995000$' "... the program is on the screen"
+is "$(draws tout 200)" 0 "... and no progress line in it"
+start vjson env LAMINA_PROGRESS_INTERVAL=0 "$LAMINA" validate models/thesis_cube_hole.ug -w 0.01 --json
+finish vjson
+is "$(draws vjson 200)" 0 "validate --json to the terminal: no progress line"
+
 # 4. redraws throttled by the monotonic clock: at most one per interval
 # after the first (which waits one interval too), however fast the layers
 # come; ELAPSED is at least the run's own time
