@@ -43,7 +43,9 @@ void cli_progress_init(cli_progress *p, int level, int stdout_data)
 
 void cli_progress_begin(cli_progress *p, const char *verb, const char *path, size_t total)
 {
-    snprintf(p->what, sizeof p->what, "%s %s", verb, path);
+    /* the file's name without its folders: the counts after it should fit */
+    const char *base = strrchr(path, '/');
+    snprintf(p->what, sizeof p->what, "%s %s", verb, base && base[1] ? base + 1 : path);
     p->total = total;
     p->done = 0;
     p->start = now();

@@ -38,7 +38,8 @@ typedef struct cli_progress {
 void cli_progress_init(cli_progress *p, int level, int stdout_data);
 
 /* A run of `total` layers begins: `verb` it does to model `path`
- * ("slicing", "part.stl"). */
+ * ("slicing", "parts/part.stl"; the line names the file without its
+ * folders). */
 void cli_progress_begin(cli_progress *p, const char *verb, const char *path, size_t total);
 
 /* `done` layers of the total are done: redraw the line when it is due. */

@@ -20,13 +20,14 @@ tm() { tmux -L "$SOCK" "$@"; }
 trap 'tm kill-server 2>/dev/null; rm -rf "$TMP"' EXIT
 ln -s "$TESTS/models" "$TMP/models"
 
-# start NAME CMD...: CMD in $TMP on a 120x40 terminal, its output logged
+# start NAME CMD...: CMD in $TMP on a 120x40 terminal (COLS columns if
+# set), its output logged
 # raw to $TMP/NAME.raw; its exit status goes to $TMP/NAME.status
 start() {
     local name=$1; shift
     local cmd
     cmd=$(printf '%q ' "$@")
-    tm -f /dev/null new-session -d -s "$name" -x 120 -y 40 -c "$TMP" \
+    tm -f /dev/null new-session -d -s "$name" -x "${COLS:-120}" -y 40 -c "$TMP" \
         "read go; $cmd; echo \$? >$(printf '%q' "$TMP/$name.status"); echo ==END==; read done" \; \
         set-option -t "$name" remain-on-exit on
     tm pipe-pane -t "$name" -o "cat >>$(printf '%q' "$TMP/$name.raw")"
@@ -58,8 +59,8 @@ finish term
 is "$STATUS" 0 "terminal: the slice succeeds"
 is "$(grep -ao 'layer [0-9]* of 2000 (' "$TMP/term.raw" | sort -u | wc -l)" 2000 \
     "terminal: the line was drawn for each of the 2000 layers"
-like "$RAW" '^lamina: slicing models/thesis_cube_hole\.ug: layer 1 of 2000 \(0%\)' "... starting at layer 1 of 2000, 0%"
-like "$RAW" '^lamina: slicing models/thesis_cube_hole\.ug: layer 1000 of 2000 \(50%\), [0-9.e+]+ layers/s, ([0-9]+ s|<1 s|[0-9]+ min [0-9]+ s) left' \
+like "$RAW" '^lamina: slicing thesis_cube_hole\.ug: layer 1 of 2000 \(0%\)' "... starting at layer 1 of 2000, 0%"
+like "$RAW" '^lamina: slicing thesis_cube_hole\.ug: layer 1000 of 2000 \(50%\), [0-9.e+]+ layers/s, ([0-9]+ s|<1 s|[0-9]+ min [0-9]+ s) left' \
     "... halfway: 50%, the rate and the time left"
 like "$RAW" 'layer 2000 of 2000 \(100%\)' "... ending at layer 2000 of 2000, 100%"
 # drawn in place: \r before every redraw, never a newline inside the run
@@ -67,6 +68,15 @@ is "$(grep -ac 'layer [0-9]* of 2000' "$TMP/term.raw")" 1 "... all redraws on on
 ok "$(printf '%s\n' "$SCREEN" | grep -q ' of 2000'; [ $? = 1 ]; echo $?)" "... and erased at the end: the screen shows no progress"
 "$LAMINA" slice "$M/thesis_cube_hole.ug" -w 0.001 -o "$TMP/plain.sls" 2>/dev/null
 ok "$(cmp -s "$TMP/plain.sls" "$TMP/term.sls"; echo $?)" "... and the program is the same as without a terminal"
+
+# ... cut to the terminal's width: a line that wrapped could not be
+# redrawn with \r
+COLS=40 start narrow env LAMINA_PROGRESS_INTERVAL=0 "$LAMINA" slice models/thesis_cube_hole.ug -w 0.01 -o narrow.sls
+finish narrow
+is "$(draws narrow 200)" 0 "a 40-column terminal: the counts do not fit ..."
+is "$(grep -ac 'lamina: slicing thesis_cube_hole' "$TMP/narrow.raw")" 1 "... but the line is drawn"
+is "$(printf '%s\n' "$RAW" | grep -a '^lamina: slicing' | awk 'length($0) > 39' | wc -l)" 0 \
+    "... never longer than 39 characters"
 
 # 2. standard error not a terminal: no line, in the log or the file
 start pipe env LAMINA_PROGRESS_INTERVAL=0 sh -c '"$0" slice models/thesis_cube_hole.ug -w 0.001 -o pipe.sls 2>&1 | cat >pipe.err' "$LAMINA"
@@ -112,7 +122,7 @@ ok "$(echo "$n <= ($ELAPSED - 0.5) / 0.2 + 1 || $n == 0" | bc | grep -qx 1; echo
 start val env LAMINA_PROGRESS_INTERVAL=0 "$LAMINA" validate models/thesis_cube_hole.ug -w 0.01
 finish val
 is "$STATUS" 0 "validate on a terminal succeeds"
-like "$RAW" '^lamina: validating models/thesis_cube_hole\.ug: layer 200 of 200 \(100%\)' "... with its progress line"
+like "$RAW" '^lamina: validating thesis_cube_hole\.ug: layer 200 of 200 \(100%\)' "... with its progress line"
 is "$(printf '%s\n' "$SCREEN" | grep -Ec '^layer [0-9]+ \(h=[0-9.]+\): 2 contours, 2 confirmed, 0 disagreeing$')" 200 \
     "... all 200 report lines on the screen whole, no progress text on them"
 like "$SCREEN" '^layer 200 \(h=1\.995\): 2 contours, 2 confirmed, 0 disagreeing$' "... the last layer is layer 200 (1-based), at h=1.995"
@@ -127,7 +137,7 @@ ok "$(printf '%s\n' "$SCREEN" | grep -q '^layer '; [ $? = 1 ]; echo $?)" "... an
 start verb "$LAMINA" slice models/thesis_cube_hole.ug -w 0.01 -o verb.sls -v
 finish verb
 like "$SCREEN" '^lamina: reading the model and preparing the layers: [0-9]+\.[0-9]{3} s$' "-v: the time of the first stage"
-like "$SCREEN" '^lamina: slicing models/thesis_cube_hole\.ug: 200 layers in [0-9]+\.[0-9]{3} s( \([0-9.e+]+ layers/s\))?$' \
+like "$SCREEN" '^lamina: slicing thesis_cube_hole\.ug: 200 layers in [0-9]+\.[0-9]{3} s( \([0-9.e+]+ layers/s\))?$' \
     "-v: the layers and their time"
 like "$SCREEN" '^lamina: writing the outputs: [0-9]+\.[0-9]{3} s$' "-v: the time of writing"
 
