@@ -31,6 +31,9 @@ const char *lam_fmt_num(char *buf, double x, int digits);
  * LAM_NUM drops arithmetic noise (15 digits), LAM_NUM_EXACT never does
  * (17: for numbers whose last bits are the point, such as two heights
  * that differ by an ulp). */
+#define LAM_NUM(x) lam_fmt_num((char[LAM_FMT_NUM]){ 0 }, (x), 15)
+#define LAM_NUM_EXACT(x) lam_fmt_num((char[LAM_FMT_NUM]){ 0 }, (x), 17)
+
 /* Two numbers for people that are told apart: each at 15 digits as
  * LAM_NUM, or at 17 (exact) when those texts would be the same but x != y
  * ("the widths add up to 1.9999999999999998 but the model spans 2").
@@ -40,8 +43,5 @@ void lam_fmt_pair(char *a, char *b, double x, double y);
 /* A byte count for people, in powers of 1024 as the size limits:
  * "512 bytes", "1.5 kB", "16 GB" (three significant digits). Returns buf. */
 const char *lam_fmt_bytes(char *buf, size_t size, double n);
-
-#define LAM_NUM(x) lam_fmt_num((char[LAM_FMT_NUM]){ 0 }, (x), 15)
-#define LAM_NUM_EXACT(x) lam_fmt_num((char[LAM_FMT_NUM]){ 0 }, (x), 17)
 
 #endif

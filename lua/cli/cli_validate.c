@@ -165,13 +165,12 @@ int vreport_layer(vreport *r, lam_rays *v, const lam_layer *L, const lam_frame *
         fputs("]}", r->out);
         r->first = 0;
     } else {
-        int problem = chk.disagreeing || chk.unchecked || !chk.area_ok;
-        if (r->verbose || problem) cli_progress_hide(r->progress);
-        if (r->verbose || problem)
+        if (r->verbose || chk.disagreeing || chk.unchecked || !chk.area_ok) {
+            cli_progress_hide(r->progress);
             fprintf(r->out, "layer %zu (h=%s): %zu contour%s, %zu confirmed, %zu disagreeing%s\n", L->index + 1,
-                    LAM_NUM(L->cut),
-                    L->ncontours, L->ncontours == 1 ? "" : "s", chk.confirmed, chk.disagreeing,
+                    LAM_NUM(L->cut), L->ncontours, L->ncontours == 1 ? "" : "s", chk.confirmed, chk.disagreeing,
                     chk.unchecked ? ", some too small to check" : "");
+        }
         for (size_t i = 0; i < chk.nitems; i++)
             if (chk.items[i].ok <= 0) text_contour(r->out, L, &chk.items[i], src);
         if (!chk.area_ok)
