@@ -420,22 +420,7 @@ static void put(buf *b, const char *s, size_t n)
 
 size_t lam_dialect_number(char *out, double x)
 {
-    if (x == 0) x = 0; /* no "-0" */
-    if (!isfinite(x)) return (size_t)snprintf(out, LAM_FMT_MAX, "%g", x);
-    int prec = 1, n = 0;
-    for (; prec <= 17; prec++) {
-        n = snprintf(out, LAM_FMT_MAX, "%.*e", prec - 1, x);
-        double back;
-        if (lam_parse_number((const unsigned char *)out, (size_t)n, &back) == LAM_OK && back == x) break;
-    }
-    if (prec > 17) prec = 17;
-    /* the decimal exponent of the shortest digits decides the notation, as
-     * %.17g decides it: plain decimals for 1e-4 <= |x| < 1e17 */
-    const char *e = strchr(out, 'e');
-    int exp10 = e ? atoi(e + 1) : 0;
-    if (exp10 >= -4 && exp10 < 17 && prec < exp10 + 1) prec = exp10 + 1;
-    n = snprintf(out, LAM_FMT_MAX, "%.*g", prec, x);
-    return n < 0 ? 0 : (size_t)n;
+    return strlen(lam_fmt_num(out, x, 17));
 }
 
 /* 1 when the fixed rendering s (from lam_fmt_fixed) is "-0", "-0.000...". */

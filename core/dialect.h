@@ -111,10 +111,9 @@ void lam_dialect_free(lam_dialect *d);
  * to err, which must outlive the sink. */
 int lam_dialect_sink(const lam_dialect *d, lam_writer *w, lam_sink *out, lam_error *err);
 
-/* The default rendering of a number field: the fewest significant digits
- * (1..17) that read back as exactly x, in the notation %.17g would choose
- * (plain decimals for 1e-4 <= |x| < 1e17, else an exponent): 600, 0.08,
- * 0.1, 1e-05, 1e+20; never "-0". buf holds LAM_FMT_MAX bytes (fmt.h).
+/* The default rendering of a number field: lam_fmt_num(buf, x, 17), the
+ * fewest significant digits that read back as exactly x (fmt.h): 600,
+ * 0.08, 0.1, 1e-05, 1e+20; never "-0". buf holds LAM_FMT_MAX bytes.
  * Returns the length. */
 size_t lam_dialect_number(char *buf, double x);
 

@@ -1,8 +1,12 @@
 #include "fmt.h"
 
+#include "error.h"
+#include "lexnum.h"
+
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 static const char pairs[] = "00010203040506070809101112131415161718192021222324252627282930313233343536373839"
@@ -79,4 +83,46 @@ size_t lam_fmt_fixed(char *buf, double x, int d)
     }
     buf[len] = '\0';
     return len;
+}
+
+const char *lam_fmt_num(char *buf, double x, int digits)
+{
+    if (digits < 1) digits = 1;
+    if (digits > 17) digits = 17; /* 17 digits read back as any double */
+    if (x == 0) x = 0;            /* no "-0" */
+    if (!isfinite(x)) {
+        snprintf(buf, LAM_FMT_NUM, "%g", x);
+        return buf;
+    }
+    char e[LAM_FMT_NUM];
+    int prec = 1;
+    for (;; prec++) {
+        int n = snprintf(e, sizeof e, "%.*e", prec - 1, x);
+        double back;
+        if (prec == digits ||
+            (lam_parse_number((const unsigned char *)e, (size_t)n, &back) == LAM_OK && back == x))
+            break;
+    }
+    /* the decimal exponent of those digits decides the notation, as %.17g
+     * decides it: plain decimals for 1e-4 <= |x| < 1e17 */
+    int exp10 = atoi(strchr(e, 'e') + 1);
+    if (exp10 >= -4 && exp10 < 17 && prec < exp10 + 1) prec = exp10 + 1;
+    snprintf(buf, LAM_FMT_NUM, "%.*g", prec, x);
+    return buf;
+}
+
+const char *lam_fmt_bytes(char *buf, size_t size, double n)
+{
+    static const char *const unit[] = { "bytes", "kB", "MB", "GB", "TB", "PB", "EB" };
+    int u = 0;
+    while (n >= 1024 && u < 6) n /= 1024, u++;
+    snprintf(buf, size, u ? "%.3g %s" : "%.0f %s", n, unit[u]);
+    return buf;
+}
+
+void lam_fmt_pair(char *a, char *b, double x, double y)
+{
+    lam_fmt_num(a, x, 15);
+    lam_fmt_num(b, y, 15);
+    if (x != y && !strcmp(a, b)) lam_fmt_num(a, x, 17), lam_fmt_num(b, y, 17);
 }

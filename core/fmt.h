@@ -1,5 +1,6 @@
-/* Fast number formatting for program writers: the same characters as
- * printf("%.*f"), without printf's arbitrary-precision path. */
+/* Number formatting: for program writers, the same characters as
+ * printf("%.*f") without printf's arbitrary-precision path; for programs
+ * and people, the shortest text that reads back as the same double. */
 #ifndef LAM_FMT_H
 #define LAM_FMT_H
 
@@ -12,5 +13,35 @@
  * round-half-even rule on exact ties and "-0.000000" for tiny negatives.
  * Returns the length. */
 size_t lam_fmt_fixed(char *buf, double x, int decimals);
+
+/* The fewest significant digits, at most `digits` (1..17), that read back
+ * as exactly x, in the notation %g would choose for them: plain decimals
+ * for 1e-4 <= |x| < 1e17, else an exponent (600, 0.08, 1e-05, 1e+20);
+ * never "-0". When no text of at most `digits` digits reads back as x, x
+ * rounded to `digits` digits. digits 17 is always exact; 15 (LAM_NUM) drops
+ * the last-bit noise of arithmetic (110.1 - 1.7 prints 108.4, not
+ * 108.39999999999999) and prints any decimal of up to 15 digits as typed.
+ * buf holds LAM_FMT_NUM bytes. Returns buf. */
+#define LAM_FMT_NUM 32
+const char *lam_fmt_num(char *buf, double x, int digits);
+
+/* For messages: a number for people as a printf %s argument, in a buffer
+ * that lives to the end of the enclosing block:
+ *   printf("layer %zu (h=%s)", i + 1, LAM_NUM(h));
+ * LAM_NUM drops arithmetic noise (15 digits), LAM_NUM_EXACT never does
+ * (17: for numbers whose last bits are the point, such as two heights
+ * that differ by an ulp). */
+#define LAM_NUM(x) lam_fmt_num((char[LAM_FMT_NUM]){ 0 }, (x), 15)
+#define LAM_NUM_EXACT(x) lam_fmt_num((char[LAM_FMT_NUM]){ 0 }, (x), 17)
+
+/* Two numbers for people that are told apart: each at 15 digits as
+ * LAM_NUM, or at 17 (exact) when those texts would be the same but x != y
+ * ("the widths add up to 1.9999999999999998 but the model spans 2").
+ * a and b hold LAM_FMT_NUM bytes. */
+void lam_fmt_pair(char *a, char *b, double x, double y);
+
+/* A byte count for people, in powers of 1024 as the size limits:
+ * "512 bytes", "1.5 kB", "16 GB" (three significant digits). Returns buf. */
+const char *lam_fmt_bytes(char *buf, size_t size, double n);
 
 #endif

@@ -501,12 +501,12 @@ int lam_hatch_layer(const lam_layer *L, const lam_layer *const *below, size_t nb
     free(h.cr);
     free(h.segs);
     free(h.ring);
-    if (rc == LAM_ENOMEM) lam_error_set(err, rc, NULL, 0, 0, "out of memory hatching layer %zu", L->index);
+    if (rc == LAM_ENOMEM) lam_error_set(err, rc, NULL, 0, 0, "out of memory hatching layer %zu", L->index + 1);
     else if (rc == LAM_EUSAGE)
         lam_error_set(err, rc, NULL, 0, 0, "layer %zu: the hatch distance, stripe width or island size is too small "
-                                           "for the layer (more than %.0f vectors)", L->index, MAX_VECTORS);
+                                           "for the layer (more than %.0f vectors)", L->index + 1, MAX_VECTORS);
     else if (rc)
-        lam_error_set(err, rc, NULL, 0, 0, "hatching layer %zu failed%s%s", L->index, g.msg[0] ? ": " : "", g.msg);
+        lam_error_set(err, rc, NULL, 0, 0, "hatching layer %zu failed%s%s", L->index + 1, g.msg[0] ? ": " : "", g.msg);
     lam_geos_finish(&g);
     return rc;
 }

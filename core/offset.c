@@ -37,7 +37,7 @@ int lam_layer_offset(const lam_layer *L, double distance, lam_layer **out, lam_e
     if (mp) GEOSGeom_destroy_r(c.h, mp);
     if (!rc) rc = lam_contours_assign(R, &loops.loops, err);
     else if (rc == LAM_ENOMEM) lam_error_set(err, rc, NULL, 0, 0, "out of memory offsetting a layer");
-    else lam_error_set(err, rc, NULL, 0, 0, "offsetting layer %zu failed%s%s", L->index, c.msg[0] ? ": " : "", c.msg);
+    else lam_error_set(err, rc, NULL, 0, 0, "offsetting layer %zu failed%s%s", L->index + 1, c.msg[0] ? ": " : "", c.msg);
     lam_loops_builder_free(&loops);
     lam_geos_finish(&c);
     if (rc) {

@@ -1,5 +1,6 @@
 /* lam_plan_run: one slicing run through a planner into a sink. */
 #include "planner.h"
+#include "fmt.h"
 
 #include "profile.h"
 
@@ -102,16 +103,6 @@ void lam_plan_estimate(const lam_slicer *s, const lam_plan_opts *o, lam_job_esti
     e->bytes *= (double)n;
 }
 
-/* n bytes for people: "16 GB", "512 kB" (powers of 1024, as the limits). */
-static const char *bytes_text(double n, char *buf, size_t size)
-{
-    static const char *const unit[] = { "bytes", "kB", "MB", "GB", "TB", "PB", "EB" };
-    int u = 0;
-    while (n >= 1024 && u < 6) n /= 1024, u++;
-    snprintf(buf, size, u ? "%.3g %s" : "%.0f %s", n, unit[u]);
-    return buf;
-}
-
 int lam_plan_check_estimate(const lam_job_estimate *e, const lam_plan_opts *o, unsigned long long max_bytes,
                             lam_error *err)
 {
@@ -122,12 +113,12 @@ int lam_plan_check_estimate(const lam_job_estimate *e, const lam_plan_opts *o, u
         return lam_error_set(err, LAM_ELIMIT, NULL, 0, 0,
                              "the job would write about %s (%zu layers, %.4g scan lines of bead %g), more than the "
                              "limit of %s",
-                             bytes_text(e->bytes, a, sizeof a), e->layers, e->lines, o->bead,
-                             bytes_text((double)max_bytes, b, sizeof b));
+                             lam_fmt_bytes(a, sizeof a, e->bytes), e->layers, e->lines, o->bead,
+                             lam_fmt_bytes(b, sizeof b, (double)max_bytes));
     return lam_error_set(err, LAM_ELIMIT, NULL, 0, 0,
                          "the job would write about %s (%zu layers, %.4g contour points), more than the limit of %s",
-                         bytes_text(e->bytes, a, sizeof a), e->layers, e->points,
-                         bytes_text((double)max_bytes, b, sizeof b));
+                         lam_fmt_bytes(a, sizeof a, e->bytes), e->layers, e->points,
+                         lam_fmt_bytes(b, sizeof b, (double)max_bytes));
 }
 
 static void job_bbox(const lam_slicer *s, const lam_model *m, const lam_plan_opts *o, double bb[6])

@@ -831,7 +831,7 @@ out:
 
 /* ---- public ---------------------------------------------------------------- */
 
-double lam_profile_gap_limit(const lam_profile *p)
+double lam_profile_unit_mm(const lam_profile *p)
 {
     static const struct { const char *name; double mm; } units[] = {
         { "mm", 1 }, { "cm", 10 }, { "m", 1000 }, { "um", 1e-3 }, { "\xc2\xb5m", 1e-3 },
@@ -839,8 +839,14 @@ double lam_profile_gap_limit(const lam_profile *p)
     };
     const char *u = p->units ? p->units : "mm";
     for (size_t i = 0; i < sizeof units / sizeof units[0]; i++)
-        if (!strcmp(u, units[i].name)) return LAM_GAP_MM / units[i].mm;
+        if (!strcmp(u, units[i].name)) return units[i].mm;
     return 0;
+}
+
+double lam_profile_gap_limit(const lam_profile *p)
+{
+    double mm = lam_profile_unit_mm(p);
+    return mm > 0 ? LAM_GAP_MM / mm : 0;
 }
 
 static char **string_at(lam_profile *p, const lam_key *k)

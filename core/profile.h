@@ -85,6 +85,10 @@ void lam_profile_free(lam_profile *p);
  * directories stored into dirs (each malloc'd; caller frees). */
 size_t lam_machine_dirs(char **dirs, size_t max);
 
+/* How many millimetres one unit of the profile's `units` is: mm 1, cm 10,
+ * m 1000, um (or µm) 0.001, in (inch) 25.4, ft 304.8; 0 for other units. */
+double lam_profile_unit_mm(const lam_profile *p);
+
 /* The most the automatic gap-closing tolerance may be on this machine:
  * LAM_GAP_MM (0.05 mm) in the profile's units (mm, cm, m, um, in, inch,
  * ft); 0 (no limit) for other units. */

@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "file.h"
+#include "fmt.h"
 #include "grow.h"
 #include "import.h"
 #include "lexnum.h"
@@ -177,8 +178,8 @@ static int whole(rd *r, const line *l, const tok *t, double lo, double hi, const
     int rc = number(r, l, t, &x, NULL);
     if (rc) return rc;
     if (x != floor(x) || x < lo || x > hi)
-        return fail_at(r, LAM_EINVAL, l->no, t->col, "%s must be a whole number from %.0f to %.0f, got %.17g", what, lo,
-                       hi, x);
+        return fail_at(r, LAM_EINVAL, l->no, t->col, "%s must be a whole number from %.0f to %.0f, got %s", what, lo,
+                       hi, LAM_NUM_EXACT(x));
     *out = (long)x;
     return LAM_OK;
 }
@@ -365,7 +366,8 @@ static int cli_read_header(rd *r, size_t end, cli_header *h)
             if (!next_tok(&l, &i, 0, &t)) return fail_at(r, LAM_ESYNTAX, l.no, (long)args + 1, "$$UNITS needs a value");
             int rc = number(r, &l, &t, &u, NULL);
             if (rc) return rc;
-            if (!(u > 0)) return fail_at(r, LAM_EINVAL, l.no, t.col, "$$UNITS must be greater than 0, got %g", u);
+            if (!(u > 0)) return fail_at(r, LAM_EINVAL, l.no, t.col, "$$UNITS must be greater than 0, got %s",
+                                           LAM_NUM_EXACT(u));
         }
         /* $$ASCII, $$VERSION, $$DATE, $$DIMENSION, $$LABEL, $$USERDATA, ...: read over */
     }
@@ -714,11 +716,13 @@ int lam_program_layer_make(const lam_program *p, size_t i, const lam_frame *f, i
             }
             if (fabs(w - pl->z) > slack) {
                 /* (only SLS points can be: CLI writes the layer's height for them) */
+                char a[LAM_FMT_NUM], b[LAM_FMT_NUM];
+                lam_fmt_pair(a, b, w, pl->z);
                 int rc = lam_error_set(err, LAM_EINVAL, path, pc[k].line, pc[k].column,
-                                       "point %zu of this loop is %g from its plane (height %.17g along the "
-                                       "slicing axis, the contour says %.17g): was it written along another "
+                                       "point %zu of this loop is %g from its plane (height %s along the "
+                                       "slicing axis, the contour says %s): was it written along another "
                                        "axis, or in the %s frame?",
-                                       j + 1, fabs(w - pl->z), w, pl->z, frame_machine ? "model" : "machine");
+                                       j + 1, fabs(w - pl->z), a, b, frame_machine ? "model" : "machine");
                 lam_layer_clear(out);
                 return rc;
             }

@@ -9,6 +9,7 @@
 
 #include "contour.h"
 #include "fill.h"
+#include "fmt.h"
 #include "grow.h"
 #include "prefetch.h"
 
@@ -187,10 +188,12 @@ static int make_planes(lam_slicer *s, double wmin, double wmax, lam_error *err)
         for (size_t i = 0; i < o->nplanes; i++) {
             if (!isfinite(o->planes[i]))
                 return lam_error_set(err, LAM_EUSAGE, NULL, 0, 0, "plane %zu is not a finite number", i + 1);
-            if (i && !(o->planes[i] > o->planes[i - 1]))
-                return lam_error_set(err, LAM_EUSAGE, NULL, 0, 0,
-                                     "planes must increase strictly (plane %zu is %g after %g)", i + 1,
-                                     o->planes[i], o->planes[i - 1]);
+            if (i && !(o->planes[i] > o->planes[i - 1])) {
+                char a[LAM_FMT_NUM], b[LAM_FMT_NUM];
+                lam_fmt_pair(a, b, o->planes[i], o->planes[i - 1]);
+                return lam_error_set(err, LAM_EUSAGE, NULL, 0, 0, "planes must increase strictly (plane %zu is %s after %s)",
+                                     i + 1, a, b);
+            }
         }
         n = o->nplanes;
         s->planes = malloc(n * sizeof *s->planes);
@@ -204,24 +207,33 @@ static int make_planes(lam_slicer *s, double wmin, double wmax, lam_error *err)
         s->planes[0] = wmin;
         for (size_t i = 0; i < o->nwidths; i++) {
             if (!(o->widths[i] > 0) || !isfinite(o->widths[i]))
-                return lam_error_set(err, LAM_EUSAGE, NULL, 0, 0, "width %zu must be a positive number (got %g)",
-                                     i + 1, o->widths[i]);
+                return lam_error_set(err, LAM_EUSAGE, NULL, 0, 0, "width %zu must be a positive number (got %s)",
+                                     i + 1, LAM_NUM(o->widths[i]));
             s->planes[i + 1] = s->planes[i] + o->widths[i];
         }
-        if (s->planes[n - 1] < wmax)
+        if (s->planes[n - 1] < wmax) {
+            char a[LAM_FMT_NUM], b[LAM_FMT_NUM], c[LAM_FMT_NUM], d[LAM_FMT_NUM];
+            lam_fmt_pair(a, b, s->planes[n - 1] - wmin, wmax - wmin);
+            /* the sums may round to one number while the ends differ */
+            lam_fmt_pair(c, d, s->planes[n - 1], wmax);
+            int same = !strcmp(a, b);
             return lam_error_set(err, LAM_EUSAGE, NULL, 0, 0,
-                                 "the widths add up to %g but the model spans %g along the axis",
-                                 s->planes[n - 1] - wmin, wmax - wmin);
+                                 "the widths add up to %s but the model spans %s along the axis%s%s%s%s%s", a, b,
+                                 same ? " (they end at " : "", same ? c : "", same ? ", the model at " : "",
+                                 same ? d : "", same ? ")" : "");
+        }
     } else {
         if (o->width < 0 || isnan(o->width) || isinf(o->width))
-            return lam_error_set(err, LAM_EUSAGE, NULL, 0, 0, "layer width must be a positive number (got %g)", o->width);
+            return lam_error_set(err, LAM_EUSAGE, NULL, 0, 0, "layer width must be a positive number (got %s)",
+                                 LAM_NUM(o->width));
         double w = o->width > 0 ? o->width : lam_default_width(wmax - wmin);
         if (!(w > 0) || !isfinite(w))
-            return lam_error_set(err, LAM_EUSAGE, NULL, 0, 0, "layer width must be a positive number (got %g)", o->width);
+            return lam_error_set(err, LAM_EUSAGE, NULL, 0, 0, "layer width must be a positive number (got %s)",
+                                 LAM_NUM(o->width));
         double q = (wmax - wmin) / w;
         if (q > (double)max) {
             char what[64];
-            snprintf(what, sizeof what, "width %g", w);
+            snprintf(what, sizeof what, "width %s", LAM_NUM(w));
             return too_many(ceil(q), max, what, err);
         }
         /* an extent that is a whole number of layers up to rounding gets

@@ -167,7 +167,7 @@ int lam_svg_write(const lam_svg *s, lam_writer *w)
         lam_writer_printf(w,
                           "<text x=\"2\" y=\"%.0f\" font-family=\"sans-serif\" font-size=\"12\" fill=\"#222\">"
                           "layer %zu  h=%.4g  (%zu contour%s)</text>\n</g>\n",
-                          PANEL + 14, s->wanted[k], p->cut, p->ncontours, p->ncontours == 1 ? "" : "s");
+                          PANEL + 14, s->wanted[k] + 1, p->cut, p->ncontours, p->ncontours == 1 ? "" : "s");
     }
     return lam_writer_printf(w, "</svg>\n");
 }

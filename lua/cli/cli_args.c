@@ -173,6 +173,14 @@ static int o_max_output(const char *cmd, args *a, const cli_opt *o, const char *
     return 0;
 }
 
+/* -q and -v: the last one given wins */
+static int o_talk(const char *cmd, args *a, const cli_opt *o, const char *opt, const char *val)
+{
+    (void)cmd, (void)opt, (void)val;
+    a->talk = o->letter == 'q' ? -1 : 1;
+    return 0;
+}
+
 #define F(member) offsetof(args, member)
 static const cli_opt options[] = {
     { "machine", 'm', OPT_SLICE, "MACHINE", o_text, F(machine) },
@@ -191,6 +199,8 @@ static const cli_opt options[] = {
     { "json", 0, OPT_JSON, NULL, o_flag, F(json) },
     { "show", 0, OPT_SHOW, "NAME|PATH", o_show, 0 },
     { "keys", 0, OPT_SHOW, NULL, o_flag, F(keys) },
+    { "quiet", 'q', OPT_TALK, NULL, o_talk, 0 },
+    { "verbose", 'v', OPT_TALK, NULL, o_talk, 0 },
 };
 #undef F
 #define NOPTIONS (sizeof options / sizeof options[0])

@@ -24,7 +24,8 @@ enum {
     OPT_SVG = 16,      /* --svg FILE */
     OPT_SET = 32,      /* -s/--set KEY=VALUE */
     OPT_SHOW = 64,     /* machines: --show NAME, --keys */
-    OPT_PROGRAM = 128  /* validate: --program FILE, and --frame (how it was written) */
+    OPT_PROGRAM = 128, /* validate: --program FILE, and --frame (how it was written) */
+    OPT_TALK = 256     /* -q/--quiet, -v/--verbose (progress.h) */
 };
 
 /* A profile value from the command line: --set KEY=VALUE or an option short for it. */
@@ -42,6 +43,7 @@ typedef struct args {
     cli_set *sets;           /* in command-line order; later ones win */
     size_t nsets;
     unsigned long long max_output;  /* --max-output, 0: the default */
+    int talk;                /* -q: -1, -v: 1 (the last given wins), else 0 */
 } args;
 
 /* Parse argv[1..] for command cmd, accepting the option groups in

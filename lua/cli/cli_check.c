@@ -6,6 +6,7 @@
 #include "cli.h"
 #include "cli_args.h"
 #include "drc.h"
+#include "fmt.h"
 #include "model.h"
 #include "svg.h"
 #include "validate.h"
@@ -121,21 +122,21 @@ int cmd_check(int argc, char **argv)
             cli_json_string(stdout, where);
             fputc('}', stdout);
         } else if (x->rule == LAM_RULE_WALL) {
-            printf("%s: wall %.6g thick at (%g, %g, %g), thinner than the bead %g (%s; region of %zu triangles, area %g)\n",
-                   lam_rule_name(x->rule), x->value, x->pos[0], x->pos[1], x->pos[2], x->limit, where, x->triangles,
+            printf("%s: wall %.6g thick at (%g, %g, %g), thinner than the bead %s (%s; region of %zu triangles, area %g)\n",
+                   lam_rule_name(x->rule), x->value, x->pos[0], x->pos[1], x->pos[2], LAM_NUM(x->limit), where, x->triangles,
                    x->area);
         } else {
-            printf("%s: overhang %.4g degrees from vertical at (%g, %g, %g), limit %g (%s; region of %zu triangles, area %g)\n",
-                   lam_rule_name(x->rule), x->value, x->pos[0], x->pos[1], x->pos[2], x->limit, where, x->triangles,
+            printf("%s: overhang %.4g degrees from vertical at (%g, %g, %g), limit %s (%s; region of %zu triangles, area %g)\n",
+                   lam_rule_name(x->rule), x->value, x->pos[0], x->pos[1], x->pos[2], LAM_NUM(x->limit), where, x->triangles,
                    x->area);
         }
     }
     if (a.json) {
         fprintf(stdout, "],\"samples\":%zu}\n", res.samples);
     } else {
-        printf("%s: %zu violation%s of %s's rules (min_wall %g", a.path, res.n, res.n == 1 ? "" : "s", prof->name,
-               o.min_wall);
-        if (o.max_overhang_deg > 0) printf(", max_overhang %g degrees", o.max_overhang_deg);
+        printf("%s: %zu violation%s of %s's rules (min_wall %s", a.path, res.n, res.n == 1 ? "" : "s", prof->name,
+               LAM_NUM(o.min_wall));
+        if (o.max_overhang_deg > 0) printf(", max_overhang %s degrees", LAM_NUM(o.max_overhang_deg));
         printf(")\n");
     }
     if (a.svg && draw(&a, m, &res, &err)) {

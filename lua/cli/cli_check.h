@@ -8,6 +8,7 @@
 #include "validate.h"
 
 #include "program_read.h"
+#include "progress.h"
 
 typedef struct vreport {
     FILE *out;               /* where the report goes */
@@ -15,6 +16,7 @@ typedef struct vreport {
     size_t layers, checked, confirmed, disagreeing, unchecked;
     size_t areas_compared, areas_differ;
     int first;               /* JSON: no comma before the first layer */
+    cli_progress *progress;  /* the line to erase before a text line (NULL: none) */
 } vreport;
 
 /* Where a layer's contours stand in a program read back (NULL for a layer

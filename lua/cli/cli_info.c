@@ -2,6 +2,7 @@
 #include "cli.h"
 #include "cli_args.h"
 #include "model.h"
+#include "fmt.h"
 
 #include <string.h>
 
@@ -66,7 +67,6 @@ static void print_json(const lam_model *m, const char *w[4], int nw)
 static void print_text(const lam_model *m)
 {
     const lam_model_stats *s = &m->stats;
-    char a[64], b[64], c[64];
     printf("model                 %s\n", m->path);
     printf("format                %s\n", m->format);
     printf("triangles             %zu\n", s->triangles);
@@ -75,10 +75,11 @@ static void print_text(const lam_model *m)
     printf("shells                %zu (%zu cavit%s)\n", s->shells, s->cavities, s->cavities == 1 ? "y" : "ies");
     const char *axis = "xyz";
     for (int j = 0; j < 3; j++)
-        printf("bbox %c                [%s, %s] (size %s)\n", axis[j], cli_num(a, sizeof a, s->bbox[j]),
-               cli_num(b, sizeof b, s->bbox[j + 3]), cli_num(c, sizeof c, s->bbox[j + 3] - s->bbox[j]));
-    printf("surface area          %s\n", cli_num(a, sizeof a, s->area));
-    printf("volume                %s\n", cli_num(a, sizeof a, s->volume));
+        printf("bbox %c                [%s, %s] (size %s)\n", axis[j], LAM_NUM(s->bbox[j]), LAM_NUM(s->bbox[j + 3]),
+               LAM_NUM(s->bbox[j + 3] - s->bbox[j]));
+    /* sums over every triangle: 12 digits, past the rounding of thousands of terms */
+    printf("surface area          %s\n", lam_fmt_num((char[LAM_FMT_NUM]){ 0 }, s->area, 12));
+    printf("volume                %s\n", lam_fmt_num((char[LAM_FMT_NUM]){ 0 }, s->volume, 12));
     printf("boundary edges        %zu\n", s->boundary_edges);
     printf("non-manifold edges    %zu\n", s->nonmanifold_edges);
     printf("degenerate triangles  %zu\n", s->degenerate_tris);

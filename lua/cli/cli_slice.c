@@ -8,10 +8,13 @@
 #include "cli_args.h"
 #include "cli_check.h"
 #include "dialect.h"
+#include "fmt.h"
 #include "model.h"
 #include "planner.h"
 #include "plugin.h"
 #include "profile.h"
+#include "progress.h"
+#include "size_sense.h"
 #include "slice.h"
 #include "svg.h"
 #include "writer.h"
@@ -39,7 +42,7 @@ static const char usage_text[] =
     "                          [--min-deposit LEN] [--no-alternate] [--perimeters N] [--islands]\n"
     "                          [--beam-offset] [--frame model|machine] [--fill evenodd|nonzero]\n"
     "                          [--validate] [--max-layers N] [--max-output SIZE]\n"
-    "                          [--svg FILE] [-o FILE [--json]]\n"
+    "                          [--svg FILE] [-o FILE [--json]] [-q | -v]\n"
     "  -m, --machine    machine profile: a shipped name (see 'lamina machines') or a path\n"
     "                   (default: the thesis's SLS contours)\n"
     "  -s, --set        KEY=VALUE: any key of the machine profile, checked as in its YAML\n"
@@ -57,6 +60,8 @@ static const char usage_text[] =
     "  -o, --output     program file (default: standard output)\n"
     "      --json       the build-time estimate of a powder-bed job as JSON on standard output\n"
     "                   (with -o; without --json it is a line on standard error)\n"
+    "  -q, --quiet      no progress line and no notes; warnings and errors only\n"
+    "  -v, --verbose    every per-layer note, and the time each stage takes\n"
     "Values: --name=VALUE or --name VALUE; -- ends the options. The profile's values are\n"
     "defaults that -s and the options below override.\n";
 
@@ -71,27 +76,31 @@ typedef struct report {
     size_t open_total, gaps_total, gap_layers;
     double gap_max;
     size_t degenerate_layers, slivers, twins;
+    cli_progress progress;
 } report;
 
 static int on_layer(void *ctx, const lam_layer *L, lam_error *err)
 {
     report *r = ctx;
+    size_t notes = cli_progress_notes(&r->progress);
+    cli_progress_step(&r->progress, L->index + 1);
+    if (L->nopen || L->gaps_closed || L->slivers || L->twins) cli_progress_hide(&r->progress);
     for (size_t k = 0; k < L->nopen; k++)
-        if (r->open_total++ < 20)
-            fprintf(stderr, "lamina: %s: layer %zu (h=%g): open outline from (%g, %g) to (%g, %g) could not be closed\n",
-                    r->path, L->index, L->cut, L->open[k].start[0], L->open[k].start[1], L->open[k].end[0],
+        if (r->open_total++ < (notes > 20 ? notes : 20)) /* what fails the run is told also with -q */
+            fprintf(stderr, "lamina: %s: layer %zu (h=%s): open outline from (%g, %g) to (%g, %g) could not be closed\n",
+                    r->path, L->index + 1, LAM_NUM(L->cut), L->open[k].start[0], L->open[k].start[1], L->open[k].end[0],
                     L->open[k].end[1]);
     if (L->gaps_closed) {
-        if (r->gap_layers++ < 20)
-            fprintf(stderr, "lamina: %s: layer %zu (h=%g): closed %zu gap%s, largest %g (gap tolerance %g)\n", r->path,
-                    L->index, L->cut, L->gaps_closed, L->gaps_closed == 1 ? "" : "s", L->max_gap, L->gap);
+        if (r->gap_layers++ < notes)
+            fprintf(stderr, "lamina: %s: layer %zu (h=%s): closed %zu gap%s, largest %g (gap tolerance %g)\n", r->path,
+                    L->index + 1, LAM_NUM(L->cut), L->gaps_closed, L->gaps_closed == 1 ? "" : "s", L->max_gap, L->gap);
         r->gaps_total += L->gaps_closed;
         if (L->max_gap > r->gap_max) r->gap_max = L->max_gap;
     }
     /* degenerate loops (contour.h): reported like bridged gaps */
     if (L->slivers || L->twins) {
-        if (r->degenerate_layers++ < 20) {
-            fprintf(stderr, "lamina: %s: layer %zu (h=%g):", r->path, L->index, L->cut);
+        if (r->degenerate_layers++ < notes) {
+            fprintf(stderr, "lamina: %s: layer %zu (h=%s):", r->path, L->index + 1, LAM_NUM(L->cut));
             if (L->slivers) fprintf(stderr, " dropped %zu loop%s of no area%s", L->slivers, L->slivers == 1 ? "" : "s",
                                     L->twins ? "," : "");
             if (L->twins) fprintf(stderr, " cancelled %zu coincident loops", L->twins);
@@ -137,8 +146,8 @@ static void cli_print_estimate(const char *path, const lam_scan_time *t)
 int cmd_slice(int argc, char **argv)
 {
     args a;
-    int rc = cli_parse_args("slice", usage_text, OPT_MODEL | OPT_SLICE | OPT_SET | OPT_PLAN | OPT_SVG | OPT_JSON, argc, argv,
-                            &a);
+    int rc = cli_parse_args("slice", usage_text, OPT_MODEL | OPT_SLICE | OPT_SET | OPT_PLAN | OPT_SVG | OPT_JSON | OPT_TALK,
+                            argc, argv, &a);
     if (rc) {
         cli_args_free(&a);
         return rc < 0 ? EXIT_OK : rc;
@@ -161,6 +170,8 @@ int cmd_slice(int argc, char **argv)
     memset(&rep, 0, sizeof rep);
     rep.path = a.path;
     rep.vr.out = stderr;
+    cli_progress_init(&rep.progress, a.talk, !a.out || !strcmp(a.out, "-"));
+    rep.vr.progress = &rep.progress;
 
     lam_plan_opts po;
     if ((rc = cli_profile("slice", &a, &prof, &po))) goto done;
@@ -215,15 +226,21 @@ int cmd_slice(int argc, char **argv)
         goto done;
     }
     po.layer_time = layer_time;
-    if (lam_plan_run(s, m, &po, &sink, on_layer, &rep, &err)) {
+    cli_progress_stage(&rep.progress, "reading the model and preparing the layers");
+    cli_size_sense(a.path, a.machine ? prof : NULL, m, s, &po);
+    cli_progress_begin(&rep.progress, "slicing", a.path, nl);
+    rc = lam_plan_run(s, m, &po, &sink, on_layer, &rep, &err);
+    cli_progress_end(&rep.progress);
+    if (rc) {
         rc = err.code == LAM_EUSAGE ? cli_usage("slice", "%s", err.msg)
                                     : cli_fail_limit(&err, lam_writer_over_limit(w), CLI_RAISE_OUTPUT);
         goto done;
     }
-    if (rep.gap_layers > 20)
+    size_t notes = cli_progress_notes(&rep.progress);
+    if (notes && rep.gap_layers > notes)
         fprintf(stderr, "lamina: %s: closed %zu gaps in %zu layers, largest %g (gap tolerance %g)\n", a.path,
                 rep.gaps_total, rep.gap_layers, rep.gap_max, lam_slicer_gap(s));
-    if (rep.degenerate_layers > 20)
+    if (notes && rep.degenerate_layers > notes)
         fprintf(stderr, "lamina: %s: dropped %zu loops of no area, cancelled %zu coincident loops, in %zu layers\n",
                 a.path, rep.slivers, rep.twins, rep.degenerate_layers);
     if (rep.vr.disagreeing || rep.vr.areas_differ) {
@@ -242,7 +259,7 @@ int cmd_slice(int argc, char **argv)
             goto done;
         }
     }
-    if (po.kind == LAM_PLAN_SLS && !a.json && lam_scan_estimates(&po.scan)) cli_print_estimate(a.path, &est);
+    if (po.kind == LAM_PLAN_SLS && !a.json && notes && lam_scan_estimates(&po.scan)) cli_print_estimate(a.path, &est);
     if (rep.svg && lam_svg_save(rep.svg, a.svg, &err)) {
         rc = cli_fail(&err);
         goto done;
@@ -253,6 +270,7 @@ int cmd_slice(int argc, char **argv)
         int over = lam_writer_over_limit(tmp);
         if (lam_writer_commit(tmp, &err)) rc = cli_fail_limit(&err, over, CLI_RAISE_OUTPUT);
         else if (a.json && po.kind == LAM_PLAN_SLS) cli_json_estimate(a.path, &est, layer_time, lam_slicer_count(s));
+        cli_progress_stage(&rep.progress, "writing the outputs");
     }
 done:
     free(layer_time);

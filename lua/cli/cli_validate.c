@@ -9,8 +9,10 @@
 #include "cli.h"
 #include "cli_args.h"
 #include "cli_check.h"
+#include "fmt.h"
 #include "model.h"
 #include "program_read.h"
+#include "size_sense.h"
 #include "validate.h"
 
 #include <math.h>
@@ -20,9 +22,9 @@
 static const char usage_text[] =
     "usage: lamina validate MODEL [-m MACHINE] [-a AXIS] [-w WIDTH | --widths ... | --planes ...]\n"
     "                             [--cut floor|middle|ceiling] [--gap TOL] [--allow-open]\n"
-    "                             [--fill evenodd|nonzero] [--json]\n"
+    "                             [--fill evenodd|nonzero] [--json] [-q | -v]\n"
     "       lamina validate MODEL --program FILE [-m MACHINE] [-a AXIS] [--cut ...]\n"
-    "                             [--frame model|machine] [--fill ...] [--json]\n"
+    "                             [--frame model|machine] [--fill ...] [--json] [-q | -v]\n"
     "Slices like 'lamina slice' (or reads the program FILE back: sls-contours, cli-ascii or\n"
     "cli-binary, told apart by content) and checks every layer against the 3D model: each\n"
     "contour's direction against its label, its parents and depth against the contours\n"
@@ -30,7 +32,9 @@ static const char usage_text[] =
     "(Embree) from test points beside its edges in the cut plane, and the layer's net\n"
     "area against the model's own section. Exit 3 when anything disagrees.\n"
     "With --program: -a, --frame (or the profile's) say how the program was written, --cut\n"
-    "which side of a flat face a height on it meant (middle and floor: above, ceiling: below).\n";
+    "which side of a flat face a height on it meant (middle and floor: above, ceiling: below).\n"
+    "-q (--quiet): only the layers that disagree and the summary, no progress line;\n"
+    "-v (--verbose): also the time each stage takes.\n";
 
 static const char *kind_name(const lam_layer *L, size_t c)
 {
@@ -40,7 +44,7 @@ static const char *kind_name(const lam_layer *L, size_t c)
 /* "contour 3 (solid" and, read back, ", FILE:LINE:COL" */
 static void contour_name(FILE *out, const lam_layer *L, size_t c, const vsource *src)
 {
-    fprintf(out, "contour %zu (%s", c, kind_name(L, c));
+    fprintf(out, "contour %zu (%s", c + 1, kind_name(L, c));
     if (src) {
         const lam_program_contour *pc = &src->contours[c];
         if (pc->offset >= 0) fprintf(out, ", %s: byte %lld", src->path, pc->offset);
@@ -81,12 +85,13 @@ static void text_contour(FILE *out, const lam_layer *L, const lam_contour_check 
         contour_name(out, L, c->contour, src);
         fprintf(out, " %s: %s (", lam_validate_problem_name(b), c->whys[bit_index(b)]);
         if (b == LAM_VP_DIRECTION) fprintf(out, "signed area %g", c->area);
-        else if (k->depth >= 0) fprintf(out, "depth %d, parent %ld", k->depth, k->parent);
+        else if (k->depth >= 0 && k->parent >= 0) fprintf(out, "depth %d, parent contour %ld", k->depth, k->parent + 1);
+        else if (k->depth >= 0) fprintf(out, "depth %d, no parent", k->depth);
         if (b == LAM_VP_NESTING) {
             fputs(k->depth >= 0 ? "; " : "", out);
             if (c->depth_found > 0)
                 fprintf(out, "%d contour%s around it, the smallest contour %ld", c->depth_found,
-                        c->depth_found == 1 ? "" : "s", c->parent_found);
+                        c->depth_found == 1 ? "" : "s", c->parent_found + 1);
             else fputs("no contour around it", out);
         }
         fputs(")\n", out);
@@ -160,10 +165,12 @@ int vreport_layer(vreport *r, lam_rays *v, const lam_layer *L, const lam_frame *
         fputs("]}", r->out);
         r->first = 0;
     } else {
-        if (r->verbose || chk.disagreeing || chk.unchecked || !chk.area_ok)
-            fprintf(r->out, "layer %zu (h=%g): %zu contour%s, %zu confirmed, %zu disagreeing%s\n", L->index, L->cut,
-                    L->ncontours, L->ncontours == 1 ? "" : "s", chk.confirmed, chk.disagreeing,
+        if (r->verbose || chk.disagreeing || chk.unchecked || !chk.area_ok) {
+            cli_progress_hide(r->progress);
+            fprintf(r->out, "layer %zu (h=%s): %zu contour%s, %zu confirmed, %zu disagreeing%s\n", L->index + 1,
+                    LAM_NUM(L->cut), L->ncontours, L->ncontours == 1 ? "" : "s", chk.confirmed, chk.disagreeing,
                     chk.unchecked ? ", some too small to check" : "");
+        }
         for (size_t i = 0; i < chk.nitems; i++)
             if (chk.items[i].ok <= 0) text_contour(r->out, L, &chk.items[i], src);
         if (!chk.area_ok)
@@ -217,7 +224,9 @@ static int validate_program(const args *a, const lam_plan_opts *po, lam_rays *v,
         fprintf(r->out, ",\"format\":\"%s\",\"fill\":\"%s\",\"layers\":[", lam_program_format_name(p->format),
                 a->so.fill_nonzero ? "nonzero" : "evenodd");
     }
+    cli_progress_begin(r->progress, "validating", a->program, p->nlayers);
     for (size_t i = 0; i < p->nlayers && !rc; i++) {
+        cli_progress_step(r->progress, i + 1);
         lam_layer L;
         if ((rc = lam_program_layer_make(p, i, f, po->frame_machine, a->program, &L, err))) break;
         /* a height written on a flat face's plane (to its precision) means
@@ -232,6 +241,7 @@ static int validate_program(const args *a, const lam_plan_opts *po, lam_rays *v,
         if (!rc) rc = vreport_layer(r, v, &L, f, &vo, &src, err);
         lam_layer_clear(&L);
     }
+    cli_progress_end(r->progress);
     if (!rc && !r->json)
         fprintf(r->out, "%s: %s program, %zu layers, %zu contours, read back\n", a->program,
                 lam_program_format_name(p->format), p->nlayers, p->ncontours);
@@ -242,8 +252,8 @@ static int validate_program(const args *a, const lam_plan_opts *po, lam_rays *v,
 int cmd_validate(int argc, char **argv)
 {
     args a;
-    int rc = cli_parse_args("validate", usage_text, OPT_MODEL | OPT_SLICE | OPT_SET | OPT_JSON | OPT_PROGRAM, argc,
-                            argv, &a);
+    int rc = cli_parse_args("validate", usage_text, OPT_MODEL | OPT_SLICE | OPT_SET | OPT_JSON | OPT_PROGRAM | OPT_TALK,
+                            argc, argv, &a);
     if (rc) {
         cli_args_free(&a);
         return rc < 0 ? EXIT_OK : rc;
@@ -258,8 +268,11 @@ int cmd_validate(int argc, char **argv)
     memset(&r, 0, sizeof r);
     r.out = stdout;
     r.json = a.json;
-    r.verbose = 1;
+    r.verbose = a.talk >= 0;
     r.first = 1;
+    cli_progress progress;
+    cli_progress_init(&progress, a.talk, a.json);
+    r.progress = &progress;
     lam_plan_opts po;
     lam_plan_opts_init(&po);
     for (size_t i = 0; i < a.nsets && !a.program; i++)
@@ -276,8 +289,11 @@ int cmd_validate(int argc, char **argv)
         rc = cli_fail(&err);
         goto done;
     }
+    cli_progress_stage(&progress, "reading the model and preparing the rays");
     if (a.program) {
-        if (validate_program(&a, &po, v, &r, &err)) {
+        int vrc = validate_program(&a, &po, v, &r, &err);
+        cli_progress_end(&progress);
+        if (vrc) {
             rc = err.code == LAM_EUSAGE ? cli_usage("validate", "%s", err.msg) : cli_fail(&err);
             goto done;
         }
@@ -294,14 +310,19 @@ int cmd_validate(int argc, char **argv)
         cli_json_string(stdout, a.path);
         fprintf(stdout, ",\"fill\":\"%s\",\"layers\":[", a.so.fill_nonzero ? "nonzero" : "evenodd");
     }
+    cli_progress_stage(&progress, "preparing the layers");
+    cli_size_sense(a.path, a.machine ? prof : NULL, m, s, NULL);
+    cli_progress_begin(&progress, "validating", a.path, lam_slicer_count(s));
     size_t open = 0;
     for (;;) {
         lam_layer *L;
         if (lam_slicer_next(s, &L, &err)) {
+            cli_progress_end(&progress);
             rc = cli_fail(&err);
             goto done;
         }
         if (!L) break;
+        cli_progress_step(&progress, L->index + 1);
         open += L->nopen;
         lam_validate_opts vo;
         lam_validate_opts_init(&vo);
@@ -309,10 +330,12 @@ int cmd_validate(int argc, char **argv)
         int vrc = vreport_layer(&r, v, L, lam_slicer_frame(s), &vo, NULL, &err);
         lam_layer_free(L);
         if (vrc) {
+            cli_progress_end(&progress);
             rc = cli_fail(&err);
             goto done;
         }
     }
+    cli_progress_end(&progress);
     rc = vreport_finish(&r, a.path);
     if (r.json) printf(",\"open_outlines\":%zu}\n", open);
     if (open && !a.allow_open) {

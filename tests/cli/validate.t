@@ -23,8 +23,8 @@ is "$(jq -c '[.layers[0].contours, .layers[0].confirmed]' <<<"$OUT")" "[3,3]" "f
 ov="$M/validate/overlap_cubes.ug"
 run "$LAMINA" validate "$ov" -w 0.5
 is "$RC" 3 "even-odd: the overlap is labelled a hole and validation disagrees (exit 3)"
-like "$OUT" 'layer 2 \(h=1\.25\): 2 contours, 1 confirmed, 1 disagreeing' "the disagreement is reported per layer"
-like "$OUT" 'contour 1 \(hole\) disagrees at \(' "... with the contour and its position"
+like "$OUT" 'layer 3 \(h=1\.25\): 2 contours, 1 confirmed, 1 disagreeing' "the disagreement is reported per layer"
+like "$OUT" 'contour 2 \(hole\) disagrees at \(' "... with the contour and its position"
 run "$LAMINA" validate "$ov" -w 0.5 --json
 is "$(jq '[.layers[] | select(.disagreeing > 0) | .index] | join(",")' -r <<<"$OUT")" "2,3" "JSON lists the disagreeing layers"
 run "$LAMINA" validate "$ov" -w 0.5 --fill nonzero
@@ -96,8 +96,8 @@ awk 'NR >= 3 && NR <= 6 { b[NR] = $0; if (NR == 6) for (i = 6; i >= 3; i--) prin
 ok "$(cmp -s "$TMP/ok.sls" "$TMP/flip.sls"; [ $? = 1 ]; echo $?)" "the first loop's vertices reversed"
 run "$LAMINA" validate "$M/thesis_cube_hole.ug" --program "$TMP/flip.sls"
 is "$RC" 3 "a solid written clockwise in an SLS program: exit 3"
-like "$OUT" '^layer 0 \(h=0\.25\): 2 contours, 1 confirmed, 1 disagreeing$' "... the layer named"
-like "$OUT" '^  contour 0 \(hole, \S*flip\.sls:2:1\) disagrees at \(' "... the contour named with its line (a hole to the machine)"
+like "$OUT" '^layer 1 \(h=0\.25\): 2 contours, 1 confirmed, 1 disagreeing$' "... the layer named"
+like "$OUT" '^  contour 1 \(hole, \S*flip\.sls:2:1\) disagrees at \(' "... the contour named with its line (a hole to the machine)"
 like "$OUT" '^  net area -5 \(solids minus holes\) but the model.s section has 3: off by -8' \
     "... and the layer's net area against the section (4 - 1 = 3, not -4 - 1)"
 # the same in CLI: the direction field says solid, the points run clockwise
@@ -106,7 +106,7 @@ perl -pe 'if (!$done && s{^\$\$POLYLINE/(\d+),1,(\d+),(.*)$}{my @p = split /,/, 
     "$TMP/ok.cli" >"$TMP/flip.cli"
 run "$LAMINA" validate "$M/thesis_cube_hole.ug" --program "$TMP/flip.cli"
 is "$RC" 3 "a CLI polyline labelled solid (dir 1) but written clockwise: exit 3"
-like "$OUT" '^  contour 0 \(solid, \S*flip\.cli:11:1\) direction: written clockwise but labelled solid' \
+like "$OUT" '^  contour 1 \(solid, \S*flip\.cli:11:1\) direction: written clockwise but labelled solid' \
     "... named as written clockwise but labelled solid, at its line"
 # and its direction field flipped instead (points right, label wrong)
 sed '0,/^\$\$POLYLINE\/1,1,/s//$$POLYLINE\/1,0,/' "$TMP/ok.cli" >"$TMP/dir.cli"
@@ -130,7 +130,7 @@ open(sys.argv[2], "wb").write(d)
 PY
 run "$LAMINA" validate "$M/thesis_cube_hole.ug" --program "$TMP/flip.bcli"
 is "$RC" 3 "binary CLI, a solid's direction set to hole: exit 3"
-like "$OUT" '^  contour 0 \(hole, \S*flip\.bcli: byte \d+\) direction: written counter-clockwise but labelled hole' \
+like "$OUT" '^  contour 1 \(hole, \S*flip\.bcli: byte \d+\) direction: written counter-clockwise but labelled hole' \
     "... named with its byte offset"
 
 # programs that cannot be read: file:line:column, exit 1, nothing checked

@@ -1,9 +1,13 @@
-/* lam_fmt_fixed must print exactly what printf("%.*f") prints. */
+/* lam_fmt_fixed must print exactly what printf("%.*f") prints; lam_fmt_num
+ * the fewest digits that read back (checked with strtod). */
 #include "fmt.h"
 #include "tap.h"
 #include "util.h"
 
+#include <math.h>
 #include <stdint.h>
+#include <stdio.h>
+#include <string.h>
 #include <stdlib.h>
 
 static uint64_t rng = 0x243f6a8885a308d3ull;
@@ -21,8 +25,80 @@ static int same(double x, int d)
     return 1;
 }
 
+/* The number of significant digits in text t: neither leading nor
+ * trailing zeros count ("-0.0012" has 2, "1200" 2). */
+static int sig_digits(const char *t)
+{
+    int n = 0, lead = 1, zeros = 0;
+    for (const char *p = t; *p && *p != 'e'; p++) {
+        if (*p < '0' || *p > '9') continue;
+        if (lead && *p == '0') continue;
+        lead = 0;
+        zeros = *p == '0' ? zeros + 1 : 0;
+        n++;
+    }
+    return n - zeros ? n - zeros : 1;
+}
+
+/* lam_fmt_num(x, 17): reads back exactly, and no text of one digit less
+ * does (printf's own %.*e rounding is the reference). Whole numbers from
+ * 1e15 to 1e17 print all their digits, as %.17g does. */
+static int shortest(double x)
+{
+    char t[LAM_FMT_NUM], fewer[64];
+    lam_fmt_num(t, x, 17);
+    int n = sig_digits(t);
+    int good = strtod(t, NULL) == x;
+    if (good && n > 1 && !(fabs(x) >= 1e15 && fabs(x) < 1e17)) {
+        snprintf(fewer, sizeof fewer, "%.*e", n - 2, x);
+        good = strtod(fewer, NULL) != x;
+    }
+    if (!good) diag("x=%.17g: got %s (%d digits)", x, t, n);
+    return good;
+}
+
+static void num_is(double x, int digits, const char *want)
+{
+    char t[LAM_FMT_NUM];
+    is_str(lam_fmt_num(t, x, digits), want, "lam_fmt_num(%.17g, %d) is %s", x, digits, want);
+}
+
 int main(void)
 {
+    /* what people read: the noise of arithmetic dropped at 15 digits, kept
+     * at 17; decimals as typed; %g's notation; no "-0" */
+    num_is(110.1 - 1.7, 15, "108.4");
+    num_is(110.1 - 1.7, 17, "108.39999999999999");
+    num_is(0.1 + 0.2, 15, "0.3");
+    num_is(0.1 + 0.2, 17, "0.30000000000000004");
+    num_is(1.0 / 3, 15, "0.333333333333333");
+    num_is(2.0 / 3, 4, "0.6667");
+    num_is(600, 15, "600");
+    num_is(1e-5, 15, "1e-05");
+    num_is(0.0001, 15, "0.0001");
+    num_is(1e20, 15, "1e+20");
+    num_is(1e16, 17, "10000000000000000");
+    num_is(-0.0, 15, "0");
+    num_is(-2.5, 15, "-2.5");
+    num_is(123456.789, 15, "123456.789");
+    num_is(-0.00012345678901234567, 17, "-0.00012345678901234567");
+    num_is(-1.5e-300, 17, "-1.5e-300");
+    num_is(1.2345678901234567e-300, 15, "1.23456789012346e-300");
+    char m[64];
+    snprintf(m, sizeof m, "h=%s, x=%s", LAM_NUM(110.1 - 1.7), LAM_NUM_EXACT(0.1 + 0.2));
+    is_str(m, "h=108.4, x=0.30000000000000004", "LAM_NUM and LAM_NUM_EXACT as printf arguments");
+    int fine = 1;
+    for (int i = 0; i < 100000 && fine; i++) {
+        uint64_t r = next();
+        double x;
+        memcpy(&x, &r, sizeof x);
+        if (isfinite(x)) fine &= shortest(x);
+        /* decimals as users write them */
+        int64_t n = (int64_t)(next() % 2000000001) - 1000000000;
+        fine &= shortest((double)n / 1e4) && shortest((double)n * 1e-9);
+    }
+    ok(fine, "random doubles: the shortest text that reads back exactly");
+
     static const double special[] = { 0.0, -0.0, 0.5, 1.5, 2.5, -2.5, 0.0000005, 0.0000015, -0.0000005,
                                       1.0000005, 0.125, 0.375, 1e-7, -1e-7, 1e15, 123456789.123456789,
                                       -1.00000049999999, 2.0000004999999999, 0.1, 0.7, 1e300, -1e-300 };

@@ -1,0 +1,36 @@
+/* Warnings before a run whose size is far beyond the part's scale: a slip
+ * of the layer width or of the model's unit shows as millions of layers or
+ * a part kilometres across, and it is cheaper to say so before the run than
+ * after a gigabyte. Warnings only, never errors (--max-layers and
+ * --max-output are the limits), printed also with -q:
+ * - more than CLI_SENSE_LAYERS (100,000) layers: a 100 mm part in layers of
+ *   1 µm, thinner than any layered process makes;
+ * - with a machine profile (-m) whose `units` lamina knows
+ *   (lam_profile_unit_mm): a model whose largest extent is more than
+ *   2000 mm (larger than the build volume of any machine the profiles
+ *   describe: drawn in µm, or in mm for a profile in cm or m) or less than
+ *   0.5 mm (drawn in m or in inches for a profile in mm). The built-in
+ *   profile stands for no machine, so its mm are no unit to check;
+ * - a program estimated (lam_plan_estimate) at more than 1 GB, and within
+ *   --max-output (past it the run is refused with the estimate). */
+#ifndef LAM_CLI_SIZE_SENSE_H
+#define LAM_CLI_SIZE_SENSE_H
+
+#include "model.h"
+#include "planner.h"
+#include "profile.h"
+#include "slice.h"
+
+#define CLI_SENSE_LAYERS 100000
+#define CLI_SENSE_MAX_MM 2000.0
+#define CLI_SENSE_MIN_MM 0.5
+#define CLI_SENSE_BYTES (1024.0 * 1024 * 1024)
+
+/* Warn on standard error about the run of slicer s over model m (file
+ * path). machine: the profile of -m, or NULL for the built-in one; po: the
+ * planning options to estimate the program with, or NULL (no program).
+ * Returns the number of warnings printed. */
+int cli_size_sense(const char *path, const lam_profile *machine, const lam_model *m, const lam_slicer *s,
+                   const lam_plan_opts *po);
+
+#endif
