@@ -155,6 +155,7 @@ struct lam_slicer {
     uint32_t *seg_in, *seg_out, *in_first, *in_seg, *indeg;
     unsigned char *used;
     size_t cap_active, cap_seg;
+    int borrowed;          /* a fork: planes, wuv, cuts and the schedule are its parent's */
 };
 
 #define W(s, v) ((s)->pw[3 * (size_t)(v)])
@@ -468,11 +469,13 @@ double lam_slicer_gap(const lam_slicer *s) { return s->o.gap; }
 void lam_slicer_free(lam_slicer *s)
 {
     if (!s) return;
-    free(s->planes);
-    free(s->wuv);
-    free(s->order);
-    free(s->cuts);
-    free(s->layer_first);
+    if (!s->borrowed) {
+        free(s->planes);
+        free(s->wuv);
+        free(s->order);
+        free(s->cuts);
+        free(s->layer_first);
+    }
     free(s->active);
     free(s->slot_edge);
     free(s->slot_at);
@@ -484,6 +487,74 @@ void lam_slicer_free(lam_slicer *s)
     free(s->indeg);
     free(s->used);
     free(s);
+}
+
+static int reserve_active(lam_slicer *s, size_t n, lam_error *err);
+
+int lam_slicer_fork(const lam_slicer *s, lam_slicer **out, lam_error *err)
+{
+    lam_slicer *f = calloc(1, sizeof *f);
+    *out = f;
+    if (!f) return nomem(err);
+    f->m = s->m;
+    f->o = s->o;
+    f->planes = s->planes;
+    f->nlayers = s->nlayers;
+    f->pw = s->pw;
+    f->pu = s->pu;
+    f->pv = s->pv;
+    f->wuv = s->wuv;
+    f->cuts = s->cuts;
+    f->min_area = s->min_area;
+    f->crossings = s->crossings;
+    f->up = s->up;
+    f->order = s->order;
+    f->layer_first = s->layer_first;
+    f->norder = s->norder;
+    f->borrowed = 1;
+    return LAM_OK;
+}
+
+/* The active set at layer i is the edges scheduled before it that have not
+ * passed below its cut, in schedule order (the sweep only ever appends and
+ * drops keeping order): so appending the edges scheduled in between and
+ * letting section() drop the passed ones gives the very set, and the very
+ * order, a sweep from layer 0 would have. */
+void lam_slicer_seek(lam_slicer *s, size_t i)
+{
+    if (i > s->nlayers) i = s->nlayers;
+    if (i < s->next) {
+        s->nactive = 0;
+        s->ins = 0;
+    }
+    s->next = i;
+    size_t to = s->layer_first[i];
+    if (s->ins >= to) return;
+    if (reserve_active(s, s->nactive + (to - s->ins) + 1, NULL)) {
+        /* no room: start over at layer i, the active set rebuilt by section() */
+        s->nactive = 0;
+        s->ins = 0;
+        return;
+    }
+    while (s->ins < to) s->active[s->nactive++] = s->order[s->ins++];
+}
+
+lam_layer *lam_layer_clone(const lam_layer *L)
+{
+    lam_layer *c = malloc(sizeof *c);
+    if (!c) return NULL;
+    *c = *L;
+    c->uv = malloc(2 * L->npoints * sizeof *c->uv + 1);
+    c->contours = malloc(L->ncontours * sizeof *c->contours + 1);
+    c->open = malloc(L->nopen * sizeof *c->open + 1);
+    if (!c->uv || !c->contours || !c->open) {
+        lam_layer_free(c);
+        return NULL;
+    }
+    if (L->npoints) memcpy(c->uv, L->uv, 2 * L->npoints * sizeof *c->uv);
+    if (L->ncontours) memcpy(c->contours, L->contours, L->ncontours * sizeof *c->contours);
+    if (L->nopen) memcpy(c->open, L->open, L->nopen * sizeof *c->open);
+    return c;
 }
 
 void lam_layer_free(lam_layer *l)

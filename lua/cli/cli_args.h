@@ -42,6 +42,7 @@ typedef struct args {
     cli_set *sets;           /* in command-line order; later ones win */
     size_t nsets;
     unsigned long long max_output;  /* --max-output, 0: the default */
+    unsigned threads;        /* -j N (OPT_PLAN): LAMINA_THREADS or the online processors */
 } args;
 
 /* Parse argv[1..] for command cmd, accepting the option groups in
