@@ -10,6 +10,7 @@
 #include "contour.h"
 #include "fill.h"
 #include "grow.h"
+#include "hugemem.h"
 #include "prefetch.h"
 
 #define NONE UINT32_MAX
@@ -348,7 +349,7 @@ static int frame_coords(lam_slicer *s, const lam_model *m, const lam_frame *f)
         s->pw = m->mesh.xyz + kw;
         return 0;
     }
-    if (!(s->wuv = malloc(3 * nv * sizeof *s->wuv + 1))) return -1;
+    if (!(s->wuv = lam_big_malloc(3 * nv * sizeof *s->wuv + 1))) return -1;
     s->pw = s->wuv;
     s->pu = s->wuv + 1;
     s->pv = s->wuv + 2;
@@ -371,7 +372,7 @@ static int schedule(lam_slicer *s, lam_cut cut, lam_error *err)
     size_t S = s->nlayers, nv = s->m->mesh.nverts, ne = s->m->edges.n;
     s->cuts = malloc(S * sizeof *s->cuts + 1);
     s->layer_first = calloc(S + 2, sizeof *s->layer_first);
-    uint32_t *bucket = malloc(ne * sizeof *bucket + 1);
+    uint32_t *bucket = lam_big_malloc(ne * sizeof *bucket + 1);
     if (!s->cuts || !s->layer_first || !bucket) goto oom;
     s->up = cut != LAM_CUT_CEILING;
     for (size_t i = 0; i < S; i++) {
@@ -392,7 +393,7 @@ static int schedule(lam_slicer *s, lam_cut cut, lam_error *err)
     }
     for (size_t i = 0; i < S; i++) s->layer_first[i + 1] += s->layer_first[i];
     s->norder = s->layer_first[S];
-    s->order = malloc(s->norder * sizeof *s->order + 1);
+    s->order = lam_big_malloc(s->norder * sizeof *s->order + 1);
     if (!s->order) goto oom;
     for (size_t e = 0; e < ne; e++)
         if (bucket[e] != NONE) s->order[s->layer_first[bucket[e]]++] = (uint32_t)e;
