@@ -271,11 +271,16 @@ int lam_plan_threaded(lam_slicer *s, const lam_plan_opts *o, const lam_sink *sin
     r.S = lam_slicer_count(s);
     r.skins = o->kind == LAM_PLAN_SLS && o->scan.skin_layers > 0 ? (size_t)o->scan.skin_layers : 0;
     if (!r.S) return LAM_OK;
-    /* runs of up to 16 layers a worker sweeps on its own (a LADRP worker
-     * plans one more layer at each start); every worker busy while the
-     * writer catches up: a window of a run more than there are workers */
+    /* Runs of consecutive layers a worker sweeps on its own: a new run
+     * costs the sweep only the edges scheduled in between, but a LADRP
+     * worker plans one layer more (where the stage stands) and skins slice
+     * 2 * skins more: runs of 16 there, of 4 for plain SLS, whose layers
+     * are independent. Every worker busy while the writer catches up: a
+     * window of a run more than there are workers, which bounds memory. */
+    size_t most = o->kind == LAM_PLAN_LADRP ? 16 : r.skins ? 4 * r.skins + 4 : 4;
+    if (most > 16) most = 16;
     size_t chunk = r.S / (4 * (size_t)threads);
-    chunk = chunk < 1 ? 1 : chunk > 16 ? 16 : chunk;
+    chunk = chunk < 1 ? 1 : chunk > most ? most : chunk;
     size_t window = chunk * (threads + 1) + r.skins;
     if (window < 4 * (size_t)threads) window = 4 * (size_t)threads;
     r.window = window = lam_pool_window(chunk, r.skins, window);

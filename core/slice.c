@@ -518,9 +518,9 @@ int lam_slicer_fork(const lam_slicer *s, lam_slicer **out, lam_error *err)
 
 /* The active set at layer i is the edges scheduled before it that have not
  * passed below its cut, in schedule order (the sweep only ever appends and
- * drops keeping order): so appending the edges scheduled in between and
- * letting section() drop the passed ones gives the very set, and the very
- * order, a sweep from layer 0 would have. */
+ * drops keeping order): so dropping the passed ones from the active set and
+ * appending the edges scheduled in between that have not passed gives the
+ * very set, and the very order, a sweep from layer 0 would have. */
 void lam_slicer_seek(lam_slicer *s, size_t i)
 {
     if (i > s->nlayers) i = s->nlayers;
@@ -531,13 +531,32 @@ void lam_slicer_seek(lam_slicer *s, size_t i)
     s->next = i;
     size_t to = s->layer_first[i];
     if (s->ins >= to) return;
-    if (reserve_active(s, s->nactive + (to - s->ins) + 1, NULL)) {
-        /* no room: start over at layer i, the active set rebuilt by section() */
+    if (i >= s->nlayers) {
         s->nactive = 0;
-        s->ins = 0;
+        s->ins = to;
         return;
     }
-    while (s->ins < to) s->active[s->nactive++] = s->order[s->ins++];
+    /* keep only what layer i's section would keep, as section() drops: a
+     * jump over many layers must not hold all their edges at once */
+    double c = s->cuts[i];
+    int up = s->up;
+#define PASSED(e) (up ? edge_hi(s, e) <= c : edge_hi(s, e) < c)
+    size_t na = 0;
+    for (size_t k = 0; k < s->nactive; k++)
+        if (!PASSED(s->active[k])) s->active[na++] = s->active[k];
+    s->nactive = na;
+    for (; s->ins < to; s->ins++) {
+        uint32_t e = s->order[s->ins];
+        if (PASSED(e)) continue;
+        if (s->nactive == s->cap_active && reserve_active(s, s->nactive + 1, NULL)) {
+            /* no room: start over at layer i, the active set rebuilt by section() */
+            s->nactive = 0;
+            s->ins = 0;
+            return;
+        }
+        s->active[s->nactive++] = e;
+    }
+#undef PASSED
 }
 
 lam_layer *lam_layer_clone(const lam_layer *L)
