@@ -237,8 +237,11 @@ int lam_plan_run(lam_slicer *s, const lam_model *m, const lam_plan_opts *o, cons
         lam_frame_to_model(f, 0, 0, cut0, job.origin);
     }
     int rc = sink->begin ? sink->begin(sink->ctx, &job) : LAM_OK;
-    if (!rc) rc = o->threads > 1 ? lam_plan_threaded(s, o, sink, cb, cbctx, job.origin, err)
-                                 : plan_serial(s, o, sink, cb, cbctx, job.origin, err);
+    /* a worker holds a whole layer's operations until it is written: layers
+     * estimated beyond LAM_THREAD_LAYER_MAX are streamed on one thread */
+    int threaded = o->threads > 1 && !(est.layers && est.bytes / (double)est.layers > LAM_THREAD_LAYER_MAX);
+    if (!rc) rc = threaded ? lam_plan_threaded(s, o, sink, cb, cbctx, job.origin, err)
+                           : plan_serial(s, o, sink, cb, cbctx, job.origin, err);
     if (!rc && sink->end) rc = sink->end(sink->ctx);
     if (rc && err && err->code == LAM_OK) lam_error_set(err, rc, NULL, 0, 0, "planning failed");
     return rc;

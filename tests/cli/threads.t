@@ -111,6 +111,22 @@ like "$(cat "$TMP/lim.1")" '^1 lamina: .*lim.out: cannot write output: output ex
 cmp -s "$TMP/lim.1" "$TMP/lim.2" && cmp -s "$TMP/lim.1" "$TMP/lim.8"
 ok $? "output limit: the same message and exit for -j 1, 2 and 8"
 
+# ---- layers too big to hold: streamed on one thread ---------------------------
+# LADRP with a bead of 1e-7: 2 * 10^7 scan lines (about 1.3 GB) in each of
+# the 2 layers. With workers nothing would be written until a whole layer
+# was recorded in memory; the run streams instead, on one thread, from the start.
+printf 'inherits: creol-ladrp\nbead_width: 1e-7\n' >"$TMP/fine.yaml"
+mkdir "$TMP/big"
+"$LAMINA" slice "$M/thesis_cube.ug" -m "$TMP/fine.yaml" -w 1 -j 4 -o "$TMP/big/out" 2>/dev/null &
+pid=$!
+written() { local f; for f in "$TMP"/big/out.tmp-*; do [ -s "$f" ] && return 0; done; return 1; }
+for _ in $(seq 1 6000); do written && break; sleep 0.01; done
+written
+ok $? "huge layers, -j 4: the program is being written while the first layer is planned"
+is "$(awk '/^Threads:/ {print $2}' /proc/$pid/status 2>/dev/null)" 1 "huge layers, -j 4: one thread"
+kill "$pid"
+{ wait "$pid"; } 2>/dev/null
+
 # ---- the option ------------------------------------------------------------
 run "$LAMINA" slice "$M/thesis_cube_hole.ug" -j 0 -o "$TMP/x"
 like "$RC $ERR" '^2 .*-j takes a number of threads from 1 to 256' "-j 0: usage error"
