@@ -46,6 +46,17 @@ same binary-hatch "$TMP/torus.stl" -m cli-binary -w 0.1 -s hatch_strategy=stripe
 same cube-two-layers "$M/thesis_cube_hole.ug" -w 1
 same cube-one-layer "$M/thesis_cube_hole.ug" -w 2
 
+# The per-layer reports run on the main thread in layer order: the contact
+# sheet and --validate's messages are the same too
+for j in 1 3; do
+    "$LAMINA" slice "$TMP/torus.stl" -w 0.3 --validate --svg "$TMP/sheet$j.svg" -j $j -o "$TMP/v$j.sls" 2>"$TMP/v$j.err"
+    echo "rc $?" >>"$TMP/v$j.err"
+done
+cmp -s "$TMP/sheet1.svg" "$TMP/sheet3.svg" && grep -q '<path' "$TMP/sheet1.svg"
+ok $? "--svg: the same contact sheet for -j 1 and -j 3"
+cmp -s "$TMP/v1.err" "$TMP/v3.err" && cmp -s "$TMP/v1.sls" "$TMP/v3.sls" && grep -q '^rc 0$' "$TMP/v1.err"
+ok $? "--validate: the same messages, status and program for -j 1 and -j 3"
+
 # The estimate as JSON (layer times summed in layer order): the same numbers
 for j in 1 3; do
     "$LAMINA" slice "$TMP/sphere.stl" -m lpbf-cli -w 0.2 -s hatch_strategy=lines -j $j -o "$TMP/e$j.cli" --json \
