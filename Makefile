@@ -31,9 +31,9 @@ LUA_LIBS   := -llua5.4
 
 CPPFLAGS += -Icore -D_POSIX_C_SOURCE=200809L
 # -fPIC everywhere: the same objects also make the Lua C module lamina.so
-CFLAGS   += -std=c11 -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes -fPIC $(OPT) $(SANFLAGS)
+CFLAGS   += -std=c11 -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes -fPIC -pthread $(OPT) $(SANFLAGS)
 LDFLAGS  += $(SANFLAGS)
-LDLIBS   += -lembree3 -lyaml -lgeos_c -ldl -lm
+LDLIBS   += -lembree3 -lyaml -lgeos_c -ldl -lm -pthread
 
 CORE_SRC  := $(sort $(wildcard core/*.c))
 CORE_OBJ  := $(CORE_SRC:%.c=$(BUILD)/%.o)

@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "grow.h"
+#include "hugemem.h"
 #include "prefetch.h"
 
 void lam_mesh_init(lam_mesh *m)
@@ -31,6 +32,7 @@ static int grow_slow(void **p, size_t *cap, size_t need, size_t elem, lam_error 
     void *np = lam_grow(*p, cap, need, elem, 16);
     if (!np) return lam_error_nomem(err, NULL);
     *p = np;
+    lam_huge_hint(np, *cap * elem); /* the mesh is read at random: huge pages */
     return LAM_OK;
 }
 
@@ -286,7 +288,7 @@ int lam_welder_reserve(lam_welder *w, const lam_mesh *m, size_t n, lam_error *er
     size_t cap = w->cap ? w->cap : 1024;
     while (cap < 2 * n) cap *= 2;
     if (cap == w->cap) return LAM_OK;
-    uint64_t *nt = malloc(cap * sizeof *nt);
+    uint64_t *nt = lam_big_malloc(cap * sizeof *nt);
     if (!nt) return lam_error_nomem(err, "welding vertices");
     memset(nt, 0xff, cap * sizeof *nt);
     uint64_t *old = w->table;

@@ -2,6 +2,8 @@
  * cavities, measures. See model.h for the rules. */
 #include "model.h"
 
+#include "hugemem.h"
+
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -47,11 +49,11 @@ static int cmp_u64(const void *x, const void *y)
 static int build_edges(const lam_mesh *m, lam_edges *e, unsigned char *hdir, lam_error *err)
 {
     size_t nt = m->ntris, nv = m->nverts, nh = 3 * nt;
-    uint32_t *first = calloc(nv + 1, sizeof *first);
-    uint32_t *he = malloc(nh * sizeof *he + 1);
-    uint32_t *hh = malloc(nh * sizeof *hh + 1);
-    e->v = malloc(nh * 2 * sizeof *e->v + 1);
-    e->tri_edge = malloc(nh * sizeof *e->tri_edge + 1);
+    uint32_t *first = lam_big_calloc(nv + 1, sizeof *first);
+    uint32_t *he = lam_big_malloc(nh * sizeof *he + 1);
+    uint32_t *hh = lam_big_malloc(nh * sizeof *hh + 1);
+    e->v = lam_big_malloc(nh * 2 * sizeof *e->v + 1);
+    e->tri_edge = lam_big_malloc(nh * sizeof *e->tri_edge + 1);
     if (!first || !he || !hh || !e->v || !e->tri_edge) {
         free(first);
         free(he);
@@ -119,12 +121,12 @@ static int build_edges(const lam_mesh *m, lam_edges *e, unsigned char *hdir, lam
     e->n = n;
     uint32_t *shrunk = realloc(e->v, 2 * n * sizeof *e->v + 1); /* ~1.5 edges per triangle, not 3 */
     if (shrunk) e->v = shrunk;
-    e->first = calloc(n + 1, sizeof *e->first);
-    e->tris = malloc(nh * sizeof *e->tris + 1);
+    e->first = lam_big_calloc(n + 1, sizeof *e->first);
+    e->tris = lam_big_malloc(nh * sizeof *e->tris + 1);
     if (!e->first || !e->tris) return oom(err);
     for (size_t i = 0; i < nh; i++) e->first[e->tri_edge[i] + 1]++;
     for (size_t i = 0; i < n; i++) e->first[i + 1] += e->first[i];
-    uint32_t *fill = malloc((n + 1) * sizeof *fill);
+    uint32_t *fill = lam_big_malloc((n + 1) * sizeof *fill);
     if (!fill) return oom(err);
     memcpy(fill, e->first, (n + 1) * sizeof *fill);
     for (size_t i = 0; i < nh; i++) {

@@ -2,6 +2,7 @@
 #include "planner.h"
 #include "fmt.h"
 
+#include "plan_threads.h"
 #include "profile.h"
 
 #include <math.h>
@@ -138,36 +139,14 @@ static void job_bbox(const lam_slicer *s, const lam_model *m, const lam_plan_opt
     bb[5] = planes[lam_slicer_count(s)];
 }
 
-int lam_plan_run(lam_slicer *s, const lam_model *m, const lam_plan_opts *o, const lam_sink *sink,
-                 lam_layer_cb cb, void *cbctx, lam_error *err)
+/* The run's layers on the calling thread: each layer as soon as it and the
+ * skin window above it are sliced. */
+static int plan_serial(lam_slicer *s, const lam_plan_opts *o, const lam_sink *sink, lam_layer_cb cb, void *cbctx,
+                       const double origin[3], lam_error *err)
 {
-    lam_job_estimate est;
-    lam_plan_estimate(s, o, &est);
-    if (lam_plan_check_estimate(&est, o, o->max_output, err)) return LAM_ELIMIT;
     const lam_frame *f = lam_slicer_frame(s);
-    lam_job_info job;
-    memset(&job, 0, sizeof job);
-    job.name = o->name;
-    job.process = o->kind == LAM_PLAN_LADRP ? "ladrp" : "sls";
-    job.units = o->units;
-    job.layers = lam_slicer_count(s);
-    job.bead = o->bead;
-    job.rate = o->rate;
-    job.travel_rate = o->travel_rate;
-    job_bbox(s, m, o, job.bbox);
-    char label[128];
-    lam_job_label(m->path, label, sizeof label);
-    job.label = label;
-    /* the stage starts at the model origin of the first layer's plane */
-    double cut0 = job.layers ? lam_slicer_cut(s, 0) : 0;
-    if (o->frame_machine) {
-        job.origin[0] = job.origin[1] = 0;
-        job.origin[2] = cut0;
-    } else {
-        lam_frame_to_model(f, 0, 0, cut0, job.origin);
-    }
-    int rc = sink->begin ? sink->begin(sink->ctx, &job) : LAM_OK;
-    double pos[3] = { job.origin[0], job.origin[1], job.origin[2] };
+    int rc = LAM_OK;
+    double pos[3] = { origin[0], origin[1], origin[2] };
     int laser = -1;
     lam_sls_state st;
     lam_sls_state_init(&st);
@@ -197,12 +176,7 @@ int lam_plan_run(lam_slicer *s, const lam_model *m, const lam_plan_opts *o, cons
             if (o->kind == LAM_PLAN_LADRP) {
                 lam_ladrp_stats ls;
                 rc = lam_plan_ladrp_layer(L, f, o, sink, pos, &laser, &ls, err);
-                if (o->totals) {
-                    o->totals->lines += ls.lines;
-                    o->totals->deposits += ls.deposits;
-                    o->totals->deposit_length += ls.deposit_length;
-                    o->totals->travel_length += ls.travel_length;
-                }
+                if (o->totals) lam_ladrp_stats_add(o->totals, &ls);
             } else {
                 const lam_layer *below[LAM_SKIN_MAX], *above[LAM_SKIN_MAX];
                 size_t nb = 0, na = 0;
@@ -222,6 +196,43 @@ int lam_plan_run(lam_slicer *s, const lam_model *m, const lam_plan_opts *o, cons
     for (size_t k = 0; win && k < have; k++) lam_layer_free(win[k]);
     free(win);
     lam_sls_state_free(&st);
+    return rc;
+}
+
+int lam_plan_run(lam_slicer *s, const lam_model *m, const lam_plan_opts *o, const lam_sink *sink,
+                 lam_layer_cb cb, void *cbctx, lam_error *err)
+{
+    lam_job_estimate est;
+    lam_plan_estimate(s, o, &est);
+    if (lam_plan_check_estimate(&est, o, o->max_output, err)) return LAM_ELIMIT;
+    const lam_frame *f = lam_slicer_frame(s);
+    lam_job_info job;
+    memset(&job, 0, sizeof job);
+    job.name = o->name;
+    job.process = o->kind == LAM_PLAN_LADRP ? "ladrp" : "sls";
+    job.units = o->units;
+    job.layers = lam_slicer_count(s);
+    job.bead = o->bead;
+    job.rate = o->rate;
+    job.travel_rate = o->travel_rate;
+    job_bbox(s, m, o, job.bbox);
+    char label[128];
+    lam_job_label(m->path, label, sizeof label);
+    job.label = label;
+    /* the stage starts at the model origin of the first layer's plane */
+    double cut0 = job.layers ? lam_slicer_cut(s, 0) : 0;
+    if (o->frame_machine) {
+        job.origin[0] = job.origin[1] = 0;
+        job.origin[2] = cut0;
+    } else {
+        lam_frame_to_model(f, 0, 0, cut0, job.origin);
+    }
+    int rc = sink->begin ? sink->begin(sink->ctx, &job) : LAM_OK;
+    /* a worker holds a whole layer's operations until it is written: layers
+     * estimated beyond LAM_THREAD_LAYER_MAX are streamed on one thread */
+    int threaded = o->threads > 1 && !(est.layers && est.bytes / (double)est.layers > LAM_THREAD_LAYER_MAX);
+    if (!rc) rc = threaded ? lam_plan_threaded(s, o, sink, cb, cbctx, job.origin, err)
+                           : plan_serial(s, o, sink, cb, cbctx, job.origin, err);
     if (!rc && sink->end) rc = sink->end(sink->ctx);
     if (rc && err && err->code == LAM_OK) lam_error_set(err, rc, NULL, 0, 0, "planning failed");
     return rc;

@@ -67,6 +67,10 @@ typedef struct lam_plan_opts {
     lam_scan_time *time;         /* SLS: if not NULL, the job's estimate is added here */
     double *layer_time;          /* SLS (lam_plan_run): if not NULL, room for every
                                     layer: each one's estimate, seconds */
+    unsigned threads;            /* lam_plan_run: worker threads that slice and plan
+                                    layers while the calling thread writes them in
+                                    order (the same output for every number); 0 or 1:
+                                    everything on the calling thread */
 } lam_plan_opts;
 
 /* Defaults: SLS, bead 1, rates 0, model frame, edge, 0 degrees, alternate;
@@ -120,12 +124,22 @@ void lam_plan_estimate(const lam_slicer *s, const lam_plan_opts *o, lam_job_esti
 int lam_plan_check_estimate(const lam_job_estimate *e, const lam_plan_opts *o, unsigned long long max_bytes,
                             lam_error *err);
 
+/* Output per layer above which lam_plan_run does not use threads: 16 MB,
+ * a hundred times a layer of the bench's hatching job. */
+#define LAM_THREAD_LAYER_MAX (16.0 * 1024 * 1024)
+
 /* Called with every layer before it is planned (reports, previews). A
  * non-zero return stops the run with that code. */
 typedef int (*lam_layer_cb)(void *ctx, const lam_layer *layer, lam_error *err);
 
 /* Plan a whole slicing run into sink: begin, every layer, end. The sink is
- * not destroyed. Returns LAM_OK or the first error (from the slicer, a
+ * not destroyed. With o->threads > 1, workers slice and plan layers into
+ * recordings (plan_record.h) that the calling thread replays onto sink and
+ * hands to cb in layer order: sink and cb run on the calling thread only,
+ * and the run's output, messages and first error are the ones of a run on
+ * one thread. A job whose layers are estimated (lam_plan_estimate) at more
+ * than LAM_THREAD_LAYER_MAX bytes of output each runs on the calling thread,
+ * which streams a layer instead of holding it. Returns LAM_OK or the first error (from the slicer, a
  * planner, the sink or the callback); LAM_ELIMIT, before anything is
  * planned or written, when the run's estimate passes o->max_output. */
 int lam_plan_run(lam_slicer *s, const lam_model *m, const lam_plan_opts *o, const lam_sink *sink,

@@ -11,6 +11,7 @@
 #include "fill.h"
 #include "fmt.h"
 #include "grow.h"
+#include "hugemem.h"
 #include "prefetch.h"
 
 #define NONE UINT32_MAX
@@ -156,6 +157,7 @@ struct lam_slicer {
     uint32_t *seg_in, *seg_out, *in_first, *in_seg, *indeg;
     unsigned char *used;
     size_t cap_active, cap_seg;
+    int borrowed;          /* a fork: planes, wuv, cuts and the schedule are its parent's */
 };
 
 #define W(s, v) ((s)->pw[3 * (size_t)(v)])
@@ -359,7 +361,7 @@ static int frame_coords(lam_slicer *s, const lam_model *m, const lam_frame *f)
         s->pw = m->mesh.xyz + kw;
         return 0;
     }
-    if (!(s->wuv = malloc(3 * nv * sizeof *s->wuv + 1))) return -1;
+    if (!(s->wuv = lam_big_malloc(3 * nv * sizeof *s->wuv + 1))) return -1;
     s->pw = s->wuv;
     s->pu = s->wuv + 1;
     s->pv = s->wuv + 2;
@@ -382,7 +384,7 @@ static int schedule(lam_slicer *s, lam_cut cut, lam_error *err)
     size_t S = s->nlayers, nv = s->m->mesh.nverts, ne = s->m->edges.n;
     s->cuts = malloc(S * sizeof *s->cuts + 1);
     s->layer_first = calloc(S + 2, sizeof *s->layer_first);
-    uint32_t *bucket = malloc(ne * sizeof *bucket + 1);
+    uint32_t *bucket = lam_big_malloc(ne * sizeof *bucket + 1);
     if (!s->cuts || !s->layer_first || !bucket) goto oom;
     s->up = cut != LAM_CUT_CEILING;
     for (size_t i = 0; i < S; i++) {
@@ -403,7 +405,7 @@ static int schedule(lam_slicer *s, lam_cut cut, lam_error *err)
     }
     for (size_t i = 0; i < S; i++) s->layer_first[i + 1] += s->layer_first[i];
     s->norder = s->layer_first[S];
-    s->order = malloc(s->norder * sizeof *s->order + 1);
+    s->order = lam_big_malloc(s->norder * sizeof *s->order + 1);
     if (!s->order) goto oom;
     for (size_t e = 0; e < ne; e++)
         if (bucket[e] != NONE) s->order[s->layer_first[bucket[e]]++] = (uint32_t)e;
@@ -480,11 +482,13 @@ double lam_slicer_gap(const lam_slicer *s) { return s->o.gap; }
 void lam_slicer_free(lam_slicer *s)
 {
     if (!s) return;
-    free(s->planes);
-    free(s->wuv);
-    free(s->order);
-    free(s->cuts);
-    free(s->layer_first);
+    if (!s->borrowed) {
+        free(s->planes);
+        free(s->wuv);
+        free(s->order);
+        free(s->cuts);
+        free(s->layer_first);
+    }
     free(s->active);
     free(s->slot_edge);
     free(s->slot_at);
@@ -496,6 +500,93 @@ void lam_slicer_free(lam_slicer *s)
     free(s->indeg);
     free(s->used);
     free(s);
+}
+
+static int reserve_active(lam_slicer *s, size_t n, lam_error *err);
+
+int lam_slicer_fork(const lam_slicer *s, lam_slicer **out, lam_error *err)
+{
+    lam_slicer *f = calloc(1, sizeof *f);
+    *out = f;
+    if (!f) return nomem(err);
+    f->m = s->m;
+    f->o = s->o;
+    f->planes = s->planes;
+    f->nlayers = s->nlayers;
+    f->pw = s->pw;
+    f->pu = s->pu;
+    f->pv = s->pv;
+    f->wuv = s->wuv;
+    f->cuts = s->cuts;
+    f->min_area = s->min_area;
+    f->crossings = s->crossings;
+    f->up = s->up;
+    f->order = s->order;
+    f->layer_first = s->layer_first;
+    f->norder = s->norder;
+    f->borrowed = 1;
+    return LAM_OK;
+}
+
+/* The active set at layer i is the edges scheduled before it that have not
+ * passed below its cut, in schedule order (the sweep only ever appends and
+ * drops keeping order): so dropping the passed ones from the active set and
+ * appending the edges scheduled in between that have not passed gives the
+ * very set, and the very order, a sweep from layer 0 would have. */
+void lam_slicer_seek(lam_slicer *s, size_t i)
+{
+    if (i > s->nlayers) i = s->nlayers;
+    if (i < s->next) {
+        s->nactive = 0;
+        s->ins = 0;
+    }
+    s->next = i;
+    size_t to = s->layer_first[i];
+    if (s->ins >= to) return;
+    if (i >= s->nlayers) {
+        s->nactive = 0;
+        s->ins = to;
+        return;
+    }
+    /* keep only what layer i's section would keep, as section() drops: a
+     * jump over many layers must not hold all their edges at once */
+    double c = s->cuts[i];
+    int up = s->up;
+#define PASSED(e) (up ? edge_hi(s, e) <= c : edge_hi(s, e) < c)
+    size_t na = 0;
+    for (size_t k = 0; k < s->nactive; k++)
+        if (!PASSED(s->active[k])) s->active[na++] = s->active[k];
+    s->nactive = na;
+    for (; s->ins < to; s->ins++) {
+        uint32_t e = s->order[s->ins];
+        if (PASSED(e)) continue;
+        if (s->nactive == s->cap_active && reserve_active(s, s->nactive + 1, NULL)) {
+            /* no room: start over at layer i, the active set rebuilt by section() */
+            s->nactive = 0;
+            s->ins = 0;
+            return;
+        }
+        s->active[s->nactive++] = e;
+    }
+#undef PASSED
+}
+
+lam_layer *lam_layer_clone(const lam_layer *L)
+{
+    lam_layer *c = malloc(sizeof *c);
+    if (!c) return NULL;
+    *c = *L;
+    c->uv = malloc(2 * L->npoints * sizeof *c->uv + 1);
+    c->contours = malloc(L->ncontours * sizeof *c->contours + 1);
+    c->open = malloc(L->nopen * sizeof *c->open + 1);
+    if (!c->uv || !c->contours || !c->open) {
+        lam_layer_free(c);
+        return NULL;
+    }
+    if (L->npoints) memcpy(c->uv, L->uv, 2 * L->npoints * sizeof *c->uv);
+    if (L->ncontours) memcpy(c->contours, L->contours, L->ncontours * sizeof *c->contours);
+    if (L->nopen) memcpy(c->open, L->open, L->nopen * sizeof *c->open);
+    return c;
 }
 
 void lam_layer_free(lam_layer *l)

@@ -169,6 +169,20 @@ int lam_slicer_next(lam_slicer *s, lam_layer **out, lam_error *err);
 void lam_slicer_free(lam_slicer *s);
 void lam_layer_free(lam_layer *layer);
 
+/* A second sweep over the same run: it shares s's model, layers and
+ * schedule (s must outlive it and not be freed first) and keeps its own
+ * position and scratch, so threads can slice different layers at once.
+ * It starts at layer 0; free it with lam_slicer_free. */
+int lam_slicer_fork(const lam_slicer *s, lam_slicer **out, lam_error *err);
+
+/* Make layer i (<= count) the next lam_slicer_next returns. Forward it
+ * costs the edges scheduled in between, backward a sweep from the start;
+ * the layers come out bit for bit as from a sweep that never jumped. */
+void lam_slicer_seek(lam_slicer *s, size_t i);
+
+/* A copy of layer L with arrays of its own (NULL when out of memory). */
+lam_layer *lam_layer_clone(const lam_layer *L);
+
 /* Layer-frame point (u, v) at height w to model coordinates. */
 void lam_frame_to_model(const lam_frame *f, double u, double v, double w, double xyz[3]);
 

@@ -1,6 +1,7 @@
 /* The option parser shared by the commands: a table of options (below) and
  * the profile keys' own options (core/profile_keys.c). */
 #include "cli_args.h"
+#include "pool.h"
 
 #include "cli.h"
 
@@ -181,8 +182,22 @@ static int o_talk(const char *cmd, args *a, const cli_opt *o, const char *opt, c
     return 0;
 }
 
+/* -j N: worker threads (pool.h); LAMINA_THREADS or the processors when not given */
+static int o_jobs(const char *cmd, args *a, const cli_opt *o, const char *opt, const char *val)
+{
+    (void)o;
+    char *end;
+    errno = 0;
+    long n = strtol(val, &end, 10);
+    if (end == val || *end || errno || n < 1 || n > LAM_MAX_THREADS)
+        return cli_usage(cmd, "%s takes a number of threads from 1 to %d (got '%s')", opt, LAM_MAX_THREADS, val);
+    a->threads = (unsigned)n;
+    return 0;
+}
+
 #define F(member) offsetof(args, member)
 static const cli_opt options[] = {
+    { "jobs", 'j', OPT_PLAN, "N", o_jobs, 0 },
     { "machine", 'm', OPT_SLICE, "MACHINE", o_text, F(machine) },
     { "axis", 'a', OPT_SLICE, "AXIS", o_axis, 0 },
     { "widths", 0, OPT_SLICE, "W1,W2,...", o_layers, F(so.widths) },
@@ -375,6 +390,13 @@ int cli_parse_args(const char *cmd, const char *usage_text, unsigned groups, int
     }
     if (rc) return rc;
     if (groups & OPT_MODEL && !a->path) return cli_usage(cmd, "no model given");
+    if (groups & OPT_PLAN && !a->threads) {
+        int bad;
+        a->threads = lam_default_threads(&bad);
+        if (bad)
+            return cli_usage(cmd, "LAMINA_THREADS must be a number of threads from 1 to %d (got '%s')",
+                             LAM_MAX_THREADS, getenv("LAMINA_THREADS"));
+    }
     int width = 0;
     for (size_t i = 0; i < a->nsets; i++) width |= a->sets[i].key->offset == offsetof(lam_profile, layer_width);
     if ((a->so.widths || a->so.planes) && width) return cli_usage(cmd, "give one of -w, --widths and --planes");
@@ -422,6 +444,7 @@ int cli_profile(const char *cmd, args *a, lam_profile **out, lam_plan_opts *po)
     if (po) {
         lam_plan_opts_from_profile(po, p);
         po->max_output = a->max_output;
+        po->threads = a->threads;
     }
     *out = p;
     return EXIT_OK;

@@ -44,6 +44,7 @@ typedef struct args {
     size_t nsets;
     unsigned long long max_output;  /* --max-output, 0: the default */
     int talk;                /* -q: -1, -v: 1 (the last given wins), else 0 */
+    unsigned threads;        /* -j N (OPT_PLAN): LAMINA_THREADS or the online processors */
 } args;
 
 /* Parse argv[1..] for command cmd, accepting the option groups in

@@ -54,7 +54,7 @@ compare() {
     : >"$work/l.txt"; : >"$work/s.txt"
     for ((r = 0; r < runs; r++)); do
         fresh "$work/$name.sls"
-        measure "$LAMINA" slice "$stl" -w 0.1 --cut middle -o "$work/$name.sls" >>"$work/l.txt"
+        measure "$LAMINA" slice "$stl" -w 0.1 --cut middle -j 2 -o "$work/$name.sls" >>"$work/l.txt"
         fresh "$work/$name.slic3r.svg"
         measure slic3r --export-svg --layer-height 0.1 "$stl" -o "$work/$name.slic3r.svg" >>"$work/s.txt"
     done
@@ -124,3 +124,32 @@ if [ -n "$prusa" ]; then
 else
     echo "  (PrusaSlicer could not be installed: the hatching comparison is skipped)"
 fi
+
+# ---- threads (issue 15, part 1): -j 2 against -j 1 --------------------------
+# The same jobs with two worker threads and with one, alternating runs,
+# medians; the programs must be byte-identical. Kept in this one function so
+# other bench sections stay apart.
+bench_threads() {
+    local runs=$1 name stl out a b
+    printf '%-34s %9s %9s %8s %9s %9s\n' job j1_s j2_s speedup j1_MB j2_MB
+    for job in sphere torus hatch; do
+        case $job in
+        sphere|torus) stl="$work/$job.stl"; out="$work/$job.j"; args=(slice "$stl" -w 0.1 --cut middle)
+                      name="$job -w 0.1 (sls-contours)" ;;
+        hatch) out="$work/hatch.j"; args=("${hatch[@]}"); name="hatch sphere (cli-binary, islands)" ;;
+        esac
+        : >"$work/j1.txt"; : >"$work/j2.txt"
+        for ((r = 0; r < runs; r++)); do
+            fresh "$out.1" "$out.2"
+            measure "$LAMINA" "${args[@]}" -j 1 -o "$out.1" >>"$work/j1.txt"
+            measure "$LAMINA" "${args[@]}" -j 2 -o "$out.2" >>"$work/j2.txt"
+        done
+        cmp -s "$out.1" "$out.2" || { echo "bench: -j 2 wrote a different program than -j 1 for $name" >&2; exit 1; }
+        a=$(cut -d' ' -f1 "$work/j1.txt" | median); b=$(cut -d' ' -f1 "$work/j2.txt" | median)
+        am=$(cut -d' ' -f2 "$work/j1.txt" | median); bm=$(cut -d' ' -f2 "$work/j2.txt" | median)
+        awk -v n="$name" -v a="$a" -v b="$b" -v am="$am" -v bm="$bm" 'BEGIN {
+            printf "%-34s %9.3f %9.3f %7.2fx %9.1f %9.1f\n", n, a, b, a / (b > 0 ? b : 0.001), am / 1024, bm / 1024 }'
+    done
+    echo "(medians of $runs alternating runs; speedup = -j 1 time / -j 2 time; the programs are identical)"
+}
+bench_threads "$RUNS"

@@ -1,0 +1,152 @@
+#!/usr/bin/env bash
+# -j N (issue 15): workers slice and plan layers, the writer writes them in
+# layer order, so the program, the messages and the exit status are the
+# same for every number of threads. Every shipped machine (text dialects
+# and the binary CLI plugin) on models that exercise what a layer's plan
+# carries from the layer before: LADRP islands (the nearest island to where
+# the stage stands), perimeters, raster angles per layer, SLS skins (the
+# layers around), an oblique axis; then a run that fails in a middle layer.
+. "$TESTS/cli/lib.sh"
+ROOT=$(cd "$TESTS/.." && pwd)
+
+python3 "$TESTS/cli/meshgen.py" sphere "$TMP/sphere.stl"
+python3 "$TESTS/cli/meshgen.py" torus "$TMP/torus.stl"
+
+# same NAME ARGS...: the run with -j 1 against -j 2, 3 and 8: program and
+# standard error byte for byte, exit status
+same() {
+    local name=$1
+    shift
+    "$LAMINA" slice "$@" -j 1 -o "$TMP/$name.1" 2>"$TMP/$name.err1"
+    local rc1=$? size
+    size=$(stat -c %s "$TMP/$name.1" 2>/dev/null || echo 0)
+    ok $(( rc1 == 0 && size > 200 ? 0 : 1 )) "$name: -j 1 writes a program (exit $rc1, $size bytes)"
+    for j in 2 3 8; do
+        "$LAMINA" slice "$@" -j "$j" -o "$TMP/$name.$j" 2>"$TMP/$name.err$j"
+        local rc=$?
+        cmp -s "$TMP/$name.1" "$TMP/$name.$j" && cmp -s "$TMP/$name.err1" "$TMP/$name.err$j" && [ "$rc" = "$rc1" ]
+        ok $? "$name: -j $j writes the same program and messages as -j 1"
+    done
+}
+
+machines=$(cd "$ROOT/machines" && ls *.yaml | sed 's/\.yaml$//')
+is "$(echo $machines | wc -w)" 6 "six shipped machines"
+for m in $machines; do
+    same "$m-cube-hole" "$M/thesis_cube_hole.ug" -m "$m" -w 0.25
+    same "$m-sphere" "$TMP/sphere.stl" -m "$m" -w 0.2 --angle-step 30
+    same "$m-torus-oblique" "$TMP/torus.stl" -m "$m" -a 1,1,2 -w 0.25
+    same "$m-frame-islands" "$M/frame_island.stl" -m "$m" -w 0.5 --islands --perimeters 1
+done
+# hatching with islands and skins: each layer's plan looks at the layers
+# around it, which a worker slices again at the start of its run of layers
+same lpbf-hatch-skins "$TMP/sphere.stl" -m lpbf-cli -w 0.1 -s hatch_strategy=islands -s island_size=2 \
+    -s skin_layers=2 -s hatch_distance=0.2
+same binary-hatch "$TMP/torus.stl" -m cli-binary -w 0.1 -s hatch_strategy=stripes -s hatch_distance=0.2
+# fewer layers than threads, and one layer
+same cube-two-layers "$M/thesis_cube_hole.ug" -w 1
+same cube-one-layer "$M/thesis_cube_hole.ug" -w 2
+
+# The per-layer reports run on the main thread in layer order: the contact
+# sheet and --validate's messages are the same too
+for j in 1 3; do
+    "$LAMINA" slice "$TMP/torus.stl" -w 0.3 --validate --svg "$TMP/sheet$j.svg" -j $j -o "$TMP/v$j.sls" 2>"$TMP/v$j.err"
+    echo "rc $?" >>"$TMP/v$j.err"
+done
+cmp -s "$TMP/sheet1.svg" "$TMP/sheet3.svg" && grep -q '<path' "$TMP/sheet1.svg"
+ok $? "--svg: the same contact sheet for -j 1 and -j 3"
+cmp -s "$TMP/v1.err" "$TMP/v3.err" && cmp -s "$TMP/v1.sls" "$TMP/v3.sls" && grep -q '^rc 0$' "$TMP/v1.err"
+ok $? "--validate: the same messages, status and program for -j 1 and -j 3"
+
+# The estimate as JSON (layer times summed in layer order): the same numbers
+for j in 1 3; do
+    "$LAMINA" slice "$TMP/sphere.stl" -m lpbf-cli -w 0.2 -s hatch_strategy=lines -j $j -o "$TMP/e$j.cli" --json \
+        >"$TMP/e$j.json" 2>/dev/null
+done
+cmp -s "$TMP/e1.json" "$TMP/e3.json" && grep -q '"layer_times": \[[0-9]' "$TMP/e1.json"
+ok $? "--json estimate: the same layer times for -j 1 and -j 3"
+
+# ---- a run that fails in a middle layer ------------------------------------
+# The sphere with a band of facets around its equator removed on one side:
+# the layers through the band have open outlines (far wider than the gap
+# tolerance), the ones above and below are closed.
+python3 - "$TMP/sphere.stl" "$TMP/open.stl" <<'EOF'
+import sys
+src, out = sys.argv[1], sys.argv[2]
+lines = open(src).read().split("\n")
+res, i = [], 0
+while i < len(lines):
+    if lines[i].startswith("facet"):
+        block = lines[i:i + 7]
+        zs = [float(l.split()[3]) for l in block if l.startswith("vertex")]
+        xs = [float(l.split()[1]) for l in block if l.startswith("vertex")]
+        if not (all(abs(z) < 0.6 for z in zs) and min(xs) > 1.0):
+            res.extend(block)
+        i += 7
+    else:
+        res.append(lines[i])
+        i += 1
+open(out, "w").write("\n".join(res))
+EOF
+for j in 1 2 3 8; do
+    rm -f "$TMP/open.out"
+    run "$LAMINA" slice "$TMP/open.stl" -w 0.2 -j $j -o "$TMP/open.out"
+    echo "$RC" >"$TMP/open.rc$j"
+    printf '%s' "$ERR" >"$TMP/open.err$j"
+    [ ! -e "$TMP/open.out" ]
+    ok $? "open outline, -j $j: no output file"
+done
+is "$(cat "$TMP/open.rc1")" 1 "open outline, -j 1: exit 1"
+like "$(cat "$TMP/open.err1")" 'layer 1[0-9] \(h=-?0\.[0-9]+\): open outline from .* could not be closed' \
+    "open outline, -j 1: the middle layers are named"
+for j in 2 3 8; do
+    is "$(cat "$TMP/open.rc$j")" 1 "open outline, -j $j: exit 1"
+    cmp -s "$TMP/open.err1" "$TMP/open.err$j"
+    ok $? "open outline, -j $j: the same messages as -j 1"
+done
+# with --allow-open the layers are written without those outlines, the same for every N
+same open-allowed "$TMP/open.stl" -w 0.2 --allow-open
+
+# an output limit reached while writing (the estimate passes): the same
+# error and no file, whoever planned the layers
+for j in 1 2 8; do
+    rm -f "$TMP/lim.out"
+    run "$LAMINA" slice "$TMP/sphere.stl" -m lpbf-cli -w 0.05 -s hatch_strategy=lines -s hatch_distance=0.05 \
+        --max-output 500k -j $j -o "$TMP/lim.out"
+    echo "$RC $ERR" >"$TMP/lim.$j"
+    [ ! -e "$TMP/lim.out" ]
+    ok $? "output limit, -j $j: no output file"
+done
+# (the estimate counts contour points only, about 360 kB here: the hatches pass the limit as written)
+like "$(cat "$TMP/lim.1")" '^1 lamina: .*lim.out: cannot write output: output exceeds the limit of 512000 bytes' \
+    "output limit, -j 1: exit 1, the limit passed while writing"
+cmp -s "$TMP/lim.1" "$TMP/lim.2" && cmp -s "$TMP/lim.1" "$TMP/lim.8"
+ok $? "output limit: the same message and exit for -j 1, 2 and 8"
+
+# ---- layers too big to hold: streamed on one thread ---------------------------
+# LADRP with a bead of 1e-7: 2 * 10^7 scan lines (about 1.3 GB) in each of
+# the 2 layers. With workers nothing would be written until a whole layer
+# was recorded in memory; the run streams instead, on one thread, from the start.
+printf 'inherits: creol-ladrp\nbead_width: 1e-7\n' >"$TMP/fine.yaml"
+mkdir "$TMP/big"
+"$LAMINA" slice "$M/thesis_cube.ug" -m "$TMP/fine.yaml" -w 1 -j 4 -o "$TMP/big/out" 2>/dev/null &
+pid=$!
+written() { local f; for f in "$TMP"/big/out.tmp-*; do [ -s "$f" ] && return 0; done; return 1; }
+for _ in $(seq 1 6000); do written && break; sleep 0.01; done
+written
+ok $? "huge layers, -j 4: the program is being written while the first layer is planned"
+is "$(awk '/^Threads:/ {print $2}' /proc/$pid/status 2>/dev/null)" 1 "huge layers, -j 4: one thread"
+kill "$pid"
+{ wait "$pid"; } 2>/dev/null
+
+# ---- the option ------------------------------------------------------------
+run "$LAMINA" slice "$M/thesis_cube_hole.ug" -j 0 -o "$TMP/x"
+like "$RC $ERR" '^2 .*-j takes a number of threads from 1 to 256' "-j 0: usage error"
+run "$LAMINA" slice "$M/thesis_cube_hole.ug" --jobs=two -o "$TMP/x"
+like "$RC $ERR" "^2 .*--jobs takes a number of threads .*'two'" "--jobs=two: usage error"
+LAMINA_THREADS=lots run "$LAMINA" slice "$M/thesis_cube_hole.ug" -o "$TMP/x"
+like "$RC $ERR" "^2 .*LAMINA_THREADS must be a number of threads .*'lots'" "LAMINA_THREADS=lots: an error naming it"
+LAMINA_THREADS=3 run "$LAMINA" slice "$TMP/sphere.stl" -w 0.2 -o "$TMP/env3"
+[ "$RC" = 0 ] && "$LAMINA" slice "$TMP/sphere.stl" -w 0.2 -j 1 -o "$TMP/env1" 2>/dev/null && cmp -s "$TMP/env3" "$TMP/env1"
+ok $? "LAMINA_THREADS=3: the program of -j 1"
+
+done_testing
