@@ -165,7 +165,7 @@ typedef struct lplan {
     size_t deposits;         /* LADRP: deposit moves */
     lam_scan_time time;      /* SLS: the build-time estimate (hatch.h) */
     double *layer_time;      /* SLS: each layer's estimate, seconds (owned) */
-    struct lam_record *rec;  /* what was planned, per layer (record.h; owned) */
+    struct lam_plan_data *rec;  /* what was planned, per layer (plan_data.h; owned) */
 } lplan;
 
 /* Checked accessors: raise the usual "bad argument" error for a wrong type

@@ -17,7 +17,7 @@
 
 #include "dialect.h"
 #include "plugin.h"
-#include "record.h"
+#include "plan_data.h"
 #include "writer.h"
 
 #define LAM_PLANJOB "lamina.planjob"
@@ -32,7 +32,7 @@ typedef struct planjob {
     lam_error err;           /* the sink reports through it: it must not move */
     lam_sls_state st;        /* SLS planning's state (its hatch vectors) */
     int have_st;
-    lam_record rec;          /* what was planned, per layer: handed to the plan */
+    lam_plan_data rec;          /* what was planned, per layer: handed to the plan */
     lam_sink tee;            /* records into rec, then writes into sink */
 } planjob;
 
@@ -44,7 +44,7 @@ static void job_release(planjob *j)
     j->w = NULL;
     if (j->have_st) lam_sls_state_free(&j->st);
     j->have_st = 0;
-    lam_record_free(&j->rec);
+    lam_plan_data_free(&j->rec);
 }
 
 static int job_gc(lua_State *L)
@@ -175,7 +175,7 @@ int lam_lua_plan(lua_State *L)
                   : lam_plugin_writer_sink(p.writer, j->w, &j->sink, &j->err);
     if (rc) return lam_lua_fail(L, &j->err);
     j->have_sink = 1;
-    lam_record_sink(&j->rec, &j->sink, &run->frame, o.frame_machine, &j->err, &j->tee);
+    lam_plan_data_sink(&j->rec, &j->sink, &run->frame, o.frame_machine, &j->err, &j->tee);
 
     lam_job_info job;
     memset(&job, 0, sizeof job);
@@ -221,7 +221,7 @@ int lam_lua_plan(lua_State *L)
                 pl->travel += lst.travel_length;
                 pl->deposit += lst.deposit_length;
                 pl->deposits += lst.deposits;
-                lam_rec_layer *rl = lam_record_current(&j->rec);
+                lam_rec_layer *rl = lam_plan_data_current(&j->rec);
                 if (rl) {
                     rl->deposit = lst.deposit_length;
                     rl->travel = lst.travel_length;
@@ -236,7 +236,7 @@ int lam_lua_plan(lua_State *L)
                                         &j->err);
                 lam_scan_time_add(&pl->time, &st->time);
                 pl->layer_time[i] = lam_scan_time_total(&st->time);
-                lam_rec_layer *rl = lam_record_current(&j->rec);
+                lam_rec_layer *rl = lam_plan_data_current(&j->rec);
                 if (rl) {
                     rl->deposit = st->time.exposure_length;
                     rl->travel = st->time.jump_length;
@@ -287,7 +287,7 @@ static int p_gc(lua_State *L)
     pl->data = NULL;
     free(pl->layer_time);
     pl->layer_time = NULL;
-    lam_record_free(pl->rec);
+    lam_plan_data_free(pl->rec);
     free(pl->rec);
     pl->rec = NULL;
     return 0;

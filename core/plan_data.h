@@ -1,4 +1,4 @@
-/* A recording sink: keeps what a planner sends, per layer and in order
+/* Plan data, a recording sink: keeps what a planner sends, per layer and in order
  * (contour passes and vectors, in the layer frame), and passes every call
  * on to another sink. Lua's plan data (machine:plan, lua/l_plan.c) is
  * read from it, so a recipe measures a plan without parsing its text.
@@ -10,8 +10,8 @@
  * layer frame whatever the output frame: a model-frame position is taken
  * back to the layer frame with the run's frame (orthonormal, so a dot
  * product). */
-#ifndef LAM_RECORD_H
-#define LAM_RECORD_H
+#ifndef LAM_PLAN_DATA_H
+#define LAM_PLAN_DATA_H
 
 #include <stddef.h>
 
@@ -38,7 +38,7 @@ typedef struct lam_rec_vector {
 } lam_rec_vector;
 
 typedef struct lam_rec_contour {
-    size_t first, n;         /* points first .. first+n-1 of lam_record.pts (2 doubles each) */
+    size_t first, n;         /* points first .. first+n-1 of lam_plan_data.pts (2 doubles each) */
     size_t order;
     int solid, depth;
 } lam_rec_contour;
@@ -46,7 +46,7 @@ typedef struct lam_rec_contour {
 typedef struct lam_rec_layer {
     size_t index;            /* 0-based index in its slicing run */
     double z;                /* cut height */
-    size_t c0, nc;           /* its contours: lam_record.contours[c0 .. c0+nc) */
+    size_t c0, nc;           /* its contours: lam_plan_data.contours[c0 .. c0+nc) */
     size_t v0, nv;           /* its vectors */
     size_t ops;              /* contours + vectors */
     /* set by the caller after the layer is planned (the planner's figures) */
@@ -54,7 +54,7 @@ typedef struct lam_rec_layer {
     double time;             /* SLS: the layer's estimate, seconds; LADRP: 0 */
 } lam_rec_layer;
 
-typedef struct lam_record {
+typedef struct lam_plan_data {
     lam_rec_layer *layers;
     size_t nlayers, cap_layers;
     lam_rec_contour *contours;
@@ -69,20 +69,20 @@ typedef struct lam_record {
     double pos[2];
     const lam_sink *next;
     lam_error *err;
-} lam_record;
+} lam_plan_data;
 
 /* Make *out a sink that records into r (zeroed here) and forwards every
  * call to next (which stays the caller's: destroying out does not destroy
  * next). f and frame_machine say how output coordinates go back to the
  * layer frame. r must not move while out is in use; release it with
- * lam_record_free. Recording fails with LAM_ENOMEM (in err). */
-void lam_record_sink(lam_record *r, const lam_sink *next, const lam_frame *f, int frame_machine, lam_error *err,
+ * lam_plan_data_free. Recording fails with LAM_ENOMEM (in err). */
+void lam_plan_data_sink(lam_plan_data *r, const lam_sink *next, const lam_frame *f, int frame_machine, lam_error *err,
                      lam_sink *out);
 
 /* The layer being recorded (the last one begun), or NULL before any. */
-lam_rec_layer *lam_record_current(lam_record *r);
+lam_rec_layer *lam_plan_data_current(lam_plan_data *r);
 
 /* Release what r holds and zero it (NULL is fine). */
-void lam_record_free(lam_record *r);
+void lam_plan_data_free(lam_plan_data *r);
 
 #endif

@@ -1,5 +1,5 @@
-/* The recording sink (record.h). */
-#include "record.h"
+/* The recording sink (plan_data.h). */
+#include "plan_data.h"
 
 #include <stdint.h>
 #include <stdlib.h>
@@ -29,13 +29,13 @@ static int grow(void **a, size_t *cap, size_t n, size_t more, size_t size)
 
 #define GROW(r, arr, n, cap, more) grow((void **)&(r)->arr, &(r)->cap, (r)->n, (more), sizeof *(r)->arr)
 
-static int nomem(lam_record *r)
+static int nomem(lam_plan_data *r)
 {
     return lam_error_nomem(r->err, "recording the plan");
 }
 
 /* The layer-frame (u, v) of an output-frame point. */
-static void to_uv(const lam_record *r, const double xyz[3], double uv[2])
+static void to_uv(const lam_plan_data *r, const double xyz[3], double uv[2])
 {
     if (r->frame_machine) {
         uv[0] = xyz[0];
@@ -51,9 +51,9 @@ static void to_uv(const lam_record *r, const double xyz[3], double uv[2])
     }
 }
 
-static int add_vector(lam_record *r, const double uv[4], int kind)
+static int add_vector(lam_plan_data *r, const double uv[4], int kind)
 {
-    lam_rec_layer *ly = lam_record_current(r);
+    lam_rec_layer *ly = lam_plan_data_current(r);
     if (!ly) return LAM_OK; /* before the first layer (a preamble move): not part of a layer */
     if (GROW(r, vectors, nvectors, cap_vectors, 1)) return nomem(r);
     lam_rec_vector *v = &r->vectors[r->nvectors++];
@@ -66,14 +66,14 @@ static int add_vector(lam_record *r, const double uv[4], int kind)
 
 static int r_begin(void *ctx, const lam_job_info *job)
 {
-    lam_record *r = ctx;
+    lam_plan_data *r = ctx;
     to_uv(r, job->origin, r->pos);
     return r->next->begin ? r->next->begin(r->next->ctx, job) : LAM_OK;
 }
 
 static int r_layer(void *ctx, const lam_layer_info *li)
 {
-    lam_record *r = ctx;
+    lam_plan_data *r = ctx;
     if (GROW(r, layers, nlayers, cap_layers, 1)) return nomem(r);
     lam_rec_layer *ly = &r->layers[r->nlayers++];
     memset(ly, 0, sizeof *ly);
@@ -86,25 +86,25 @@ static int r_layer(void *ctx, const lam_layer_info *li)
 
 static int r_layer_end(void *ctx, const lam_layer_info *li)
 {
-    lam_record *r = ctx;
+    lam_plan_data *r = ctx;
     return r->next->layer_end ? r->next->layer_end(r->next->ctx, li) : LAM_OK;
 }
 
 static int r_feed(void *ctx, double rate)
 {
-    lam_record *r = ctx;
+    lam_plan_data *r = ctx;
     return r->next->feed ? r->next->feed(r->next->ctx, rate) : LAM_OK;
 }
 
 static int r_laser(void *ctx, int on)
 {
-    lam_record *r = ctx;
+    lam_plan_data *r = ctx;
     return r->next->laser ? r->next->laser(r->next->ctx, on) : LAM_OK;
 }
 
 static int r_move(void *ctx, int deposit, const double xyz[3])
 {
-    lam_record *r = ctx;
+    lam_plan_data *r = ctx;
     double uv[4] = { r->pos[0], r->pos[1], 0, 0 };
     to_uv(r, xyz, uv + 2);
     r->pos[0] = uv[2];
@@ -116,8 +116,8 @@ static int r_move(void *ctx, int deposit, const double xyz[3])
 
 static int r_contour(void *ctx, const lam_contour_info *c)
 {
-    lam_record *r = ctx;
-    lam_rec_layer *ly = lam_record_current(r);
+    lam_plan_data *r = ctx;
+    lam_rec_layer *ly = lam_plan_data_current(r);
     if (ly) {
         if (GROW(r, contours, ncontours, cap_contours, 1) || c->n > SIZE_MAX / 2 ||
             grow((void **)&r->pts, &r->cap_pts, r->npts, c->n, 2 * sizeof *r->pts))
@@ -137,7 +137,7 @@ static int r_contour(void *ctx, const lam_contour_info *c)
 
 static int r_hatches(void *ctx, const lam_hatch_info *h)
 {
-    lam_record *r = ctx;
+    lam_plan_data *r = ctx;
     int kind = h->type == 2 ? LAM_REC_UPSKIN : h->type == 3 ? LAM_REC_DOWNSKIN : LAM_REC_CORE;
     if (GROW(r, vectors, nvectors, cap_vectors, h->n)) return nomem(r);
     for (size_t i = 0; i < h->n; i++) {
@@ -149,11 +149,11 @@ static int r_hatches(void *ctx, const lam_hatch_info *h)
 
 static int r_end(void *ctx)
 {
-    lam_record *r = ctx;
+    lam_plan_data *r = ctx;
     return r->next->end ? r->next->end(r->next->ctx) : LAM_OK;
 }
 
-void lam_record_sink(lam_record *r, const lam_sink *next, const lam_frame *f, int frame_machine, lam_error *err,
+void lam_plan_data_sink(lam_plan_data *r, const lam_sink *next, const lam_frame *f, int frame_machine, lam_error *err,
                      lam_sink *out)
 {
     memset(r, 0, sizeof *r);
@@ -175,12 +175,12 @@ void lam_record_sink(lam_record *r, const lam_sink *next, const lam_frame *f, in
     out->hatches = r_hatches;
 }
 
-lam_rec_layer *lam_record_current(lam_record *r)
+lam_rec_layer *lam_plan_data_current(lam_plan_data *r)
 {
     return r->nlayers ? &r->layers[r->nlayers - 1] : NULL;
 }
 
-void lam_record_free(lam_record *r)
+void lam_plan_data_free(lam_plan_data *r)
 {
     if (!r) return;
     free(r->layers);
