@@ -18,6 +18,11 @@
  *   line) is not a contour. $$LAYERS, when given, must count the layers.
  *   Coordinates are taken as written (lamina writes model units and says
  *   in $$UNITS how many millimetres one is).
+ * - A lamina run's JSON (json_sink.h, `lamina slice --json`) when the file
+ *   starts with "{": each layer's contours ("solid" their label, "id" their
+ *   id, points in the output frame), and the job's frame and plane, which
+ *   say how the points were written (has_frame). Read by a strict reader
+ *   (program_json.c) that gives every error a line and column.
  * - Otherwise the SLS dialect of the thesis (the sls-contours profile and
  *   `lamina slice` without a profile): blocks "contour Z", then one or more
  *   "loop N", N lines "X Y Z", "endloop", then "endcontour"; blank lines
@@ -43,7 +48,8 @@
 typedef enum lam_program_format {
     LAM_PROGRAM_SLS,
     LAM_PROGRAM_CLI_ASCII,
-    LAM_PROGRAM_CLI_BINARY
+    LAM_PROGRAM_CLI_BINARY,
+    LAM_PROGRAM_JSON
 } lam_program_format;
 
 typedef struct lam_program_contour {
@@ -69,6 +75,9 @@ typedef struct lam_program {
     size_t nlayers;
     double quantum_xy;       /* the largest written coordinate's uncertainty */
     double quantum_z;        /* the same for heights */
+    int has_frame;           /* JSON: the file says how it was written: */
+    lam_frame frame;         /* the layer frame of its points (plane u, v, w) */
+    int frame_machine;       /* points in the layer frame (u, v, w) */
 } lam_program;
 
 /* Read the program at path. On success *out is a new program the caller
@@ -94,7 +103,11 @@ int lam_program_layer_make(const lam_program *p, size_t i, const lam_frame *f, i
 /* Free what lam_program_layer_make put in *L and zero it. */
 void lam_layer_clear(lam_layer *L);
 
-/* "sls-contours", "cli-ascii" or "cli-binary". */
+/* Read a run's JSON (data[0..len)) into p, which the caller allocated
+ * zeroed and frees (lam_program_read_buf calls it). */
+int lam_program_read_json(const char *path, const unsigned char *data, size_t len, lam_program *p, lam_error *err);
+
+/* "sls-contours", "cli-ascii", "cli-binary" or "lamina-run" (JSON). */
 const char *lam_program_format_name(lam_program_format f);
 
 void lam_program_free(lam_program *p);
