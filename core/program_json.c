@@ -32,6 +32,8 @@ typedef struct jr {
     lam_program *p;
     size_t cap_pts, cap_contours, cap_layers;
     double origin[3];
+    lam_frame plane;         /* the output frame's axes: points project on them */
+    int layer_frame;         /* the job gave "layer_frame" (into p->frame) */
     double maxabs;           /* of the coordinates, for the precision */
     lam_error *err;
 } jr;
@@ -286,10 +288,11 @@ static int plane_member(jr *r, void *ctx, const char *key, size_t at, int depth)
 {
     (void)ctx, (void)at, (void)depth;
     lam_program *p = r->p;
-    if (!strcmp(key, "origin")) return triple(r, r->origin, "plane.origin");
-    if (!strcmp(key, "u")) return triple(r, p->frame.u, "plane.u");
-    if (!strcmp(key, "v")) return triple(r, p->frame.v, "plane.v");
-    if (!strcmp(key, "w")) return triple(r, p->frame.w, "plane.w");
+    if (!ctx && !strcmp(key, "origin")) return triple(r, r->origin, "plane.origin");
+    lam_frame *f = ctx ? &p->frame : &r->plane;
+    if (!strcmp(key, "u")) return triple(r, f->u, "an axis u");
+    if (!strcmp(key, "v")) return triple(r, f->v, "an axis v");
+    if (!strcmp(key, "w")) return triple(r, f->w, "an axis w");
     return 1;
 }
 
@@ -309,6 +312,11 @@ static int job_member(jr *r, void *ctx, const char *key, size_t at, int depth)
         if (expect(r, '{')) return fail(r, LAM_EINVAL, at, "job.plane must be an object {origin, u, v, w}");
         t->has_plane = 1;
         return members(r, NULL, plane_member, depth + 1);
+    }
+    if (!strcmp(key, "layer_frame")) {
+        if (expect(r, '{')) return fail(r, LAM_EINVAL, at, "job.layer_frame must be an object {u, v, w}");
+        r->layer_frame = 1;
+        return members(r, r->p, plane_member, depth + 1);
     }
     return 1;
 }
@@ -496,6 +504,7 @@ int lam_program_read_json(const char *path, const unsigned char *data, size_t le
     p->format = LAM_PROGRAM_JSON;
     p->has_frame = 1;
     lam_frame_axis('z', &p->frame, NULL);
+    lam_frame_axis('z', &r.plane, NULL);
     top t;
     memset(&t, 0, sizeof t);
     int rc = expect(&r, '{');
@@ -507,9 +516,21 @@ int lam_program_read_json(const char *path, const unsigned char *data, size_t le
     r.line = 1, r.line_start = 0;
     if (missing) return fail(&r, LAM_EINVAL, 0, "not a lamina run: no \"%s\"", missing);
     if (!t.has_plane) return fail(&r, LAM_EINVAL, 0, "the job has no \"plane\": how the points were written is unknown");
-    /* the points as seen from the plane's origin */
-    for (size_t i = 0; i < p->npoints; i++)
-        for (int k = 0; k < 3; k++) p->xyz[3 * i + k] -= r.origin[k];
+    if (!r.layer_frame) {
+        /* before layer_frame, a model-frame run's plane was its layer frame */
+        if (p->frame_machine) return fail(&r, LAM_EINVAL, 0, "a machine-frame run without \"layer_frame\": where its layers lie in the model is unknown");
+        p->frame = r.plane;
+    }
+    /* each point in the layer frame: (u, v, w) on the plane, so the
+     * program's points are read as the machine frame's */
+    const lam_frame *f = &r.plane;
+    for (size_t i = 0; i < p->npoints; i++) {
+        double *q = p->xyz + 3 * i, d[3] = { q[0] - r.origin[0], q[1] - r.origin[1], q[2] - r.origin[2] };
+        for (int k = 0; k < 3; k++) {
+            const double *axis = k == 0 ? f->u : k == 1 ? f->v : f->w;
+            q[k] = d[0] * axis[0] + d[1] * axis[1] + d[2] * axis[2];
+        }
+    }
     /* every number is exact (shortest round-trip): what is left is the
      * rounding of projecting a point on the plane */
     p->quantum_xy = p->quantum_z = 8 * 2.220446049250313e-16 * r.maxabs;

@@ -706,8 +706,7 @@ int lam_program_layer_make(const lam_program *p, size_t i, const lam_frame *f, i
             const double *q = p->xyz + 3 * (pc[k].first + j);
             double *uv = out->uv + 2 * out->npoints++;
             double w;
-            int as_uvw = p->format == LAM_PROGRAM_JSON ? p->frame_machine : p->format != LAM_PROGRAM_SLS || frame_machine;
-            if (as_uvw) {
+            if (p->format != LAM_PROGRAM_SLS || frame_machine) {
                 uv[0] = q[0];
                 uv[1] = q[1];
                 w = q[2];

@@ -20,8 +20,9 @@
  *   in $$UNITS how many millimetres one is).
  * - A lamina run's JSON (json_sink.h, `lamina slice --json`) when the file
  *   starts with "{": each layer's contours ("solid" their label, "id" their
- *   id, points in the output frame), and the job's frame and plane, which
- *   say how the points were written (has_frame). Read by a strict reader
+ *   id, points in the output frame, projected on the job's plane into the
+ *   layer frame), and the job's layer_frame: where the layers lie in the
+ *   model (has_frame). Read by a strict reader
  *   (program_json.c) that gives every error a line and column.
  * - Otherwise the SLS dialect of the thesis (the sls-contours profile and
  *   `lamina slice` without a profile): blocks "contour Z", then one or more
@@ -67,7 +68,8 @@ typedef struct lam_program_layer {
 
 typedef struct lam_program {
     lam_program_format format;
-    double *xyz;             /* 3 per point: SLS as written (x y z); CLI (x, y, the layer's z) */
+    double *xyz;             /* 3 per point: SLS as written (x y z); CLI (x, y, the layer's z);
+                                JSON (u, v, w) in the layer frame */
     size_t npoints;
     lam_program_contour *contours;
     size_t ncontours;
@@ -75,9 +77,9 @@ typedef struct lam_program {
     size_t nlayers;
     double quantum_xy;       /* the largest written coordinate's uncertainty */
     double quantum_z;        /* the same for heights */
-    int has_frame;           /* JSON: the file says how it was written: */
-    lam_frame frame;         /* the layer frame of its points (plane u, v, w) */
-    int frame_machine;       /* points in the layer frame (u, v, w) */
+    int has_frame;           /* JSON: the file says where its layers lie: */
+    lam_frame frame;         /* the layer frame in the model (job.layer_frame) */
+    int frame_machine;       /* whether it was written in the machine frame */
 } lam_program;
 
 /* Read the program at path. On success *out is a new program the caller

@@ -201,7 +201,7 @@ static int validate_program(const args *a, const lam_plan_opts *po, lam_rays *v,
     /* a run's JSON says its own axis and frame (-a and --frame are for
      * programs that do not) */
     const lam_frame *f = p->has_frame ? &p->frame : &a->so.frame;
-    int frame_machine = p->has_frame ? p->frame_machine : po->frame_machine;
+    int frame_machine = po->frame_machine; /* (a JSON's points are read in the layer frame) */
     lam_section_index *sec = NULL;
     if ((rc = lam_rays_section(v, f, &sec, err))) {
         lam_program_free(p);
