@@ -178,6 +178,8 @@ install: all
 	  lamina.pc.in > $(DESTDIR)$(PREFIX)/lib/pkgconfig/lamina.pc
 	install -d $(DESTDIR)$(PREFIX)/share/lamina/machines $(DESTDIR)$(PREFIX)/lib/lamina/plugins
 	install -m 644 machines/*.yaml $(DESTDIR)$(PREFIX)/share/lamina/machines/
+	install -d $(DESTDIR)$(PREFIX)/share/lamina/schema
+	install -m 644 schema/*.json $(DESTDIR)$(PREFIX)/share/lamina/schema/
 	$(if $(PLUGIN_SO),install -m 755 $(PLUGIN_SO) $(DESTDIR)$(PREFIX)/lib/lamina/plugins/)
 	install -d $(DESTDIR)$(PREFIX)/share/lamina/lua/lamina $(DESTDIR)$(PREFIX)/lib/lua/5.4
 	$(if $(wildcard lua/lamina/*.lua),install -m 644 lua/lamina/*.lua $(DESTDIR)$(PREFIX)/share/lamina/lua/lamina/)
