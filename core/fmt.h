@@ -44,4 +44,10 @@ void lam_fmt_pair(char *a, char *b, double x, double y);
  * "512 bytes", "1.5 kB", "16 GB" (three significant digits). Returns buf. */
 const char *lam_fmt_bytes(char *buf, size_t size, double n);
 
+/* |x| * 10^decimals rounded to a whole number, exactly as lam_fmt_fixed
+ * rounds (half to even on exact ties), into *q: returns 1; 0 (q untouched)
+ * when x is not finite, decimals is not 0..15 or |x| * 10^decimals >= 4e15
+ * (where lam_fmt_fixed uses printf). */
+int lam_fmt_scaled(double x, int decimals, unsigned long long *q);
+
 #endif

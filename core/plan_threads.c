@@ -218,7 +218,7 @@ static int consume(void *ctx, size_t i, int prc)
         if (rc) return rc;
     }
     lam_layer *L = R->L;
-    lam_layer_info li = { L->index, L->cut, L->width, L->floor, L->ceiling };
+    lam_layer_info li = { L->index, L->cut, L->width, L->floor, L->ceiling, L, NULL };
     int rc = sink->layer ? sink->layer(sink->ctx, &li) : LAM_OK;
     if (!rc && R->plan_rc) {
         /* what the layer sent before it failed, then its error */
@@ -242,6 +242,7 @@ static int consume(void *ctx, size_t i, int prc)
         rc = lam_record_replay(&R->ops, sink);
         if (!rc && o->time) lam_scan_time_add(o->time, &R->time);
         if (!rc && o->layer_time) o->layer_time[L->index] = lam_scan_time_total(&R->time);
+        if (lam_scan_estimates(&o->scan)) li.time = &R->time;
     }
     if (!rc && sink->layer_end) rc = sink->layer_end(sink->ctx, &li);
     lam_layer_free(R->L);

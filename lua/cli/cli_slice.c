@@ -9,6 +9,7 @@
 #include "cli_check.h"
 #include "dialect.h"
 #include "fmt.h"
+#include "json_sink.h"
 #include "model.h"
 #include "planner.h"
 #include "plugin.h"
@@ -17,6 +18,7 @@
 #include "size_sense.h"
 #include "slice.h"
 #include "svg.h"
+#include "tee.h"
 #include "writer.h"
 
 #include <errno.h>
@@ -30,8 +32,8 @@
 static int same_file(const char *out, const char *model)
 {
     struct stat a, b;
-    return out && strcmp(out, "-") && stat(out, &a) == 0 && stat(model, &b) == 0 && a.st_dev == b.st_dev &&
-           a.st_ino == b.st_ino;
+    return out && strcmp(out, "-") && strcmp(model, "-") && stat(out, &a) == 0 && stat(model, &b) == 0 &&
+           a.st_dev == b.st_dev && a.st_ino == b.st_ino;
 }
 
 static const char usage_text[] =
@@ -42,7 +44,7 @@ static const char usage_text[] =
     "                          [--min-deposit LEN] [--no-alternate] [--perimeters N] [--islands]\n"
     "                          [--beam-offset] [--frame model|machine] [--fill evenodd|nonzero]\n"
     "                          [--validate] [--max-layers N] [--max-output SIZE] [-j N]\n"
-    "                          [--svg FILE] [-o FILE [--json]] [-q | -v]\n"
+    "                          [--svg FILE] [--json FILE] [-o FILE] [-q | -v]\n"
     "  -m, --machine    machine profile: a shipped name (see 'lamina machines') or a path\n"
     "                   (default: the thesis's SLS contours)\n"
     "  -s, --set        KEY=VALUE: any key of the machine profile, checked as in its YAML\n"
@@ -59,11 +61,12 @@ static const char usage_text[] =
     "  -j, --jobs       threads that slice and plan (default: LAMINA_THREADS, else the\n"
     "                   processors); the program is the same for every number\n"
     "      --svg        write a contact sheet of the layers\n"
+    "      --json       write the run as JSON (layer interchange, docs/json.md): the job,\n"
+    "                   each layer's contours and planned vectors, lengths and build time\n"
     "  -o, --output     program file (default: standard output)\n"
-    "      --json       the build-time estimate of a powder-bed job as JSON on standard output\n"
-    "                   (with -o; without --json it is a line on standard error)\n"
     "  -q, --quiet      no progress line and no notes; warnings and errors only\n"
     "  -v, --verbose    every per-layer note, and the time each stage takes\n"
+    "MODEL - reads standard input; an output FILE - writes standard output (one at most).\n"
     "Values: --name=VALUE or --name VALUE; -- ends the options. The profile's values are\n"
     "defaults that -s and the options below override.\n";
 
@@ -121,18 +124,15 @@ static int on_layer(void *ctx, const lam_layer *L, lam_error *err)
     return r->svg ? lam_svg_add(r->svg, L, err) : LAM_OK;
 }
 
-/* The estimate as JSON: the job's and each layer's total. */
-static void cli_json_estimate(const char *path, const lam_scan_time *t, const double *layer, size_t n)
+/* The program's sink and the JSON's (--json) fed by one plan: *sink becomes
+ * a tee that owns both. On failure *sink is left as it was. */
+static int tee_json(lam_sink *sink, lam_writer *jw, lam_error *err)
 {
-    printf("{\"model\": ");
-    cli_json_string(stdout, path);
-    printf(", \"layers\": %zu, \"contour_passes\": %zu, \"hatch_vectors\": %zu, \"exposed\": %.17g, "
-           "\"hatched\": %.17g, \"jumped\": %.17g, \"time\": {\"total\": %.17g, \"exposure\": %.17g, "
-           "\"jumps\": %.17g, \"recoat\": %.17g}, \"layer_times\": [",
-           t->layers, t->contours, t->vectors, t->exposure_length, t->hatch_length, t->jump_length,
-           lam_scan_time_total(t), t->exposure, t->jump, t->recoat);
-    for (size_t i = 0; i < n; i++) printf("%s%.17g", i ? ", " : "", layer[i]);
-    printf("]}\n");
+    lam_sink both[2] = { *sink };
+    int rc = lam_json_sink(jw, 0, &both[1], err);
+    if (!rc && (rc = lam_tee_sink(both, 2, sink, err))) both[1].destroy(both[1].ctx);
+    if (rc) *sink = both[0];
+    return rc;
 }
 
 /* The build-time summary of a powder-bed job (hatch.h's estimate). */
@@ -148,15 +148,18 @@ static void cli_print_estimate(const char *path, const lam_scan_time *t)
 int cmd_slice(int argc, char **argv)
 {
     args a;
-    int rc = cli_parse_args("slice", usage_text, OPT_MODEL | OPT_SLICE | OPT_SET | OPT_PLAN | OPT_SVG | OPT_JSON | OPT_TALK,
-                            argc, argv, &a);
+    int rc = cli_parse_args("slice", usage_text,
+                            OPT_MODEL | OPT_SLICE | OPT_SET | OPT_PLAN | OPT_SVG | OPT_JSON_FILE | OPT_TALK, argc, argv,
+                            &a);
     if (rc) {
         cli_args_free(&a);
         return rc < 0 ? EXIT_OK : rc;
     }
-    if (same_file(a.out, a.path) || same_file(a.svg, a.path)) {
-        rc = cli_usage("slice", "%s %s is the model being read: refusing to overwrite it",
-                       same_file(a.out, a.path) ? "-o" : "--svg", same_file(a.out, a.path) ? a.out : a.svg);
+    const char *outs[][2] = { { "-o", a.out }, { "--svg", a.svg }, { "--json", a.json_out } };
+    for (size_t i = 0; i < sizeof outs / sizeof *outs && !rc; i++)
+        if (same_file(outs[i][1], a.path))
+            rc = cli_usage("slice", "%s %s is the model being read: refusing to overwrite it", outs[i][0], outs[i][1]);
+    if (rc) {
         cli_args_free(&a);
         return rc;
     }
@@ -165,9 +168,8 @@ int cmd_slice(int argc, char **argv)
     lam_profile *prof = NULL;
     lam_model *m = NULL;
     lam_slicer *s = NULL;
-    lam_writer *w = NULL;
+    lam_writer *w = NULL, *jw = NULL;
     lam_sink sink = { 0 };
-    double *layer_time = NULL;
     report rep;
     memset(&rep, 0, sizeof rep);
     rep.path = a.path;
@@ -177,10 +179,11 @@ int cmd_slice(int argc, char **argv)
 
     lam_plan_opts po;
     if ((rc = cli_profile("slice", &a, &prof, &po))) goto done;
-    if (lam_model_load(a.path, &m, &err)) {
+    if (cli_load_model(a.path, &m, &err)) {
         rc = cli_fail(&err);
         goto done;
     }
+    a.path = rep.path = m->path; /* "<stdin>" for "-" */
     if (lam_slicer_new(m, &a.so, &s, &err)) {
         rc = err.code == LAM_EUSAGE ? cli_usage("slice", "%s", err.msg) : cli_fail_limit(&err, 0, CLI_RAISE_LAYERS);
         goto done;
@@ -203,13 +206,14 @@ int cmd_slice(int argc, char **argv)
             goto done;
         }
     }
-    if (a.out && strcmp(a.out, "-") ? lam_writer_file(a.out, &w, &err) : lam_writer_stream(stdout, "stdout", &w, &err)) {
+    if (cli_writer(a.out, &w, &err) || (a.json_out && cli_writer(a.json_out, &jw, &err))) {
         rc = cli_fail(&err);
         goto done;
     }
     lam_writer_set_limit(w, a.max_output ? a.max_output : LAM_DEFAULT_MAX_OUTPUT);
     int src = !prof->writer || !strcmp(prof->writer, "text") ? lam_dialect_sink(&prof->dialect, w, &sink, &err)
                                                              : lam_plugin_writer_sink(prof->writer, w, &sink, &err);
+    if (!src && jw) src = tee_json(&sink, jw, &err);
     if (src) {
         rc = err.code == LAM_EUSAGE ? cli_usage("slice", "%s", err.msg) : cli_fail(&err);
         goto done;
@@ -217,17 +221,7 @@ int cmd_slice(int argc, char **argv)
     lam_scan_time est;
     memset(&est, 0, sizeof est);
     po.time = &est;
-    if (a.json && (!a.out || !strcmp(a.out, "-"))) {
-        rc = cli_usage("slice", "--json writes the estimate to standard output: give the program a file (-o FILE)");
-        goto done;
-    }
     size_t nl = lam_slicer_count(s);
-    if (a.json && po.kind == LAM_PLAN_SLS && !(layer_time = calloc(nl ? nl : 1, sizeof *layer_time))) {
-        lam_error_set(&err, LAM_ENOMEM, NULL, 0, 0, "out of memory");
-        rc = cli_fail(&err);
-        goto done;
-    }
-    po.layer_time = layer_time;
     cli_progress_stage(&rep.progress, "reading the model and preparing the layers");
     cli_size_sense(a.path, a.machine ? prof : NULL, m, s, &po);
     cli_progress_begin(&rep.progress, "slicing", a.path, nl);
@@ -261,8 +255,8 @@ int cmd_slice(int argc, char **argv)
             goto done;
         }
     }
-    if (po.kind == LAM_PLAN_SLS && !a.json && notes && lam_scan_estimates(&po.scan)) cli_print_estimate(a.path, &est);
-    if (rep.svg && lam_svg_save(rep.svg, a.svg, &err)) {
+    if (po.kind == LAM_PLAN_SLS && notes && lam_scan_estimates(&po.scan)) cli_print_estimate(a.path, &est);
+    if (rep.svg && cli_save_svg(rep.svg, a.svg, &err)) {
         rc = cli_fail(&err);
         goto done;
     }
@@ -271,13 +265,17 @@ int cmd_slice(int argc, char **argv)
         w = NULL;
         int over = lam_writer_over_limit(tmp);
         if (lam_writer_commit(tmp, &err)) rc = cli_fail_limit(&err, over, CLI_RAISE_OUTPUT);
-        else if (a.json && po.kind == LAM_PLAN_SLS) cli_json_estimate(a.path, &est, layer_time, lam_slicer_count(s));
         cli_progress_stage(&rep.progress, "writing the outputs");
     }
+    if (!rc && jw) {
+        lam_writer *tmp = jw;
+        jw = NULL;
+        if (lam_writer_commit(tmp, &err)) rc = cli_fail(&err);
+    }
 done:
-    free(layer_time);
     if (sink.destroy) sink.destroy(sink.ctx);
     lam_writer_abort(w);
+    lam_writer_abort(jw);
     lam_svg_free(rep.svg);
     lam_rays_free(rep.v);
     lam_slicer_free(s);
