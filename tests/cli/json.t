@@ -97,7 +97,7 @@ is "$RC" 0 "validate reads the machine-frame run back (its own frame): exit 0"
 line=$(grep -n '"solid": false' "$TMP/a.json" | head -1 | cut -d: -f1)
 perl -pe 's/"solid": false/"solid": true/ if $. == '"$line" "$TMP/a.json" >"$TMP/flip.json"
 run "$LAMINA" validate "$M/thesis_cube_hole.ug" --program "$TMP/flip.json"
-like "$RC $OUT" "^3 (?s:.*)contour 1 \(solid, $TMP/flip.json:$line:5\) direction: written clockwise but labelled solid" \
+like "$RC $OUT" "^3 (?s:.*)contour 2 \(solid, $TMP/flip.json:$line:5\) direction: written clockwise but labelled solid" \
     "a flipped solid: exit 3, the contour and its file:line:col"
 # malformed JSON: file:line:col
 printf '{"format": "lamina-run", "version": 1,\n "job": {"frame": "model",, }}\n' >"$TMP/m.json"
