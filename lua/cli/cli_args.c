@@ -187,6 +187,7 @@ static const cli_opt options[] = {
     { "validate", 0, OPT_PLAN, NULL, o_flag, F(validate) },
     { "output", 'o', OPT_PLAN, "FILE", o_text, F(out) },
     { "svg", 0, OPT_SVG, "FILE", o_text, F(svg) },
+    { "html", 0, OPT_PLAN, "FILE", o_text, F(html) },
     { "program", 0, OPT_PROGRAM, "FILE", o_text, F(program) },
     { "json", 0, OPT_JSON, NULL, o_flag, F(json) },
     { "show", 0, OPT_SHOW, "NAME|PATH", o_show, 0 },

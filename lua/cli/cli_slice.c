@@ -13,7 +13,7 @@
 #include "plugin.h"
 #include "profile.h"
 #include "slice.h"
-#include "svg.h"
+#include "cli_view.h"
 #include "writer.h"
 
 #include <errno.h>
@@ -39,7 +39,7 @@ static const char usage_text[] =
     "                          [--min-deposit LEN] [--no-alternate] [--perimeters N] [--islands]\n"
     "                          [--beam-offset] [--frame model|machine] [--fill evenodd|nonzero]\n"
     "                          [--validate] [--max-layers N] [--max-output SIZE]\n"
-    "                          [--svg FILE] [-o FILE [--json]]\n"
+    "                          [--svg FILE] [--html FILE] [-o FILE [--json]]\n"
     "  -m, --machine    machine profile: a shipped name (see 'lamina machines') or a path\n"
     "                   (default: the thesis's SLS contours)\n"
     "  -s, --set        KEY=VALUE: any key of the machine profile, checked as in its YAML\n"
@@ -53,7 +53,8 @@ static const char usage_text[] =
     "      --max-layers refuse runs of more layers (default 1000000)\n"
     "      --max-output refuse programs larger than SIZE bytes (k, M, G, T: powers of\n"
     "                   1024; default 4G), estimated before planning and as written\n"
-    "      --svg        write a contact sheet of the layers\n"
+    "      --svg        write a contact sheet of the layers and their scan paths\n"
+    "      --html       write a viewer of the run: one HTML file to open in a browser\n"
     "  -o, --output     program file (default: standard output)\n"
     "      --json       the build-time estimate of a powder-bed job as JSON on standard output\n"
     "                   (with -o; without --json it is a line on standard error)\n"
@@ -63,7 +64,7 @@ static const char usage_text[] =
 /* Per-layer reports and the SVG preview, before each layer is planned. */
 typedef struct report {
     const char *path;
-    lam_svg *svg;
+    cli_view view;      /* --svg, --html */
     lam_rays *v;        /* --validate */
     const lam_frame *frame;
     int fill_nonzero;
@@ -107,7 +108,7 @@ static int on_layer(void *ctx, const lam_layer *L, lam_error *err)
         int rc = vreport_layer(&r->vr, r->v, L, r->frame, &vo, NULL, err);
         if (rc) return rc;
     }
-    return r->svg ? lam_svg_add(r->svg, L, err) : LAM_OK;
+    return cli_view_layer(&r->view, L, err);
 }
 
 /* The estimate as JSON: the job's and each layer's total. */
@@ -143,9 +144,15 @@ int cmd_slice(int argc, char **argv)
         cli_args_free(&a);
         return rc < 0 ? EXIT_OK : rc;
     }
-    if (same_file(a.out, a.path) || same_file(a.svg, a.path)) {
-        rc = cli_usage("slice", "%s %s is the model being read: refusing to overwrite it",
-                       same_file(a.out, a.path) ? "-o" : "--svg", same_file(a.out, a.path) ? a.out : a.svg);
+    if (same_file(a.out, a.path) || same_file(a.svg, a.path) || same_file(a.html, a.path)) {
+        const char *o = same_file(a.out, a.path) ? "-o" : same_file(a.svg, a.path) ? "--svg" : "--html";
+        rc = cli_usage("slice", "%s %s is the model being read: refusing to overwrite it", o,
+                       o[1] == 'o' ? a.out : o[2] == 's' ? a.svg : a.html);
+        cli_args_free(&a);
+        return rc;
+    }
+    if (a.html && !strcmp(a.html, "-") && (!a.out || !strcmp(a.out, "-"))) {
+        rc = cli_usage("slice", "--html - and the program both on standard output: give the program a file (-o FILE)");
         cli_args_free(&a);
         return rc;
     }
@@ -180,16 +187,6 @@ int cmd_slice(int argc, char **argv)
         rep.frame = lam_slicer_frame(s);
         rep.fill_nonzero = a.so.fill_nonzero;
     }
-    if (a.svg) {
-        double box[4];
-        lam_slicer_uv_bounds(s, box);
-        char title[600];
-        snprintf(title, sizeof title, "lamina: %s", a.path);
-        if (lam_svg_new(lam_slicer_count(s), box, title, &rep.svg, &err)) {
-            rc = cli_fail(&err);
-            goto done;
-        }
-    }
     if (a.out && strcmp(a.out, "-") ? lam_writer_file(a.out, &w, &err) : lam_writer_stream(stdout, "stdout", &w, &err)) {
         rc = cli_fail(&err);
         goto done;
@@ -209,12 +206,18 @@ int cmd_slice(int argc, char **argv)
         goto done;
     }
     size_t nl = lam_slicer_count(s);
-    if (a.json && po.kind == LAM_PLAN_SLS && !(layer_time = calloc(nl ? nl : 1, sizeof *layer_time))) {
+    /* the viewer shows each layer's estimate when there is one */
+    int want_times = a.json || (a.html && lam_scan_estimates(&po.scan));
+    if (want_times && po.kind == LAM_PLAN_SLS && !(layer_time = calloc(nl ? nl : 1, sizeof *layer_time))) {
         lam_error_set(&err, LAM_ENOMEM, NULL, 0, 0, "out of memory");
         rc = cli_fail(&err);
         goto done;
     }
     po.layer_time = layer_time;
+    if (cli_view_open(&rep.view, &a, s, &po, &sink, &err)) {
+        rc = cli_fail(&err);
+        goto done;
+    }
     if (lam_plan_run(s, m, &po, &sink, on_layer, &rep, &err)) {
         rc = err.code == LAM_EUSAGE ? cli_usage("slice", "%s", err.msg)
                                     : cli_fail_limit(&err, lam_writer_over_limit(w), CLI_RAISE_OUTPUT);
@@ -243,7 +246,7 @@ int cmd_slice(int argc, char **argv)
         }
     }
     if (po.kind == LAM_PLAN_SLS && !a.json && lam_scan_estimates(&po.scan)) cli_print_estimate(a.path, &est);
-    if (rep.svg && lam_svg_save(rep.svg, a.svg, &err)) {
+    if (cli_view_save(&rep.view, &err)) {
         rc = cli_fail(&err);
         goto done;
     }
@@ -258,7 +261,7 @@ done:
     free(layer_time);
     if (sink.destroy) sink.destroy(sink.ctx);
     lam_writer_abort(w);
-    lam_svg_free(rep.svg);
+    cli_view_free(&rep.view);
     lam_rays_free(rep.v);
     lam_slicer_free(s);
     lam_model_free(m);
