@@ -140,12 +140,17 @@ run: deps
 	@$(LAMINA) info $(RUN_PART) > out/thesis_cube_hole.info.txt
 	@$(LAMINA) validate $(RUN_PART) -w 0.25 --cut floor > out/thesis_cube_hole.validate.txt
 	@tail -n 1 out/thesis_cube_hole.validate.txt
+	@$(LAMINA) slice $(RUN_PART) -m creol-ladrp --svg out/thesis_cube_hole.paths.svg \
+	  --html out/thesis_cube_hole.html -o /dev/null
 	@echo "lamina: outputs in $(abspath out)/:"
 	@echo "  thesis_cube_hole.ladrp         LADRP program for the thesis's CREOL cell"
 	@echo "  thesis_cube_hole.sls           SLS contour program (thesis dialect)"
 	@echo "  thesis_cube_hole.svg           contact sheet of the SLS layers"
 	@echo "  thesis_cube_hole.info.txt      model report (lamina info)"
 	@echo "  thesis_cube_hole.validate.txt  Embree check of every solid/hole label"
+	@echo "  thesis_cube_hole.paths.svg     the LADRP layers with their deposits and travel"
+	@echo "  thesis_cube_hole.html          viewer of the LADRP plan (one file, open it in a browser)"
+	@echo "lamina: viewer: $(abspath out/thesis_cube_hole.html)"
 
 # Tests: C unit tests are compiled to TAP programs; tests/cli/*.t are shell
 # scripts that drive the executable. prove runs both and prints the summary.

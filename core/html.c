@@ -6,6 +6,7 @@
 
 #include "dialect.h"
 #include "fmt.h"
+#include "grow.h"
 #include "viewer_html.h"
 #include "vstream.h"
 
@@ -104,11 +105,9 @@ int lam_html_section(lam_html *h, const lam_layer *L, lam_error *err)
             h->head = 0;
         }
         if (h->nq == h->cap) {
-            size_t cap = h->cap ? 2 * h->cap : 4;
-            section *n = realloc(h->q, cap * sizeof *n);
+            section *n = lam_grow(h->q, &h->cap, h->nq + 1, sizeof *n, 4);
             if (!n) return lam_error_nomem(err, "making the viewer");
             h->q = n;
-            h->cap = cap;
         }
     }
     section s = { L->index, L->cut, malloc((2 * L->npoints + 1) * sizeof *s.uv),

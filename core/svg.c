@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "grow.h"
 #include "vstream.h"
 
 #define PANEL 200.0   /* panel size in px */
@@ -315,11 +316,9 @@ static int sv_vector(void *ctx, const lam_vec *v)
     lam_svg *s = ctx;
     if (s->cur < 0) return LAM_OK;
     if (s->nrv == s->caprv) {
-        size_t cap = s->caprv ? 2 * s->caprv : 256;
-        rvec *n = realloc(s->rv, cap * sizeof *n);
+        rvec *n = lam_grow(s->rv, &s->caprv, s->nrv + 1, sizeof *n, 256);
         if (!n) return lam_error_nomem(s->err, "drawing the scan paths");
         s->rv = n;
-        s->caprv = cap;
     }
     rvec *r = &s->rv[s->nrv++];
     memcpy(r->a, v->fuv, sizeof r->a);
