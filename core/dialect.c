@@ -2,6 +2,7 @@
  * and the sink that writes a plan through them. See dialect.h. */
 #include "dialect.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdint.h>
@@ -422,13 +423,22 @@ size_t lam_dialect_number(char *out, double x)
 {
     if (x == 0) x = 0; /* no "-0" */
     if (!isfinite(x)) return (size_t)snprintf(out, LAM_FMT_MAX, "%g", x);
-    int prec = 1, n = 0;
+    /* When any k <= 15 digits read back as x, the rounding to 15 digits
+     * is that number with zeros after it: a 15-digit step (>= 1e-15 of x)
+     * is far wider than x's half-ulp (<= 1.2e-16 of x). So 15 digits with
+     * the zeros taken off are the shortest, else 16, else 17. (Not for
+     * subnormals, whose ulp is wider: they count up from 1.) */
+    int start = fabs(x) < DBL_MIN ? 1 : 15, prec = start, n = 0;
     for (; prec <= 17; prec++) {
         n = snprintf(out, LAM_FMT_MAX, "%.*e", prec - 1, x);
         double back;
         if (lam_parse_number((const unsigned char *)out, (size_t)n, &back) == LAM_OK && back == x) break;
     }
     if (prec > 17) prec = 17;
+    if (start == 15 && prec == 15) {
+        const char *m = strchr(out, 'e');
+        while (prec > 1 && m[-1] == '0') prec--, m--;
+    }
     /* the decimal exponent of the shortest digits decides the notation, as
      * %.17g decides it: plain decimals for 1e-4 <= |x| < 1e17 */
     const char *e = strchr(out, 'e');

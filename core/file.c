@@ -49,12 +49,17 @@ void lam_file_set_gate(lam_file_gate g, void *ctx, lam_file_gate *old_gate, void
     gate_ctx = ctx;
 }
 
+/* A limit from the environment that is not a size. */
+static int bad_limit(const char *path, lam_error *err)
+{
+    return lam_error_set(err, LAM_EINVAL, path, 0, 0,
+                         "cannot read: LAMINA_MAX_INPUT is not a size (bytes, or a number with K, M or G)");
+}
+
 /* Open a regular file within the limit for reading into *fd. */
 static int open_regular(const char *path, lam_read_limit limit, struct stat *st, int *fd_out, lam_error *err)
 {
-    if (limit.bytes == 0) /* a limit from the environment that is not a size */
-        return lam_error_set(err, LAM_EINVAL, path, 0, 0,
-                             "cannot read: LAMINA_MAX_INPUT is not a size (bytes, or a number with K, M or G)");
+    if (limit.bytes == 0) return bad_limit(path, err);
     if (gate) {
         int rc = gate(gate_ctx, path, err);
         if (rc) return rc;
@@ -77,18 +82,14 @@ static int open_regular(const char *path, lam_read_limit limit, struct stat *st,
     return LAM_OK;
 }
 
-int lam_read_file(const char *path, lam_read_limit limit, char **data, size_t *len, lam_error *err)
+/* Read fd to its end into a NUL-terminated malloc'd buffer, at most
+ * limit.bytes; cap is the first buffer's size (the file's size, a hint). */
+static int read_fd(int fd, const char *path, lam_read_limit limit, size_t cap, char **data, size_t *len, lam_error *err)
 {
-    *data = NULL;
-    *len = 0;
-    struct stat st;
-    int fd = -1, rc = open_regular(path, limit, &st, &fd, err);
-    if (rc) return rc;
-    /* the size is a hint (the file may change): read up to one byte past
-     * the limit to see it grow */
-    size_t cap = (size_t)st.st_size + 2, n = 0;
+    /* read up to one byte past the limit to see the input pass it */
+    size_t n = 0;
     char *buf = malloc(cap);
-    rc = buf ? LAM_OK : lam_error_set(err, LAM_ENOMEM, path, 0, 0, "out of memory reading the file");
+    int rc = buf ? LAM_OK : lam_error_set(err, LAM_ENOMEM, path, 0, 0, "out of memory reading the file");
     while (rc == LAM_OK) {
         if (n + 1 >= cap) {
             size_t ncap = cap * 2 > limit.bytes + 2 ? limit.bytes + 2 : cap * 2;
@@ -108,7 +109,6 @@ int lam_read_file(const char *path, lam_read_limit limit, char **data, size_t *l
         else n += (size_t)got;
         if (rc == LAM_OK && n > limit.bytes) rc = too_large(path, limit, n, err);
     }
-    close(fd);
     if (rc) {
         free(buf);
         return rc;
@@ -117,6 +117,26 @@ int lam_read_file(const char *path, lam_read_limit limit, char **data, size_t *l
     *data = buf;
     *len = n;
     return LAM_OK;
+}
+
+int lam_read_file(const char *path, lam_read_limit limit, char **data, size_t *len, lam_error *err)
+{
+    *data = NULL;
+    *len = 0;
+    struct stat st;
+    int fd = -1, rc = open_regular(path, limit, &st, &fd, err);
+    if (rc) return rc;
+    rc = read_fd(fd, path, limit, (size_t)st.st_size + 2, data, len, err);
+    close(fd);
+    return rc;
+}
+
+int lam_read_stdin(lam_read_limit limit, char **data, size_t *len, lam_error *err)
+{
+    *data = NULL;
+    *len = 0;
+    if (limit.bytes == 0) return bad_limit(LAM_STDIN_NAME, err);
+    return read_fd(STDIN_FILENO, LAM_STDIN_NAME, limit, 65536, data, len, err);
 }
 
 int lam_map_file(const char *path, lam_read_limit limit, char **data, size_t *len, int *mapped, lam_error *err)

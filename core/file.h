@@ -47,6 +47,15 @@ lam_read_limit lam_model_limit(void);
  * large for <what>"; LAM_ENOMEM. */
 int lam_read_file(const char *path, lam_read_limit limit, char **data, size_t *len, lam_error *err);
 
+/* How messages name standard input. */
+#define LAM_STDIN_NAME "<stdin>"
+
+/* Read standard input to its end (a pipe, a terminal, a file: anything)
+ * into a NUL-terminated malloc'd buffer (caller frees), with the same limit
+ * and errors as lam_read_file, naming it LAM_STDIN_NAME. The file gate is
+ * not asked: standard input is what the caller was handed, not a name. */
+int lam_read_stdin(lam_read_limit limit, char **data, size_t *len, lam_error *err);
+
 /* The same for a large input: maps the file read-only when the mapping is
  * NUL-terminated by the system (size not a multiple of the page size), else
  * reads it. *mapped says which; release with lam_unmap_file. The buffer

@@ -3,7 +3,9 @@
  * The format is chosen by extension (.ug, .stl, .obj, any case); a file with
  * another extension is recognised by content: a binary STL by its size, an
  * ASCII STL by a leading "solid", an OBJ by `v`/`f` lines, Unigrafix by `;`
- * terminated statements. */
+ * terminated statements. Standard input (lam_model_load_stdin) has no
+ * extension: always by content. */
+#include "file.h"
 #include "import.h"
 #include "model.h"
 
@@ -52,23 +54,16 @@ static enum fmt by_content(const char *d, size_t n)
     return FMT_UNKNOWN;
 }
 
-int lam_model_load(const char *path, lam_model **out, lam_error *err)
+/* The model in data (len bytes, NUL-terminated), named path. */
+static int load_buf(const char *path, const char *data, size_t len, lam_model **out, lam_error *err)
 {
-    *out = NULL;
-    char *data;
-    size_t len;
-    int mapped;
-    int rc = lam_map_file(path, lam_model_limit(), &data, &len, &mapped, err);
-    if (rc) return rc;
-    if (len == 0) {
-        lam_unmap_file(data, len, mapped);
-        return lam_error_set(err, LAM_EFORMAT, path, 0, 0, "empty file");
-    }
+    if (len == 0) return lam_error_set(err, LAM_EFORMAT, path, 0, 0, "empty file");
     enum fmt f = by_extension(path);
     if (f == FMT_UNKNOWN) f = by_content(data, len);
     lam_mesh mesh;
     lam_mesh_init(&mesh);
     const char *format = NULL;
+    int rc;
     switch (f) {
     case FMT_UG:
         rc = lam_import_ug_buf(path, data, len, &mesh, err);
@@ -88,10 +83,34 @@ int lam_model_load(const char *path, lam_model **out, lam_error *err)
         rc = lam_error_set(err, LAM_EFORMAT, path, 0, 0,
                            "unknown model format (lamina reads Unigrafix .ug, STL and OBJ)");
     }
-    lam_unmap_file(data, len, mapped);
     if (rc) {
         lam_mesh_free(&mesh);
         return rc;
     }
     return lam_model_from_mesh(&mesh, path, format, out, err);
+}
+
+int lam_model_load(const char *path, lam_model **out, lam_error *err)
+{
+    *out = NULL;
+    char *data;
+    size_t len;
+    int mapped;
+    int rc = lam_map_file(path, lam_model_limit(), &data, &len, &mapped, err);
+    if (rc) return rc;
+    rc = load_buf(path, data, len, out, err);
+    lam_unmap_file(data, len, mapped);
+    return rc;
+}
+
+int lam_model_load_stdin(lam_model **out, lam_error *err)
+{
+    *out = NULL;
+    char *data;
+    size_t len;
+    int rc = lam_read_stdin(lam_model_limit(), &data, &len, err);
+    if (rc) return rc;
+    rc = load_buf(LAM_STDIN_NAME, data, len, out, err);
+    free(data);
+    return rc;
 }

@@ -61,6 +61,12 @@ typedef struct lam_model {
  * *out is a new model the caller frees with lam_model_free. */
 int lam_model_load(const char *path, lam_model **out, lam_error *err);
 
+/* The same from standard input (lam_read_stdin: the model size limit),
+ * the format told by content; the model and its messages are named
+ * "<stdin>" (LAM_STDIN_NAME), a Unigrafix include is resolved against the
+ * working directory. */
+int lam_model_load_stdin(lam_model **out, lam_error *err);
+
 /* Build a model from a mesh the caller filled. The mesh's contents move
  * into the model (mesh is left empty) whether or not this succeeds. */
 int lam_model_from_mesh(lam_mesh *mesh, const char *path, const char *format,

@@ -14,6 +14,10 @@
 
 #include "error.h"
 
+struct lam_frame;      /* slice.h */
+struct lam_layer;      /* slice.h */
+struct lam_scan_time;  /* hatch.h */
+
 /* What a whole job looks like, for preambles and headers. */
 typedef struct lam_job_info {
     const char *name;        /* machine profile name */
@@ -27,6 +31,9 @@ typedef struct lam_job_info {
     double origin[3];        /* where the stage starts: the model origin in the layer
                                 plane, at the first layer's build height (output frame) */
     const char *label;       /* the part's name (lam_job_label), NULL: "part" */
+    const char *model;       /* the model's path as given (for headers), or NULL */
+    const struct lam_frame *frame; /* the layer frame (u, v, w: w the slicing axis), or NULL */
+    int frame_machine;       /* coordinates are in the layer frame (u, v, w) */
 } lam_job_info;
 
 /* The part's name for a job from a model's path: the file's name without
@@ -39,6 +46,11 @@ typedef struct lam_layer_info {
     size_t index;            /* 0-based */
     double z;                /* build height of the section (the cut height) */
     double width, floor, ceiling;
+    const struct lam_layer *section; /* the layer's section as sliced (its contours before
+                                        any offset), or NULL; valid until layer_end returns */
+    const struct lam_scan_time *time; /* at layer_end of an SLS plan whose estimate means
+                                         something (lam_scan_estimates): the layer's
+                                         estimate; NULL otherwise */
 } lam_layer_info;
 
 /* One closed contour for contour-based processes (SLS, CLI). */

@@ -167,6 +167,9 @@ int lam_plan_run(lam_slicer *s, const lam_model *m, const lam_plan_opts *o, cons
     char label[128];
     lam_job_label(m->path, label, sizeof label);
     job.label = label;
+    job.model = m->path;
+    job.frame = f;
+    job.frame_machine = o->frame_machine;
     /* the stage starts at the model origin of the first layer's plane */
     double cut0 = job.layers ? lam_slicer_cut(s, 0) : 0;
     if (o->frame_machine) {
@@ -200,7 +203,7 @@ int lam_plan_run(lam_slicer *s, const lam_model *m, const lam_plan_opts *o, cons
         }
         if (rc || cur >= have) break;
         lam_layer *L = win[cur];
-        lam_layer_info li = { L->index, L->cut, L->width, L->floor, L->ceiling };
+        lam_layer_info li = { L->index, L->cut, L->width, L->floor, L->ceiling, L, NULL };
         if (!rc && sink->layer) rc = sink->layer(sink->ctx, &li);
         if (!rc) {
             if (o->kind == LAM_PLAN_LADRP) {
@@ -219,6 +222,7 @@ int lam_plan_run(lam_slicer *s, const lam_model *m, const lam_plan_opts *o, cons
                 for (size_t k = 1; k <= n && cur + k < have; k++) above[na++] = win[cur + k];
                 rc = lam_plan_sls_layer(L, below, nb, above, na, f, o, sink, NULL, &st, err);
                 if (!rc && o->layer_time) o->layer_time[L->index] = lam_scan_time_total(&st.time);
+                if (lam_scan_estimates(&o->scan)) li.time = &st.time;
             }
         }
         if (!rc && sink->layer_end) rc = sink->layer_end(sink->ctx, &li);

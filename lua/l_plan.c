@@ -200,7 +200,7 @@ int lam_lua_plan(lua_State *L)
     for (size_t i = 0; i < n && !rc; i++) {
         lam_lua_check_interrupt(L);
         const lam_layer *ly = ls[i];
-        lam_layer_info li = { ly->index, ly->cut, ly->width, ly->floor, ly->ceiling };
+        lam_layer_info li = { ly->index, ly->cut, ly->width, ly->floor, ly->ceiling, ly, NULL };
         lam_plan_opts oi = o;
         if (ctl) {
             lam_profile pi = p;

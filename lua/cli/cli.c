@@ -2,6 +2,9 @@
 
 #include "dialect.h"
 #include "fmt.h"
+#include "model.h"
+#include "svg.h"
+#include "writer.h"
 
 #include <math.h>
 #include <stdarg.h>
@@ -58,4 +61,23 @@ void cli_json_number(FILE *f, double x)
     char buf[64];
     if (!isfinite(x)) fputs("null", f);
     else fputs(cli_num(buf, sizeof buf, x), f);
+}
+
+int cli_load_model(const char *path, lam_model **m, lam_error *err)
+{
+    return strcmp(path, "-") ? lam_model_load(path, m, err) : lam_model_load_stdin(m, err);
+}
+
+int cli_writer(const char *path, lam_writer **w, lam_error *err)
+{
+    return strcmp(path, "-") ? lam_writer_file(path, w, err) : lam_writer_stream(stdout, "<stdout>", w, err);
+}
+
+int cli_save_svg(const lam_svg *svg, const char *path, lam_error *err)
+{
+    lam_writer *w;
+    int rc = cli_writer(path, &w, err);
+    if (rc) return rc;
+    lam_svg_write(svg, w);
+    return lam_writer_commit(w, err);
 }

@@ -23,6 +23,20 @@ void cli_json_number(FILE *f, double x);
 /* Format a double for people: shortest form that reads back exactly. */
 const char *cli_num(char *buf, size_t size, double x);
 
+/* Load the model a command names: a file, or standard input for "-" (its
+ * messages then name it "<stdin>"). */
+struct lam_model;
+int cli_load_model(const char *path, struct lam_model **m, lam_error *err);
+
+/* The writer of an output option: the file `path` (atomic, lam_writer_file)
+ * or standard output for "-". */
+struct lam_writer;
+int cli_writer(const char *path, struct lam_writer **w, lam_error *err);
+
+/* Write svg to an output option's path (cli_writer): whole or not at all. */
+struct lam_svg;
+int cli_save_svg(const struct lam_svg *svg, const char *path, lam_error *err);
+
 /* The handler of SIGINT, SIGTERM, SIGHUP and SIGPIPE (main.c): remove the
  * temporary files of outputs being written and end by the same signal.
  * Async-signal-safe. */

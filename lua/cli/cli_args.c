@@ -77,6 +77,13 @@ static int o_text(const char *cmd, args *a, const cli_opt *o, const char *opt, c
     return 0;
 }
 
+/* An output file: a path, or "-" for standard output (see cli_args.h). */
+static int o_output(const char *cmd, args *a, const cli_opt *o, const char *opt, const char *val)
+{
+    if (!*val) return cli_usage(cmd, "%s needs a file name (or - for standard output)", opt);
+    return o_text(cmd, a, o, opt, val);
+}
+
 static int o_axis(const char *cmd, args *a, const cli_opt *o, const char *opt, const char *val)
 {
     (void)o, (void)opt;
@@ -185,9 +192,10 @@ static const cli_opt options[] = {
     { "max-output", 0, OPT_PLAN, "SIZE", o_max_output, 0 },
     { "set", 's', OPT_SET, "KEY=VALUE", o_set, 0 },
     { "validate", 0, OPT_PLAN, NULL, o_flag, F(validate) },
-    { "output", 'o', OPT_PLAN, "FILE", o_text, F(out) },
-    { "svg", 0, OPT_SVG, "FILE", o_text, F(svg) },
-    { "html", 0, OPT_PLAN, "FILE", o_text, F(html) },
+    { "output", 'o', OPT_PLAN, "FILE", o_output, F(out) },
+    { "svg", 0, OPT_SVG, "FILE", o_output, F(svg) },
+    { "json", 0, OPT_JSON_FILE, "FILE", o_output, F(json_out) },
+    { "html", 0, OPT_PLAN, "FILE", o_output, F(html) },
     { "program", 0, OPT_PROGRAM, "FILE", o_text, F(program) },
     { "json", 0, OPT_JSON, NULL, o_flag, F(json) },
     { "show", 0, OPT_SHOW, "NAME|PATH", o_show, 0 },
@@ -250,14 +258,16 @@ static unsigned found_group(const found *f)
     return f->o ? f->o->group : key_group(f->k);
 }
 
-/* By long name (len bytes of name) or by letter (len 0). */
-static int find_option(const char *name, size_t len, char letter, found *f)
+/* By long name (len bytes of name) or by letter (len 0); of two rows of
+ * one name (--json, a flag or a file) the one of the command's groups. */
+static int find_option(const char *name, size_t len, char letter, unsigned groups, found *f)
 {
     f->o = NULL;
     f->k = NULL;
     for (size_t i = 0; i < NOPTIONS; i++)
         if (len ? strlen(options[i].name) == len && !strncmp(options[i].name, name, len) : options[i].letter == letter)
-            return f->o = &options[i], 1;
+            if (!f->o || (!(f->o->group & groups) && options[i].group & groups)) f->o = &options[i];
+    if (f->o) return 1;
     for (size_t i = 0; i < lam_profile_nkeys; i++) {
         const lam_key *k = &lam_profile_keys[i];
         if (k->option && (len ? strlen(k->option) == len && !strncmp(k->option, name, len) : k->letter == letter))
@@ -315,6 +325,33 @@ static void help(const char *usage, unsigned groups)
     }
 }
 
+/* Standard output takes one output: a program without -o goes there, and
+ * so does every output option given "-". */
+static int one_stdout(const char *cmd, unsigned groups, args *a)
+{
+    int defaulted = groups & OPT_PLAN && !a->out;
+    if (defaulted) a->out = "-";
+    const cli_opt *first = NULL;
+    for (size_t i = 0; i < NOPTIONS; i++) {
+        const cli_opt *o = &options[i];
+        if (o->fn != o_output || !(o->group & groups)) continue;
+        const char *v = *(const char **)(void *)((char *)a + o->field);
+        if (!v || strcmp(v, "-")) continue;
+        if (!first) {
+            first = o;
+            continue;
+        }
+        if (defaulted && first->field == offsetof(args, out))
+            return cli_usage(cmd, "the program (without -o) and --%s - both write to standard output: give -o FILE",
+                             o->name);
+        char a1[40];
+        if (first->letter) snprintf(a1, sizeof a1, "-%c", first->letter);
+        else snprintf(a1, sizeof a1, "--%s", first->name);
+        return cli_usage(cmd, "%s - and --%s - both write to standard output: give one of them a file", a1, o->name);
+    }
+    return EXIT_OK;
+}
+
 int cli_parse_args(const char *cmd, const char *usage_text, unsigned groups, int argc, char **argv, args *a)
 {
     memset(a, 0, sizeof *a);
@@ -342,7 +379,7 @@ int cli_parse_args(const char *cmd, const char *usage_text, unsigned groups, int
         const char *name = o + (lng ? 2 : 1), *eq = lng ? strchr(name, '=') : NULL;
         const char *attached = lng ? (eq ? eq + 1 : NULL) : (o[2] ? o + 2 : NULL);
         found f;
-        if (!find_option(name, lng ? (eq ? (size_t)(eq - name) : strlen(name)) : 0, lng ? 0 : o[1], &f) || (!lng && !o[1]))
+        if (!find_option(name, lng ? (eq ? (size_t)(eq - name) : strlen(name)) : 0, lng ? 0 : o[1], groups, &f) || (!lng && !o[1]))
             return unknown_option(cmd, groups, o);
         char opt[80];
         snprintf(opt, sizeof opt, "%.*s", (int)(lng ? (eq ? (size_t)(eq - o) : strlen(o)) : 2), o);
@@ -366,6 +403,7 @@ int cli_parse_args(const char *cmd, const char *usage_text, unsigned groups, int
     }
     if (rc) return rc;
     if (groups & OPT_MODEL && !a->path) return cli_usage(cmd, "no model given");
+    if ((rc = one_stdout(cmd, groups, a))) return rc;
     int width = 0;
     for (size_t i = 0; i < a->nsets; i++) width |= a->sets[i].key->offset == offsetof(lam_profile, layer_width);
     if ((a->so.widths || a->so.planes) && width) return cli_usage(cmd, "give one of -w, --widths and --planes");

@@ -4,7 +4,14 @@
  * and `-xvalue`, `--` ends the options, an unknown option gets "did you
  * mean". Every machine-profile key can be given as `--set KEY=VALUE` (`-s`);
  * the convenience options (`-w`, `--angle`, `--islands`, ...) are the
- * options of the key table's rows (core/profile_keys.c), short for --set. */
+ * options of the key table's rows (core/profile_keys.c), short for --set.
+ *
+ * Standard streams: a MODEL of `-` is standard input (the commands load it
+ * with cli_load_model), and every output option (a row of the table whose
+ * action is o_output: -o, --svg, --json FILE, ...) takes `-` for standard
+ * output. Two outputs to `-` in one run is a usage error; for commands
+ * with -o, a program without -o goes to standard output and counts as one
+ * (a->out is then "-"). */
 #ifndef LAM_CLI_ARGS_H
 #define LAM_CLI_ARGS_H
 
@@ -24,7 +31,8 @@ enum {
     OPT_SVG = 16,      /* --svg FILE */
     OPT_SET = 32,      /* -s/--set KEY=VALUE */
     OPT_SHOW = 64,     /* machines: --show NAME, --keys */
-    OPT_PROGRAM = 128  /* validate: --program FILE, and --frame (how it was written) */
+    OPT_PROGRAM = 128, /* validate: --program FILE, and --frame (how it was written) */
+    OPT_JSON_FILE = 256 /* slice: --json FILE (the run as JSON), instead of the --json flag */
 };
 
 /* A profile value from the command line: --set KEY=VALUE or an option short for it. */
@@ -35,7 +43,9 @@ typedef struct cli_set {
 } cli_set;
 
 typedef struct args {
-    const char *path, *out, *svg, *html, *machine, *show, *program;
+    const char *path, *out, *svg, *machine, *show, *program;
+    const char *json_out;    /* slice --json FILE */
+    const char *html;        /* slice --html FILE */
     lam_slice_opts so;
     double *list;
     int allow_open, json, validate, keys;

@@ -53,7 +53,7 @@ static int draw(const args *a, lam_model *m, const lam_drc_result *res, lam_erro
         rc = lam_svg_add(svg, L, err);
         lam_layer_free(L);
     }
-    if (!rc) rc = lam_svg_save(svg, a->svg, err);
+    if (!rc) rc = cli_save_svg(svg, a->svg, err);
     lam_svg_free(svg);
     lam_slicer_free(s);
     return rc;
@@ -79,7 +79,12 @@ int cmd_check(int argc, char **argv)
     lam_drc_result res;
     memset(&res, 0, sizeof res);
     if ((rc = cli_profile("check", &a, &prof, NULL))) goto done;
-    if (lam_model_load(a.path, &m, &err) || lam_rays_new(m, &v, &err)) {
+    if (cli_load_model(a.path, &m, &err)) {
+        rc = cli_fail(&err);
+        goto done;
+    }
+    a.path = m->path; /* "<stdin>" for "-" */
+    if (lam_rays_new(m, &v, &err)) {
         rc = cli_fail(&err);
         goto done;
     }

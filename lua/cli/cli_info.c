@@ -102,11 +102,11 @@ int cmd_info(int argc, char **argv)
     lam_error err;
     lam_error_clear(&err);
     lam_model *m;
-    if (lam_model_load(path, &m, &err)) return cli_fail(&err);
+    if (cli_load_model(path, &m, &err)) return cli_fail(&err);
     const char *w[4];
     int nw;
     warnings(&m->stats, w, &nw);
-    for (int i = 0; i < nw; i++) fprintf(stderr, "lamina: warning: %s: %s\n", path, w[i]);
+    for (int i = 0; i < nw; i++) fprintf(stderr, "lamina: warning: %s: %s\n", m->path, w[i]);
     if (json) print_json(m, w, nw);
     else print_text(m);
     lam_model_free(m);

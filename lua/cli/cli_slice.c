@@ -8,12 +8,14 @@
 #include "cli_args.h"
 #include "cli_check.h"
 #include "dialect.h"
+#include "json_sink.h"
 #include "model.h"
 #include "planner.h"
 #include "plugin.h"
 #include "profile.h"
 #include "slice.h"
 #include "cli_view.h"
+#include "tee.h"
 #include "writer.h"
 
 #include <errno.h>
@@ -39,7 +41,7 @@ static const char usage_text[] =
     "                          [--min-deposit LEN] [--no-alternate] [--perimeters N] [--islands]\n"
     "                          [--beam-offset] [--frame model|machine] [--fill evenodd|nonzero]\n"
     "                          [--validate] [--max-layers N] [--max-output SIZE]\n"
-    "                          [--svg FILE] [--html FILE] [-o FILE [--json]]\n"
+    "                          [--svg FILE] [--html FILE] [--json FILE] [-o FILE]\n"
     "  -m, --machine    machine profile: a shipped name (see 'lamina machines') or a path\n"
     "                   (default: the thesis's SLS contours)\n"
     "  -s, --set        KEY=VALUE: any key of the machine profile, checked as in its YAML\n"
@@ -55,9 +57,10 @@ static const char usage_text[] =
     "                   1024; default 4G), estimated before planning and as written\n"
     "      --svg        write a contact sheet of the layers and their scan paths\n"
     "      --html       write a viewer of the run: one HTML file to open in a browser\n"
+    "      --json       write the run as JSON (layer interchange, docs/json.md): the job,\n"
+    "                   each layer's contours and planned vectors, lengths and build time\n"
     "  -o, --output     program file (default: standard output)\n"
-    "      --json       the build-time estimate of a powder-bed job as JSON on standard output\n"
-    "                   (with -o; without --json it is a line on standard error)\n"
+    "MODEL - reads standard input; an output FILE - writes standard output (one at most).\n"
     "Values: --name=VALUE or --name VALUE; -- ends the options. The profile's values are\n"
     "defaults that -s and the options below override.\n";
 
@@ -111,18 +114,21 @@ static int on_layer(void *ctx, const lam_layer *L, lam_error *err)
     return cli_view_layer(&r->view, L, err);
 }
 
-/* The estimate as JSON: the job's and each layer's total. */
-static void cli_json_estimate(const char *path, const lam_scan_time *t, const double *layer, size_t n)
+/* The program's sink, the JSON's (--json) and the pictures' (--svg,
+ * --html) fed by one plan: *sink becomes a tee that owns them all. On
+ * failure *sink is left as it was. */
+static int tee_outputs(lam_sink *sink, lam_writer *jw, report *rep, const args *a, lam_slicer *s,
+                       const lam_plan_opts *po, lam_error *err)
 {
-    printf("{\"model\": ");
-    cli_json_string(stdout, path);
-    printf(", \"layers\": %zu, \"contour_passes\": %zu, \"hatch_vectors\": %zu, \"exposed\": %.17g, "
-           "\"hatched\": %.17g, \"jumped\": %.17g, \"time\": {\"total\": %.17g, \"exposure\": %.17g, "
-           "\"jumps\": %.17g, \"recoat\": %.17g}, \"layer_times\": [",
-           t->layers, t->contours, t->vectors, t->exposure_length, t->hatch_length, t->jump_length,
-           lam_scan_time_total(t), t->exposure, t->jump, t->recoat);
-    for (size_t i = 0; i < n; i++) printf("%s%.17g", i ? ", " : "", layer[i]);
-    printf("]}\n");
+    lam_sink all[4] = { *sink };
+    size_t n = 1;
+    int rc = jw ? lam_json_sink(jw, 0, &all[n], err) : LAM_OK;
+    if (!rc && jw) n++;
+    if (!rc) rc = cli_view_open(&rep->view, a, s, po, all, &n, err);
+    if (!rc && n > 1) rc = lam_tee_sink(all, n, sink, err);
+    if (rc)
+        for (size_t k = 1; k < n; k++) all[k].destroy(all[k].ctx);
+    return rc;
 }
 
 /* The build-time summary of a powder-bed job (hatch.h's estimate). */
@@ -138,21 +144,17 @@ static void cli_print_estimate(const char *path, const lam_scan_time *t)
 int cmd_slice(int argc, char **argv)
 {
     args a;
-    int rc = cli_parse_args("slice", usage_text, OPT_MODEL | OPT_SLICE | OPT_SET | OPT_PLAN | OPT_SVG | OPT_JSON, argc, argv,
+    int rc = cli_parse_args("slice", usage_text, OPT_MODEL | OPT_SLICE | OPT_SET | OPT_PLAN | OPT_SVG | OPT_JSON_FILE, argc, argv,
                             &a);
     if (rc) {
         cli_args_free(&a);
         return rc < 0 ? EXIT_OK : rc;
     }
-    if (same_file(a.out, a.path) || same_file(a.svg, a.path) || same_file(a.html, a.path)) {
-        const char *o = same_file(a.out, a.path) ? "-o" : same_file(a.svg, a.path) ? "--svg" : "--html";
-        rc = cli_usage("slice", "%s %s is the model being read: refusing to overwrite it", o,
-                       o[1] == 'o' ? a.out : o[2] == 's' ? a.svg : a.html);
-        cli_args_free(&a);
-        return rc;
-    }
-    if (a.html && !strcmp(a.html, "-") && (!a.out || !strcmp(a.out, "-"))) {
-        rc = cli_usage("slice", "--html - and the program both on standard output: give the program a file (-o FILE)");
+    const char *outs[][2] = { { "-o", a.out }, { "--svg", a.svg }, { "--json", a.json_out }, { "--html", a.html } };
+    for (size_t i = 0; i < sizeof outs / sizeof *outs && !rc; i++)
+        if (same_file(outs[i][1], a.path))
+            rc = cli_usage("slice", "%s %s is the model being read: refusing to overwrite it", outs[i][0], outs[i][1]);
+    if (rc) {
         cli_args_free(&a);
         return rc;
     }
@@ -161,9 +163,8 @@ int cmd_slice(int argc, char **argv)
     lam_profile *prof = NULL;
     lam_model *m = NULL;
     lam_slicer *s = NULL;
-    lam_writer *w = NULL;
+    lam_writer *w = NULL, *jw = NULL;
     lam_sink sink = { 0 };
-    double *layer_time = NULL;
     report rep;
     memset(&rep, 0, sizeof rep);
     rep.path = a.path;
@@ -171,10 +172,11 @@ int cmd_slice(int argc, char **argv)
 
     lam_plan_opts po;
     if ((rc = cli_profile("slice", &a, &prof, &po))) goto done;
-    if (lam_model_load(a.path, &m, &err)) {
+    if (cli_load_model(a.path, &m, &err)) {
         rc = cli_fail(&err);
         goto done;
     }
+    a.path = rep.path = m->path; /* "<stdin>" for "-" */
     if (lam_slicer_new(m, &a.so, &s, &err)) {
         rc = err.code == LAM_EUSAGE ? cli_usage("slice", "%s", err.msg) : cli_fail_limit(&err, 0, CLI_RAISE_LAYERS);
         goto done;
@@ -187,13 +189,14 @@ int cmd_slice(int argc, char **argv)
         rep.frame = lam_slicer_frame(s);
         rep.fill_nonzero = a.so.fill_nonzero;
     }
-    if (a.out && strcmp(a.out, "-") ? lam_writer_file(a.out, &w, &err) : lam_writer_stream(stdout, "stdout", &w, &err)) {
+    if (cli_writer(a.out, &w, &err) || (a.json_out && cli_writer(a.json_out, &jw, &err))) {
         rc = cli_fail(&err);
         goto done;
     }
     lam_writer_set_limit(w, a.max_output ? a.max_output : LAM_DEFAULT_MAX_OUTPUT);
     int src = !prof->writer || !strcmp(prof->writer, "text") ? lam_dialect_sink(&prof->dialect, w, &sink, &err)
                                                              : lam_plugin_writer_sink(prof->writer, w, &sink, &err);
+    if (!src) src = tee_outputs(&sink, jw, &rep, &a, s, &po, &err);
     if (src) {
         rc = err.code == LAM_EUSAGE ? cli_usage("slice", "%s", err.msg) : cli_fail(&err);
         goto done;
@@ -201,23 +204,6 @@ int cmd_slice(int argc, char **argv)
     lam_scan_time est;
     memset(&est, 0, sizeof est);
     po.time = &est;
-    if (a.json && (!a.out || !strcmp(a.out, "-"))) {
-        rc = cli_usage("slice", "--json writes the estimate to standard output: give the program a file (-o FILE)");
-        goto done;
-    }
-    size_t nl = lam_slicer_count(s);
-    /* the viewer shows each layer's estimate when there is one */
-    int want_times = a.json || (a.html && lam_scan_estimates(&po.scan));
-    if (want_times && po.kind == LAM_PLAN_SLS && !(layer_time = calloc(nl ? nl : 1, sizeof *layer_time))) {
-        lam_error_set(&err, LAM_ENOMEM, NULL, 0, 0, "out of memory");
-        rc = cli_fail(&err);
-        goto done;
-    }
-    po.layer_time = layer_time;
-    if (cli_view_open(&rep.view, &a, s, &po, &sink, &err)) {
-        rc = cli_fail(&err);
-        goto done;
-    }
     if (lam_plan_run(s, m, &po, &sink, on_layer, &rep, &err)) {
         rc = err.code == LAM_EUSAGE ? cli_usage("slice", "%s", err.msg)
                                     : cli_fail_limit(&err, lam_writer_over_limit(w), CLI_RAISE_OUTPUT);
@@ -245,7 +231,7 @@ int cmd_slice(int argc, char **argv)
             goto done;
         }
     }
-    if (po.kind == LAM_PLAN_SLS && !a.json && lam_scan_estimates(&po.scan)) cli_print_estimate(a.path, &est);
+    if (po.kind == LAM_PLAN_SLS && lam_scan_estimates(&po.scan)) cli_print_estimate(a.path, &est);
     if (cli_view_save(&rep.view, &err)) {
         rc = cli_fail(&err);
         goto done;
@@ -255,12 +241,16 @@ int cmd_slice(int argc, char **argv)
         w = NULL;
         int over = lam_writer_over_limit(tmp);
         if (lam_writer_commit(tmp, &err)) rc = cli_fail_limit(&err, over, CLI_RAISE_OUTPUT);
-        else if (a.json && po.kind == LAM_PLAN_SLS) cli_json_estimate(a.path, &est, layer_time, lam_slicer_count(s));
+    }
+    if (!rc && jw) {
+        lam_writer *tmp = jw;
+        jw = NULL;
+        if (lam_writer_commit(tmp, &err)) rc = cli_fail(&err);
     }
 done:
-    free(layer_time);
     if (sink.destroy) sink.destroy(sink.ctx);
     lam_writer_abort(w);
+    lam_writer_abort(jw);
     cli_view_free(&rep.view);
     lam_rays_free(rep.v);
     lam_slicer_free(s);

@@ -268,10 +268,11 @@ int cmd_validate(int argc, char **argv)
             goto done;
         }
     if ((rc = cli_profile("validate", &a, &prof, &po))) goto done;
-    if (lam_model_load(a.path, &m, &err)) {
+    if (cli_load_model(a.path, &m, &err)) {
         rc = cli_fail(&err);
         goto done;
     }
+    a.path = m->path; /* "<stdin>" for "-" */
     if (lam_rays_new(m, &v, &err)) {
         rc = cli_fail(&err);
         goto done;

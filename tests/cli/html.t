@@ -33,7 +33,7 @@ is "$($V json "$TMP/l.html" | tail -1)" "deposits $deposits" "LADRP: as many dep
 run "$LAMINA" slice "$PART" -w 0.5 --html "$PART" -o "$TMP/x.sls"
 like "$RC $ERR" "^2 lamina slice: --html .* is the model being read" "--html onto the model: refused"
 run "$LAMINA" slice "$PART" -w 0.5 --html -
-like "$RC $ERR" "^2 lamina slice: --html - and the program both on standard output" "--html - with the program on standard output: refused"
+like "$RC $ERR" "^2 lamina slice: the program \\(without -o\\) and --html - both write to standard output" "--html - with the program on standard output: refused"
 run "$LAMINA" slice "$PART" -w 0.5 --html "$TMP/nodir/v.html" -o "$TMP/y.sls"
 ok $([ "$RC" -ne 0 ] && [ ! -e "$TMP/y.sls" ] && echo 0 || echo 1) "an unwritable --html: an error, no program left"
 

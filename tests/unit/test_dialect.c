@@ -324,7 +324,7 @@ static void test_moves(void)
     j.origin[1] = 2;
     j.origin[2] = 3;
     r.sink.begin(r.sink.ctx, &j);
-    lam_layer_info L = { 4, 3.25, 0.5, 3, 3.5 };
+    lam_layer_info L = { 4, 3.25, 0.5, 3, 3.5, NULL, NULL };
     r.sink.layer(r.sink.ctx, &L);
     r.sink.feed(r.sink.ctx, 0.15);
     r.sink.laser(r.sink.ctx, 0);
@@ -393,7 +393,7 @@ static void test_contours(void)
     lam_contour_info a = { 1, 1, 0, 0.5, sq_xyz, sq_uv, 4, 0, 0, 0, 0 };
     lam_contour_info b = { 2, 0, 1, 0.5, hole_xyz, hole_uv, 3, 0, 0, 0, 0 };
     lam_contour_info c = { 3, 1, 0, 1.5, sq_xyz, sq_uv, 4, 0, 0, 0, 0 };
-    lam_layer_info L0 = { 0, 0.5, 1, 0, 1 }, L1 = { 1, 1.5, 1, 1, 2 };
+    lam_layer_info L0 = { 0, 0.5, 1, 0, 1, NULL, NULL }, L1 = { 1, 1.5, 1, 1, 2, NULL, NULL };
 
     run r;
     memset(&r, 0, sizeof r);

@@ -193,7 +193,7 @@ static void test_shipped(void)
 
 static void ded_script(const lam_sink *s)
 {
-    lam_layer_info L = { 0, 0.25, 0.5, 0, 0.5 };
+    lam_layer_info L = { 0, 0.25, 0.5, 0, 0.5, NULL, NULL };
     s->layer(s->ctx, &L);
     s->move(s->ctx, 0, (double[]){ 1, 2, 0.25 });
     s->laser(s->ctx, 1);
@@ -206,7 +206,7 @@ static void cli_script(const lam_sink *s)
 {
     static const double xyz[] = { 0, 0, 0.05, 10, 0, 0.05, 10, 5, 0.05, 0, 5, 0.05 };
     static const double uv[] = { 0, 0, 10, 0, 10, 5, 0, 5 };
-    lam_layer_info L = { 0, 0.05, 0.1, 0, 0.1 };
+    lam_layer_info L = { 0, 0.05, 0.1, 0, 0.1, NULL, NULL };
     s->layer(s->ctx, &L);
     lam_contour_info c = { 1, 1, 0, 0.05, xyz, uv, 4, 0, 0, 0, 0 };
     s->contour(s->ctx, &c);
@@ -315,7 +315,7 @@ static int sls_same(const char *model, const double dir[3], double width, lam_cu
     lam_layer *L;
     while (lam_slicer_next(s, &L, &err) == LAM_OK && L) {
         lam_sls_write_layer(wa, L, &o.frame, &blocks);
-        lam_layer_info li = { L->index, L->cut, L->width, L->floor, L->ceiling };
+        lam_layer_info li = { L->index, L->cut, L->width, L->floor, L->ceiling, NULL, NULL };
         sink.layer(sink.ctx, &li);
         for (size_t k = 0; k < L->ncontours; k++) {
             const lam_contour *c = &L->contours[k];

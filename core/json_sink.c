@@ -1,0 +1,439 @@
+/* The run as JSON, streamed layer by layer; see json_sink.h. */
+#include "json_sink.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "dialect.h"
+#include "fmt.h"
+#include "hatch.h"
+#include "slice.h"
+
+/* Text waits in buf until a line ends or it passes FLUSH_AT bytes, so a
+ * contour of a million points never needs its whole line in memory. */
+#define FLUSH_AT 65536
+
+typedef struct js {
+    lam_writer *w;
+    lam_error *err;
+    unsigned flags;
+    char *buf;
+    size_t len, cap;
+    int rc;                  /* sticky: the first error */
+    lam_frame frame;
+    int frame_machine;
+    double cut;              /* the layer's build height */
+    double stage[3];         /* LADRP: where the last move ended */
+    double scan[3];          /* SLS: where the scanner's last path ended in this layer */
+    int have_scan;
+    size_t order;            /* vectors of the layer so far */
+    double deposit, travel;  /* the layer's lengths */
+    size_t layers, contours, vectors;
+    double deposit_total, travel_total;
+    lam_scan_time time;      /* the layers' estimates, summed */
+    size_t timed;            /* layers that had one */
+} js;
+
+static int nomem(js *s) { return s->rc = lam_error_nomem(s->err, "writing the JSON"); }
+
+static void putn(js *s, const char *t, size_t n)
+{
+    if (s->rc) return;
+    if (s->len + n + 1 > s->cap) {
+        size_t nc = s->cap ? s->cap : 4096;
+        while (nc < s->len + n + 1) nc *= 2;
+        char *nb = realloc(s->buf, nc);
+        if (!nb) {
+            nomem(s);
+            return;
+        }
+        s->buf = nb;
+        s->cap = nc;
+    }
+    memcpy(s->buf + s->len, t, n);
+    s->len += n;
+}
+
+static void put(js *s, const char *t) { putn(s, t, strlen(t)); }
+
+static void flush(js *s)
+{
+    if (s->rc || !s->len) return;
+    if (lam_writer_write(s->w, s->buf, s->len)) s->rc = lam_writer_error(s->w, s->err);
+    s->len = 0;
+}
+
+/* A line ends: the text goes out when enough has gathered. */
+static void line(js *s)
+{
+    put(s, "\n");
+    if (s->len >= FLUSH_AT) flush(s);
+}
+
+static void num(js *s, double x)
+{
+    if (s->rc) return;
+    if (!isfinite(x)) {
+        s->rc = lam_error_set(s->err, LAM_EINVAL, NULL, 0, 0,
+                              "a number that is not finite in layer %zu: JSON cannot hold it", s->layers + 1);
+        return;
+    }
+    char b[LAM_FMT_MAX];
+    putn(s, b, lam_dialect_number(b, x));
+}
+
+static void size(js *s, size_t n)
+{
+    char b[32];
+    put(s, (snprintf(b, sizeof b, "%zu", n), b));
+}
+
+static void pt(js *s, const double p[3])
+{
+    put(s, "[");
+    num(s, p[0]);
+    put(s, ", ");
+    num(s, p[1]);
+    put(s, ", ");
+    num(s, p[2]);
+    put(s, "]");
+}
+
+/* The length of a valid UTF-8 sequence at p (at most n bytes), 0 if none. */
+static size_t utf8_len(const unsigned char *p, size_t n)
+{
+    size_t k = p[0] < 0x80 ? 1 : (p[0] & 0xE0) == 0xC0 ? 2 : (p[0] & 0xF0) == 0xE0 ? 3 : (p[0] & 0xF8) == 0xF0 ? 4 : 0;
+    if (!k || k > n || (k == 2 && p[0] < 0xC2)) return 0;
+    for (size_t i = 1; i < k; i++)
+        if ((p[i] & 0xC0) != 0x80) return 0;
+    unsigned cp = k == 1 ? p[0] : k == 2 ? (p[0] & 0x1Fu) << 6 | (p[1] & 0x3Fu)
+                              : k == 3 ? (p[0] & 0x0Fu) << 12 | (p[1] & 0x3Fu) << 6 | (p[2] & 0x3Fu)
+                                       : (p[0] & 0x07u) << 18 | (p[1] & 0x3Fu) << 12 | (p[2] & 0x3Fu) << 6 | (p[3] & 0x3Fu);
+    /* overlong forms, surrogates and past U+10FFFF are not UTF-8 */
+    if ((k == 3 && cp < 0x800) || (k == 4 && (cp < 0x10000 || cp > 0x10FFFF)) || (cp >= 0xD800 && cp <= 0xDFFF))
+        return 0;
+    return k;
+}
+
+/* A JSON string; bytes that are not UTF-8 (a path may hold any) become
+ * U+FFFD, so the document stays valid. */
+static void str(js *s, const char *t)
+{
+    put(s, "\"");
+    const unsigned char *p = (const unsigned char *)(t ? t : "");
+    size_t n = strlen((const char *)p);
+    while (n) {
+        char e[8];
+        size_t k = utf8_len(p, n);
+        if (!k) {
+            put(s, "\\ufffd");
+            p++, n--;
+            continue;
+        }
+        if (k > 1 || (*p >= 0x20 && *p != '"' && *p != '\\' && !(*p == '<' && s->flags & LAM_JSON_SCRIPT))) {
+            putn(s, (const char *)p, k);
+        } else if (*p == '"' || *p == '\\') {
+            e[0] = '\\', e[1] = (char)*p;
+            putn(s, e, 2);
+        } else {
+            put(s, (snprintf(e, sizeof e, "\\u%04x", *p), e));
+        }
+        p += k, n -= k;
+    }
+    put(s, "\"");
+}
+
+static void key(js *s, const char *k)
+{
+    str(s, k);
+    put(s, ": ");
+}
+
+static void to_out(const js *s, double u, double v, double xyz[3])
+{
+    if (s->frame_machine) {
+        xyz[0] = u;
+        xyz[1] = v;
+        xyz[2] = s->cut;
+    } else {
+        lam_frame_to_model(&s->frame, u, v, s->cut, xyz);
+    }
+}
+
+static int j_begin(void *ctx, const lam_job_info *job)
+{
+    js *s = ctx;
+    if (job->frame) s->frame = *job->frame;
+    else lam_frame_axis('z', &s->frame, NULL);
+    s->frame_machine = job->frame_machine;
+    memcpy(s->stage, job->origin, sizeof s->stage);
+    put(s, "{\"format\": \"lamina-run\", \"version\": ");
+    size(s, LAM_JSON_VERSION);
+    put(s, ",");
+    line(s);
+    put(s, " \"job\": {");
+    key(s, "model");
+    str(s, job->model ? job->model : job->label);
+    put(s, ", ");
+    key(s, "machine");
+    str(s, job->name);
+    put(s, ", ");
+    key(s, "process");
+    str(s, job->process);
+    put(s, ", ");
+    key(s, "units");
+    str(s, job->units);
+    put(s, ", ");
+    key(s, "frame");
+    str(s, s->frame_machine ? "machine" : "model");
+    put(s, ",");
+    line(s);
+    put(s, "  ");
+    key(s, "axis");
+    pt(s, s->frame.w);
+    put(s, ", ");
+    key(s, "plane");
+    /* the output frame's points project onto the layer plane: in the model
+     * frame with the layer frame's axes, in the machine frame as they are */
+    static const double zero[3] = { 0, 0, 0 }, ex[3] = { 1, 0, 0 }, ey[3] = { 0, 1, 0 }, ez[3] = { 0, 0, 1 };
+    put(s, "{\"origin\": ");
+    pt(s, zero);
+    put(s, ", \"u\": ");
+    pt(s, s->frame_machine ? ex : s->frame.u);
+    put(s, ", \"v\": ");
+    pt(s, s->frame_machine ? ey : s->frame.v);
+    put(s, ", \"w\": ");
+    pt(s, s->frame_machine ? ez : s->frame.w);
+    put(s, "},");
+    line(s);
+    put(s, "  ");
+    key(s, "bbox");
+    put(s, "[");
+    for (int i = 0; i < 6; i++) {
+        if (i) put(s, ", ");
+        num(s, job->bbox[i]);
+    }
+    put(s, "], ");
+    key(s, "layers");
+    size(s, job->layers);
+    put(s, ", ");
+    key(s, "bead");
+    num(s, job->bead);
+    put(s, "},");
+    line(s);
+    put(s, " \"layers\": [");
+    return s->rc;
+}
+
+static int j_layer(void *ctx, const lam_layer_info *li)
+{
+    js *s = ctx;
+    s->cut = li->z;
+    s->order = 0;
+    s->deposit = s->travel = 0;
+    s->have_scan = 0; /* the scanner starts each layer at its first path */
+    put(s, s->layers ? "," : "");
+    line(s);
+    put(s, "  {\"index\": ");
+    size(s, li->index + 1);
+    put(s, ", \"z\": ");
+    num(s, li->z);
+    put(s, ", \"floor\": ");
+    num(s, li->floor);
+    put(s, ", \"ceiling\": ");
+    num(s, li->ceiling);
+    put(s, ", \"width\": ");
+    num(s, li->width);
+    put(s, ",");
+    line(s);
+    put(s, "   \"contours\": [");
+    const lam_layer *L = li->section;
+    for (size_t k = 0; L && k < L->ncontours; k++) {
+        const lam_contour *c = &L->contours[k];
+        put(s, k ? "," : "");
+        line(s);
+        put(s, "    {\"id\": ");
+        size(s, k + 1);
+        put(s, c->kind == LAM_SOLID ? ", \"solid\": true, \"depth\": " : ", \"solid\": false, \"depth\": ");
+        size(s, c->depth > 0 ? (size_t)c->depth : 0);
+        put(s, ", \"parent\": ");
+        if (c->parent >= 0) size(s, (size_t)c->parent + 1);
+        else put(s, "null");
+        put(s, ", \"area\": ");
+        num(s, c->area);
+        put(s, ", \"points\": [");
+        for (size_t i = 0; i < c->n; i++) {
+            const double *uv = L->uv + 2 * (c->first + i);
+            double p[3];
+            to_out(s, uv[0], uv[1], p);
+            if (i) put(s, ", ");
+            pt(s, p);
+            if (s->len >= FLUSH_AT) flush(s);
+        }
+        put(s, "]}");
+        s->contours++;
+    }
+    put(s, "],");
+    line(s);
+    put(s, "   \"vectors\": [");
+    return s->rc;
+}
+
+static int is_travel(const char *kind) { return !strcmp(kind, "travel") || !strcmp(kind, "jump"); }
+
+static int vector(js *s, const char *kind, const double a[3], const double b[3])
+{
+    double len = sqrt((b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]) + (b[2] - a[2]) * (b[2] - a[2]));
+    if (is_travel(kind)) s->travel += len;
+    else s->deposit += len;
+    put(s, s->order++ ? "," : "");
+    line(s);
+    put(s, "    {\"kind\": \"");
+    put(s, kind);
+    put(s, "\", \"from\": ");
+    pt(s, a);
+    put(s, ", \"to\": ");
+    pt(s, b);
+    put(s, ", \"order\": ");
+    size(s, s->order);
+    put(s, "}");
+    s->vectors++;
+    return s->rc;
+}
+
+static int j_move(void *ctx, int deposit, const double xyz[3])
+{
+    js *s = ctx;
+    double from[3];
+    memcpy(from, s->stage, sizeof from);
+    memcpy(s->stage, xyz, sizeof s->stage);
+    return vector(s, deposit ? "deposit" : "travel", from, xyz);
+}
+
+/* The scanner's path from `start`: a jump there first when it is elsewhere. */
+static int jump_to(js *s, const double start[3])
+{
+    int rc = LAM_OK;
+    if (s->have_scan && memcmp(s->scan, start, sizeof s->scan)) rc = vector(s, "jump", s->scan, start);
+    s->have_scan = 1;
+    return rc;
+}
+
+static int j_contour(void *ctx, const lam_contour_info *c)
+{
+    js *s = ctx;
+    if (c->n < 2) return s->rc;
+    int rc = jump_to(s, c->xyz);
+    for (size_t i = 0; i < c->n && !rc; i++) rc = vector(s, "contour", c->xyz + 3 * i, c->xyz + 3 * ((i + 1) % c->n));
+    memcpy(s->scan, c->xyz, sizeof s->scan); /* a closed path ends where it starts */
+    return rc;
+}
+
+static int j_hatches(void *ctx, const lam_hatch_info *h)
+{
+    js *s = ctx;
+    int rc = s->rc;
+    for (size_t i = 0; i < h->n && !rc; i++) {
+        const double *p = h->xyz + 6 * i;
+        if (!(rc = jump_to(s, p))) rc = vector(s, h->kind, p, p + 3);
+        memcpy(s->scan, p + 3, sizeof s->scan);
+    }
+    return rc;
+}
+
+static void time_object(js *s, const lam_scan_time *t)
+{
+    put(s, "{\"total\": ");
+    num(s, lam_scan_time_total(t));
+    put(s, ", \"exposure\": ");
+    num(s, t->exposure);
+    put(s, ", \"jumps\": ");
+    num(s, t->jump);
+    put(s, ", \"recoat\": ");
+    num(s, t->recoat);
+    put(s, "}");
+}
+
+static int j_layer_end(void *ctx, const lam_layer_info *li)
+{
+    js *s = ctx;
+    double area = 0;
+    for (size_t k = 0; li->section && k < li->section->ncontours; k++) area += li->section->contours[k].area;
+    put(s, "],");
+    line(s);
+    put(s, "   \"stats\": {\"area\": ");
+    num(s, area);
+    put(s, ", \"vectors\": ");
+    size(s, s->order);
+    put(s, ", \"deposit_length\": ");
+    num(s, s->deposit);
+    put(s, ", \"travel_length\": ");
+    num(s, s->travel);
+    put(s, ", \"time\": ");
+    if (li->time) {
+        num(s, lam_scan_time_total(li->time));
+        lam_scan_time_add(&s->time, li->time);
+        s->timed++;
+    } else {
+        put(s, "null");
+    }
+    put(s, "}}");
+    s->layers++;
+    s->deposit_total += s->deposit;
+    s->travel_total += s->travel;
+    flush(s); /* the layer is whole: out it goes */
+    return s->rc;
+}
+
+static int j_end(void *ctx)
+{
+    js *s = ctx;
+    put(s, "],");
+    line(s);
+    put(s, " \"totals\": {\"layers\": ");
+    size(s, s->layers);
+    put(s, ", \"contours\": ");
+    size(s, s->contours);
+    put(s, ", \"vectors\": ");
+    size(s, s->vectors);
+    put(s, ", \"deposit_length\": ");
+    num(s, s->deposit_total);
+    put(s, ", \"travel_length\": ");
+    num(s, s->travel_total);
+    put(s, ", \"time\": ");
+    /* a total only when every layer had its estimate */
+    if (s->timed && s->timed == s->layers) time_object(s, &s->time);
+    else put(s, "null");
+    put(s, "}}");
+    line(s);
+    flush(s);
+    return s->rc;
+}
+
+static void j_destroy(void *ctx)
+{
+    js *s = ctx;
+    free(s->buf);
+    free(s);
+}
+
+int lam_json_sink(lam_writer *w, unsigned flags, lam_sink *out, lam_error *err)
+{
+    memset(out, 0, sizeof *out);
+    js *s = calloc(1, sizeof *s);
+    if (!s) return lam_error_nomem(err, "writing the JSON");
+    s->w = w;
+    s->err = err;
+    s->flags = flags;
+    out->ctx = s;
+    out->begin = j_begin;
+    out->layer = j_layer;
+    out->layer_end = j_layer_end;
+    out->move = j_move;
+    out->contour = j_contour;
+    out->hatches = j_hatches;
+    out->end = j_end;
+    out->destroy = j_destroy;
+    return LAM_OK;
+}

@@ -1,0 +1,57 @@
+/* The layer interchange format (SPEC 4.6, the thesis's proposed L-SIF): a
+ * planning run as JSON, `lamina slice --json FILE`. The schema ships as
+ * schema/lamina-run-1.schema.json and docs/json.md describes it; in short:
+ *
+ *   {"format": "lamina-run", "version": 1,
+ *    "job": {model, machine, process, units, frame, axis, plane, bbox, layers, bead},
+ *    "layers": [{index (1-based), z, floor, ceiling, width,
+ *                contours: [{id, solid, depth, parent, area, points}],
+ *                vectors: [{kind, from, to, order}],
+ *                stats: {area, vectors, deposit_length, travel_length, time}}, ...],
+ *    "totals": {layers, contours, vectors, deposit_length, travel_length, time}}
+ *
+ * Contours are the layer's section as sliced (before beam compensation and
+ * contour passes: the part's geometry), ids 1..n in the layer's order,
+ * `parent` the id of the contour directly around (null for none), `area`
+ * signed in the layer plane (+ solid, - hole), points in the output frame
+ * without a repeated closing point. Vectors are what the planner planned,
+ * in order: LADRP moves (deposit, travel from the stage's position), SLS
+ * contour passes (kind "contour", one vector per edge), hatch vectors
+ * (core, upskin, downskin) and the scanner's jumps between them (non-zero
+ * ones). `time` is the build-time estimate (hatch.h) of SLS plans that
+ * have one, else null.
+ *
+ * Streaming: every layer is written as it is planned (its contours when it
+ * begins, each vector as it comes, its figures when it ends); nothing of
+ * earlier layers is kept, so memory does not grow with the run. Numbers
+ * are written shortest round-trip (lam_dialect_number), never NaN or
+ * infinite (a non-finite value is an error). One contour or vector a line,
+ * so a position in the file names it. */
+#ifndef LAM_JSON_SINK_H
+#define LAM_JSON_SINK_H
+
+#include "error.h"
+#include "plan.h"
+#include "writer.h"
+
+/* The version written, and the only one read back: it changes when a
+ * change would break a reader of the previous one (a key renamed, removed
+ * or given another meaning); keys added keep it. */
+#define LAM_JSON_VERSION 1
+
+/* Flags of lam_json_sink. */
+enum {
+    /* for JSON inside an HTML <script> element: every '<' in a string is
+     * written \u003c, so no "</script>" can end the element early */
+    LAM_JSON_SCRIPT = 1
+};
+
+/* A sink that writes the run as one JSON value (and a newline) to w, which
+ * it neither owns nor commits: the caller may write a document around it
+ * (before begin, after end) and commits or aborts w. The job's model path
+ * is written as given in lam_job_info.model. Errors go to err (LAM_EIO
+ * from the writer, LAM_EINVAL for a non-finite number, LAM_ENOMEM), which
+ * must outlive the sink. */
+int lam_json_sink(lam_writer *w, unsigned flags, lam_sink *out, lam_error *err);
+
+#endif
