@@ -419,26 +419,17 @@ static void put(buf *b, const char *s, size_t n)
     b->s[b->len] = '\0';
 }
 
-size_t lam_dialect_number(char *out, double x)
+/* The shortest digits by trying 1, 2, ... 17 of them, and %g's notation:
+ * slow (a printf per try), for the cases the fast way leaves. */
+static size_t number_slow(char *out, double x)
 {
-    if (x == 0) x = 0; /* no "-0" */
-    if (!isfinite(x)) return (size_t)snprintf(out, LAM_FMT_MAX, "%g", x);
-    /* When any k <= 15 digits read back as x, the rounding to 15 digits
-     * is that number with zeros after it: a 15-digit step (>= 1e-15 of x)
-     * is far wider than x's half-ulp (<= 1.2e-16 of x). So 15 digits with
-     * the zeros taken off are the shortest, else 16, else 17. (Not for
-     * subnormals, whose ulp is wider: they count up from 1.) */
-    int start = fabs(x) < DBL_MIN ? 1 : 15, prec = start, n = 0;
+    int prec = 1, n = 0;
     for (; prec <= 17; prec++) {
         n = snprintf(out, LAM_FMT_MAX, "%.*e", prec - 1, x);
         double back;
         if (lam_parse_number((const unsigned char *)out, (size_t)n, &back) == LAM_OK && back == x) break;
     }
     if (prec > 17) prec = 17;
-    if (start == 15 && prec == 15) {
-        const char *m = strchr(out, 'e');
-        while (prec > 1 && m[-1] == '0') prec--, m--;
-    }
     /* the decimal exponent of the shortest digits decides the notation, as
      * %.17g decides it: plain decimals for 1e-4 <= |x| < 1e17 */
     const char *e = strchr(out, 'e');
@@ -446,6 +437,128 @@ size_t lam_dialect_number(char *out, double x)
     if (exp10 >= -4 && exp10 < 17 && prec < exp10 + 1) prec = exp10 + 1;
     n = snprintf(out, LAM_FMT_MAX, "%.*g", prec, x);
     return n < 0 ? 0 : (size_t)n;
+}
+
+/* d[0..17) rounded to k digits (k < 17) in place, half up; the exponent
+ * grows on a carry out of the first digit. 0 when the digits cut off are
+ * exactly half (x's own rounding to k digits may go either way: only
+ * printf knows). */
+static int round_digits(char *d, int k, int *exp10)
+{
+    int tie = d[k] == '5';
+    for (int i = k + 1; i < 17 && tie; i++) tie = d[i] == '0';
+    if (tie) return 0;
+    if (d[k] >= '5') {
+        int i = k - 1;
+        while (i >= 0 && d[i] == '9') d[i--] = '0';
+        if (i >= 0) {
+            d[i]++;
+        } else {
+            memmove(d + 1, d, (size_t)k - 1);
+            d[0] = '1';
+            (*exp10)++;
+        }
+    }
+    return 1;
+}
+
+/* d[0..n) times 10^exp10 as "D.DDDe+XX" into b; returns the length. */
+static size_t sci(char *b, int neg, const char *d, int n, int exp10)
+{
+    size_t k = 0;
+    if (neg) b[k++] = '-';
+    b[k++] = d[0];
+    if (n > 1) {
+        b[k++] = '.';
+        memcpy(b + k, d + 1, (size_t)n - 1);
+        k += (size_t)n - 1;
+    }
+    int e = exp10 < 0 ? -exp10 : exp10;
+    b[k++] = 'e';
+    b[k++] = exp10 < 0 ? '-' : '+';
+    if (e >= 100) b[k++] = (char)('0' + e / 100);
+    b[k++] = (char)('0' + e / 10 % 10);
+    b[k++] = (char)('0' + e % 10);
+    b[k] = '\0';
+    return k;
+}
+
+size_t lam_dialect_number(char *out, double x)
+{
+    if (x == 0) x = 0; /* no "-0" */
+    if (!isfinite(x)) return (size_t)snprintf(out, LAM_FMT_MAX, "%g", x);
+    /* subnormals have fewer digits than 15: the slow way */
+    if (x == 0 || fabs(x) < DBL_MIN) return number_slow(out, x);
+    /* Few decimals (coordinates such as 20.08, heights): the fewest d with
+     * round(x * 10^d) / 10^d == x, as lam_fmt_fixed prints it. Below 1e9
+     * and 6 decimals one step of 10^-d is wider than x's ulp, so at most
+     * one d-decimal number reads back as x, and fewest decimals are fewest
+     * digits in the plain notation this range uses. */
+    static const double p10[] = { 1, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6 };
+    if (fabs(x) >= 1e-4 && fabs(x) < 1e9)
+        for (int d = 0; d <= 6; d++)
+            if (nearbyint(x * p10[d]) / p10[d] == x) return lam_fmt_fixed(out, x, d);
+    /* One printf gives x to 17 digits, D17. Its roundings to 15 and 16
+     * digits are x's own, unless D17 sits on a midpoint (then printf
+     * decides). When any k <= 15 digits read back as x, so do x's 15 with
+     * the zeros after them taken off: a 15-digit step (>= 1e-15 of x) is
+     * far wider than x's half-ulp (<= 1.2e-16 of x). So: 15 digits less
+     * their zeros, else 16, else 17. */
+    char e17[40];
+    snprintf(e17, sizeof e17, "%.16e", x);
+    int neg = e17[0] == '-';
+    const char *m = e17 + neg;
+    char d17[17];
+    d17[0] = m[0];
+    memcpy(d17 + 1, m + 2, 16);
+    int exp17 = atoi(strchr(m, 'e') + 1);
+    char d[17];
+    int exp10 = exp17, prec = 17;
+    for (int k = 15; k <= 16; k++) {
+        memcpy(d, d17, 17);
+        exp10 = exp17;
+        if (!round_digits(d, k, &exp10)) return number_slow(out, x);
+        char b[40];
+        size_t n = sci(b, neg, d, k, exp10);
+        double back;
+        if (lam_parse_number((const unsigned char *)b, n, &back) == LAM_OK && back == x) {
+            prec = k;
+            break;
+        }
+    }
+    if (prec == 17) {
+        memcpy(d, d17, 17);
+        exp10 = exp17;
+    }
+    while (prec > 1 && d[prec - 1] == '0') prec--;
+    /* plain decimals for 1e-4 <= |x| < 1e17, as %.17g; a number whose
+     * shortest digits stop before the point (1e10, 2^55) prints every
+     * digit of x there, %g's way: below 2^53 x is that whole number */
+    if (exp10 >= -4 && exp10 < 17 && prec < exp10 + 1) {
+        if (fabs(x) >= 9007199254740992.0) return number_slow(out, x);
+        memset(d + prec, '0', (size_t)(exp10 + 1 - prec));
+        prec = exp10 + 1;
+    }
+    if (exp10 < -4 || exp10 >= 17) return sci(out, neg, d, prec, exp10);
+    size_t k = 0;
+    if (neg) out[k++] = '-';
+    if (exp10 < 0) {
+        out[k++] = '0';
+        out[k++] = '.';
+        for (int i = 0; i < -exp10 - 1; i++) out[k++] = '0';
+        memcpy(out + k, d, (size_t)prec);
+        k += (size_t)prec;
+    } else {
+        memcpy(out + k, d, (size_t)exp10 + 1);
+        k += (size_t)exp10 + 1;
+        if (prec > exp10 + 1) {
+            out[k++] = '.';
+            memcpy(out + k, d + exp10 + 1, (size_t)(prec - exp10 - 1));
+            k += (size_t)(prec - exp10 - 1);
+        }
+    }
+    out[k] = '\0';
+    return k;
 }
 
 /* 1 when the fixed rendering s (from lam_fmt_fixed) is "-0", "-0.000...". */

@@ -33,6 +33,14 @@ typedef struct js {
     double deposit_total, travel_total;
     lam_scan_time time;      /* the layers' estimates, summed */
     size_t timed;            /* layers that had one */
+    /* the last points written: a vector starts where the one before ended,
+     * so each point is formatted once (formatting is most of the time) */
+    struct {
+        double p[3];
+        char text[3 * LAM_FMT_MAX + 8];
+        size_t len;
+    } seen[4];
+    unsigned nseen, next_seen;
 } js;
 
 static int nomem(js *s) { return s->rc = lam_error_nomem(s->err, "writing the JSON"); }
@@ -91,6 +99,12 @@ static void size(js *s, size_t n)
 
 static void pt(js *s, const double p[3])
 {
+    for (unsigned i = 0; i < s->nseen; i++)
+        if (!memcmp(s->seen[i].p, p, sizeof s->seen[i].p)) {
+            putn(s, s->seen[i].text, s->seen[i].len);
+            return;
+        }
+    size_t at = s->len;
     put(s, "[");
     num(s, p[0]);
     put(s, ", ");
@@ -98,6 +112,13 @@ static void pt(js *s, const double p[3])
     put(s, ", ");
     num(s, p[2]);
     put(s, "]");
+    if (s->rc) return;
+    unsigned k = s->next_seen;
+    s->next_seen = (k + 1) % 4;
+    if (s->nseen < 4) s->nseen++;
+    memcpy(s->seen[k].p, p, sizeof s->seen[k].p);
+    s->seen[k].len = s->len - at;
+    memcpy(s->seen[k].text, s->buf + at, s->len - at);
 }
 
 /* The length of a valid UTF-8 sequence at p (at most n bytes), 0 if none. */

@@ -70,7 +70,7 @@ int cli_load_model(const char *path, lam_model **m, lam_error *err)
 
 int cli_writer(const char *path, lam_writer **w, lam_error *err)
 {
-    return strcmp(path, "-") ? lam_writer_file(path, w, err) : lam_writer_stream(stdout, "<stdout>", w, err);
+    return strcmp(path, "-") ? lam_writer_file(path, w, err) : lam_writer_stream(stdout, "stdout", w, err);
 }
 
 int cli_save_svg(const lam_svg *svg, const char *path, lam_error *err)
