@@ -14,6 +14,11 @@ is "$RC" 0 "slice --html: exit 0"
 # areas from the geometry: 36 - 4 below, 16 - 4 above
 is "$($V json "$TMP/s.html" | tr '\n' '|')" "1 32 1 1 True|2 32 1 1 True|3 12 1 1 True|4 12 1 1 True|deposits 0|" \
    "the embedded run: 4 layers, 1-based, a solid and its hole each, net areas 32, 32, 12, 12"
+# the data is the layer interchange JSON: the schema and the JSON's own checker accept it
+python3 -c 'import re, sys; s = open(sys.argv[1]).read(); sys.stdout.write(re.search(r"id=\"lamina-run\">(.*?)</script>", s, re.S).group(1))' \
+    "$TMP/s.html" > "$TMP/s.json"
+run python3 "$TESTS/cli/jsoncheck.py" "$TESTS/../schema/lamina-run-1.schema.json" "$TMP/s.json" --sls "$TMP/s.sls"
+is "$RC $OUT" "0 " "the embedded run validates against schema/lamina-run-1 and matches the program (jsoncheck.py)"
 is "$(grep -cE '(src|href)=|https?:|@import|url\(' "$TMP/s.html")" 0 "nothing fetched: no src, href, URL or import"
 is "$(grep -o '</script>' "$TMP/s.html" | wc -l)" 2 "two script elements, each closed once"
 
