@@ -275,7 +275,7 @@ int lam_svg_write(const lam_svg *s, lam_writer *w)
         lam_writer_printf(w,
                           "<text x=\"2\" y=\"%.0f\" font-family=\"sans-serif\" font-size=\"12\" fill=\"#222\">"
                           "layer %zu  h=%.4g  (%zu contour%s",
-                          PANEL + 14, s->wanted[k], p->cut, p->ncontours, p->ncontours == 1 ? "" : "s");
+                          PANEL + 14, s->wanted[k] + 1, p->cut, p->ncontours, p->ncontours == 1 ? "" : "s");
         if (p->vec) lam_writer_printf(w, ", %zu vector%s", p->nvec, p->nvec == 1 ? "" : "s");
         lam_writer_printf(w, ")</text>\n</g>\n");
     }

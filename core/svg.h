@@ -2,7 +2,8 @@
  * LAM_SVG_MAX_PANELS, evenly chosen above that and said in the title),
  * solids filled, holes cut out (one even-odd path per layer, class
  * "section") and outlined in red (class "hole"), each panel labelled with
- * its layer index and cut height. Every panel uses the same scale, the
+ * its layer number (1-based, as the viewer and the JSON count) and cut
+ * height; lam_svg_* functions take 0-based layer indices. Every panel uses the same scale, the
  * model's extent in the layer frame, v pointing up; below the panels, the
  * axes (u right, v up, named x/y/z when they are world axes) and a scale
  * bar (class "scalebar": a line 1, 2 or 5 times a power of ten model units
