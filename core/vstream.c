@@ -25,8 +25,10 @@ static void to_uv(const vstream *s, const double p[3], double uv[2])
     uv[1] = p[0] * s->f.v[0] + p[1] * s->f.v[1] + p[2] * s->f.v[2];
 }
 
-/* One vector from the current position to p; the position moves on. */
-static int emit(vstream *s, const char *kind, int exposed, const double p[3])
+/* One vector from the current position to p; the position moves on.
+ * `always`: even of no length (the LADRP stage's moves, as the program
+ * has them); a jump of no length is no jump. */
+static int emit(vstream *s, const char *kind, int exposed, int always, const double p[3])
 {
     lam_vec v;
     memcpy(v.from, s->pos, sizeof v.from);
@@ -35,7 +37,7 @@ static int emit(vstream *s, const char *kind, int exposed, const double p[3])
     s->have_pos = 1;
     double len = sqrt((v.to[0] - v.from[0]) * (v.to[0] - v.from[0]) + (v.to[1] - v.from[1]) * (v.to[1] - v.from[1]) +
                       (v.to[2] - v.from[2]) * (v.to[2] - v.from[2]));
-    if (!exposed && len == 0) return LAM_OK;
+    if (!exposed && !always && len == 0) return LAM_OK;
     v.kind = kind;
     v.exposed = exposed;
     v.order = ++s->order;
@@ -55,7 +57,7 @@ static int start_at(vstream *s, const double p[3])
         s->have_pos = 1;
         return LAM_OK;
     }
-    return emit(s, "jump", 0, p);
+    return emit(s, "jump", 0, 0, p);
 }
 
 static int vs_begin(void *ctx, const lam_job_info *job)
@@ -83,16 +85,16 @@ static int vs_layer_end(void *ctx, const lam_layer_info *li)
 static int vs_move(void *ctx, int deposit, const double xyz[3])
 {
     vstream *s = ctx;
-    return emit(s, deposit ? "deposit" : "travel", deposit, xyz);
+    return emit(s, deposit ? "deposit" : "travel", deposit, 1, xyz);
 }
 
 static int vs_contour(void *ctx, const lam_contour_info *c)
 {
     vstream *s = ctx;
-    if (!c->n) return LAM_OK;
+    if (c->n < 2) return LAM_OK;
     if (s->order == 0) s->have_pos = 0; /* the scanner starts a layer at its first path */
     int rc = start_at(s, c->xyz);
-    for (size_t i = 1; i <= c->n && !rc; i++) rc = emit(s, "contour", 1, c->xyz + 3 * (i % c->n));
+    for (size_t i = 1; i <= c->n && !rc; i++) rc = emit(s, "contour", 1, 1, c->xyz + 3 * (i % c->n));
     return rc;
 }
 
@@ -103,7 +105,7 @@ static int vs_hatches(void *ctx, const lam_hatch_info *h)
     int rc = LAM_OK;
     for (size_t i = 0; i < h->n && !rc; i++) {
         rc = start_at(s, h->xyz + 6 * i);
-        if (!rc) rc = emit(s, h->kind ? h->kind : "core", 1, h->xyz + 6 * i + 3);
+        if (!rc) rc = emit(s, h->kind ? h->kind : "core", 1, 1, h->xyz + 6 * i + 3);
     }
     return rc;
 }

@@ -8,8 +8,11 @@
  * "core", "upskin", "downskin" (SLS hatch vectors); "jump" (the SLS
  * scanner between paths: from the end of one path to the start of the
  * next, within a layer; the scanner starts each layer at its first path).
- * Travels and jumps of no length are left out (the stage does not move).
- * Orders count from 1 within each layer, in the order the machine runs. */
+ * Every stage move is a vector, as in the program; jumps of no length are
+ * left out (the scanner does not move), and so are contours of fewer than
+ * two points. Orders count from 1 within each layer, in the order the
+ * machine runs. The vectors are those of the layer interchange JSON
+ * (json_sink.h), which decodes a plan by the same rules. */
 #ifndef LAM_VSTREAM_H
 #define LAM_VSTREAM_H
 

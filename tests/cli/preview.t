@@ -42,6 +42,14 @@ is "$($C outside "$TMP/h.svg" 90 -1 1 "-1,-1,1,1;-0.5,-0.5,0.5,0.5")" 0 "every h
 is "$($C order "$TMP/h.svg")" ok "hatch colours follow the order"
 rsvg-convert -f png -o "$TMP/h.png" "$TMP/h.svg"; ok $? "the sheet renders (rsvg-convert)"
 
+# the sheet and the JSON of one run: the same vectors in every layer
+for mach in lpbf-cli creol-ladrp; do
+    run "$LAMINA" slice "$CUBE" -m $mach -w 0.5 --svg "$TMP/j.svg" --json "$TMP/j.json" -o "$TMP/j.out"
+    from_json=$(python3 -c 'import json, sys; print(" ".join(str(L["stats"]["vectors"]) for L in json.load(open(sys.argv[1]))["layers"]))' "$TMP/j.json")
+    from_svg=$(grep -o 'contours\?, [0-9]* vectors' "$TMP/j.svg" | sed 's/.*, \([0-9]*\) vectors/\1/' | tr '\n' ' ' | sed 's/ $//')
+    like "$RC $from_svg" "^0 $from_json\$" "$mach, --svg and --json in one run: each panel's vector count is its layer's in the JSON ($from_json)"
+done
+
 # a machine frame (u, v) keeps the drawing; a sheet from a contour-only run
 # keeps its strong fill (lamina.preview) — the sheets of check and preview
 # have no scan paths
