@@ -24,7 +24,7 @@ endif
 # Debian packages the build, the tests and `make run` need; `make deps`
 # installs only the missing ones.
 DEPS_PKGS := gcc make perl liblua5.4-dev lua5.4 libyaml-dev libembree-dev libgeos-dev libreadline8 \
-             jq python3 librsvg2-bin tmux pkg-config
+             jq python3 python3-jsonschema time librsvg2-bin tmux pkg-config
 # Packages a test can do without: installed the same way when missing, but
 # a failure only means the test that needs one skips (and says so).
 DEPS_OPTIONAL := chromium
@@ -208,6 +208,8 @@ install: all
 	  lamina.pc.in > $(DESTDIR)$(PREFIX)/lib/pkgconfig/lamina.pc
 	install -d $(DESTDIR)$(PREFIX)/share/lamina/machines $(DESTDIR)$(PREFIX)/lib/lamina/plugins
 	install -m 644 machines/*.yaml $(DESTDIR)$(PREFIX)/share/lamina/machines/
+	install -d $(DESTDIR)$(PREFIX)/share/lamina/schema
+	install -m 644 schema/*.json $(DESTDIR)$(PREFIX)/share/lamina/schema/
 	$(if $(PLUGIN_SO),install -m 755 $(PLUGIN_SO) $(DESTDIR)$(PREFIX)/lib/lamina/plugins/)
 	install -d $(DESTDIR)$(PREFIX)/share/lamina/lua/lamina $(DESTDIR)$(PREFIX)/lib/lua/5.4
 	$(if $(wildcard lua/lamina/*.lua),install -m 644 lua/lamina/*.lua $(DESTDIR)$(PREFIX)/share/lamina/lua/lamina/)

@@ -489,15 +489,18 @@ size_t lam_dialect_number(char *out, double x)
     if (!isfinite(x)) return (size_t)snprintf(out, LAM_FMT_MAX, "%g", x);
     /* subnormals have fewer digits than 15: the slow way */
     if (x == 0 || fabs(x) < DBL_MIN) return number_slow(out, x);
-    /* Few decimals (coordinates such as 20.08, heights): the fewest d with
-     * round(x * 10^d) / 10^d == x, as lam_fmt_fixed prints it. Below 1e9
-     * and 6 decimals one step of 10^-d is wider than x's ulp, so at most
-     * one d-decimal number reads back as x, and fewest decimals are fewest
-     * digits in the plain notation this range uses. */
-    static const double p10[] = { 1, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6 };
-    if (fabs(x) >= 1e-4 && fabs(x) < 1e9)
-        for (int d = 0; d <= 6; d++)
-            if (nearbyint(x * p10[d]) / p10[d] == x) return lam_fmt_fixed(out, x, d);
+    /* Plain notation (1e-4 <= |x| < 1e15): the fewest decimals d whose
+     * exact rounding q = round(|x| * 10^d) reads back, q / 10^d == |x| (q
+     * and 10^d are exact, so the division rounds as reading the text does),
+     * are the fewest digits, and that rounding is the one %e would give:
+     * lam_fmt_fixed prints it without printf. Up to 16 digits, while q
+     * stays exact; beyond, the general way below. */
+    static const double p10[] = { 1, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15 };
+    if (fabs(x) >= 1e-4 && fabs(x) < 1e15) {
+        unsigned long long q;
+        for (int d = 0; d <= 15 && lam_fmt_scaled(x, d, &q); d++)
+            if ((double)q / p10[d] == fabs(x)) return lam_fmt_fixed(out, x, d);
+    }
     /* One printf gives x to 17 digits, D17. Its roundings to 15 and 16
      * digits are x's own, unless D17 sits on a midpoint (then printf
      * decides). When any k <= 15 digits read back as x, so do x's 15 with

@@ -96,7 +96,7 @@ static int read_fd(int fd, const char *path, lam_read_limit limit, size_t cap, c
             char *nb = ncap > cap ? realloc(buf, ncap) : NULL;
             if (!nb) {
                 rc = ncap > cap ? lam_error_set(err, LAM_ENOMEM, path, 0, 0, "out of memory reading the file")
-                                : too_large(path, limit, n, err);
+                                : too_large(path, limit, limit.bytes, err);
                 break;
             }
             buf = nb;
@@ -107,7 +107,8 @@ static int read_fd(int fd, const char *path, lam_read_limit limit, size_t cap, c
         if (got < 0) rc = lam_error_set(err, LAM_EIO, path, 0, 0, "read error: %s", strerror(errno));
         else if (got == 0) break;
         else n += (size_t)got;
-        if (rc == LAM_OK && n > limit.bytes) rc = too_large(path, limit, n, err);
+        /* reading stops there: how much more would come is unknown */
+        if (rc == LAM_OK && n > limit.bytes) rc = too_large(path, limit, limit.bytes, err);
     }
     if (rc) {
         free(buf);
@@ -136,7 +137,7 @@ int lam_read_stdin(lam_read_limit limit, char **data, size_t *len, lam_error *er
     *data = NULL;
     *len = 0;
     if (limit.bytes == 0) return bad_limit(LAM_STDIN_NAME, err);
-    return read_fd(STDIN_FILENO, LAM_STDIN_NAME, limit, 65536, data, len, err);
+    return read_fd(STDIN_FILENO, LAM_STDIN_NAME, limit, limit.bytes < 65536 ? limit.bytes + 2 : 65536, data, len, err);
 }
 
 int lam_map_file(const char *path, lam_read_limit limit, char **data, size_t *len, int *mapped, lam_error *err)

@@ -12,13 +12,10 @@ static const char pairs[] = "000102030405060708091011121314151617181920212223242
 static const double pow10_tab[] = { 1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9,
                                     1e10, 1e11, 1e12, 1e13, 1e14, 1e15 };
 
-size_t lam_fmt_fixed(char *buf, double x, int d)
+int lam_fmt_scaled(double x, int d, unsigned long long *out)
 {
-    /* the fast path needs x * 10^d well inside the exact integer range */
-    if (!isfinite(x) || d < 0 || d > 15 || fabs(x) * pow10_tab[d] >= 4e15) {
-        int n = snprintf(buf, LAM_FMT_MAX, "%.*f", d < 0 ? 0 : d > 40 ? 40 : d, x);
-        return n < 0 ? 0 : (size_t)n;
-    }
+    /* x * 10^d well inside the exact integer range */
+    if (!isfinite(x) || d < 0 || d > 15 || fabs(x) * pow10_tab[d] >= 4e15) return 0;
     double s = pow10_tab[d];
     double ax = fabs(x);
     double p = ax * s;
@@ -28,6 +25,18 @@ size_t lam_fmt_fixed(char *buf, double x, int d)
     unsigned long long q = (unsigned long long)fl;
     double r = t + e;                   /* its sign is the exact sum's sign */
     if (r > 0 || (r == 0 && (q & 1))) q++;
+    *out = q;
+    return 1;
+}
+
+size_t lam_fmt_fixed(char *buf, double x, int d)
+{
+    unsigned long long q;
+    if (!lam_fmt_scaled(x, d, &q)) {
+        int n = snprintf(buf, LAM_FMT_MAX, "%.*f", d < 0 ? 0 : d > 40 ? 40 : d, x);
+        return n < 0 ? 0 : (size_t)n;
+    }
+    double s = pow10_tab[d];
     /* Digits from the right into the end of tmp: the d decimals, the point,
      * then the integer part. The split divides by a constant per case, so
      * the compiler turns it into a multiplication. */

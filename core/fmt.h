@@ -13,4 +13,10 @@
  * Returns the length. */
 size_t lam_fmt_fixed(char *buf, double x, int decimals);
 
+/* |x| * 10^decimals rounded to a whole number, exactly as lam_fmt_fixed
+ * rounds (half to even on exact ties), into *q: returns 1; 0 (q untouched)
+ * when x is not finite, decimals is not 0..15 or |x| * 10^decimals >= 4e15
+ * (where lam_fmt_fixed uses printf). */
+int lam_fmt_scaled(double x, int decimals, unsigned long long *q);
+
 #endif

@@ -228,6 +228,18 @@ static int j_begin(void *ctx, const lam_job_info *job)
     pt(s, s->frame_machine ? ez : s->frame.w);
     put(s, "},");
     line(s);
+    /* the layer frame in the model, also when the points are in it: what
+     * a reader needs to put a machine-frame run back on the model */
+    put(s, "  ");
+    key(s, "layer_frame");
+    put(s, "{\"u\": ");
+    pt(s, s->frame.u);
+    put(s, ", \"v\": ");
+    pt(s, s->frame.v);
+    put(s, ", \"w\": ");
+    pt(s, s->frame.w);
+    put(s, "},");
+    line(s);
     put(s, "  ");
     key(s, "bbox");
     put(s, "[");

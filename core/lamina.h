@@ -7,7 +7,8 @@
  * section.h, validate.h, drc.h, rays.h), plans them for a machine profile
  * (profile.h, planner.h, plan.h, hatch.h: scan strategies, dialect.h) and
  * writes programs or previews through a lam_writer (writer.h, svg.h,
- * html.h: the browser viewer; vstream.h: a plan as a stream of vectors).
+ * html.h: the browser viewer; vstream.h: a plan as a stream of vectors),
+ * the run as JSON (json_sink.h; tee.h feeds one plan to several sinks).
  * Every fallible function returns LAM_OK or a LAM_E* code with the message
  * in a lam_error (error.h). Plugins are written against lamina_plugin.h
  * alone, which does not need this library.
@@ -39,6 +40,8 @@
 #include "profile.h"
 #include "profile_keys.h"
 #include "planner.h"
+#include "tee.h"
+#include "json_sink.h"
 #include "plugin.h"
 #include "program_read.h"
 #include "svg.h"

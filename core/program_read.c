@@ -599,6 +599,7 @@ const char *lam_program_format_name(lam_program_format f)
     case LAM_PROGRAM_SLS: return "sls-contours";
     case LAM_PROGRAM_CLI_ASCII: return "cli-ascii";
     case LAM_PROGRAM_CLI_BINARY: return "cli-binary";
+    case LAM_PROGRAM_JSON: return "lamina-run";
     }
     return "?";
 }
@@ -625,7 +626,9 @@ int lam_program_read_buf(const char *path, const unsigned char *data, size_t len
     size_t i = 0;
     while (i < len && (is_space(data[i]) || data[i] == '\n')) i++;
     int rc;
-    if (len - i >= 13 && !memcmp(data + i, "$$HEADERSTART", 13)) {
+    if (i < len && data[i] == '{') {
+        rc = lam_program_read_json(path, data, len, r.p, err);
+    } else if (len - i >= 13 && !memcmp(data + i, "$$HEADERSTART", 13)) {
         const unsigned char *end = find(data, len, "$$HEADEREND");
         const unsigned char *bin = end ? find(data, (size_t)(end - data), "$$BINARY") : NULL;
         if (bin) {

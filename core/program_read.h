@@ -18,6 +18,12 @@
  *   line) is not a contour. $$LAYERS, when given, must count the layers.
  *   Coordinates are taken as written (lamina writes model units and says
  *   in $$UNITS how many millimetres one is).
+ * - A lamina run's JSON (json_sink.h, `lamina slice --json`) when the file
+ *   starts with "{": each layer's contours ("solid" their label, "id" their
+ *   id, points in the output frame, projected on the job's plane into the
+ *   layer frame), and the job's layer_frame: where the layers lie in the
+ *   model (has_frame). Read by a strict reader
+ *   (program_json.c) that gives every error a line and column.
  * - Otherwise the SLS dialect of the thesis (the sls-contours profile and
  *   `lamina slice` without a profile): blocks "contour Z", then one or more
  *   "loop N", N lines "X Y Z", "endloop", then "endcontour"; blank lines
@@ -43,7 +49,8 @@
 typedef enum lam_program_format {
     LAM_PROGRAM_SLS,
     LAM_PROGRAM_CLI_ASCII,
-    LAM_PROGRAM_CLI_BINARY
+    LAM_PROGRAM_CLI_BINARY,
+    LAM_PROGRAM_JSON
 } lam_program_format;
 
 typedef struct lam_program_contour {
@@ -61,7 +68,8 @@ typedef struct lam_program_layer {
 
 typedef struct lam_program {
     lam_program_format format;
-    double *xyz;             /* 3 per point: SLS as written (x y z); CLI (x, y, the layer's z) */
+    double *xyz;             /* 3 per point: SLS as written (x y z); CLI (x, y, the layer's z);
+                                JSON (u, v, w) in the layer frame */
     size_t npoints;
     lam_program_contour *contours;
     size_t ncontours;
@@ -69,6 +77,9 @@ typedef struct lam_program {
     size_t nlayers;
     double quantum_xy;       /* the largest written coordinate's uncertainty */
     double quantum_z;        /* the same for heights */
+    int has_frame;           /* JSON: the file says where its layers lie: */
+    lam_frame frame;         /* the layer frame in the model (job.layer_frame) */
+    int frame_machine;       /* whether it was written in the machine frame */
 } lam_program;
 
 /* Read the program at path. On success *out is a new program the caller
@@ -94,7 +105,11 @@ int lam_program_layer_make(const lam_program *p, size_t i, const lam_frame *f, i
 /* Free what lam_program_layer_make put in *L and zero it. */
 void lam_layer_clear(lam_layer *L);
 
-/* "sls-contours", "cli-ascii" or "cli-binary". */
+/* Read a run's JSON (data[0..len)) into p, which the caller allocated
+ * zeroed and frees (lam_program_read_buf calls it). */
+int lam_program_read_json(const char *path, const unsigned char *data, size_t len, lam_program *p, lam_error *err);
+
+/* "sls-contours", "cli-ascii", "cli-binary" or "lamina-run" (JSON). */
 const char *lam_program_format_name(lam_program_format f);
 
 void lam_program_free(lam_program *p);

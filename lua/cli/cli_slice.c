@@ -29,8 +29,8 @@
 static int same_file(const char *out, const char *model)
 {
     struct stat a, b;
-    return out && strcmp(out, "-") && stat(out, &a) == 0 && stat(model, &b) == 0 && a.st_dev == b.st_dev &&
-           a.st_ino == b.st_ino;
+    return out && strcmp(out, "-") && strcmp(model, "-") && stat(out, &a) == 0 && stat(model, &b) == 0 &&
+           a.st_dev == b.st_dev && a.st_ino == b.st_ino;
 }
 
 static const char usage_text[] =

@@ -23,13 +23,14 @@ static const char usage_text[] =
     "                             [--fill evenodd|nonzero] [--json]\n"
     "       lamina validate MODEL --program FILE [-m MACHINE] [-a AXIS] [--cut ...]\n"
     "                             [--frame model|machine] [--fill ...] [--json]\n"
-    "Slices like 'lamina slice' (or reads the program FILE back: sls-contours, cli-ascii or\n"
-    "cli-binary, told apart by content) and checks every layer against the 3D model: each\n"
+    "Slices like 'lamina slice' (or reads the program FILE back: sls-contours, cli-ascii,\n"
+    "cli-binary or a run's JSON from 'slice --json', told apart by content) and checks every layer against the 3D model: each\n"
     "contour's direction against its label, its parents and depth against the contours\n"
     "around it, its label against the winding number of rays cast through the model\n"
     "(Embree) from test points beside its edges in the cut plane, and the layer's net\n"
     "area against the model's own section. Exit 3 when anything disagrees.\n"
-    "With --program: -a, --frame (or the profile's) say how the program was written, --cut\n"
+    "With --program: -a, --frame (or the profile's) say how the program was written (a run's\n"
+    "JSON says it itself), --cut\n"
     "which side of a flat face a height on it meant (middle and floor: above, ceiling: below).\n";
 
 static const char *kind_name(const lam_layer *L, size_t c)
@@ -197,7 +198,10 @@ static int validate_program(const args *a, const lam_plan_opts *po, lam_rays *v,
     lam_program *p = NULL;
     int rc = lam_program_read(a->program, &p, err);
     if (rc) return rc;
-    const lam_frame *f = &a->so.frame;
+    /* a run's JSON says its own axis and frame (-a and --frame are for
+     * programs that do not) */
+    const lam_frame *f = p->has_frame ? &p->frame : &a->so.frame;
+    int frame_machine = po->frame_machine; /* (a JSON's points are read in the layer frame) */
     lam_section_index *sec = NULL;
     if ((rc = lam_rays_section(v, f, &sec, err))) {
         lam_program_free(p);
@@ -219,7 +223,7 @@ static int validate_program(const args *a, const lam_plan_opts *po, lam_rays *v,
     }
     for (size_t i = 0; i < p->nlayers && !rc; i++) {
         lam_layer L;
-        if ((rc = lam_program_layer_make(p, i, f, po->frame_machine, a->program, &L, err))) break;
+        if ((rc = lam_program_layer_make(p, i, f, frame_machine, a->program, &L, err))) break;
         /* a height written on a flat face's plane (to its precision) means
          * that plane, and the side the cut says */
         double h = L.cut;

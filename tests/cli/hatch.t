@@ -151,14 +151,13 @@ t=(-s speed=2 -s contour.speed=4 -s jump_speed=10 -s jump_delay=0.01 -s recoat_t
 run "$LAMINA" slice "$cube" "${base[@]}" -s hatch_strategy=lines "${t[@]}" -o "$TMP/t.cli"
 like "$ERR" '1 layers, 1 contour passes, 8 hatch vectors, 24 exposed, 1.875 jumped; estimated build time 15.2675 s \(exposure 10 s, jumps 0.2675 s, recoating 5 s\)' \
     "slice: the estimate of the hand-computed layer"
-# --json: the same on standard output, each layer's too (two layers of 1:
+# --json FILE: the same in the run's JSON, each layer's too (two layers of 1:
 # the first is the hand-computed one; the job's total is the layers' sum)
 run "$LAMINA" slice "$cube" -m cli-ascii -w 1 -s hatch_distance=0.25 -s hatch_angle=0 -s hatch_strategy=lines "${t[@]}" \
-    -o "$TMP/j.cli" --json
-is "$(jq -c '[.layers, .hatch_vectors > 8, .layer_times[0], .time.recoat, (.time.total - (.layer_times | add) | fabs < 1e-9)]' <<<"$OUT")" \
+    -o "$TMP/j.cli" --json "$TMP/j.json"
+is "$(jq -c '[.totals.layers, ([.layers[].vectors[] | select(.kind == "core")] | length > 8), .layers[0].stats.time, .totals.time.recoat, (.totals.time.total - ([.layers[].stats.time] | add) | fabs < 1e-9)]' "$TMP/j.json")" \
     '[2,true,15.2675,10,true]' "slice --json: layers, the first layer's 15.2675 s, the total is the layers' sum"
-run "$LAMINA" slice "$cube" -s hatch_strategy=lines --json
-like "$RC $ERR" "^2 .*--json writes the estimate to standard output: give the program a file" "slice --json without -o: usage error"
+like "$ERR" 'estimated build time' "slice --json: the estimate is still a line on standard error"
 # point exposure (the contour's follows the core's): 2 / 0.5 + 1 = 5 points
 # a line, 0.1 s each: 8 x 0.5 = 4 s; the closed contour 8 / 0.5 = 16 points,
 # 1.6 s; with jumps and recoating 10.8675 s
