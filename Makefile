@@ -25,6 +25,9 @@ endif
 # installs only the missing ones.
 DEPS_PKGS := gcc make perl liblua5.4-dev lua5.4 libyaml-dev libembree-dev libgeos-dev libreadline8 \
              jq python3 python3-jsonschema time librsvg2-bin tmux pkg-config
+# Packages a test can do without: installed the same way when missing, but
+# a failure only means the test that needs one skips (and says so).
+DEPS_OPTIONAL := chromium
 
 LUA_CFLAGS := -I/usr/include/lua5.4
 LUA_LIBS   := -llua5.4
@@ -36,7 +39,9 @@ LDFLAGS  += $(SANFLAGS)
 LDLIBS   += -lembree3 -lyaml -lgeos_c -ldl -lm -pthread
 
 CORE_SRC  := $(sort $(wildcard core/*.c))
-CORE_OBJ  := $(CORE_SRC:%.c=$(BUILD)/%.o)
+# The viewer's page (core/viewer.html) is compiled in as a C string.
+VIEWER_C  := $(BUILD)/gen/viewer_html.c
+CORE_OBJ  := $(CORE_SRC:%.c=$(BUILD)/%.o) $(VIEWER_C:.c=.o)
 # Sources by folder: lua/*.c is the binding (also built as the C module
 # lamina.so for a stock lua5.4); lua/cli/*.c is the executable on top of it.
 BIND_SRC  := $(sort $(wildcard lua/*.c))
@@ -93,6 +98,18 @@ $(BUILD)/%.o: %.c
 	@mkdir -p $(dir $@)
 	$(CC) $(CPPFLAGS) $(CFLAGS) -MMD -MP -c $< -o $@
 
+# od (coreutils) turns the page into bytes: no tool beyond the build's own.
+$(VIEWER_C): core/viewer.html
+	@mkdir -p $(dir $@)
+	{ echo '/* generated from core/viewer.html by the Makefile: do not edit */'; \
+	  echo '#include "viewer_html.h"'; echo 'const char lam_viewer_html[] = {'; \
+	  od -An -v -tx1 $< | sed 's/ \([0-9a-f][0-9a-f]\)/0x\1,/g'; \
+	  echo '0x00};'; echo 'const size_t lam_viewer_html_len = sizeof lam_viewer_html - 1;'; } > $@.tmp
+	mv $@.tmp $@
+
+$(VIEWER_C:.c=.o): $(VIEWER_C) core/viewer_html.h
+	$(CC) $(CPPFLAGS) $(CFLAGS) -c $< -o $@
+
 $(LIB): $(CORE_OBJ)
 	@mkdir -p $(dir $@)
 	rm -f $@
@@ -116,6 +133,14 @@ deps:
 	  $$sudo apt-get update -qq && \
 	  DEBIAN_FRONTEND=noninteractive $$sudo apt-get install -y -qq --no-install-recommends $$missing; \
 	fi
+	@for p in $(DEPS_OPTIONAL); do \
+	  dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q 'install ok installed' && continue; \
+	  echo "make deps: installing $$p (optional)"; \
+	  if [ "$$(id -u)" -eq 0 ]; then sudo=""; else sudo="sudo"; fi; \
+	  { $$sudo apt-get update -qq && \
+	    DEBIAN_FRONTEND=noninteractive $$sudo apt-get install -y -qq --no-install-recommends $$p; } || \
+	    echo "make deps: $$p could not be installed; the tests that need it skip"; \
+	done
 
 RUN_PART := recipes/parts/thesis_cube_hole.ug
 run: deps
@@ -125,12 +150,17 @@ run: deps
 	@$(LAMINA) info $(RUN_PART) > out/thesis_cube_hole.info.txt
 	@$(LAMINA) validate $(RUN_PART) -w 0.25 --cut floor > out/thesis_cube_hole.validate.txt
 	@tail -n 1 out/thesis_cube_hole.validate.txt
+	@$(LAMINA) slice $(RUN_PART) -m creol-ladrp --svg out/thesis_cube_hole.paths.svg \
+	  --html out/thesis_cube_hole.html -o /dev/null
 	@echo "lamina: outputs in $(abspath out)/:"
 	@echo "  thesis_cube_hole.ladrp         LADRP program for the thesis's CREOL cell"
 	@echo "  thesis_cube_hole.sls           SLS contour program (thesis dialect)"
 	@echo "  thesis_cube_hole.svg           contact sheet of the SLS layers"
 	@echo "  thesis_cube_hole.info.txt      model report (lamina info)"
 	@echo "  thesis_cube_hole.validate.txt  Embree check of every solid/hole label"
+	@echo "  thesis_cube_hole.paths.svg     the LADRP layers with their deposits and travel"
+	@echo "  thesis_cube_hole.html          viewer of the LADRP plan (one file, open it in a browser)"
+	@echo "lamina: viewer: $(abspath out/thesis_cube_hole.html)"
 
 # Tests: C unit tests are compiled to TAP programs; tests/cli/*.t are shell
 # scripts that drive the executable. prove runs both and prints the summary.

@@ -6,14 +6,15 @@
  * contour.h), may offset, fill or check the layers (offset.h, fill.h,
  * section.h, validate.h, drc.h, rays.h), plans them for a machine profile
  * (profile.h, planner.h, plan.h, hatch.h: scan strategies, dialect.h) and
- * writes programs or previews through a lam_writer (writer.h, svg.h), the
- * run as JSON (json_sink.h; tee.h feeds one plan to several sinks).
+ * writes programs or previews through a lam_writer (writer.h, svg.h,
+ * html.h: the browser viewer; vstream.h: a plan as a stream of vectors),
+ * the run as JSON (json_sink.h; tee.h feeds one plan to several sinks).
  * Every fallible function returns LAM_OK or a LAM_E* code with the message
  * in a lam_error (error.h). Plugins are written against lamina_plugin.h
  * alone, which does not need this library.
  *
  * The headers not included here (nest.h, enclose.h, geos.h, lexnum.h,
- * fmt.h, paths.h, prefetch.h, grow.h, test_hooks.h) are internal to core/
+ * fmt.h, paths.h, prefetch.h, grow.h, test_hooks.h, viewer_html.h) are internal to core/
  * and not installed. */
 #ifndef LAMINA_H
 #define LAMINA_H
@@ -44,5 +45,7 @@
 #include "plugin.h"
 #include "program_read.h"
 #include "svg.h"
+#include "vstream.h"
+#include "html.h"
 
 #endif

@@ -1,12 +1,27 @@
 #include "svg.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+#include "grow.h"
+#include "vstream.h"
 
 #define PANEL 200.0   /* panel size in px */
 #define PAD 10.0
 #define LABEL 18.0
+#define FOOT 34.0     /* the scale bar and the axes, below the panels */
+
+/* Colours: solids are filled (strongly on a sheet of contours, with a tint
+ * under scan paths), holes show the white background and a red outline;
+ * scan paths run from dark blue through magenta to orange along the
+ * layer's order; travels and jumps are grey dashes. */
+#define FILL "#2f6db5"
+#define TINT "#c9dbf0"
+#define SOLID_LINE "#1b3f6b"
+#define HOLE_LINE "#d62728"
+#define TRAVEL "#8c8c8c"
 
 typedef struct panel {
     size_t index;
@@ -15,7 +30,17 @@ typedef struct panel {
     size_t ncontours;
     double *marks;    /* u, v pairs, owned */
     size_t nmarks;
+    char *vec;        /* the scan paths' SVG elements, owned (NULL: none planned) */
+    size_t nvec;
 } panel;
+
+/* A vector of the layer being planned, kept until the layer ends (its
+ * colour depends on the layer's vector count). */
+typedef struct rvec {
+    double a[2], b[2];
+    const char *kind;
+    int exposed;
+} rvec;
 
 struct lam_svg {
     size_t nlayers, npanels, filled;
@@ -23,6 +48,14 @@ struct lam_svg {
     panel *panels;
     double box[4];
     char *title;
+    char units[32];   /* of the job (the sink's begin), "" unknown */
+    char axis[2][8];  /* names of the layer frame's u and v axes */
+    int vectors;      /* a sink feeds scan paths */
+    /* the sink's layer */
+    long cur;         /* panel, -1: not drawn */
+    rvec *rv;
+    size_t nrv, caprv;
+    lam_error *err;
 };
 
 int lam_svg_new(size_t nlayers, const double uvbox[4], const char *title, lam_svg **out, lam_error *err)
@@ -44,6 +77,9 @@ int lam_svg_new(size_t nlayers, const double uvbox[4], const char *title, lam_sv
     for (size_t k = 0; k < np; k++)
         s->wanted[k] = np == nlayers ? k : (size_t)llround((double)k * (double)(nlayers - 1) / (double)(np - 1));
     memcpy(s->box, uvbox, sizeof s->box);
+    strcpy(s->axis[0], "u");
+    strcpy(s->axis[1], "v");
+    s->cur = -1;
     *out = s;
     return LAM_OK;
 }
@@ -79,6 +115,7 @@ int lam_svg_add(lam_svg *s, const lam_layer *L, lam_error *err)
     int rc = lam_writer_memory(&w, err);
     if (rc) return rc;
     double sc = scale_of(s);
+    /* the even-odd path of the section first, then "|" and the holes alone */
     /* coordinates relative to the panel's inner origin; v flipped */
     for (size_t i = 0; i < L->ncontours; i++) {
         const lam_contour *c = &L->contours[i];
@@ -86,6 +123,19 @@ int lam_svg_add(lam_svg *s, const lam_layer *L, lam_error *err)
             double u = L->uv[2 * (c->first + j)], v = L->uv[2 * (c->first + j) + 1];
             lam_writer_printf(w, "%s%.2f %.2f", j ? " L" : (i ? " M" : "M"), (u - s->box[0]) * sc,
                               (s->box[3] - v) * sc);
+        }
+        lam_writer_write(w, " Z", 2);
+    }
+    lam_writer_write(w, "|", 1);
+    int first = 1;
+    for (size_t i = 0; i < L->ncontours; i++) {
+        const lam_contour *c = &L->contours[i];
+        if (c->kind != LAM_HOLE) continue;
+        for (size_t j = 0; j < c->n; j++) {
+            double u = L->uv[2 * (c->first + j)], v = L->uv[2 * (c->first + j) + 1];
+            lam_writer_printf(w, "%s%.2f %.2f", j ? " L" : (first ? "M" : " M"), (u - s->box[0]) * sc,
+                              (s->box[3] - v) * sc);
+            first = 0;
         }
         lam_writer_write(w, " Z", 2);
     }
@@ -127,13 +177,59 @@ static void xml_text(lam_writer *w, const char *t)
     }
 }
 
+/* A round length for the scale bar: 1, 2 or 5 times a power of ten, the
+ * largest not longer than `most`. */
+static double nice_length(double most)
+{
+    double p = pow(10, floor(log10(most)));
+    return most >= 5 * p ? 5 * p : most >= 2 * p ? 2 * p : p;
+}
+
+static void write_footer(const lam_svg *s, lam_writer *w, double y)
+{
+    double sc = scale_of(s);
+    /* axes: u to the right, v up (the panels' orientation) */
+    lam_writer_printf(w,
+                      "<g class=\"axes\" font-family=\"sans-serif\" font-size=\"11\" fill=\"#222\" stroke=\"#222\">\n"
+                      "<path d=\"M%.0f %.0f h24 m-5 -3 l5 3 l-5 3 M%.0f %.0f v-24 m-3 5 l3 -5 l3 5\" fill=\"none\"/>\n"
+                      "<text x=\"%.0f\" y=\"%.0f\" stroke=\"none\">",
+                      PAD, y + 26, PAD, y + 26, PAD + 28, y + 30);
+    xml_text(w, s->axis[0]);
+    lam_writer_printf(w, "</text><text x=\"%.0f\" y=\"%.0f\" stroke=\"none\">", PAD - 3, y);
+    xml_text(w, s->axis[1]);
+    lam_writer_printf(w, "</text>\n</g>\n");
+    double len = nice_length(60 / sc);
+    double x = PAD + 60;
+    lam_writer_printf(w,
+                      "<line class=\"scalebar\" x1=\"%.3f\" y1=\"%.0f\" x2=\"%.3f\" y2=\"%.0f\" stroke=\"#222\" "
+                      "stroke-width=\"2\"/>\n"
+                      "<text class=\"scalebar\" x=\"%.3f\" y=\"%.0f\" font-family=\"sans-serif\" font-size=\"11\" "
+                      "fill=\"#222\">%g %s</text>\n",
+                      x, y + 26, x + len * sc, y + 26, x + len * sc + 6, y + 30, len,
+                      s->units[0] ? s->units : "model units");
+    if (s->vectors) {
+        x += len * sc + 80;
+        lam_writer_printf(w,
+                          "<g class=\"legend\" font-family=\"sans-serif\" font-size=\"11\" fill=\"#222\">"
+                          "<defs><linearGradient id=\"order\"><stop offset=\"0\" stop-color=\"#0d0887\"/>"
+                          "<stop offset=\"0.5\" stop-color=\"#cc4778\"/><stop offset=\"1\" stop-color=\"#f89540\"/>"
+                          "</linearGradient></defs>\n"
+                          "<rect x=\"%.0f\" y=\"%.0f\" width=\"60\" height=\"6\" fill=\"url(#order)\"/>"
+                          "<text x=\"%.0f\" y=\"%.0f\">first .. last</text>\n"
+                          "<path d=\"M%.0f %.0f h30\" stroke=\"" TRAVEL "\" stroke-dasharray=\"3 2\"/>"
+                          "<text x=\"%.0f\" y=\"%.0f\">travel</text></g>\n",
+                          x, y + 21, x + 64, y + 30, x + 150, y + 26, x + 184, y + 30);
+    }
+}
+
 int lam_svg_write(const lam_svg *s, lam_writer *w)
 {
     size_t np = s->npanels ? s->npanels : 1;
     size_t cols = (size_t)ceil(sqrt((double)np));
+    if (s->vectors && cols < 2) cols = 2; /* room for the legend */
     size_t rows = (np + cols - 1) / cols;
     double cw = PANEL + PAD, ch = PANEL + LABEL + PAD, top = 34;
-    double width = PAD + cols * cw, height = top + rows * ch;
+    double width = PAD + cols * cw, height = top + rows * ch + FOOT;
     lam_writer_printf(w,
                       "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
                       "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%.0f\" height=\"%.0f\" "
@@ -154,11 +250,23 @@ int lam_svg_write(const lam_svg *s, lam_writer *w)
                           "<g transform=\"translate(%.0f %.0f)\">\n"
                           "<rect width=\"%.0f\" height=\"%.0f\" fill=\"#ffffff\" stroke=\"#bbbbbb\"/>\n",
                           x, y, PANEL, PANEL);
-        if (p->path && p->path[0])
+        const char *holes = p->path ? strchr(p->path, '|') : NULL;
+        int nsec = p->path ? (int)(holes ? (size_t)(holes - p->path) : strlen(p->path)) : 0;
+        if (nsec)
             lam_writer_printf(w,
-                              "<path transform=\"translate(%.0f %.0f)\" fill=\"#2f6db5\" fill-rule=\"evenodd\" "
-                              "stroke=\"#1b3f6b\" stroke-width=\"0.5\" d=\"%s\"/>\n",
-                              PAD, PAD, p->path);
+                              "<path class=\"section\" transform=\"translate(%.0f %.0f)\" fill=\"%s\" "
+                              "fill-rule=\"evenodd\" stroke=\"" SOLID_LINE "\" stroke-width=\"0.5\" d=\"%.*s\"/>\n",
+                              PAD, PAD, s->vectors ? TINT : FILL, nsec, p->path);
+        if (holes && holes[1])
+            lam_writer_printf(w,
+                              "<path class=\"hole\" transform=\"translate(%.0f %.0f)\" fill=\"none\" "
+                              "stroke=\"" HOLE_LINE "\" stroke-width=\"0.8\" d=\"%s\"/>\n",
+                              PAD, PAD, holes + 1);
+        if (p->vec)
+            lam_writer_printf(w,
+                              "<g class=\"scan\" transform=\"translate(%.0f %.0f)\" fill=\"none\" stroke-width=\"0.8\" "
+                              "stroke-linecap=\"round\">\n%s</g>\n",
+                              PAD, PAD, p->vec);
         double sc = scale_of(s);
         for (size_t i = 0; i < p->nmarks; i++)
             lam_writer_printf(w, "<circle cx=\"%.2f\" cy=\"%.2f\" r=\"5\" fill=\"none\" stroke=\"#d62728\" "
@@ -166,10 +274,122 @@ int lam_svg_write(const lam_svg *s, lam_writer *w)
                               PAD + (p->marks[2 * i] - s->box[0]) * sc, PAD + (s->box[3] - p->marks[2 * i + 1]) * sc);
         lam_writer_printf(w,
                           "<text x=\"2\" y=\"%.0f\" font-family=\"sans-serif\" font-size=\"12\" fill=\"#222\">"
-                          "layer %zu  h=%.4g  (%zu contour%s)</text>\n</g>\n",
+                          "layer %zu  h=%.4g  (%zu contour%s",
                           PANEL + 14, s->wanted[k] + 1, p->cut, p->ncontours, p->ncontours == 1 ? "" : "s");
+        if (p->vec) lam_writer_printf(w, ", %zu vector%s", p->nvec, p->nvec == 1 ? "" : "s");
+        lam_writer_printf(w, ")</text>\n</g>\n");
     }
+    write_footer(s, w, top + rows * ch);
     return lam_writer_printf(w, "</svg>\n");
+}
+
+/* ---- the scan paths, from a planning run (vstream.h) ---------------------- */
+
+/* Colour of position t (0 first .. 1 last) along a layer's order. */
+static void order_colour(double t, char out[8])
+{
+    static const unsigned char stop[3][3] = { { 0x0d, 0x08, 0x87 }, { 0xcc, 0x47, 0x78 }, { 0xf8, 0x95, 0x40 } };
+    int k = t < 0.5 ? 0 : 1;
+    double f = t < 0.5 ? t * 2 : (t - 0.5) * 2;
+    int c[3];
+    for (int i = 0; i < 3; i++) c[i] = (int)lround(stop[k][i] + f * (stop[k + 1][i] - stop[k][i]));
+    snprintf(out, 8, "#%02x%02x%02x", c[0], c[1], c[2]);
+}
+
+static int sv_begin(void *ctx, const lam_job_info *job)
+{
+    lam_svg *s = ctx;
+    snprintf(s->units, sizeof s->units, "%s", job->units ? job->units : "");
+    return LAM_OK;
+}
+
+static int sv_layer(void *ctx, const lam_layer_info *li)
+{
+    lam_svg *s = ctx;
+    s->cur = find_panel(s, li->index);
+    s->nrv = 0;
+    return LAM_OK;
+}
+
+static int sv_vector(void *ctx, const lam_vec *v)
+{
+    lam_svg *s = ctx;
+    if (s->cur < 0) return LAM_OK;
+    if (s->nrv == s->caprv) {
+        rvec *n = lam_grow(s->rv, &s->caprv, s->nrv + 1, sizeof *n, 256);
+        if (!n) return lam_error_nomem(s->err, "drawing the scan paths");
+        s->rv = n;
+    }
+    rvec *r = &s->rv[s->nrv++];
+    memcpy(r->a, v->fuv, sizeof r->a);
+    memcpy(r->b, v->tuv, sizeof r->b);
+    r->kind = v->kind;
+    r->exposed = v->exposed;
+    return LAM_OK;
+}
+
+/* One element per vector (class: its kind), in the layer's order; the
+ * edges of a contour pass, one after the other, make one path. */
+static int sv_layer_end(void *ctx, const lam_layer_info *li, const lam_vec_stats *st)
+{
+    (void)li;
+    lam_svg *s = ctx;
+    if (s->cur < 0) return LAM_OK;
+    lam_writer *w;
+    int rc = lam_writer_memory(&w, s->err);
+    if (rc) return rc;
+    double sc = scale_of(s);
+#define X(p) (((p)[0] - s->box[0]) * sc)
+#define Y(p) ((s->box[3] - (p)[1]) * sc)
+    for (size_t i = 0; i < s->nrv; i++) {
+        const rvec *r = &s->rv[i];
+        char col[8];
+        order_colour(s->nrv > 1 ? (double)i / (double)(s->nrv - 1) : 0, col);
+        if (!r->exposed)
+            lam_writer_printf(w, "<path class=\"%s\" stroke=\"" TRAVEL "\" stroke-dasharray=\"2 1.5\" d=\"M%.2f %.2fL%.2f %.2f\"/>\n",
+                              r->kind, X(r->a), Y(r->a), X(r->b), Y(r->b));
+        else {
+            lam_writer_printf(w, "<path class=\"%s\" stroke=\"%s\" d=\"M%.2f %.2fL%.2f %.2f", r->kind, col, X(r->a),
+                              Y(r->a), X(r->b), Y(r->b));
+            while (!strcmp(r->kind, "contour") && i + 1 < s->nrv && !strcmp(s->rv[i + 1].kind, "contour") &&
+                   s->rv[i + 1].a[0] == r->b[0] && s->rv[i + 1].a[1] == r->b[1]) {
+                r = &s->rv[++i];
+                lam_writer_printf(w, "L%.2f %.2f", X(r->b), Y(r->b));
+            }
+            lam_writer_printf(w, "\"/>\n");
+        }
+    }
+#undef X
+#undef Y
+    panel *p = &s->panels[s->cur];
+    free(p->vec);
+    p->vec = NULL;
+    size_t len;
+    rc = lam_writer_take(w, &p->vec, &len, s->err);
+    p->nvec = st->vectors;
+    return rc;
+}
+
+/* A world axis's name when v is one (x, -x, ...), else `other`. */
+static void axis_name(const double v[3], const char *other, char out[8])
+{
+    static const char *names[3] = { "x", "y", "z" };
+    snprintf(out, 8, "%s", other);
+    for (int k = 0; k < 3; k++)
+        if (fabs(v[k]) == 1 && v[(k + 1) % 3] == 0 && v[(k + 2) % 3] == 0)
+            snprintf(out, 8, "%s%s", v[k] < 0 ? "-" : "", names[k]);
+}
+
+int lam_svg_sink(lam_svg *s, const lam_frame *f, int frame_machine, lam_sink *out, lam_error *err)
+{
+    s->vectors = 1;
+    s->err = err;
+    if (!frame_machine) {
+        axis_name(f->u, "u", s->axis[0]);
+        axis_name(f->v, "v", s->axis[1]);
+    }
+    lam_vec_consumer c = { s, sv_begin, sv_layer, sv_vector, sv_layer_end, NULL, NULL };
+    return lam_vstream_sink(f, frame_machine, &c, out, err);
 }
 
 void lam_svg_free(lam_svg *s)
@@ -179,10 +399,12 @@ void lam_svg_free(lam_svg *s)
         for (size_t k = 0; k < s->npanels; k++) {
             free(s->panels[k].path);
             free(s->panels[k].marks);
+            free(s->panels[k].vec);
         }
     free(s->panels);
     free(s->wanted);
     free(s->title);
+    free(s->rv);
     free(s);
 }
 

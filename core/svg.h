@@ -1,11 +1,24 @@
 /* SVG contact sheet of a slicing run: one small panel per layer (at most
  * LAM_SVG_MAX_PANELS, evenly chosen above that and said in the title),
- * solids filled, holes cut out (one even-odd path per layer), each panel
- * labelled with its layer index and cut height. Every panel uses the same
- * scale, the model's extent in the layer frame, v pointing up. */
+ * solids filled, holes cut out (one even-odd path per layer, class
+ * "section") and outlined in red (class "hole"), each panel labelled with
+ * its layer number (1-based, as the viewer and the JSON count) and cut
+ * height; lam_svg_* functions take 0-based layer indices. Every panel uses the same scale, the
+ * model's extent in the layer frame, v pointing up; below the panels, the
+ * axes (u right, v up, named x/y/z when they are world axes) and a scale
+ * bar (class "scalebar": a line 1, 2 or 5 times a power of ten model units
+ * long, at most 60 px, and its label "LENGTH UNITS").
+ *
+ * Fed by a planning run (lam_svg_sink), each panel also draws the layer's
+ * planned vectors (vstream.h) over a lighter fill: one <path> per vector
+ * whose class is its kind (deposit, contour, core, upskin, downskin;
+ * travel and jump dashed grey; a contour pass's edges joined into one
+ * path), coloured from dark blue through magenta to orange along the
+ * layer's order, with a legend. */
 #ifndef LAM_SVG_H
 #define LAM_SVG_H
 
+#include "plan.h"
 #include "slice.h"
 #include "writer.h"
 
@@ -26,6 +39,13 @@ int lam_svg_add(lam_svg *svg, const lam_layer *layer, lam_error *err);
 /* Mark a point (layer-frame u, v) on layer `index`'s panel with a red ring
  * (design-rule violations); a layer without a panel is ignored. */
 int lam_svg_mark(lam_svg *svg, size_t index, double u, double v, lam_error *err);
+
+/* Make *out a sink (plan.h) that draws each wanted layer's planned vectors
+ * on its panel; f is the run's frame (borrowed), frame_machine as in the
+ * plan options. The sheet is borrowed: it must outlive the sink, whose
+ * destroy leaves it alone. Errors of the sink's calls (out of memory) go
+ * to err, which must outlive the sink. */
+int lam_svg_sink(lam_svg *svg, const lam_frame *f, int frame_machine, lam_sink *out, lam_error *err);
 
 /* Write the whole sheet. */
 int lam_svg_write(const lam_svg *svg, lam_writer *w);

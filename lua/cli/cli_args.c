@@ -218,6 +218,7 @@ static const cli_opt options[] = {
     { "output", 'o', OPT_PLAN, "FILE", o_output, F(out) },
     { "svg", 0, OPT_SVG, "FILE", o_output, F(svg) },
     { "json", 0, OPT_JSON_FILE, "FILE", o_output, F(json_out) },
+    { "html", 0, OPT_PLAN, "FILE", o_output, F(html) },
     { "program", 0, OPT_PROGRAM, "FILE", o_text, F(program) },
     { "json", 0, OPT_JSON, NULL, o_flag, F(json) },
     { "show", 0, OPT_SHOW, "NAME|PATH", o_show, 0 },

@@ -26,7 +26,7 @@
 enum {
     OPT_MODEL = 1,     /* one MODEL argument */
     OPT_SLICE = 2,     /* -m -a --widths --planes --fill --allow-open, and the slicing keys' options */
-    OPT_PLAN = 4,      /* --validate -o, and the planning keys' options */
+    OPT_PLAN = 4,      /* --validate -o --html, and the planning keys' options */
     OPT_JSON = 8,      /* --json */
     OPT_SVG = 16,      /* --svg FILE */
     OPT_SET = 32,      /* -s/--set KEY=VALUE */
@@ -46,6 +46,7 @@ typedef struct cli_set {
 typedef struct args {
     const char *path, *out, *svg, *machine, *show, *program;
     const char *json_out;    /* slice --json FILE */
+    const char *html;        /* slice --html FILE */
     lam_slice_opts so;
     double *list;
     int allow_open, json, validate, keys;

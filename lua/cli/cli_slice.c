@@ -17,7 +17,7 @@
 #include "progress.h"
 #include "size_sense.h"
 #include "slice.h"
-#include "svg.h"
+#include "cli_view.h"
 #include "tee.h"
 #include "writer.h"
 
@@ -44,7 +44,7 @@ static const char usage_text[] =
     "                          [--min-deposit LEN] [--no-alternate] [--perimeters N] [--islands]\n"
     "                          [--beam-offset] [--frame model|machine] [--fill evenodd|nonzero]\n"
     "                          [--validate] [--max-layers N] [--max-output SIZE] [-j N]\n"
-    "                          [--svg FILE] [--json FILE] [-o FILE] [-q | -v]\n"
+    "                          [--svg FILE] [--html FILE] [--json FILE] [-o FILE] [-q | -v]\n"
     "  -m, --machine    machine profile: a shipped name (see 'lamina machines') or a path\n"
     "                   (default: the thesis's SLS contours)\n"
     "  -s, --set        KEY=VALUE: any key of the machine profile, checked as in its YAML\n"
@@ -60,7 +60,8 @@ static const char usage_text[] =
     "                   1024; default 4G), estimated before planning and as written\n"
     "  -j, --jobs       threads that slice and plan (default: LAMINA_THREADS, else the\n"
     "                   processors); the program is the same for every number\n"
-    "      --svg        write a contact sheet of the layers\n"
+    "      --svg        write a contact sheet of the layers and their scan paths\n"
+    "      --html       write a viewer of the run: one HTML file to open in a browser\n"
     "      --json       write the run as JSON (layer interchange, docs/json.md): the job,\n"
     "                   each layer's contours and planned vectors, lengths and build time\n"
     "  -o, --output     program file (default: standard output)\n"
@@ -73,7 +74,7 @@ static const char usage_text[] =
 /* Per-layer reports and the SVG preview, before each layer is planned. */
 typedef struct report {
     const char *path;
-    lam_svg *svg;
+    cli_view view;      /* --svg, --html */
     lam_rays *v;        /* --validate */
     const lam_frame *frame;
     int fill_nonzero;
@@ -121,17 +122,23 @@ static int on_layer(void *ctx, const lam_layer *L, lam_error *err)
         int rc = vreport_layer(&r->vr, r->v, L, r->frame, &vo, NULL, err);
         if (rc) return rc;
     }
-    return r->svg ? lam_svg_add(r->svg, L, err) : LAM_OK;
+    return cli_view_layer(&r->view, L, err);
 }
 
-/* The program's sink and the JSON's (--json) fed by one plan: *sink becomes
- * a tee that owns both. On failure *sink is left as it was. */
-static int tee_json(lam_sink *sink, lam_writer *jw, lam_error *err)
+/* The program's sink, the JSON's (--json) and the pictures' (--svg,
+ * --html) fed by one plan: *sink becomes a tee that owns them all. On
+ * failure *sink is left as it was. */
+static int tee_outputs(lam_sink *sink, lam_writer *jw, report *rep, const args *a, lam_slicer *s,
+                       const lam_plan_opts *po, lam_error *err)
 {
-    lam_sink both[2] = { *sink };
-    int rc = lam_json_sink(jw, 0, &both[1], err);
-    if (!rc && (rc = lam_tee_sink(both, 2, sink, err))) both[1].destroy(both[1].ctx);
-    if (rc) *sink = both[0];
+    lam_sink all[4] = { *sink };
+    size_t n = 1;
+    int rc = jw ? lam_json_sink(jw, 0, &all[n], err) : LAM_OK;
+    if (!rc && jw) n++;
+    if (!rc) rc = cli_view_open(&rep->view, a, s, po, all, &n, err);
+    if (!rc && n > 1) rc = lam_tee_sink(all, n, sink, err);
+    if (rc)
+        for (size_t k = 1; k < n; k++) all[k].destroy(all[k].ctx);
     return rc;
 }
 
@@ -155,7 +162,7 @@ int cmd_slice(int argc, char **argv)
         cli_args_free(&a);
         return rc < 0 ? EXIT_OK : rc;
     }
-    const char *outs[][2] = { { "-o", a.out }, { "--svg", a.svg }, { "--json", a.json_out } };
+    const char *outs[][2] = { { "-o", a.out }, { "--svg", a.svg }, { "--json", a.json_out }, { "--html", a.html } };
     for (size_t i = 0; i < sizeof outs / sizeof *outs && !rc; i++)
         if (same_file(outs[i][1], a.path))
             rc = cli_usage("slice", "%s %s is the model being read: refusing to overwrite it", outs[i][0], outs[i][1]);
@@ -196,16 +203,6 @@ int cmd_slice(int argc, char **argv)
         rep.frame = lam_slicer_frame(s);
         rep.fill_nonzero = a.so.fill_nonzero;
     }
-    if (a.svg) {
-        double box[4];
-        lam_slicer_uv_bounds(s, box);
-        char title[600];
-        snprintf(title, sizeof title, "lamina: %s", a.path);
-        if (lam_svg_new(lam_slicer_count(s), box, title, &rep.svg, &err)) {
-            rc = cli_fail(&err);
-            goto done;
-        }
-    }
     if (cli_writer(a.out, &w, &err) || (a.json_out && cli_writer(a.json_out, &jw, &err))) {
         rc = cli_fail(&err);
         goto done;
@@ -213,7 +210,7 @@ int cmd_slice(int argc, char **argv)
     lam_writer_set_limit(w, a.max_output ? a.max_output : LAM_DEFAULT_MAX_OUTPUT);
     int src = !prof->writer || !strcmp(prof->writer, "text") ? lam_dialect_sink(&prof->dialect, w, &sink, &err)
                                                              : lam_plugin_writer_sink(prof->writer, w, &sink, &err);
-    if (!src && jw) src = tee_json(&sink, jw, &err);
+    if (!src) src = tee_outputs(&sink, jw, &rep, &a, s, &po, &err);
     if (src) {
         rc = err.code == LAM_EUSAGE ? cli_usage("slice", "%s", err.msg) : cli_fail(&err);
         goto done;
@@ -256,7 +253,7 @@ int cmd_slice(int argc, char **argv)
         }
     }
     if (po.kind == LAM_PLAN_SLS && notes && lam_scan_estimates(&po.scan)) cli_print_estimate(a.path, &est);
-    if (rep.svg && cli_save_svg(rep.svg, a.svg, &err)) {
+    if (cli_view_save(&rep.view, &err)) {
         rc = cli_fail(&err);
         goto done;
     }
@@ -276,7 +273,7 @@ done:
     if (sink.destroy) sink.destroy(sink.ctx);
     lam_writer_abort(w);
     lam_writer_abort(jw);
-    lam_svg_free(rep.svg);
+    cli_view_free(&rep.view);
     lam_rays_free(rep.v);
     lam_slicer_free(s);
     lam_model_free(m);

@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
-"""Classify pixels of an RGB(A) PNG (as rsvg-convert writes it) as
-'background' (white), 'material' (the sheet's blue fill) or 'other'.
+"""Classify pixels of an RGB(A) PNG (as rsvg-convert or chromium write it) as
+'background' (white), 'material' (the sheet's blue fill), 'tint' (the light
+fill of solids under scan paths, #c9dbf0) or 'other'.
 usage: pixel.py FILE.png X,Y [X,Y ...]"""
 import struct
 import sys
@@ -56,6 +57,8 @@ for arg in sys.argv[2:]:
         out.append("background")
     elif b > 150 and r < 90 and g < 150:
         out.append("material")
+    elif abs(r - 0xc9) <= 8 and abs(g - 0xdb) <= 8 and abs(b - 0xf0) <= 8:
+        out.append("tint")
     else:
         out.append("other(%d,%d,%d)" % (r, g, b))
 print(" ".join(out))

@@ -51,7 +51,7 @@ like "$OUT" "sls-contours +8 layers +16 contours +143 lines" "default: SLS 8 lay
 lines=$(wc -l <"$TMP/res/thesis_cube_hole.sls")
 like "$OUT" "sls-contours .* $lines lines" "default: the line count printed is the file's"
 svg=$(cat "$TMP/res/thesis_cube_hole.svg")
-is "$(grep -c '<path ' "$TMP/res/thesis_cube_hole.svg")" 8 "default: the contact sheet has 8 layer panels"
+is "$(grep -c '<path class="section"' "$TMP/res/thesis_cube_hole.svg")" 8 "default: the contact sheet has 8 layer panels"
 like "$svg" 'fill-rule="evenodd"' "default: holes drawn with fill-rule evenodd"
 if command -v rsvg-convert >/dev/null; then
     rsvg-convert "$TMP/res/thesis_cube_hole.svg" -o "$TMP/sheet.png" 2>/dev/null

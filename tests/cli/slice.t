@@ -113,7 +113,8 @@ like "$ERR" 'layer 1 \(h=-2\): cancelled 2 coincident loops' "the two coincident
 is "$(grep -c '^contour -2.000000' "$TMP/torus.sls")" 0 "no contour at the bottom ring"
 is "$(head -1 "$TMP/torus.sls")" "contour -1.500000" "the program starts with the next layer"
 
-# SVG contact sheet, rendered by rsvg-convert and checked pixel by pixel.
+# SVG contact sheet, rendered by rsvg-convert and checked pixel by pixel
+# (solids tinted: the sheet of a run also draws its scan paths).
 run "$LAMINA" slice "$M/thesis_cube_hole.ug" -w 1 --cut floor --svg "$TMP/sheet.svg" -o "$TMP/s.sls"
 is "$RC" 0 "--svg: exit 0"
 like "$(cat "$TMP/sheet.svg")" '2 layers' "title says how many layers"
@@ -122,12 +123,12 @@ rsvg-convert -f png -o "$TMP/sheet.png" "$TMP/sheet.svg"; ok $? "rsvg-convert re
 # the hole centre (0,0) maps to (110, 134), material at (-0.75, 0) to
 # (42.5, 134), outside the part to (15, 38).
 px=$(python3 "$TESTS/cli/pixel.py" "$TMP/sheet.png" 110,134 42,134 15,38)
-is "$px" "background material background" "hole is background, material filled, outside background"
+is "$px" "background tint background" "hole is background, material filled, outside background"
 
 # More than 100 layers: 100 panels, evenly chosen, said in the title.
 run "$LAMINA" slice "$M/thesis_cube.ug" -w 0.01 --svg "$TMP/many.svg" -o "$TMP/many.sls"
 like "$(cat "$TMP/many.svg")" '100 of 200 layers shown' "at most 100 panels"
-is "$(grep -c '<path' "$TMP/many.svg")" 100 "100 panels drawn"
+is "$(grep -c '<path class="section"' "$TMP/many.svg")" 100 "100 panels drawn"
 # Targets that are not plain files. The atomic rename must not replace a
 # device or a pipe with a plain file (it once turned -o /dev/null into a
 # plain file; a FIFO stands in for devices here, so that a regression

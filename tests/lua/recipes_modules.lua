@@ -164,7 +164,7 @@ local f = io.open(path, "rb")
 local text = f:read("a")
 f:close()
 os.remove(path)
-local _, paths = text:gsub("<path ", "")
+local _, paths = text:gsub('<path class="section"', "")
 T.ok(text:match("^<%?xml") and paths == 4 and text:find('fill-rule="evenodd"', 1, true),
      "preview: one evenodd path per layer")
 T.fails("no/such/dir", "preview: an unwritable path is nil, message", lamina.preview, layers, "/no/such/dir/x.svg")

@@ -1,0 +1,27 @@
+/* The browser viewer of a planning run: one self-contained HTML file (no
+ * network, no other file): the viewer's page (core/viewer.html, compiled
+ * in at build time) with the run's layer interchange JSON (json_sink.h,
+ * "lamina-run" version 1) in its <script type="application/json"
+ * id="lamina-run"> element. The page draws it: a layer slider, zoom and
+ * pan, toggles for contours, vectors and travel, each layer's figures. It
+ * honours a URL hash `#layer=N` (1-based) with `contours=0|1`,
+ * `vectors=0|1`, `travel=0|1`, and keeps it up to date.
+ *
+ * The JSON is streamed as the run goes (the JSON sink writes each layer
+ * when it is planned and forgets it), so memory does not grow with the
+ * run; its strings write '<' as \u003c (LAM_JSON_SCRIPT), so no "</script>"
+ * can end the element early. */
+#ifndef LAM_HTML_H
+#define LAM_HTML_H
+
+#include "plan.h"
+#include "writer.h"
+
+/* Make *out a sink that writes the whole page to w (borrowed: the caller
+ * commits or aborts it after the run): the page up to the data when the
+ * job begins, the run's JSON, the rest of the page when it ends. Errors of
+ * the sink's calls go to err, which must outlive the sink. Errors:
+ * LAM_ENOMEM. */
+int lam_html_sink(lam_writer *w, lam_sink *out, lam_error *err);
+
+#endif

@@ -1,0 +1,14 @@
+/* The viewer's page, core/viewer.html, as a C string: generated at build
+ * time by the Makefile (od), so the program needs no file at run time. */
+#ifndef LAM_VIEWER_HTML_H
+#define LAM_VIEWER_HTML_H
+
+#include <stddef.h>
+
+/* Where the page takes the run's JSON: a line of its own in the template. */
+#define LAM_VIEWER_MARK "@LAMINA_RUN@"
+
+extern const char lam_viewer_html[];      /* NUL-terminated */
+extern const size_t lam_viewer_html_len;
+
+#endif
