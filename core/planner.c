@@ -186,6 +186,9 @@ int lam_plan_run(lam_slicer *s, const lam_model *m, const lam_plan_opts *o, cons
     lam_layer **win = calloc(2 * n + 2, sizeof *win);
     size_t have = 0, cur = 0;
     int more = 1;
+    /* a layer range (part files): layers before it carry LADRP's state only */
+    size_t lo = o->layer_first, hi = o->layer_count ? o->layer_first + o->layer_count : (size_t)-1;
+    const lam_sink none = { 0 };
     if (!win) rc = lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory planning");
     while (!rc) {
         while (!rc && more && have < cur + n + 1) {
@@ -196,17 +199,19 @@ int lam_plan_run(lam_slicer *s, const lam_model *m, const lam_plan_opts *o, cons
                 break;
             }
             win[have++] = L;
-            if (cb) rc = cb(cbctx, L, err);
+            if (cb && L->index >= lo && L->index < hi) rc = cb(cbctx, L, err);
         }
-        if (rc || cur >= have) break;
+        if (rc || cur >= have || win[cur]->index >= hi) break;
         lam_layer *L = win[cur];
         lam_layer_info li = { L->index, L->cut, L->width, L->floor, L->ceiling };
-        if (!rc && sink->layer) rc = sink->layer(sink->ctx, &li);
-        if (!rc) {
+        int skip = L->index < lo;
+        const lam_sink *to = skip ? &none : sink;
+        if (!rc && to->layer) rc = to->layer(to->ctx, &li);
+        if (!rc && !(skip && o->kind == LAM_PLAN_SLS)) {
             if (o->kind == LAM_PLAN_LADRP) {
                 lam_ladrp_stats ls;
-                rc = lam_plan_ladrp_layer(L, f, o, sink, pos, &laser, &ls, err);
-                if (o->totals) {
+                rc = lam_plan_ladrp_layer(L, f, o, to, pos, &laser, &ls, err);
+                if (o->totals && !skip) {
                     o->totals->lines += ls.lines;
                     o->totals->deposits += ls.deposits;
                     o->totals->deposit_length += ls.deposit_length;
@@ -221,7 +226,7 @@ int lam_plan_run(lam_slicer *s, const lam_model *m, const lam_plan_opts *o, cons
                 if (!rc && o->layer_time) o->layer_time[L->index] = lam_scan_time_total(&st.time);
             }
         }
-        if (!rc && sink->layer_end) rc = sink->layer_end(sink->ctx, &li);
+        if (!rc && to->layer_end) rc = to->layer_end(to->ctx, &li);
         if (++cur > n) {
             lam_layer_free(win[0]);
             memmove(win, win + 1, (have - 1) * sizeof *win);

@@ -67,6 +67,13 @@ typedef struct lam_plan_opts {
     lam_scan_time *time;         /* SLS: if not NULL, the job's estimate is added here */
     double *layer_time;          /* SLS (lam_plan_run): if not NULL, room for every
                                     layer: each one's estimate, seconds */
+    size_t layer_first, layer_count; /* lam_plan_run plans only layers layer_first ..
+                                    layer_first + layer_count - 1 (0-based; count 0:
+                                    every layer) of the run, for part files (part.h);
+                                    begin and end still describe the whole run. LADRP
+                                    plans the layers before the range into no sink,
+                                    for the stage position and laser state they leave;
+                                    SLS starts every layer afresh and skips them. */
 } lam_plan_opts;
 
 /* Defaults: SLS, bead 1, rates 0, model frame, edge, 0 degrees, alternate;
