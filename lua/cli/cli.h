@@ -28,7 +28,15 @@ const char *cli_num(char *buf, size_t size, double x);
  * Async-signal-safe. */
 void cli_fatal_signal(int sig);
 
+/* The build-time summary of a powder-bed job (hatch.h's estimate) on
+ * standard error, and as JSON on standard output (the job's and each
+ * layer's total) (cli_slice.c; join prints the same). */
+struct lam_scan_time;
+void cli_print_estimate(const char *path, const struct lam_scan_time *t);
+void cli_json_estimate(const char *path, const struct lam_scan_time *t, const double *layer, size_t n);
+
 int cmd_info(int argc, char **argv);
+int cmd_join(int argc, char **argv);
 int cmd_slice(int argc, char **argv);
 int cmd_validate(int argc, char **argv);
 int cmd_check(int argc, char **argv);

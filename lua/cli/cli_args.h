@@ -24,7 +24,8 @@ enum {
     OPT_SVG = 16,      /* --svg FILE */
     OPT_SET = 32,      /* -s/--set KEY=VALUE */
     OPT_SHOW = 64,     /* machines: --show NAME, --keys */
-    OPT_PROGRAM = 128  /* validate: --program FILE, and --frame (how it was written) */
+    OPT_PROGRAM = 128, /* validate: --program FILE, and --frame (how it was written) */
+    OPT_PART = 256     /* slice: --layers A:B or K/N (a part file) */
 };
 
 /* A profile value from the command line: --set KEY=VALUE or an option short for it. */
@@ -42,6 +43,9 @@ typedef struct args {
     cli_set *sets;           /* in command-line order; later ones win */
     size_t nsets;
     unsigned long long max_output;  /* --max-output, 0: the default */
+    const char *layers;      /* --layers as given (NULL: the whole run) */
+    size_t layers_a, layers_b; /* A:B (1-based, inclusive), or with layers_split K/N */
+    int layers_split;
 } args;
 
 /* Parse argv[1..] for command cmd, accepting the option groups in

@@ -7,6 +7,7 @@
 #include "cli.h"
 #include "cli_args.h"
 #include "cli_check.h"
+#include "cli_join.h"
 #include "dialect.h"
 #include "model.h"
 #include "planner.h"
@@ -39,7 +40,7 @@ static const char usage_text[] =
     "                          [--min-deposit LEN] [--no-alternate] [--perimeters N] [--islands]\n"
     "                          [--beam-offset] [--frame model|machine] [--fill evenodd|nonzero]\n"
     "                          [--validate] [--max-layers N] [--max-output SIZE]\n"
-    "                          [--svg FILE] [-o FILE [--json]]\n"
+    "                          [--svg FILE] [-o FILE [--json]] [--layers A:B|K/N]\n"
     "  -m, --machine    machine profile: a shipped name (see 'lamina machines') or a path\n"
     "                   (default: the thesis's SLS contours)\n"
     "  -s, --set        KEY=VALUE: any key of the machine profile, checked as in its YAML\n"
@@ -57,6 +58,9 @@ static const char usage_text[] =
     "  -o, --output     program file (default: standard output)\n"
     "      --json       the build-time estimate of a powder-bed job as JSON on standard output\n"
     "                   (with -o; without --json it is a line on standard error)\n"
+    "      --layers     plan only layers A to B (from 1, inclusive) or part K of N equal\n"
+    "                   parts of the run the other options define, into a part file for\n"
+    "                   'lamina join' (which writes the whole run's program)\n"
     "Values: --name=VALUE or --name VALUE; -- ends the options. The profile's values are\n"
     "defaults that -s and the options below override.\n";
 
@@ -110,8 +114,7 @@ static int on_layer(void *ctx, const lam_layer *L, lam_error *err)
     return r->svg ? lam_svg_add(r->svg, L, err) : LAM_OK;
 }
 
-/* The estimate as JSON: the job's and each layer's total. */
-static void cli_json_estimate(const char *path, const lam_scan_time *t, const double *layer, size_t n)
+void cli_json_estimate(const char *path, const lam_scan_time *t, const double *layer, size_t n)
 {
     printf("{\"model\": ");
     cli_json_string(stdout, path);
@@ -124,8 +127,7 @@ static void cli_json_estimate(const char *path, const lam_scan_time *t, const do
     printf("]}\n");
 }
 
-/* The build-time summary of a powder-bed job (hatch.h's estimate). */
-static void cli_print_estimate(const char *path, const lam_scan_time *t)
+void cli_print_estimate(const char *path, const lam_scan_time *t)
 {
     fprintf(stderr,
             "lamina: %s: %zu layers, %zu contour passes, %zu hatch vectors, %.6g exposed, %.6g jumped; "
@@ -137,7 +139,8 @@ static void cli_print_estimate(const char *path, const lam_scan_time *t)
 int cmd_slice(int argc, char **argv)
 {
     args a;
-    int rc = cli_parse_args("slice", usage_text, OPT_MODEL | OPT_SLICE | OPT_SET | OPT_PLAN | OPT_SVG | OPT_JSON, argc, argv,
+    int rc = cli_parse_args("slice", usage_text, OPT_MODEL | OPT_SLICE | OPT_SET | OPT_PLAN | OPT_SVG | OPT_JSON | OPT_PART,
+                            argc, argv,
                             &a);
     if (rc) {
         cli_args_free(&a);
@@ -195,15 +198,16 @@ int cmd_slice(int argc, char **argv)
         goto done;
     }
     lam_writer_set_limit(w, a.max_output ? a.max_output : LAM_DEFAULT_MAX_OUTPUT);
-    int src = !prof->writer || !strcmp(prof->writer, "text") ? lam_dialect_sink(&prof->dialect, w, &sink, &err)
-                                                             : lam_plugin_writer_sink(prof->writer, w, &sink, &err);
-    if (src) {
-        rc = err.code == LAM_EUSAGE ? cli_usage("slice", "%s", err.msg) : cli_fail(&err);
-        goto done;
-    }
     lam_scan_time est;
     memset(&est, 0, sizeof est);
     po.time = &est;
+    if (a.layers) {
+        if ((rc = cli_part_setup(&a, prof, s, &po, w, &sink))) goto done;
+    } else if (!prof->writer || !strcmp(prof->writer, "text") ? lam_dialect_sink(&prof->dialect, w, &sink, &err)
+                                                              : lam_plugin_writer_sink(prof->writer, w, &sink, &err)) {
+        rc = err.code == LAM_EUSAGE ? cli_usage("slice", "%s", err.msg) : cli_fail(&err);
+        goto done;
+    }
     if (a.json && (!a.out || !strcmp(a.out, "-"))) {
         rc = cli_usage("slice", "--json writes the estimate to standard output: give the program a file (-o FILE)");
         goto done;
@@ -242,7 +246,8 @@ int cmd_slice(int argc, char **argv)
             goto done;
         }
     }
-    if (po.kind == LAM_PLAN_SLS && !a.json && lam_scan_estimates(&po.scan)) cli_print_estimate(a.path, &est);
+    if (po.kind == LAM_PLAN_SLS && !a.json && !a.layers && lam_scan_estimates(&po.scan))
+        cli_print_estimate(a.path, &est);
     if (rep.svg && lam_svg_save(rep.svg, a.svg, &err)) {
         rc = cli_fail(&err);
         goto done;
