@@ -24,7 +24,7 @@ endif
 # Debian packages the build, the tests and `make run` need; `make deps`
 # installs only the missing ones.
 DEPS_PKGS := gcc make perl liblua5.4-dev lua5.4 libyaml-dev libembree-dev libgeos-dev libreadline8 \
-             jq python3 librsvg2-bin tmux pkg-config
+             jq python3 librsvg2-bin tmux pkg-config parallel
 
 LUA_CFLAGS := -I/usr/include/lua5.4
 LUA_LIBS   := -llua5.4
