@@ -21,7 +21,9 @@ typedef struct sizes {
     size_t peak;                /* bytes (getrusage ru_maxrss) */
 } sizes;
 
-static void measure(const char *cmd, args *a, const lam_model *m, sizes *z)
+/* EXIT_OK, or cli_profile's status (a profile or option that is wrong:
+ * reported). A model the slicer refuses is reported in z->why. */
+static int measure(const char *cmd, args *a, const lam_model *m, sizes *z)
 {
     z->model = lam_model_bytes(m, z->parts);
     lam_profile *prof = NULL;
@@ -29,8 +31,9 @@ static void measure(const char *cmd, args *a, const lam_model *m, sizes *z)
     lam_slicer *s = NULL;
     lam_error err;
     lam_error_clear(&err);
-    if (cli_profile(cmd, a, &prof, &po) != EXIT_OK) {
-        snprintf(z->why, sizeof z->why, "the machine profile did not load");
+    int rc = cli_profile(cmd, a, &prof, &po);
+    if (rc) {
+        return rc;
     } else if (lam_slicer_new(m, &a->so, &s, &err)) {
         snprintf(z->why, sizeof z->why, "%s", err.msg);
     } else {
@@ -42,6 +45,7 @@ static void measure(const char *cmd, args *a, const lam_model *m, sizes *z)
     lam_profile_free(prof);
     struct rusage ru;
     z->peak = getrusage(RUSAGE_SELF, &ru) == 0 ? (size_t)ru.ru_maxrss * 1024 : 0;
+    return EXIT_OK;
 }
 
 static void warnings(const lam_model_stats *s, const char *w[4], int *n)
@@ -180,7 +184,11 @@ int cmd_info(int argc, char **argv)
     }
     sizes z;
     memset(&z, 0, sizeof z);
-    measure("info", &a, m, &z);
+    if ((rc = measure("info", &a, m, &z))) {
+        lam_model_free(m);
+        cli_args_free(&a);
+        return rc;
+    }
     const char *w[4];
     int nw;
     warnings(&m->stats, w, &nw);
