@@ -124,3 +124,7 @@ if [ -n "$prusa" ]; then
 else
     echo "  (PrusaSlicer could not be installed: the hatching comparison is skipped)"
 fi
+
+# Scaling (time per triangle, time per layer, the 5M-triangle run's memory):
+# its own script, tests/bench/scaling.sh.
+bash "$here/scaling.sh" "$LAMINA"
