@@ -342,6 +342,7 @@ struct lam_part {
     lam_part_meta meta;       /* strings owned */
     lam_job_info job;         /* strings owned */
     long long body;           /* where the records start */
+    uint64_t body_hash;       /* the hash of the bytes before them */
     double *d;                /* a record's reals */
     size_t dcap;
 };
@@ -509,6 +510,7 @@ int lam_part_open(const char *path, lam_part **out, lam_error *err)
     p->size = (long long)st.st_size;
     int rc = read_header(p, err);
     p->body = p->off;
+    p->body_hash = p->hash;
     if (rc) {
         lam_part_close(p);
         return rc;
@@ -575,6 +577,11 @@ static int replay(lam_part *p, const lam_sink *sink, lam_scan_time *time, double
 {
     size_t next = p->meta.first - 1;  /* 0-based index of the next layer */
     int in_layer = 0, rc = LAM_OK;
+    /* from the first record, each time (join may check the parts first) */
+    if (fseek(p->f, (long)p->body, SEEK_SET) != 0)
+        return lam_error_set(err, LAM_EIO, p->path, 0, 0, "cannot read: %s", strerror(errno));
+    p->off = p->body;
+    p->hash = p->body_hash;
     for (;;) {
         long long at = p->off;
         int tag;

@@ -102,7 +102,8 @@ const lam_job_info *lam_part_job(const lam_part *p);
 int lam_part_order(lam_part **parts, size_t n, lam_error *err);
 
 /* Replay ordered parts (lam_part_order) into sink: begin with the run's
- * job, every record, end. time (may be NULL) gets the run's build-time
+ * job, every record, end; each call reads the parts from their first
+ * record (a first call with an empty sink checks every part whole). time (may be NULL) gets the run's build-time
  * estimate added layer by layer; layer_time (may be NULL), room for every
  * layer of the run, each layer's total. Errors: a corrupt or truncated part
  * (LAM_EFORMAT, with the file and byte offset), what the sink returns. */

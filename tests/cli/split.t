@@ -106,6 +106,13 @@ refuse "a truncated part" "cut: byte [0-9]+: truncated part file" "$TMP/a" "$TMP
 refuse "bytes after a part's end" "long: byte [0-9]+: corrupt part file: bytes after its end" "$TMP/a" "$TMP/b" "$TMP/long"
 refuse "a program that is not a part" "whole: not a lamina part file" "$TMP/a" "$TMP/b" "$TMP/whole"
 refuse "a part twice" "overlap" "$TMP/a" "$TMP/a" "$TMP/b" "$TMP/c"
+run "$LAMINA" join "$TMP/a" "$TMP/b" "$TMP/flip"
+is "$RC" 1 "join to standard output refuses a corrupt last part"
+is "$OUT" "" "join to standard output: nothing written before the corrupt part is found"
+"$LAMINA" join "$TMP/a" "$TMP/b" "$TMP/c" >"$TMP/stdout.cli" 2>/dev/null
+"$LAMINA" slice "$cube" -m lpbf-cli -o "$TMP/whole" 2>/dev/null
+cmp -s "$TMP/whole" "$TMP/stdout.cli"
+ok $? "join to standard output: the whole run's program"
 run "$LAMINA" join -o "$TMP/prog"
 is "$RC" 2 "join without parts: usage error"
 
