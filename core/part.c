@@ -163,6 +163,7 @@ static int r_begin(void *ctx, const lam_job_info *j)
     put_f64s(r, j->origin, 3);
     put_str(r, r->meta.profile, r->meta.profile_len);
     put_cstr(r, r->meta.model);
+    put_u64(r, fnv(FNV_BASIS, r->b, r->len)); /* the header's own check */
     if (j->layers != r->meta.layers)
         return lam_error_set(r->err, LAM_EUSAGE, NULL, 0, 0, "part: the run has %zu layers, not %zu", j->layers,
                              r->meta.layers);
@@ -487,8 +488,11 @@ static int read_header(lam_part *p, lam_error *err)
     p->meta.profile = prof;
     if (!rc) rc = get_str(p, &model, NULL, err);
     p->meta.model = model;
-    if (rc) return rc;
-    return LAM_OK;
+    uint64_t want = p->hash, got = 0;
+    if (!rc) rc = get_u64(p, &got, err);
+    if (!rc && got != want)
+        return lam_error_set(err, LAM_EFORMAT, p->path, 0, 0, "corrupt part file: its header does not match its checksum");
+    return rc;
 }
 
 int lam_part_open(const char *path, lam_part **out, lam_error *err)

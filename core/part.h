@@ -27,6 +27,8 @@
  *   profile            the resolved machine profile (lam_profile_dump), the
  *                      one join writes through
  *   model              the model's path as given (for join's messages)
+ *   u64 FNV-1a hash of the header's bytes before it (read before anything
+ *                      the header says is used)
  *   records            u8 tag and fields:
  *     'L' layer        index, z, width, floor, ceiling
  *     'E' layer end    the same, then the layer's build-time estimate

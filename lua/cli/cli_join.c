@@ -5,8 +5,8 @@
  * The parts may come in any order; join puts them in layer order and
  * refuses, before writing anything, parts of different runs, overlapping
  * parts and layers no part holds; a corrupt or truncated part stops it
- * with nothing written (a file output is atomic; for standard output the
- * parts are read through once before anything is written). The build-time estimate of a
+ * with nothing written (every part is read through once, to its end
+ * hash, before anything is written). The build-time estimate of a
  * powder-bed job is printed as the whole run prints it (join adds the
  * parts' per-layer estimates in layer order). */
 #include "cli.h"
@@ -117,10 +117,12 @@ static int join(const char *out, int json, char **paths, size_t n)
     }
     lam_scan_time est;
     memset(&est, 0, sizeof est);
-    /* standard output cannot be taken back: every part is checked whole
-     * (read to its end hash) before a byte goes there */
+    /* every part is read to its end hash before a byte is written: a
+     * corrupt part is reported as such (not as whatever its bad numbers
+     * would make the writer say), and standard output, which cannot be
+     * taken back, gets nothing */
     lam_sink check = { 0 };
-    if ((!out || !strcmp(out, "-")) && lam_part_join(parts, n, &check, NULL, NULL, &err)) {
+    if (lam_part_join(parts, n, &check, NULL, NULL, &err)) {
         rc = cli_fail(&err);
         goto done;
     }

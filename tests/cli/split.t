@@ -104,6 +104,20 @@ head -c $((size - 100)) "$TMP/c" >"$TMP/cut"
 refuse "a truncated part" "cut: byte [0-9]+: truncated part file" "$TMP/a" "$TMP/b" "$TMP/cut"
 { cat "$TMP/c"; echo x; } >"$TMP/long"
 refuse "bytes after a part's end" "long: byte [0-9]+: corrupt part file: bytes after its end" "$TMP/a" "$TMP/b" "$TMP/long"
+# a byte changed anywhere (header, profile, records, end): refused as
+# corrupt or truncated, never a crash, never another message
+bad=0
+for off in 5 9 20 30 60 100 200 400 800 1600 3200 $((size / 3)) $((size - 12)) $((size - 3)); do
+    cp "$TMP/c" "$TMP/flip"
+    printf '\xa5' | dd of="$TMP/flip" bs=1 seek="$off" conv=notrunc 2>/dev/null
+    cmp -s "$TMP/c" "$TMP/flip" || {
+        run "$LAMINA" join "$TMP/a" "$TMP/b" "$TMP/flip" -o "$TMP/prog"
+        [ "$RC" -eq 1 ] && [[ $ERR =~ (corrupt|truncated|not\ a\ lamina|version) ]] || {
+            bad=$((bad + 1)); echo "# byte $off: rc $RC: $ERR"; }
+    }
+done
+is "$bad" 0 "a byte changed at 14 places of a part: refused as corrupt each time"
+is "$(cat "$TMP/prog")" keep "and the output untouched"
 refuse "a program that is not a part" "whole: not a lamina part file" "$TMP/a" "$TMP/b" "$TMP/whole"
 refuse "a part twice" "overlap" "$TMP/a" "$TMP/a" "$TMP/b" "$TMP/c"
 run "$LAMINA" join "$TMP/a" "$TMP/b" "$TMP/flip"
