@@ -206,8 +206,13 @@ int lam_plan_run(lam_slicer *s, const lam_model *m, const lam_plan_opts *o, cons
         lam_layer_info li = { L->index, L->cut, L->width, L->floor, L->ceiling };
         int skip = L->index < lo;
         const lam_sink *to = skip ? &none : sink;
+        /* before the range only LADRP's islands need planning (they go
+         * nearest first from the stage); otherwise a layer leaves only
+         * the laser off behind (SLS: nothing) */
+        int plan = !skip || (o->kind == LAM_PLAN_LADRP && o->islands);
+        if (!plan) laser = 0;
         if (!rc && to->layer) rc = to->layer(to->ctx, &li);
-        if (!rc && !(skip && o->kind == LAM_PLAN_SLS)) {
+        if (!rc && plan) {
             if (o->kind == LAM_PLAN_LADRP) {
                 lam_ladrp_stats ls;
                 rc = lam_plan_ladrp_layer(L, f, o, to, pos, &laser, &ls, err);
