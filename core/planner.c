@@ -186,7 +186,8 @@ int lam_plan_run(lam_slicer *s, const lam_model *m, const lam_plan_opts *o, cons
     lam_layer **win = calloc(2 * n + 2, sizeof *win);
     size_t have = 0, cur = 0;
     int more = 1;
-    /* a layer range (part files): layers before it carry LADRP's state only */
+    /* a layer range (part files): the layers before it are sliced, not
+     * given to the sink */
     size_t lo = o->layer_first, hi = o->layer_count ? o->layer_first + o->layer_count : (size_t)-1;
     const lam_sink none = { 0 };
     if (!win) rc = lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory planning");

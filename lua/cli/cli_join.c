@@ -110,8 +110,7 @@ static int join(const char *out, int json, char **paths, size_t n)
         rc = cli_fail(&err);
         goto done;
     }
-    if (!prof->writer || !strcmp(prof->writer, "text") ? lam_dialect_sink(&prof->dialect, w, &sink, &err)
-                                                       : lam_plugin_writer_sink(prof->writer, w, &sink, &err)) {
+    if (lam_program_sink(prof->writer, &prof->dialect, w, &sink, &err)) {
         rc = cli_fail(&err);
         goto done;
     }

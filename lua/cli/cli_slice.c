@@ -203,8 +203,7 @@ int cmd_slice(int argc, char **argv)
     po.time = &est;
     if (a.layers) {
         if ((rc = cli_part_setup(&a, prof, s, &po, w, &sink))) goto done;
-    } else if (!prof->writer || !strcmp(prof->writer, "text") ? lam_dialect_sink(&prof->dialect, w, &sink, &err)
-                                                              : lam_plugin_writer_sink(prof->writer, w, &sink, &err)) {
+    } else if (lam_program_sink(prof->writer, &prof->dialect, w, &sink, &err)) {
         rc = err.code == LAM_EUSAGE ? cli_usage("slice", "%s", err.msg) : cli_fail(&err);
         goto done;
     }
