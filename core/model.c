@@ -499,3 +499,21 @@ void lam_model_free(lam_model *md)
     free(md->path);
     free(md);
 }
+
+size_t lam_model_bytes(const lam_model *m, size_t parts[3])
+{
+    const lam_mesh *h = &m->mesh;
+    size_t p[3];
+    p[0] = h->nverts * 3 * sizeof *h->xyz + h->ntris * 3 * sizeof *h->tris +
+           (h->tri_face ? h->ntris * sizeof *h->tri_face : 0) + h->nfaces * sizeof *h->faces +
+           h->nwire_segs * 2 * sizeof *h->wires + h->strings_len;
+    const lam_edges *e = &m->edges;
+    size_t t = h->ntris;
+    p[1] = e->v ? e->n * 2 * sizeof *e->v + (e->n + 1) * sizeof *e->first + 3 * t * sizeof *e->tri_edge +
+                      (e->first ? e->first[e->n] : 0) * sizeof *e->tris
+                : 0;
+    p[2] = (m->tri_shell ? t * sizeof *m->tri_shell : 0) + (m->shell_tris ? t * sizeof *m->shell_tris : 0) +
+           (m->shell_first ? (m->nshells + 1) * sizeof *m->shell_first : 0) + m->nshells * sizeof *m->shells;
+    if (parts) memcpy(parts, p, sizeof p);
+    return p[0] + p[1] + p[2];
+}

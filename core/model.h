@@ -75,6 +75,12 @@ int lam_model_from_mesh(lam_mesh *mesh, const char *path, const char *format,
 /* Free a model (NULL is fine). */
 void lam_model_free(lam_model *model);
 
+/* The bytes a model's arrays hold: parts[0] the mesh (vertices, triangles,
+ * faces, wires, strings), parts[1] the edges, parts[2] the shells (parts
+ * may be NULL); the sum is returned. What the elements take, not the
+ * capacity reserved: room reserved and never written is never resident. */
+size_t lam_model_bytes(const lam_model *model, size_t parts[3]);
+
 /* The winding number of the closed shell s of the model around point p
  * (generalised winding number: sum of solid angles / 4 pi). Near 1 inside a
  * solid shell, 0 outside, 0.5 on its surface. O(triangles of s). */

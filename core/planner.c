@@ -156,6 +156,10 @@ static int plan_serial(lam_slicer *s, const lam_plan_opts *o, const lam_sink *si
     lam_layer **win = calloc(2 * n + 2, sizeof *win);
     size_t have = 0, cur = 0;
     int more = 1;
+    /* a layer range (part files): the layers before it are sliced, not
+     * given to the sink */
+    size_t lo = o->layer_first, hi = o->layer_count ? o->layer_first + o->layer_count : (size_t)-1;
+    const lam_sink none = { 0 };
     if (!win) rc = lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory planning");
     while (!rc) {
         while (!rc && more && have < cur + n + 1) {
@@ -166,17 +170,24 @@ static int plan_serial(lam_slicer *s, const lam_plan_opts *o, const lam_sink *si
                 break;
             }
             win[have++] = L;
-            if (cb) rc = cb(cbctx, L, err);
+            if (cb && L->index >= lo && L->index < hi) rc = cb(cbctx, L, err);
         }
-        if (rc || cur >= have) break;
+        if (rc || cur >= have || win[cur]->index >= hi) break;
         lam_layer *L = win[cur];
         lam_layer_info li = { L->index, L->cut, L->width, L->floor, L->ceiling, L, NULL };
-        if (!rc && sink->layer) rc = sink->layer(sink->ctx, &li);
-        if (!rc) {
+        int skip = L->index < lo;
+        const lam_sink *to = skip ? &none : sink;
+        /* before the range only LADRP's islands need planning (they go
+         * nearest first from the stage); otherwise a layer leaves only
+         * the laser off behind (SLS: nothing) */
+        int plan = !skip || (o->kind == LAM_PLAN_LADRP && o->islands);
+        if (!plan) laser = 0;
+        if (!rc && to->layer) rc = to->layer(to->ctx, &li);
+        if (!rc && plan) {
             if (o->kind == LAM_PLAN_LADRP) {
                 lam_ladrp_stats ls;
-                rc = lam_plan_ladrp_layer(L, f, o, sink, pos, &laser, &ls, err);
-                if (o->totals) lam_ladrp_stats_add(o->totals, &ls);
+                rc = lam_plan_ladrp_layer(L, f, o, to, pos, &laser, &ls, err);
+                if (o->totals && !skip) lam_ladrp_stats_add(o->totals, &ls);
             } else {
                 const lam_layer *below[LAM_SKIN_MAX], *above[LAM_SKIN_MAX];
                 size_t nb = 0, na = 0;
@@ -187,7 +198,7 @@ static int plan_serial(lam_slicer *s, const lam_plan_opts *o, const lam_sink *si
                 if (lam_scan_estimates(&o->scan)) li.time = &st.time;
             }
         }
-        if (!rc && sink->layer_end) rc = sink->layer_end(sink->ctx, &li);
+        if (!rc && to->layer_end) rc = to->layer_end(to->ctx, &li);
         if (++cur > n) {
             lam_layer_free(win[0]);
             memmove(win, win + 1, (have - 1) * sizeof *win);
@@ -234,7 +245,10 @@ int lam_plan_run(lam_slicer *s, const lam_model *m, const lam_plan_opts *o, cons
     int rc = sink->begin ? sink->begin(sink->ctx, &job) : LAM_OK;
     /* a worker holds a whole layer's operations until it is written: layers
      * estimated beyond LAM_THREAD_LAYER_MAX are streamed on one thread */
-    int threaded = o->threads > 1 && !(est.layers && est.bytes / (double)est.layers > LAM_THREAD_LAYER_MAX);
+    /* ... and a part (a layer range) is planned on one thread: parts are how
+     * a job is spread over processes and machines already */
+    int threaded = o->threads > 1 && !o->layer_count &&
+                   !(est.layers && est.bytes / (double)est.layers > LAM_THREAD_LAYER_MAX);
     if (!rc) rc = threaded ? lam_plan_threaded(s, o, sink, cb, cbctx, job.origin, err)
                            : plan_serial(s, o, sink, cb, cbctx, job.origin, err);
     if (!rc && sink->end) rc = sink->end(sink->ctx);

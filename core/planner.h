@@ -71,6 +71,15 @@ typedef struct lam_plan_opts {
                                     layers while the calling thread writes them in
                                     order (the same output for every number); 0 or 1:
                                     everything on the calling thread */
+    size_t layer_first, layer_count; /* lam_plan_run plans only layers layer_first ..
+                                    layer_first + layer_count - 1 (0-based; count 0:
+                                    every layer) of the run, for part files (part.h);
+                                    begin and end still describe the whole run. The
+                                    layers before the range are sliced, not planned
+                                    (each layer's output depends only on it; LADRP's
+                                    laser is off after any layer), except LADRP
+                                    islands, planned into no sink: their order starts
+                                    nearest the stage the layer before left. */
 } lam_plan_opts;
 
 /* Defaults: SLS, bead 1, rates 0, model frame, edge, 0 degrees, alternate;

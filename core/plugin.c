@@ -1,5 +1,6 @@
 #include "plugin.h"
 
+#include "dialect.h"
 #include "grow.h"
 
 #include <dlfcn.h>
@@ -568,4 +569,10 @@ int lam_plugin_writer_sink(const char *name, lam_writer *w, lam_sink *out, lam_e
     out->end = ps_end;
     out->destroy = ps_destroy;
     return LAM_OK;
+}
+
+int lam_program_sink(const char *writer, const lam_dialect *d, lam_writer *w, lam_sink *out, lam_error *err)
+{
+    return !writer || !strcmp(writer, "text") ? lam_dialect_sink(d, w, out, err)
+                                              : lam_plugin_writer_sink(writer, w, out, err);
 }

@@ -53,6 +53,13 @@ int lam_plugin_load(const char *path, lam_error *err);
  * message). */
 int lam_plugin_writer_sink(const char *name, lam_writer *w, lam_sink *out, lam_error *err);
 
+struct lam_dialect;
+
+/* The sink a machine profile writes its programs through: the dialect's
+ * templates (lam_dialect_sink) when writer is NULL or "text", else the
+ * plugin writer of that name (above). Ownership and errors as theirs. */
+int lam_program_sink(const char *writer, const struct lam_dialect *d, lam_writer *w, lam_sink *out, lam_error *err);
+
 /* Unload every plugin (dlclose) and empty the registry. Any sink or writer
  * name obtained before becomes invalid. For tests and leak checks. */
 void lam_plugins_unload(void);

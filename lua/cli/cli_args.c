@@ -5,8 +5,10 @@
 
 #include "cli.h"
 
+#include <ctype.h>
 #include <errno.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -202,6 +204,26 @@ static int o_jobs(const char *cmd, args *a, const cli_opt *o, const char *opt, c
     return 0;
 }
 
+/* --layers A:B (1-based, inclusive) or K/N (the K-th of N near-equal
+ * parts); checked against the run's layer count once the slicer knows it */
+static int o_part(const char *cmd, args *a, const cli_opt *o, const char *opt, const char *val)
+{
+    (void)o;
+    unsigned long long x, y;
+    char sep, extra;
+    if (sscanf(val, "%llu%c%llu%c", &x, &sep, &y, &extra) != 3 || (sep != ':' && sep != '/') || !isdigit((unsigned char)*val) ||
+        !isdigit((unsigned char)strchr(val, sep)[1]))
+        return cli_usage(cmd, "%s takes A:B (layers A to B, from 1) or K/N (part K of N) (got '%s')", opt, val);
+    if (x < 1 || y < x)
+        return cli_usage(cmd, sep == ':' ? "%s %s: the first layer is 1 and A:B needs A <= B"
+                                         : "%s %s: K/N needs 1 <= K <= N", opt, val);
+    a->layers = val;
+    a->layers_a = (size_t)x;
+    a->layers_b = (size_t)y;
+    a->layers_split = sep == '/';
+    return 0;
+}
+
 #define F(member) offsetof(args, member)
 static const cli_opt options[] = {
     { "jobs", 'j', OPT_PLAN, "N", o_jobs, 0 },
@@ -219,6 +241,7 @@ static const cli_opt options[] = {
     { "svg", 0, OPT_SVG, "FILE", o_output, F(svg) },
     { "json", 0, OPT_JSON_FILE, "FILE", o_output, F(json_out) },
     { "html", 0, OPT_PLAN, "FILE", o_output, F(html) },
+    { "layers", 0, OPT_PART, "A:B|K/N", o_part, 0 },
     { "program", 0, OPT_PROGRAM, "FILE", o_text, F(program) },
     { "json", 0, OPT_JSON, NULL, o_flag, F(json) },
     { "show", 0, OPT_SHOW, "NAME|PATH", o_show, 0 },

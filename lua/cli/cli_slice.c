@@ -7,6 +7,7 @@
 #include "cli.h"
 #include "cli_args.h"
 #include "cli_check.h"
+#include "cli_join.h"
 #include "dialect.h"
 #include "fmt.h"
 #include "json_sink.h"
@@ -45,6 +46,7 @@ static const char usage_text[] =
     "                          [--beam-offset] [--frame model|machine] [--fill evenodd|nonzero]\n"
     "                          [--validate] [--max-layers N] [--max-output SIZE] [-j N]\n"
     "                          [--svg FILE] [--html FILE] [--json FILE] [-o FILE] [-q | -v]\n"
+    "                          [--layers A:B|K/N]\n"
     "  -m, --machine    machine profile: a shipped name (see 'lamina machines') or a path\n"
     "                   (default: the thesis's SLS contours)\n"
     "  -s, --set        KEY=VALUE: any key of the machine profile, checked as in its YAML\n"
@@ -68,6 +70,9 @@ static const char usage_text[] =
     "  -q, --quiet      no progress line and no notes; warnings and errors only\n"
     "  -v, --verbose    every per-layer note, and the time each stage takes\n"
     "MODEL - reads standard input; an output FILE - writes standard output (one at most).\n"
+    "      --layers     plan only layers A to B (from 1, inclusive) or part K of N equal\n"
+    "                   parts of the run the other options define, into a part file for\n"
+    "                   'lamina join' (which writes the whole run's program)\n"
     "Values: --name=VALUE or --name VALUE; -- ends the options. The profile's values are\n"
     "defaults that -s and the options below override.\n";
 
@@ -142,8 +147,7 @@ static int tee_outputs(lam_sink *sink, lam_writer *jw, report *rep, const args *
     return rc;
 }
 
-/* The build-time summary of a powder-bed job (hatch.h's estimate). */
-static void cli_print_estimate(const char *path, const lam_scan_time *t)
+void cli_print_estimate(const char *path, const lam_scan_time *t)
 {
     fprintf(stderr,
             "lamina: %s: %zu layers, %zu contour passes, %zu hatch vectors, %.6g exposed, %.6g jumped; "
@@ -156,7 +160,8 @@ int cmd_slice(int argc, char **argv)
 {
     args a;
     int rc = cli_parse_args("slice", usage_text,
-                            OPT_MODEL | OPT_SLICE | OPT_SET | OPT_PLAN | OPT_SVG | OPT_JSON_FILE | OPT_TALK, argc, argv,
+                            OPT_MODEL | OPT_SLICE | OPT_SET | OPT_PLAN | OPT_SVG | OPT_JSON_FILE | OPT_TALK | OPT_PART,
+                            argc, argv,
                             &a);
     if (rc) {
         cli_args_free(&a);
@@ -208,16 +213,19 @@ int cmd_slice(int argc, char **argv)
         goto done;
     }
     lam_writer_set_limit(w, a.max_output ? a.max_output : LAM_DEFAULT_MAX_OUTPUT);
-    int src = !prof->writer || !strcmp(prof->writer, "text") ? lam_dialect_sink(&prof->dialect, w, &sink, &err)
-                                                             : lam_plugin_writer_sink(prof->writer, w, &sink, &err);
-    if (!src) src = tee_outputs(&sink, jw, &rep, &a, s, &po, &err);
-    if (src) {
-        rc = err.code == LAM_EUSAGE ? cli_usage("slice", "%s", err.msg) : cli_fail(&err);
-        goto done;
-    }
     lam_scan_time est;
     memset(&est, 0, sizeof est);
     po.time = &est;
+    if (a.layers) {
+        if ((rc = cli_part_setup(&a, prof, s, &po, w, &sink))) goto done;
+    } else {
+        int src = lam_program_sink(prof->writer, &prof->dialect, w, &sink, &err);
+        if (!src) src = tee_outputs(&sink, jw, &rep, &a, s, &po, &err);
+        if (src) {
+            rc = err.code == LAM_EUSAGE ? cli_usage("slice", "%s", err.msg) : cli_fail(&err);
+            goto done;
+        }
+    }
     size_t nl = lam_slicer_count(s);
     cli_progress_stage(&rep.progress, "reading the model and preparing the layers");
     cli_size_sense(a.path, a.machine ? prof : NULL, m, s, &po);
@@ -252,7 +260,7 @@ int cmd_slice(int argc, char **argv)
             goto done;
         }
     }
-    if (po.kind == LAM_PLAN_SLS && notes && lam_scan_estimates(&po.scan)) cli_print_estimate(a.path, &est);
+    if (po.kind == LAM_PLAN_SLS && notes && !a.layers && lam_scan_estimates(&po.scan)) cli_print_estimate(a.path, &est);
     if (cli_view_save(&rep.view, &err)) {
         rc = cli_fail(&err);
         goto done;

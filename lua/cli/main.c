@@ -76,6 +76,8 @@ static int help(void)
            "usage:\n"
            "  lamina info MODEL [--json]          model report: shells, cavities, volume, defects\n"
            "  lamina slice MODEL [options]        slice and plan; program to stdout or -o FILE\n"
+           "  lamina join PART... [-o FILE]       the program of a run sliced in parts\n"
+           "                                      (lamina slice ... --layers A:B)\n"
            "  lamina validate MODEL [options]     Embree check of every solid/hole label\n"
            "  lamina check MODEL -m MACHINE       design-rule check (wall thickness, overhangs)\n"
            "  lamina machines [--show NAME]       list machine profiles / print one resolved\n"
@@ -112,6 +114,7 @@ static int dispatch(int argc, char **argv)
     }
     if (strcmp(cmd, "info") == 0) return cmd_info(argc - 1, argv + 1);
     if (strcmp(cmd, "slice") == 0) return cmd_slice(argc - 1, argv + 1);
+    if (strcmp(cmd, "join") == 0) return cmd_join(argc - 1, argv + 1);
     if (strcmp(cmd, "validate") == 0) return cmd_validate(argc - 1, argv + 1);
     if (strcmp(cmd, "check") == 0) return cmd_check(argc - 1, argv + 1);
     if (strcmp(cmd, "machines") == 0) return cmd_machines(argc - 1, argv + 1);

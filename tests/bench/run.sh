@@ -153,3 +153,7 @@ bench_threads() {
     echo "(medians of $runs alternating runs; speedup = -j 1 time / -j 2 time; the programs are identical)"
 }
 bench_threads "$RUNS"
+
+# Scaling (time per triangle, time per layer, the 5M-triangle run's memory):
+# its own script, tests/bench/scaling.sh.
+bash "$here/scaling.sh" "$LAMINA"

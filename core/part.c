@@ -1,0 +1,716 @@
+/* Part files (part.h): a recording sink, and the reader that replays parts. */
+#include "part.h"
+
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "grow.h"
+
+static const char MAGIC[8] = { 'L', 'A', 'M', 'P', 'A', 'R', 'T', 0 };
+
+#define FNV_BASIS 0xcbf29ce484222325ULL
+#define FNV_PRIME 0x100000001b3ULL
+
+static uint64_t fnv(uint64_t h, const void *data, size_t n)
+{
+    const unsigned char *p = data;
+    for (size_t i = 0; i < n; i++) h = (h ^ p[i]) * FNV_PRIME;
+    return h;
+}
+
+/* ---- identity ------------------------------------------------------------ */
+
+int lam_part_identity(const char *model_path, const char *profile, size_t profile_len, const lam_slicer *s,
+                      uint64_t *out, lam_error *err)
+{
+    uint64_t h = fnv(FNV_BASIS, profile, profile_len);
+    FILE *f = fopen(model_path, "rb");
+    if (!f) return lam_error_set(err, LAM_EIO, model_path, 0, 0, "cannot open: %s", strerror(errno));
+    enum { CHUNK = 1 << 20 };
+    unsigned char *buf = malloc(CHUNK);
+    if (!buf) {
+        fclose(f);
+        return lam_error_nomem(err, "hashing the model");
+    }
+    /* the file as 64-bit words (a byte at a time is a quarter of a second
+     * on a 250 MB model): a check that parts belong together, not security */
+    size_t got;
+    while ((got = fread(buf, 1, CHUNK, f)) > 0) {
+        size_t w = got / 8;
+        for (size_t i = 0; i < w; i++) {
+            uint64_t x;
+            memcpy(&x, buf + 8 * i, 8);
+            h = (h ^ x) * FNV_PRIME;
+        }
+        h = fnv(h, buf + 8 * w, got - 8 * w);
+    }
+    int bad = ferror(f);
+    free(buf);
+    fclose(f);
+    if (bad) return lam_error_set(err, LAM_EIO, model_path, 0, 0, "cannot read");
+    size_t n = lam_slicer_count(s);
+    h = fnv(h, &n, sizeof n);
+    h = fnv(h, lam_slicer_planes(s), (n + 1) * sizeof(double));
+    for (size_t i = 0; i < n; i++) {
+        double c = lam_slicer_cut(s, i);
+        h = fnv(h, &c, sizeof c);
+    }
+    h = fnv(h, lam_slicer_frame(s), sizeof(lam_frame));
+    double gap = lam_slicer_gap(s);
+    *out = fnv(h, &gap, sizeof gap);
+    return LAM_OK;
+}
+
+/* ---- the recording sink ---------------------------------------------------- */
+
+typedef struct rec {
+    lam_writer *w;
+    lam_error *err;
+    lam_part_meta meta;       /* strings owned */
+    lam_scan_time *time;
+    uint64_t hash;
+    unsigned char *b;         /* pending bytes */
+    size_t len, cap;
+    int oom;
+} rec;
+
+#define FLUSH_AT 65536
+
+static void put(rec *r, const void *p, size_t n)
+{
+    if (r->oom) return;
+    if (r->len + n > r->cap) {
+        size_t cap = lam_grow_cap(r->cap, r->len + n, FLUSH_AT * 2, 1);
+        unsigned char *nb = cap ? realloc(r->b, cap) : NULL;
+        if (!nb) {
+            r->oom = 1;
+            return;
+        }
+        r->b = nb;
+        r->cap = cap;
+    }
+    memcpy(r->b + r->len, p, n);
+    r->len += n;
+}
+
+static void put_u64(rec *r, uint64_t v)
+{
+    unsigned char b[8];
+    for (int i = 0; i < 8; i++) b[i] = (unsigned char)(v >> (8 * i));
+    put(r, b, 8);
+}
+
+static void put_u8(rec *r, int v)
+{
+    unsigned char b = (unsigned char)v;
+    put(r, &b, 1);
+}
+
+static void put_f64(rec *r, double x)
+{
+    uint64_t v;
+    memcpy(&v, &x, 8);
+    put_u64(r, v);
+}
+
+static void put_f64s(rec *r, const double *x, size_t n)
+{
+    for (size_t i = 0; i < n; i++) put_f64(r, x[i]);
+}
+
+static void put_str(rec *r, const char *s, size_t n)
+{
+    put_u64(r, n);
+    put(r, s, n);
+}
+
+static void put_cstr(rec *r, const char *s)
+{
+    put_str(r, s ? s : "", s ? strlen(s) : 0);
+}
+
+static int flush(rec *r, int force)
+{
+    if (r->oom) return lam_error_nomem(r->err, "writing a part file");
+    if (r->len < FLUSH_AT && !force) return LAM_OK;
+    r->hash = fnv(r->hash, r->b, r->len);
+    int rc = lam_writer_write(r->w, r->b, r->len);
+    r->len = 0;
+    return rc ? lam_writer_error(r->w, r->err) : LAM_OK;
+}
+
+static int r_begin(void *ctx, const lam_job_info *j)
+{
+    rec *r = ctx;
+    put(r, MAGIC, 8);
+    unsigned char v[8] = { LAM_PART_VERSION, 0, 0, 0, 0, 0, 0, 0 };
+    put(r, v, 8);
+    put_u64(r, r->meta.identity);
+    put_u64(r, r->meta.first);
+    put_u64(r, r->meta.last);
+    put_u64(r, r->meta.layers);
+    put_cstr(r, j->name);
+    put_cstr(r, j->process);
+    put_cstr(r, j->units);
+    put_cstr(r, j->label);
+    put_f64s(r, j->bbox, 6);
+    put_f64(r, j->bead);
+    put_f64(r, j->rate);
+    put_f64(r, j->travel_rate);
+    put_f64s(r, j->origin, 3);
+    put_str(r, r->meta.profile, r->meta.profile_len);
+    put_cstr(r, r->meta.model);
+    put_u64(r, fnv(FNV_BASIS, r->b, r->len)); /* the header's own check */
+    if (j->layers != r->meta.layers)
+        return lam_error_set(r->err, LAM_EUSAGE, NULL, 0, 0, "part: the run has %zu layers, not %zu", j->layers,
+                             r->meta.layers);
+    return flush(r, 0);
+}
+
+static void put_layer(rec *r, int tag, const lam_layer_info *L)
+{
+    put_u8(r, tag);
+    put_u64(r, L->index);
+    put_f64(r, L->z);
+    put_f64(r, L->width);
+    put_f64(r, L->floor);
+    put_f64(r, L->ceiling);
+}
+
+static int r_layer(void *ctx, const lam_layer_info *L)
+{
+    rec *r = ctx;
+    put_layer(r, 'L', L);
+    return flush(r, 0);
+}
+
+static int r_layer_end(void *ctx, const lam_layer_info *L)
+{
+    rec *r = ctx;
+    put_layer(r, 'E', L);
+    lam_scan_time t;
+    memset(&t, 0, sizeof t);
+    if (r->time) {
+        /* the planner added this layer's estimate to a zero total */
+        t = *r->time;
+        memset(r->time, 0, sizeof *r->time);
+    }
+    put_u64(r, t.layers);
+    put_u64(r, t.contours);
+    put_u64(r, t.vectors);
+    put_u64(r, t.jumps);
+    put_f64(r, t.exposure_length);
+    put_f64(r, t.jump_length);
+    put_f64(r, t.hatch_length);
+    put_f64(r, t.exposure);
+    put_f64(r, t.jump);
+    put_f64(r, t.recoat);
+    return flush(r, 0);
+}
+
+static int r_feed(void *ctx, double rate)
+{
+    rec *r = ctx;
+    put_u8(r, 'F');
+    put_f64(r, rate);
+    return flush(r, 0);
+}
+
+static int r_laser(void *ctx, int on)
+{
+    rec *r = ctx;
+    put_u8(r, 'A');
+    put_u8(r, on != 0);
+    return flush(r, 0);
+}
+
+static int r_move(void *ctx, int deposit, const double xyz[3])
+{
+    rec *r = ctx;
+    put_u8(r, 'M');
+    put_u8(r, deposit != 0);
+    put_f64s(r, xyz, 3);
+    return flush(r, 0);
+}
+
+static int r_contour(void *ctx, const lam_contour_info *c)
+{
+    rec *r = ctx;
+    put_u8(r, 'C');
+    put_u64(r, c->id);
+    put_u8(r, c->solid != 0);
+    put_u64(r, (uint64_t)(int64_t)c->depth);
+    put_f64(r, c->z);
+    put_u64(r, c->n);
+    put_f64(r, c->power);
+    put_f64(r, c->speed);
+    put_f64(r, c->point_distance);
+    put_f64(r, c->exposure_time);
+    put_u8(r, c->uv != NULL);
+    put_f64s(r, c->xyz, 3 * c->n);
+    if (c->uv) put_f64s(r, c->uv, 2 * c->n);
+    return flush(r, 0);
+}
+
+static int r_hatches(void *ctx, const lam_hatch_info *h)
+{
+    rec *r = ctx;
+    put_u8(r, 'H');
+    put_u64(r, h->id);
+    put_u64(r, (uint64_t)(int64_t)h->type);
+    put_cstr(r, h->kind);
+    put_f64(r, h->z);
+    put_u64(r, h->n);
+    put_f64(r, h->angle);
+    put_f64(r, h->power);
+    put_f64(r, h->speed);
+    put_f64(r, h->point_distance);
+    put_f64(r, h->exposure_time);
+    put_u8(r, h->uv != NULL);
+    put_f64s(r, h->xyz, 6 * h->n);
+    if (h->uv) put_f64s(r, h->uv, 4 * h->n);
+    return flush(r, 0);
+}
+
+static int r_end(void *ctx)
+{
+    rec *r = ctx;
+    int rc = flush(r, 1);
+    if (rc) return rc;
+    put_u8(r, 'Z');
+    r->hash = fnv(r->hash, r->b, r->len);
+    put_u64(r, r->hash);
+    rc = lam_writer_write(r->w, r->b, r->len);
+    r->len = 0;
+    return rc ? lam_writer_error(r->w, r->err) : LAM_OK;
+}
+
+static void r_destroy(void *ctx)
+{
+    rec *r = ctx;
+    if (!r) return;
+    free((char *)r->meta.profile);
+    free((char *)r->meta.model);
+    free(r->b);
+    free(r);
+}
+
+int lam_part_sink(const lam_part_meta *meta, lam_scan_time *time, lam_writer *w, lam_sink *out, lam_error *err)
+{
+    memset(out, 0, sizeof *out);
+    rec *r = calloc(1, sizeof *r);
+    if (!r) return lam_error_nomem(err, NULL);
+    r->w = w;
+    r->err = err;
+    r->time = time;
+    r->hash = FNV_BASIS;
+    r->meta = *meta;
+    char *prof = malloc(meta->profile_len + 1), *model = strdup(meta->model ? meta->model : "");
+    if (prof) {
+        memcpy(prof, meta->profile, meta->profile_len);
+        prof[meta->profile_len] = '\0';
+    }
+    r->meta.profile = prof;
+    r->meta.model = model;
+    if (!prof || !model) {
+        r_destroy(r);
+        return lam_error_nomem(err, NULL);
+    }
+    out->ctx = r;
+    out->begin = r_begin;
+    out->layer = r_layer;
+    out->layer_end = r_layer_end;
+    out->feed = r_feed;
+    out->laser = r_laser;
+    out->move = r_move;
+    out->contour = r_contour;
+    out->hatches = r_hatches;
+    out->end = r_end;
+    out->destroy = r_destroy;
+    return LAM_OK;
+}
+
+/* ---- reading ----------------------------------------------------------------- */
+
+struct lam_part {
+    char *path;
+    FILE *f;
+    long long size, off;      /* the file's size; bytes read */
+    uint64_t hash;
+    lam_part_meta meta;       /* strings owned */
+    lam_job_info job;         /* strings owned */
+    long long body;           /* where the records start */
+    uint64_t body_hash;       /* the hash of the bytes before them */
+    double *d;                /* a record's reals */
+    size_t dcap;
+};
+
+/* LAM_EFORMAT at the current offset */
+static int corrupt(lam_part *p, lam_error *err, const char *what)
+{
+    return lam_error_at_offset(err, LAM_EFORMAT, p->path, p->off, "corrupt part file: %s", what);
+}
+
+static int get(lam_part *p, void *dst, size_t n, lam_error *err)
+{
+    if ((long long)n > p->size - p->off)
+        return lam_error_at_offset(err, LAM_EFORMAT, p->path, p->off,
+                                   "truncated part file (the file ends in the middle of a record)");
+    if (n && fread(dst, 1, n, p->f) != n)
+        return lam_error_at_offset(err, LAM_EIO, p->path, p->off, "cannot read: %s",
+                                   ferror(p->f) ? strerror(errno) : "unexpected end of file");
+    p->hash = fnv(p->hash, dst, n);
+    p->off += (long long)n;
+    return LAM_OK;
+}
+
+static int get_u64(lam_part *p, uint64_t *v, lam_error *err)
+{
+    unsigned char b[8];
+    *v = 0;
+    int rc = get(p, b, 8, err);
+    if (rc) return rc;
+    for (int i = 7; i >= 0; i--) *v = (*v << 8) | b[i];
+    return LAM_OK;
+}
+
+static int get_size(lam_part *p, size_t *v, lam_error *err)
+{
+    uint64_t x;
+    int rc = get_u64(p, &x, err);
+    if (rc) return rc;
+    if (x > (uint64_t)p->size) return corrupt(p, err, "a count larger than the file");
+    *v = (size_t)x;
+    return LAM_OK;
+}
+
+static int get_u8(lam_part *p, int *v, lam_error *err)
+{
+    unsigned char b = 0;
+    int rc = get(p, &b, 1, err);
+    if (rc) return rc;
+    *v = b;
+    return LAM_OK;
+}
+
+static int get_f64s(lam_part *p, double *x, size_t n, lam_error *err)
+{
+    for (size_t i = 0; i < n; i++) {
+        uint64_t v;
+        int rc = get_u64(p, &v, err);
+        if (rc) return rc;
+        memcpy(&x[i], &v, 8);
+    }
+    return LAM_OK;
+}
+
+/* a string of at most the rest of the file, NUL-terminated, owned */
+static int get_str(lam_part *p, char **s, size_t *len, lam_error *err)
+{
+    size_t n = 0;
+    int rc = get_size(p, &n, err);
+    if (rc) return rc;
+    if (!(*s = malloc(n + 1))) return lam_error_nomem(err, "reading a part file");
+    if ((rc = get(p, *s, n, err))) return rc;
+    (*s)[n] = '\0';
+    if (len) *len = n;
+    return LAM_OK;
+}
+
+/* room for n reals of a record whose bytes the file must still hold */
+static int reals(lam_part *p, size_t n, lam_error *err)
+{
+    if (n > (size_t)(p->size - p->off) / 8) return corrupt(p, err, "more points than the file holds");
+    if (n <= p->dcap) return LAM_OK;
+    double *d = lam_realloc_n(p->d, n, sizeof *d);
+    if (!d) return lam_error_nomem(err, "reading a part file");
+    p->d = d;
+    p->dcap = n;
+    return LAM_OK;
+}
+
+void lam_part_close(lam_part *p)
+{
+    if (!p) return;
+    if (p->f) fclose(p->f);
+    free(p->path);
+    free((char *)p->meta.profile);
+    free((char *)p->meta.model);
+    free((char *)p->job.name);
+    free((char *)p->job.process);
+    free((char *)p->job.units);
+    free((char *)p->job.label);
+    free(p->d);
+    free(p);
+}
+
+static int read_header(lam_part *p, lam_error *err)
+{
+    unsigned char head[16];
+    if (p->size < 16 || fread(head, 1, 16, p->f) != 16 || memcmp(head, MAGIC, 8) != 0)
+        return lam_error_set(err, LAM_EFORMAT, p->path, 0, 0,
+                             "not a lamina part file (written by `lamina slice --layers A:B`)");
+    p->hash = fnv(p->hash, head, 16);
+    p->off = 16;
+    uint32_t version = head[8] | (uint32_t)head[9] << 8 | (uint32_t)head[10] << 16 | (uint32_t)head[11] << 24;
+    if (version != LAM_PART_VERSION)
+        return lam_error_set(err, LAM_EFORMAT, p->path, 0, 0,
+                             "part file version %u: this lamina reads version %d", (unsigned)version,
+                             LAM_PART_VERSION);
+    uint64_t id = 0, first = 0, last = 0, layers = 0;
+    char *s[4] = { 0 };
+    char *prof = NULL, *model = NULL;
+    int rc = get_u64(p, &id, err);
+    if (!rc) rc = get_u64(p, &first, err);
+    if (!rc) rc = get_u64(p, &last, err);
+    if (!rc) rc = get_u64(p, &layers, err);
+    if (!rc && (first < 1 || first > last || last > layers || layers > SIZE_MAX))
+        return lam_error_at_offset(err, LAM_EFORMAT, p->path, 24, "corrupt part file: layers %llu..%llu of %llu",
+                                   (unsigned long long)first, (unsigned long long)last, (unsigned long long)layers);
+    p->meta.identity = id;
+    p->meta.first = (size_t)first;
+    p->meta.last = (size_t)last;
+    p->meta.layers = p->job.layers = (size_t)layers;
+    for (int i = 0; !rc && i < 4; i++) rc = get_str(p, &s[i], NULL, err);
+    p->job.name = s[0];
+    p->job.process = s[1];
+    p->job.units = s[2];
+    p->job.label = s[3];
+    if (!rc) rc = get_f64s(p, p->job.bbox, 6, err);
+    if (!rc) rc = get_f64s(p, &p->job.bead, 1, err);
+    if (!rc) rc = get_f64s(p, &p->job.rate, 1, err);
+    if (!rc) rc = get_f64s(p, &p->job.travel_rate, 1, err);
+    if (!rc) rc = get_f64s(p, p->job.origin, 3, err);
+    if (!rc) rc = get_str(p, &prof, &p->meta.profile_len, err);
+    p->meta.profile = prof;
+    if (!rc) rc = get_str(p, &model, NULL, err);
+    p->meta.model = model;
+    uint64_t want = p->hash, got = 0;
+    if (!rc) rc = get_u64(p, &got, err);
+    if (!rc && got != want)
+        return lam_error_set(err, LAM_EFORMAT, p->path, 0, 0, "corrupt part file: its header does not match its checksum");
+    return rc;
+}
+
+int lam_part_open(const char *path, lam_part **out, lam_error *err)
+{
+    *out = NULL;
+    lam_part *p = calloc(1, sizeof *p);
+    if (!p || !(p->path = strdup(path))) {
+        free(p);
+        return lam_error_nomem(err, NULL);
+    }
+    p->hash = FNV_BASIS;
+    struct stat st;
+    if (!(p->f = fopen(path, "rb")) || fstat(fileno(p->f), &st) != 0 || !S_ISREG(st.st_mode)) {
+        int e = p->f ? EINVAL : errno;
+        lam_error_set(err, LAM_EIO, path, 0, 0, "cannot open: %s", p->f ? "not a regular file" : strerror(e));
+        lam_part_close(p);
+        return LAM_EIO;
+    }
+    p->size = (long long)st.st_size;
+    int rc = read_header(p, err);
+    p->body = p->off;
+    p->body_hash = p->hash;
+    if (rc) {
+        lam_part_close(p);
+        return rc;
+    }
+    *out = p;
+    return LAM_OK;
+}
+
+const lam_part_meta *lam_part_get_meta(const lam_part *p) { return &p->meta; }
+
+const lam_job_info *lam_part_job(const lam_part *p) { return &p->job; }
+
+/* ---- joining ----------------------------------------------------------------- */
+
+static int by_first(const void *a, const void *b)
+{
+    const lam_part *x = *(lam_part *const *)a, *y = *(lam_part *const *)b;
+    if (x->meta.first != y->meta.first) return x->meta.first < y->meta.first ? -1 : 1;
+    return (x->meta.last > y->meta.last) - (x->meta.last < y->meta.last);
+}
+
+int lam_part_order(lam_part **parts, size_t n, lam_error *err)
+{
+    if (!n) return lam_error_set(err, LAM_EUSAGE, NULL, 0, 0, "no part files to join");
+    for (size_t i = 1; i < n; i++)
+        if (parts[i]->meta.identity != parts[0]->meta.identity || parts[i]->meta.layers != parts[0]->meta.layers)
+            return lam_error_set(err, LAM_EINVAL, parts[i]->path, 0, 0,
+                                 "part of a different run than %s (another model, machine profile or slicing "
+                                 "option)", parts[0]->path);
+    qsort(parts, n, sizeof *parts, by_first);
+    size_t next = 1;   /* the first layer no part has held so far */
+    for (size_t i = 0; i < n; i++) {
+        const lam_part *p = parts[i];
+        if (p->meta.first > next)
+            return lam_error_set(err, LAM_EINVAL, NULL, 0, 0, "layers %zu..%zu are missing: no part holds them", next,
+                                 p->meta.first - 1);
+        if (p->meta.first < next)
+            return lam_error_set(err, LAM_EINVAL, NULL, 0, 0, "%s (layers %zu..%zu) and %s (layers %zu..%zu) overlap",
+                                 parts[i - 1]->path, parts[i - 1]->meta.first, parts[i - 1]->meta.last, p->path,
+                                 p->meta.first, p->meta.last);
+        next = p->meta.last + 1;
+    }
+    if (next <= parts[0]->meta.layers)
+        return lam_error_set(err, LAM_EINVAL, NULL, 0, 0, "layers %zu..%zu are missing: no part holds them", next,
+                             parts[0]->meta.layers);
+    return LAM_OK;
+}
+
+/* The layer record's fields; checks that it is the layer expected next. */
+static int get_layer(lam_part *p, lam_layer_info *L, size_t want, lam_error *err)
+{
+    uint64_t index;
+    int rc;
+    if ((rc = get_u64(p, &index, err)) || (rc = get_f64s(p, &L->z, 1, err)) || (rc = get_f64s(p, &L->width, 1, err)) ||
+        (rc = get_f64s(p, &L->floor, 1, err)) || (rc = get_f64s(p, &L->ceiling, 1, err)))
+        return rc;
+    if (index != want) return corrupt(p, err, "a layer out of order");
+    L->index = (size_t)index;
+    return LAM_OK;
+}
+
+/* Replay one part's records into sink. */
+static int replay(lam_part *p, const lam_sink *sink, lam_scan_time *time, double *layer_time, lam_error *err)
+{
+    size_t next = p->meta.first - 1;  /* 0-based index of the next layer */
+    int in_layer = 0, rc = LAM_OK;
+    /* from the first record, each time (join may check the parts first) */
+    if (fseek(p->f, (long)p->body, SEEK_SET) != 0)
+        return lam_error_set(err, LAM_EIO, p->path, 0, 0, "cannot read: %s", strerror(errno));
+    p->off = p->body;
+    p->hash = p->body_hash;
+    for (;;) {
+        long long at = p->off;
+        int tag;
+        if ((rc = get_u8(p, &tag, err))) return rc;
+        if (tag == 'Z') {
+            uint64_t want = p->hash, got;
+            if ((rc = get_u64(p, &got, err))) return rc;
+            p->off = at;
+            if (got != want) return corrupt(p, err, "its contents do not match its checksum");
+            if (in_layer || next != p->meta.last) return corrupt(p, err, "it ends before its last layer");
+            if (p->size != at + 9) {
+                p->off = at + 9;
+                return corrupt(p, err, "bytes after its end");
+            }
+            return LAM_OK;
+        }
+        lam_layer_info L;
+        switch (tag) {
+        case 'L':
+            if (in_layer || next >= p->meta.last) return corrupt(p, err, "a layer outside its range");
+            if ((rc = get_layer(p, &L, next, err))) return rc;
+            in_layer = 1;
+            rc = sink->layer ? sink->layer(sink->ctx, &L) : LAM_OK;
+            break;
+        case 'E': {
+            if (!in_layer) return corrupt(p, err, "a layer's end without its start");
+            if ((rc = get_layer(p, &L, next, err))) return rc;
+            uint64_t c[4];
+            lam_scan_time t;
+            for (int i = 0; i < 4 && !rc; i++) rc = get_u64(p, &c[i], err);
+            if (!rc) rc = get_f64s(p, &t.exposure_length, 1, err);
+            if (!rc) rc = get_f64s(p, &t.jump_length, 1, err);
+            if (!rc) rc = get_f64s(p, &t.hatch_length, 1, err);
+            if (!rc) rc = get_f64s(p, &t.exposure, 1, err);
+            if (!rc) rc = get_f64s(p, &t.jump, 1, err);
+            if (!rc) rc = get_f64s(p, &t.recoat, 1, err);
+            if (rc) return rc;
+            t.layers = (size_t)c[0];
+            t.contours = (size_t)c[1];
+            t.vectors = (size_t)c[2];
+            t.jumps = (size_t)c[3];
+            if (time) lam_scan_time_add(time, &t);
+            if (layer_time) layer_time[next] = lam_scan_time_total(&t);
+            in_layer = 0;
+            next++;
+            rc = sink->layer_end ? sink->layer_end(sink->ctx, &L) : LAM_OK;
+            break;
+        }
+        case 'F': {
+            double rate;
+            if ((rc = get_f64s(p, &rate, 1, err))) return rc;
+            rc = sink->feed ? sink->feed(sink->ctx, rate) : LAM_OK;
+            break;
+        }
+        case 'A': {
+            int on;
+            if ((rc = get_u8(p, &on, err))) return rc;
+            rc = sink->laser ? sink->laser(sink->ctx, on) : LAM_OK;
+            break;
+        }
+        case 'M': {
+            int dep;
+            double xyz[3];
+            if ((rc = get_u8(p, &dep, err)) || (rc = get_f64s(p, xyz, 3, err))) return rc;
+            rc = sink->move ? sink->move(sink->ctx, dep, xyz) : LAM_OK;
+            break;
+        }
+        case 'C': {
+            lam_contour_info c;
+            uint64_t id, depth;
+            int solid, has_uv;
+            if ((rc = get_u64(p, &id, err)) || (rc = get_u8(p, &solid, err)) || (rc = get_u64(p, &depth, err)) ||
+                (rc = get_f64s(p, &c.z, 1, err)) || (rc = get_size(p, &c.n, err)) ||
+                (rc = get_f64s(p, &c.power, 1, err)) || (rc = get_f64s(p, &c.speed, 1, err)) ||
+                (rc = get_f64s(p, &c.point_distance, 1, err)) || (rc = get_f64s(p, &c.exposure_time, 1, err)) ||
+                (rc = get_u8(p, &has_uv, err)) || (rc = reals(p, (has_uv ? 5 : 3) * c.n, err)) ||
+                (rc = get_f64s(p, p->d, (has_uv ? 5 : 3) * c.n, err)))
+                return rc;
+            c.id = (size_t)id;
+            c.solid = solid;
+            c.depth = (int)(int64_t)depth;
+            c.xyz = p->d;
+            c.uv = has_uv ? p->d + 3 * c.n : NULL;
+            rc = sink->contour ? sink->contour(sink->ctx, &c) : LAM_OK;
+            break;
+        }
+        case 'H': {
+            lam_hatch_info h;
+            uint64_t id, type;
+            int has_uv;
+            char *kind = NULL;
+            if ((rc = get_u64(p, &id, err)) || (rc = get_u64(p, &type, err)) || (rc = get_str(p, &kind, NULL, err)) ||
+                (rc = get_f64s(p, &h.z, 1, err)) || (rc = get_size(p, &h.n, err)) ||
+                (rc = get_f64s(p, &h.angle, 1, err)) || (rc = get_f64s(p, &h.power, 1, err)) ||
+                (rc = get_f64s(p, &h.speed, 1, err)) || (rc = get_f64s(p, &h.point_distance, 1, err)) ||
+                (rc = get_f64s(p, &h.exposure_time, 1, err)) || (rc = get_u8(p, &has_uv, err)) ||
+                (rc = reals(p, (has_uv ? 10 : 6) * h.n, err)) ||
+                (rc = get_f64s(p, p->d, (has_uv ? 10 : 6) * h.n, err))) {
+                free(kind);
+                return rc;
+            }
+            h.id = (size_t)id;
+            h.type = (int)(int64_t)type;
+            h.kind = kind;
+            h.xyz = p->d;
+            h.uv = has_uv ? p->d + 6 * h.n : NULL;
+            rc = sink->hatches ? sink->hatches(sink->ctx, &h) : LAM_OK;
+            free(kind);
+            break;
+        }
+        default:
+            p->off = at;
+            return corrupt(p, err, "an unknown record");
+        }
+        if (rc) return rc;
+    }
+}
+
+int lam_part_join(lam_part *const *parts, size_t n, const lam_sink *sink, lam_scan_time *time, double *layer_time,
+                  lam_error *err)
+{
+    if (!n) return lam_error_set(err, LAM_EUSAGE, NULL, 0, 0, "no part files to join");
+    int rc = sink->begin ? sink->begin(sink->ctx, &parts[0]->job) : LAM_OK;
+    for (size_t i = 0; i < n && !rc; i++) rc = replay(parts[i], sink, time, layer_time, err);
+    if (!rc && sink->end) rc = sink->end(sink->ctx);
+    if (rc && err && err->code == LAM_OK) lam_error_set(err, rc, NULL, 0, 0, "joining failed");
+    return rc;
+}
