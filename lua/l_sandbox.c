@@ -579,8 +579,7 @@ lua_State *lam_lua_sandbox_open(const lam_sandbox_opts *o, char *msg, size_t siz
             sandbox_free(sb);
             return NULL;
         }
-    static const char *const rel[] = { "../lua", "../share/lamina/lua", NULL };
-    sb->nmods = lam_search_dirs(NULL, rel, sb->mods, 4);
+    sb->nmods = lam_lua_dirs(sb->mods, 4);
     char *md[8];
     size_t nmd = lam_machine_dirs(md, 8);
     for (size_t i = 0; i < nmd; i++) {
