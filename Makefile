@@ -8,7 +8,8 @@
 #                   the headers it names, lamina.pc, profiles, plugins, Lua modules and
 #                   the C module, man pages, bash completion, docs; `make uninstall`
 #                   (same variables) removes them again
-#   make man        the man pages in $(BUILD)/man (generated from the commands' --help)
+#   make man        the man pages in $(BUILD)/man and the bash completion in
+#                   $(BUILD)/completion (generated from the commands' --help)
 
 CC      ?= cc
 PREFIX  ?= /usr/local
@@ -194,18 +195,20 @@ BASHCOMPDIR ?= $(DATADIR)/bash-completion/completions
 
 # Man pages: lamina(1) and lamina-CMD(1) for each command of `lamina --help`
 # (the generator checks that its list is this one), generated from the
-# commands' --help texts and man/*.in (description, examples).
+# commands' --help texts and man/*.in (description, examples); the bash
+# completion from the same reading of --help and completion/lamina.bash.in.
 MAN_CMDS  := $(shell sed -n 's/^ *"  lamina \([a-z][a-z0-9-]*\) .*/\1/p' lua/cli/main.c)
 MAN_PAGES := $(BUILD)/man/lamina.1 $(MAN_CMDS:%=$(BUILD)/man/lamina-%.1)
 MAN_STAMP := $(BUILD)/man/.stamp
 
 man: $(MAN_STAMP)
-$(MAN_STAMP): $(LAMINA) man/genman.py $(wildcard man/*.in) $(if $(BIND_SRC),$(LUAMOD)) $(PLUGIN_SO)
-	@mkdir -p $(dir $@)
+$(MAN_STAMP): $(LAMINA) man/genman.py $(wildcard man/*.in) completion/lamina.bash.in $(if $(BIND_SRC),$(LUAMOD)) $(PLUGIN_SO)
+	@mkdir -p $(dir $@) $(BUILD)/completion
 	python3 man/genman.py --lamina $(LAMINA) --in man --out $(BUILD)/man --version $(VERSION) \
-	  --binaries "$(LAMINA) $(LUAMOD) $(PLUGIN_SO)" --expect "$(MAN_CMDS)"
+	  --binaries "$(LAMINA) $(LUAMOD) $(PLUGIN_SO)" --expect "$(MAN_CMDS)" \
+	  --completion-in completion/lamina.bash.in --completion-out $(BUILD)/completion/lamina
 	@touch $@
-$(MAN_PAGES): $(MAN_STAMP)
+$(MAN_PAGES) $(BUILD)/completion/lamina: $(MAN_STAMP)
 
 $(BUILD)/lamina.pc: lamina.pc.in core/version.h
 	@mkdir -p $(dir $@)
@@ -228,7 +231,7 @@ INSTALL_FILES := $(INSTALL_LUA) \
   $(foreach f,recipes/README.md $(wildcard recipes/*.lua),644:$(f):$(DOCDIR)/recipes/$(notdir $(f))) \
   $(foreach f,$(wildcard recipes/parts/*),644:$(f):$(DOCDIR)/recipes/parts/$(notdir $(f))) \
   $(foreach f,$(MAN_PAGES),644:$(f):$(MANDIR)/man1/$(notdir $(f))) \
-  644:completion/lamina.bash:$(BASHCOMPDIR)/lamina
+  644:$(BUILD)/completion/lamina:$(BASHCOMPDIR)/lamina
 # Directories that are lamina's alone: removed by uninstall when empty.
 INSTALL_OWN_DIRS := $(DOCDIR)/recipes/parts $(DOCDIR)/recipes $(DOCDIR)/lua $(DOCDIR)/machines $(DOCDIR) \
   $(INCLUDEDIR)/lamina $(MACHINEDIR) $(DATADIR)/lamina $(PLUGINDIR) $(LIBDIR)/lamina $(LUA_MODDIR)/lamina \

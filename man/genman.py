@@ -294,6 +294,8 @@ def main():
     ap.add_argument('--version', required=True)
     ap.add_argument('--binaries', default='')
     ap.add_argument('--expect', default=None, help='the commands the Makefile installs pages for')
+    ap.add_argument('--completion-in', default=None, help='bash completion template (completion/lamina.bash.in)')
+    ap.add_argument('--completion-out', default=None)
     a = ap.parse_args()
 
     if os.environ.get('SOURCE_DATE_EPOCH'):
@@ -320,7 +322,7 @@ def main():
 
     helps = {c: parse_command_help(run_help(a.lamina, [c, '--help'])) for c in names}
     # short/long pairs and arguments from every help: one option table serves all commands
-    pairs, args_seen, texts_seen = {}, {}, {}
+    pairs, args_seen, texts_seen, syn_seen = {}, {}, {}, {}
     for c, (syn, desc, groups) in helps.items():
         for _, entries in groups:
             for e in entries:
@@ -334,11 +336,14 @@ def main():
         for o, arg in synopsis_options(syn):
             if arg:
                 args_seen.setdefault(o, arg)
+                if '|' in arg:
+                    syn_seen.setdefault(o, arg)
     for c, (syn, desc, groups) in helps.items():
         for p in desc:
             for s, l in re.findall(r'(?<![\w-])(-[A-Za-z])/(--[\w-]+)', p):
                 pairs.setdefault(s, l)
     stale = []
+    cmd_entries = {}
 
     def render_entries(groups, extra_opts, tag):
         out = []
@@ -412,9 +417,14 @@ def main():
             listed.update(names_)
         for _, entries in groups:
             for e in entries:
-                if not e.arg:
-                    own = dict(synopsis_options(syn))
-                    e.arg = next((own[n] for n in e.names if own.get(n)), None)
+                # the usage line's name for the value (WIDTH, floor|middle|ceiling)
+                # says more than the table's generic one (X, VALUE)
+                own = {o: v for o, v in synopsis_options(syn) if v}
+                better = next((own[n] for n in e.names if n in own), None) or \
+                    next((syn_seen[n] for n in e.names if n in syn_seen), None)
+                if better and (not e.arg or e.arg in ('X', 'N', 'VALUE')):
+                    e.arg = better
+        cmd_entries[c] = ([e for _, entries in groups for e in entries], positional(syn))
         hand_desc = dict(secs).get('DESCRIPTION', '')
         description = '\n.PP\n'.join([para(p) for p in desc] + ([hand_desc] if hand_desc else [])) or para(d)
         options_roff = render_entries(groups, extra_opts, 'lamina-' + c)
@@ -423,6 +433,45 @@ def main():
         open(os.path.join(a.out, 'lamina-%s.1' % c), 'w').write(body)
     for s in stale:
         print('genman: warning: ' + s, file=sys.stderr)
+    if a.completion_in:
+        write_completion(a.completion_in, a.completion_out, names, top_entries, cmd_entries)
+
+
+def bash_word(s):
+    return "'" + s.replace("'", "'\\''") + "'"
+
+
+def write_completion(template, out, names, top_entries, cmd_entries):
+    """The bash completion: template with the commands' options filled in."""
+    data = ['_lamina_commands=%s' % bash_word(' '.join(names)),
+            '_lamina_top_opts=%s' % bash_word(' '.join(n for e in top_entries for n in e.names)),
+            'declare -gA _lamina_opts=(' + ' '.join(
+                '[%s]=%s' % (c, bash_word(' '.join(n for e in es for n in e.names)))
+                for c, (es, _) in cmd_entries.items()) + ')',
+            'declare -gA _lamina_positional=(' + ' '.join(
+                '[%s]=%s' % (c, bash_word(p or '')) for c, (_, p) in cmd_entries.items()) + ')']
+    args = ['[%s]=%s' % (bash_word('- ' + n), bash_word(e.arg)) for e in top_entries if e.arg for n in e.names]
+    for c, (es, _) in cmd_entries.items():
+        args += ['[%s]=%s' % (bash_word(c + ' ' + n), bash_word(e.arg)) for e in es if e.arg for n in e.names]
+    data.append('declare -gA _lamina_optargs=(' + ' '.join(args) + ')')
+    text = open(template, encoding='utf-8').read()
+    if '@DATA@' not in text:
+        sys.exit('genman: %s has no @DATA@ line' % template)
+    open(out, 'w').write(text.replace('@DATA@', '\n'.join(data)))
+
+
+def positional(syn):
+    """The first argument of the usage line that is not an option or an option's value (MODEL)."""
+    toks = ' '.join(syn).split()
+    skip = set()
+    for i, t in enumerate(toks):
+        m = re.match(r'^\[*(--?[A-Za-z][\w-]*)(\]*)$', t)
+        if m and not m.group(2) and i + 1 < len(toks) and not toks[i + 1].startswith(('[', '-', '|')):
+            skip.add(i + 1)
+    for i, t in enumerate(toks[2:], 2):
+        if i not in skip and re.match(r'^[A-Z][\w.]*$', t):
+            return t
+    return None
 
 
 if __name__ == '__main__':
