@@ -243,12 +243,14 @@ install_files = for e in $(1); do \
 	  install -d "$${dst%/*}" && install -m $$mode "$$src" "$$dst" || exit 1; \
 	done
 
-.PHONY: man install-lua uninstall
+.PHONY: man lua-module install-lua uninstall
 install: all $(MAN_STAMP) $(BUILD)/lamina.pc
 	@$(call install_files,$(INSTALL_FILES))
 	@echo "lamina: installed in $(DESTDIR)$(PREFIX) ($(words $(INSTALL_FILES)) files)"
 
-install-lua: all
+# The Lua module alone (the LuaRocks rock: lamina-scm-1.rockspec).
+lua-module: $(LUAMOD) $(PLUGIN_SO)
+install-lua: lua-module
 	@$(call install_files,$(INSTALL_LUA))
 
 uninstall:
