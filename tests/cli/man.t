@@ -37,7 +37,7 @@ is "$(cd "$MANDIR" && ls *.1 | sort | tr '\n' ' ')" \
 
 # short/long pairs from every help ("-m, --machine" entries, "-s/--set" in prose)
 pairs=$( (for c in $cmds; do "$LAMINA" "$c" --help; done) |
-    perl -ne 'print "$1 $2\n" while /(?<![\w-])(-[A-Za-z0-9])(?:,\s+|\/)(--[\w-]+)/g' | sort -u)
+    perl -ne 'print "$1 $2\n" if /^\s+(-[A-Za-z0-9]),\s+(--[\w-]+)/; print "$1 $2\n" while /(?<![\w-])(-[A-Za-z0-9])\/(--[\w-]+)/g' | sort -u)
 # with_pairs: a list of options and the other spelling of each
 with_pairs() {
     local o
