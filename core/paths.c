@@ -18,13 +18,40 @@
 #define PATH_MAX 4096
 #endif
 
+static char *find_code_dir(int *module);
+
+/* Found once when the code is loaded: dladdr names a module by the path it
+ * was opened with, which may be relative ("./lamina.so" from a package.cpath
+ * of "./?.so") and so holds only until the process changes directory. Freed
+ * when the module is unloaded (lua_close dlcloses it). */
+static char *loaded_dir;
+static int loaded_module;
+
+__attribute__((constructor)) static void code_dir_init(void)
+{
+    loaded_dir = find_code_dir(&loaded_module);
+}
+
+__attribute__((destructor)) static void code_dir_fini(void)
+{
+    free(loaded_dir);
+    loaded_dir = NULL;
+}
+
 char *lam_code_dir(int *module)
+{
+    if (!loaded_dir) return find_code_dir(module);
+    if (module) *module = loaded_module;
+    return strdup(loaded_dir);
+}
+
+static char *find_code_dir(int *module)
 {
     Dl_info self, prog;
     int in_so = 0;
     char *path = NULL;
     unsigned long phdr = getauxval(AT_PHDR);
-    if (dladdr((void *)(size_t)lam_code_dir, &self) && self.dli_fname && phdr && dladdr((void *)phdr, &prog) &&
+    if (dladdr((void *)(size_t)find_code_dir, &self) && self.dli_fname && phdr && dladdr((void *)phdr, &prog) &&
         self.dli_fbase != prog.dli_fbase)
         in_so = 1;
     if (in_so) {

@@ -27,7 +27,8 @@ size_t lam_search_dirs(const char *env, const lam_rel_dirs *rel, char **dirs, si
 
 /* The directory of the file holding lamina's code (as above), malloc'd, and
  * whether it is a shared object rather than the executable (*module, may be
- * NULL); NULL when it cannot be told. */
+ * NULL); NULL when it cannot be told. Found when the code was loaded, so a
+ * module opened by a relative path stays found after a change of directory. */
 char *lam_code_dir(int *module);
 
 /* The directories of lamina's own Lua modules (lamina/adaptive.lua, ...),

@@ -129,6 +129,10 @@ if command -v lua5.4 >/dev/null; then
 table	true
 4	true" "the machines found beside lamina.so, the modules from the installed tree, the plugin too"
     cmp -s "$W/lua.cli" "$W/part.cli"; ok $? "the Lua plan's CLI file is the command line's"
+    # loaded by a relative path (package.cpath "./?.so" in lib/lua/5.4)
+    run env -i PATH=/usr/bin:/bin LD_PRELOAD=$preload ASAN_OPTIONS=detect_leaks=0 \
+        bash -c 'cd "$1" && LUA_CPATH="./?.so" lua5.4 -e "print(#require(\"lamina\").machines())"' _ "$U/lib/lua/5.4"
+    is "$OUT" "$nmach" "lamina.so loaded as ./lamina.so finds the machines too"
 else
     echo "# skipped: stock lua5.4 (Debian lua5.4) not installable"
 fi
