@@ -30,7 +30,7 @@ import textwrap
 OPT_TOKEN = re.compile(r'(?<![\w-])(--?[A-Za-z][\w-]*)')
 # a table entry: "-x, --long ARG  text", "--long ARG text", "-x  text"
 ENTRY = re.compile(r'^\s+(?:(-[A-Za-z0-9]),\s+)?(--?[A-Za-z0-9][\w-]*)'
-                   r'(?:([ =])([A-Z][A-Z0-9_.,|=-]*))?(?:\s+(\S.*))?$')
+                   r'(?:([ =])([A-Z][A-Z0-9_.,|=:-]*))?(?:\s+(\S.*))?$')
 
 
 def run_help(lamina, args):

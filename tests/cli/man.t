@@ -98,4 +98,33 @@ run python3 "$ROOT/man/genman.py" --lamina "$LAMINA" --in "$ROOT/man" --out "$TM
 is "$RC" 1 "a command list other than lamina --help's fails the build"
 like "$ERR" 'lamina --help. lists the commands' "and says why"
 
+# a lamina with one more command and more options (as later versions add
+# them): its pages and completion follow from --help alone
+cat >"$TMP/newer" <<EOS
+#!/usr/bin/env bash
+if [ "\$1" = --help ]; then
+    "$LAMINA" --help | sed 's/^\(  lamina repl .*\)/  lamina join PART... -o PROGRAM      assemble parts of a split run\n\1/'
+elif [ "\$1" = join ]; then
+    printf 'usage: lamina join PART... -o PROGRAM [-q | -v]\nJoin the part files.\n  -o, --output     the program\n  -q, --quiet      no progress\n  -v, --verbose    more detail\n'
+elif [ "\$1" = slice ]; then
+    "$LAMINA" slice --help
+    printf '  -j, --jobs N     threads (default: the online cores)\n      --layers A:B plan only layers A..B\n'
+else
+    exec "$LAMINA" "\$@"
+fi
+EOS
+chmod +x "$TMP/newer"
+printf 'print("LAMINA_THREADS")' >"$TMP/reads-threads"
+run python3 "$ROOT/man/genman.py" --lamina "$TMP/newer" --in "$ROOT/man" --out "$TMP/newer-man" --version x \
+    --binaries "$TMP/reads-threads" --completion-in "$ROOT/completion/lamina.bash.in" --completion-out "$TMP/newer-comp"
+is "$RC" 0 "genman.py on a lamina with a new command"
+is "$ERR" "" "without warnings"
+[ -f "$TMP/newer-man/lamina-join.1" ]; ok $? "the new command has its page"
+is "$(page_opts "$TMP/newer-man/lamina-join.1" | tr '\n' ' ')" "--output --quiet --verbose -o -q -v " "with its options"
+like "$(cat "$TMP/newer-man/lamina-slice.1")" '^\\fB\\-j\\fR, \\fB\\-\\-jobs\\fR \\fIN\\fR$' "a new option in a page"
+like "$(cat "$TMP/newer-man/lamina-slice.1")" '^\\fB\\-\\-layers\\fR \\fIA:B\\fR$' "with its argument A:B"
+like "$(cat "$TMP/newer-man/lamina.1")" '^\.B LAMINA_THREADS$' "LAMINA_THREADS documented once a binary reads it"
+like "$(cat "$TMP/newer-man/lamina.1")" '\\fBlamina join\\fR PART' "lamina(1) lists the new command"
+like "$(cat "$TMP/newer-comp")" "\\[join\\]='-o --output -q --quiet -v --verbose'" "the completion offers its options"
+
 done_testing
