@@ -76,7 +76,9 @@ def parse_command_help(text):
     syn, i = [], 0
     while i < len(lines) and (i == 0 or re.match(r'^ {4,}\S', lines[i]) and
                               not lines[i].lstrip().startswith('-')):
-        syn.append(re.sub(r'^usage: ', '', lines[i]) if i == 0 else lines[i][7:] if lines[i].startswith(' ' * 7) else lines[i].strip())
+        # continuation lines keep their alignment under the text after "usage: "
+        line = lines[i]
+        syn.append(re.sub(r'^usage: ', '', line) if i == 0 else line[7:] if line.startswith(' ' * 7) else line.strip())
         i += 1
     blocks = []     # ("prose", [lines]) or ("table", [Entry])
     for line in lines[i:]:
