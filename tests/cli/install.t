@@ -102,6 +102,15 @@ is "$(sed -n 's/^contour //p' "$W/out/part.sls" 2>/dev/null | sort -u | tr '\n' 
     "0.000000 0.250000 0.500000 0.750000 1.000000 1.250000 1.500000 1.750000 " "at the 8 layer heights"
 [ -s "$W/out/part.ladrp" ] && [ -s "$W/out/part.svg" ]; ok $? "and its LADRP program and contact sheet"
 
+# a sandboxed recipe may require lamina's modules from the installed Lua
+# tree, and nothing else of that tree (other packages' modules live there)
+printf 'return 1\n' >"$U/share/lua/5.4/otherpkg.lua"
+printf 'print(type(require "lamina.axes"))\nprint(pcall(require, "otherpkg"))\n' >"$W/req.lua"
+run clean "$U/bin/lamina" run --safe --allow . req.lua
+is "$(printf '%s\n' "$OUT" | head -1)" "table" "lamina run --safe: require \"lamina.axes\" from share/lua/5.4"
+like "$OUT" "^false\t.*module 'otherpkg' not found" "but not another package's module there"
+rm -f "$U/share/lua/5.4/otherpkg.lua"
+
 # binary CLI through the plugin, found beside the installed executable
 run clean "$U/bin/lamina" slice part.ug -m cli-binary -w 0.5 -o part.cli
 is "$RC" 0 "installed lamina slices with the cli-binary profile (no LAMINA_PLUGINS)"
