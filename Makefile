@@ -5,7 +5,11 @@
 #   make SAN=1 test the same under AddressSanitizer + UndefinedBehaviorSanitizer
 #   make bench      optimised build and benchmarks against peer tools
 #   make install PREFIX=/usr/local [DESTDIR=...]: executable, liblamina.a, lamina.h and
-#                   the headers it names, lamina.pc, profiles, plugins, Lua modules
+#                   the headers it names, lamina.pc, profiles, plugins, Lua modules and
+#                   the C module, man pages, bash completion, docs; `make uninstall`
+#                   (same variables) removes them again
+#   make man        the man pages in $(BUILD)/man and the bash completion in
+#                   $(BUILD)/completion (generated from the commands' --help)
 
 CC      ?= cc
 PREFIX  ?= /usr/local
@@ -24,7 +28,8 @@ endif
 # Debian packages the build, the tests and `make run` need; `make deps`
 # installs only the missing ones.
 DEPS_PKGS := gcc make perl liblua5.4-dev lua5.4 libyaml-dev libembree-dev libgeos-dev libreadline8 \
-             jq python3 python3-jsonschema time librsvg2-bin tmux pkg-config parallel
+             jq python3 python3-jsonschema time librsvg2-bin tmux pkg-config parallel \
+             luarocks man-db mandoc bash-completion
 # Packages a test can do without: installed the same way when missing, but
 # a failure only means the test that needs one skips (and says so).
 DEPS_OPTIONAL := chromium
@@ -197,7 +202,7 @@ $(BUILD)/tests/plugins/%.so: tests/plugins/%.c core/lamina_plugin.h tests/plugin
 	@mkdir -p $(dir $@)
 	$(CC) $(CPPFLAGS) $(CFLAGS) -fPIC -shared -o $@ $< $(LDFLAGS)
 
-check: all $(UNIT_BIN) $(TEST_PLUGIN_SO) $(FUZZ_BIN)
+check: all $(UNIT_BIN) $(TEST_PLUGIN_SO) $(FUZZ_BIN) man
 	LAMINA=$(abspath $(LAMINA)) TESTS=$(abspath tests) BUILD=$(abspath $(BUILD)) \
 	  prove --exec '' $(UNIT_BIN) $(sort $(wildcard tests/cli/*.t)) tests/fuzz/fuzz.t
 
@@ -208,27 +213,95 @@ bench:
 	@$(MAKE) --no-print-directory OPT="-O3 -march=native -DNDEBUG" BUILD=build-bench all
 	@bash tests/bench/run.sh $(abspath build-bench/lamina)
 
-install: all
-	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/lib $(DESTDIR)$(PREFIX)/include/lamina
-	install -m 755 $(LAMINA) $(DESTDIR)$(PREFIX)/bin/lamina
-	install -m 644 $(LIB) $(DESTDIR)$(PREFIX)/lib/liblamina.a
-	install -m 644 $(PUBLIC_H) $(DESTDIR)$(PREFIX)/include/lamina/
-	install -d $(DESTDIR)$(PREFIX)/lib/pkgconfig
-	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|$(VERSION)|' -e 's|@LIBS@|$(strip $(SANFLAGS) $(LDLIBS))|' \
-	  lamina.pc.in > $(DESTDIR)$(PREFIX)/lib/pkgconfig/lamina.pc
-	install -d $(DESTDIR)$(PREFIX)/share/lamina/machines $(DESTDIR)$(PREFIX)/lib/lamina/plugins
-	install -m 644 machines/*.yaml $(DESTDIR)$(PREFIX)/share/lamina/machines/
-	install -d $(DESTDIR)$(PREFIX)/share/lamina/schema
-	install -m 644 schema/*.json $(DESTDIR)$(PREFIX)/share/lamina/schema/
-	$(if $(PLUGIN_SO),install -m 755 $(PLUGIN_SO) $(DESTDIR)$(PREFIX)/lib/lamina/plugins/)
-	install -d $(DESTDIR)$(PREFIX)/share/lamina/lua/lamina $(DESTDIR)$(PREFIX)/lib/lua/5.4
-	$(if $(wildcard lua/lamina/*.lua),install -m 644 lua/lamina/*.lua $(DESTDIR)$(PREFIX)/share/lamina/lua/lamina/)
-	install -m 755 $(LUAMOD) $(DESTDIR)$(PREFIX)/lib/lua/5.4/lamina.so
-	install -d $(DESTDIR)$(PREFIX)/share/lamina/recipes/parts
-	install -m 644 recipes/*.lua recipes/README.md $(DESTDIR)$(PREFIX)/share/lamina/recipes/
-	install -m 644 recipes/parts/* $(DESTDIR)$(PREFIX)/share/lamina/recipes/parts/
+# ---- installation ----------------------------------------------------------
+# One list, INSTALL_FILES (MODE:SOURCE:DESTINATION, destinations without
+# DESTDIR), drives `make install` and `make uninstall`, so uninstall removes
+# exactly what install put there. The layout follows each ecosystem: Lua
+# modules in share/lua/5.4, the C module in lib/lua/5.4 (a stock lua5.4
+# finds both under /usr/local), man pages, bash completion, docs. The C
+# module finds machines and plugins relative to its own file and the
+# executable relative to itself (core/paths.h), so the tree may move; with
+# other directories than these defaults set LAMINA_MACHINES/LAMINA_PLUGINS.
+BINDIR      ?= $(PREFIX)/bin
+LIBDIR      ?= $(PREFIX)/lib
+INCLUDEDIR  ?= $(PREFIX)/include
+DATADIR     ?= $(PREFIX)/share
+LUA_CMODDIR ?= $(LIBDIR)/lua/5.4
+LUA_MODDIR  ?= $(DATADIR)/lua/5.4
+MACHINEDIR  ?= $(DATADIR)/lamina/machines
+PLUGINDIR   ?= $(LIBDIR)/lamina/plugins
+DOCDIR      ?= $(DATADIR)/doc/lamina
+MANDIR      ?= $(DATADIR)/man
+BASHCOMPDIR ?= $(DATADIR)/bash-completion/completions
+
+# Man pages: lamina(1) and lamina-CMD(1) for each command of `lamina --help`
+# (the generator checks that its list is this one), generated from the
+# commands' --help texts and man/*.in (description, examples); the bash
+# completion from the same reading of --help and completion/lamina.bash.in.
+MAN_CMDS  := $(shell sed -n 's/^ *"  lamina \([a-z][a-z0-9-]*\) .*/\1/p' lua/cli/main.c)
+MAN_PAGES := $(BUILD)/man/lamina.1 $(MAN_CMDS:%=$(BUILD)/man/lamina-%.1)
+MAN_STAMP := $(BUILD)/man/.stamp
+
+man: $(MAN_STAMP)
+$(MAN_STAMP): $(LAMINA) man/genman.py $(wildcard man/*.in) completion/lamina.bash.in $(if $(BIND_SRC),$(LUAMOD)) $(PLUGIN_SO)
+	@mkdir -p $(dir $@) $(BUILD)/completion
+	python3 man/genman.py --lamina $(LAMINA) --in man --out $(BUILD)/man --version $(VERSION) \
+	  --binaries "$(LAMINA) $(LUAMOD) $(PLUGIN_SO)" --expect "$(MAN_CMDS)" \
+	  --completion-in completion/lamina.bash.in --completion-out $(BUILD)/completion/lamina
+	@touch $@
+$(MAN_PAGES) $(BUILD)/completion/lamina: $(MAN_STAMP)
+
+$(BUILD)/lamina.pc: lamina.pc.in core/version.h
+	@mkdir -p $(dir $@)
+	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@LIBDIR@|$(patsubst $(PREFIX)/%,$${prefix}/%,$(LIBDIR))|' \
+	  -e 's|@INCLUDEDIR@|$(patsubst $(PREFIX)/%,$${prefix}/%,$(INCLUDEDIR))|' \
+	  -e 's|@VERSION@|$(VERSION)|' -e 's|@LIBS@|$(strip $(SANFLAGS) $(LDLIBS))|' $< > $@
+
+# What the Lua module needs (also all a LuaRocks rock installs: install-lua).
+INSTALL_LUA := 755:$(LUAMOD):$(LUA_CMODDIR)/lamina.so \
+  $(foreach f,$(wildcard lua/lamina/*.lua),644:$(f):$(LUA_MODDIR)/lamina/$(notdir $(f))) \
+  $(foreach f,$(wildcard machines/*.yaml),644:$(f):$(MACHINEDIR)/$(notdir $(f))) \
+  $(foreach f,$(PLUGIN_SO),755:$(f):$(PLUGINDIR)/$(notdir $(f)))
+INSTALL_FILES := $(INSTALL_LUA) \
+  755:$(LAMINA):$(BINDIR)/lamina \
+  644:$(LIB):$(LIBDIR)/liblamina.a \
+  $(foreach f,$(PUBLIC_H),644:$(f):$(INCLUDEDIR)/lamina/$(notdir $(f))) \
+  644:$(BUILD)/lamina.pc:$(LIBDIR)/pkgconfig/lamina.pc \
+  644:README.md:$(DOCDIR)/README.md 644:lua/API.md:$(DOCDIR)/lua/API.md \
+  644:machines/README.md:$(DOCDIR)/machines/README.md 644:docs/json.md:$(DOCDIR)/json.md \
+  $(foreach f,$(wildcard schema/*.json),644:$(f):$(DATADIR)/lamina/schema/$(notdir $(f))) \
+  $(foreach f,recipes/README.md $(wildcard recipes/*.lua),644:$(f):$(DOCDIR)/recipes/$(notdir $(f))) \
+  $(foreach f,$(wildcard recipes/parts/*),644:$(f):$(DOCDIR)/recipes/parts/$(notdir $(f))) \
+  $(foreach f,$(MAN_PAGES),644:$(f):$(MANDIR)/man1/$(notdir $(f))) \
+  644:$(BUILD)/completion/lamina:$(BASHCOMPDIR)/lamina
+# Directories that are lamina's alone: removed by uninstall when empty.
+INSTALL_OWN_DIRS := $(DATADIR)/lamina/schema $(DOCDIR)/recipes/parts $(DOCDIR)/recipes $(DOCDIR)/lua $(DOCDIR)/machines $(DOCDIR) \
+  $(INCLUDEDIR)/lamina $(MACHINEDIR) $(DATADIR)/lamina $(PLUGINDIR) $(LIBDIR)/lamina $(LUA_MODDIR)/lamina \
+  $(LUA_MODDIR)/lamina/machines $(LUA_CMODDIR)/lamina/plugins $(LUA_CMODDIR)/lamina
+
+# install_files LIST: each MODE:SOURCE:DESTINATION under $(DESTDIR)
+install_files = for e in $(1); do \
+	  mode=$${e%%:*}; rest=$${e\#*:}; src=$${rest%%:*}; dst="$(DESTDIR)$${rest\#*:}"; \
+	  install -d "$${dst%/*}" && install -m $$mode "$$src" "$$dst" || exit 1; \
+	done
+
+.PHONY: man lua-module install-lua uninstall
+install: all $(MAN_STAMP) $(BUILD)/lamina.pc
+	@$(call install_files,$(INSTALL_FILES))
+	@echo "lamina: installed in $(DESTDIR)$(PREFIX) ($(words $(INSTALL_FILES)) files)"
+
+# The Lua module alone (the LuaRocks rock: lamina-scm-1.rockspec).
+lua-module: $(LUAMOD) $(PLUGIN_SO)
+install-lua: lua-module
+	@$(call install_files,$(INSTALL_LUA))
+
+uninstall:
+	@for e in $(INSTALL_FILES); do rest=$${e#*:}; rm -f "$(DESTDIR)$${rest#*:}"; done
+	@for d in $(sort $(INSTALL_OWN_DIRS)); do echo "$(DESTDIR)$$d"; done | sort -r | \
+	  while read -r d; do [ ! -d "$$d" ] || rmdir --ignore-fail-on-non-empty "$$d"; done
+	@echo "lamina: uninstalled from $(DESTDIR)$(PREFIX)"
 
 clean:
-	rm -rf build build-san build-bench build-fuzz out $(PLUGIN_SO)
+	rm -rf build build-san build-bench build-fuzz out rocks $(PLUGIN_SO)
 
 -include $(CORE_OBJ:.o=.d) $(CLI_OBJ:.o=.d)

@@ -543,9 +543,14 @@ int lam_plugin_writer_sink(const char *name, lam_writer *w, lam_sink *out, lam_e
     if (!w) return lam_error_set(err, LAM_EUSAGE, NULL, 0, 0, "writer %s: no output given", name);
     const writer_entry *we = find_writer(name);
     if (!we) {
-        static const char *const rel[] = {"plugins", "../plugins", "../lib/lamina/plugins", NULL};
+        /* a sanitizer build's own plugins/ first, the build tree, an installed
+         * tree (lib/lamina/plugins from bin/ and from lib/lua/5.4/), a LuaRocks
+         * tree (lib/lua/5.4/lamina/plugins, deployed with the C module) */
+        static const char *const exe[] = { "plugins", "../plugins", "../lib/lamina/plugins", NULL };
+        static const char *const module[] = { "plugins", "../plugins", "../../lamina/plugins", "lamina/plugins", NULL };
+        static const lam_rel_dirs rel = { exe, module };
         char *dirs[MAX_DIRS];
-        size_t ndirs = lam_search_dirs("LAMINA_PLUGINS", rel, dirs, MAX_DIRS);
+        size_t ndirs = lam_search_dirs("LAMINA_PLUGINS", &rel, dirs, MAX_DIRS);
         lam_error_clear(err);
         int rc = load_named(name, dirs, ndirs, err);
         for (size_t i = 0; i < ndirs; i++) free(dirs[i]);

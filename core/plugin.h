@@ -38,7 +38,9 @@ int lam_plugin_load(const char *path, lam_error *err);
  * and no other file: a plugin's code runs only when a profile names it.
  * That file must provide the writer NAME. Plugin directories, in order:
  * $LAMINA_PLUGINS (colon-separated), then <exe dir>/plugins,
- * <exe dir>/../plugins, <exe dir>/../lib/lamina/plugins. A name that is not
+ * <exe dir>/../plugins, <exe dir>/../lib/lamina/plugins; from the C module
+ * lamina.so (paths.h): <dir>/plugins, <dir>/../plugins, <dir>/../../lamina/plugins
+ * (lib/lua/5.4/lamina.so installed), <dir>/lamina/plugins (a LuaRocks tree). A name that is not
  * a file name (letters, digits, '-', '_', '.'; not starting with '.') is
  * refused.
  *

@@ -649,8 +649,14 @@ static int is_file(const char *path)
 
 size_t lam_machine_dirs(char **dirs, size_t max)
 {
-    static const char *const rel[] = { "../machines", "../share/lamina/machines", NULL };
-    return lam_search_dirs("LAMINA_MACHINES", rel, dirs, max);
+    /* the build tree, then an installed tree: bin/lamina, lib/lua/5.4/lamina.so,
+     * and a LuaRocks tree's lib/lua/5.4/lamina.so (its data goes with the Lua
+     * modules, the only place a rock's files other than C modules are deployed) */
+    static const char *const exe[] = { "../machines", "../share/lamina/machines", NULL };
+    static const char *const module[] = { "../machines", "../../../share/lamina/machines",
+                                          "../../../share/lua/5.4/lamina/machines", NULL };
+    static const lam_rel_dirs rel = { exe, module };
+    return lam_search_dirs("LAMINA_MACHINES", &rel, dirs, max);
 }
 
 /* NAME.yaml in the machine directories: a malloc'd path, or NULL with the

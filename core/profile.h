@@ -80,9 +80,12 @@ const char *lam_profile_builtin_sls_text(void);
 void lam_profile_free(lam_profile *p);
 
 /* The directories searched for shipped profiles, in order: $LAMINA_MACHINES
- * (colon-separated), then <dir of the executable>/../machines and
- * <dir of the executable>/../share/lamina/machines. Returns the number of
- * directories stored into dirs (each malloc'd; caller frees). */
+ * (colon-separated), then from the executable's directory ../machines (the
+ * build tree) and ../share/lamina/machines (an installed tree); from the C
+ * module lamina.so's directory (a stock lua5.4, paths.h) ../machines,
+ * ../../../share/lamina/machines (lib/lua/5.4/lamina.so installed) and
+ * ../../../share/lua/5.4/lamina/machines (a LuaRocks tree). Returns the number
+ * of directories stored into dirs (each malloc'd; caller frees). */
 size_t lam_machine_dirs(char **dirs, size_t max);
 
 /* How many millimetres one unit of the profile's `units` is: mm 1, cm 10,

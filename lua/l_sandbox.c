@@ -383,8 +383,9 @@ static int sb_collectgarbage(lua_State *L)
 }
 
 /* require(name): loaded modules, else NAME.lua or NAME/init.lua (dots as
- * slashes) in lamina's module directories, then the readable
- * directories; text only. */
+ * slashes) in lamina's module directories (lamina.* only: installed, they
+ * are the Lua tree share/lua/5.4 that other packages' modules share), then
+ * the readable directories; text only. */
 static int sb_require(lua_State *L)
 {
     const char *name = luaL_checkstring(L, 1);
@@ -405,6 +406,7 @@ static int sb_require(lua_State *L)
     static const char *const forms[] = { "%s/%s.lua", "%s/%s/init.lua" };
     for (size_t d = 0; d < sb->nmods + sb->ndirs; d++) {
         const char *dir = d < sb->nmods ? sb->mods[d] : sb->dirs[d - sb->nmods];
+        if (d < sb->nmods && strncmp(name, "lamina.", 7) != 0) continue;
         for (int k = 0; k < 2; k++) {
             char path[PATH_MAX];
             snprintf(path, sizeof path, forms[k], dir, rel);
@@ -579,8 +581,7 @@ lua_State *lam_lua_sandbox_open(const lam_sandbox_opts *o, char *msg, size_t siz
             sandbox_free(sb);
             return NULL;
         }
-    static const char *const rel[] = { "../lua", "../share/lamina/lua", NULL };
-    sb->nmods = lam_search_dirs(NULL, rel, sb->mods, 4);
+    sb->nmods = lam_lua_dirs(sb->mods, 4);
     char *md[8];
     size_t nmd = lam_machine_dirs(md, 8);
     for (size_t i = 0; i < nmd; i++) {

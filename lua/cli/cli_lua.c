@@ -28,11 +28,10 @@ static int init_state(lua_State *L)
     luaL_openlibs(L);
     luaL_requiref(L, "lamina", luaopen_lamina, 1);
     lua_pop(L, 1);
-    /* lamina's own Lua modules: <exe>/../lua and <exe>/../share/lamina/lua first */
-    static const char *const rel[] = { "../lua", "../share/lamina/lua", NULL };
+    /* lamina's own Lua modules first (the build tree's, an installed tree's) */
     char *dirs[4];
     void **box = lam_lua_newbox(L); /* the C string below, freed even on a memory error */
-    size_t n = lam_search_dirs(NULL, rel, dirs, 4), len = 1;
+    size_t n = lam_lua_dirs(dirs, 4), len = 1;
     for (size_t i = 0; i < n; i++) len += 2 * strlen(dirs[i]) + 20;
     char *path = malloc(len);
     if (path) {

@@ -22,8 +22,9 @@ static const char usage_text[] =
     "(and the values of -s/--set KEY=VALUE applied, as 'lamina slice' would);\n"
     "--keys lists every key a profile may have: type, default, meaning.\n"
     "Profiles are NAME.yaml files in $LAMINA_MACHINES (colon-separated), then\n"
-    "<lamina>/../machines and <lamina>/../share/lamina/machines; when two\n"
-    "directories have the same name, the first one wins.\n";
+    "<lamina>/../machines and <lamina>/../share/lamina/machines (for the Lua\n"
+    "module: beside lamina.so, see lua/API.md); when two directories have the\n"
+    "same name, the first one wins.\n";
 
 typedef struct entry {
     char *name, *path;

@@ -3,6 +3,12 @@
 # program built against the installed library with nothing but
 # `pkg-config --cflags --libs lamina`: the public headers are complete, the
 # internal ones are not installed, and the program slices a model right.
+# Then the installed tree on its own, from a working directory outside the
+# source tree with no LAMINA_* variables: the executable runs a shipped
+# recipe and finds the binary-CLI plugin, a stock lua5.4 loads the C module
+# and a shipped Lua module and finds the machines beside lamina.so, every man
+# page renders and lints clean, the completion completes; `make uninstall`
+# leaves no file behind.
 . "$(dirname "$0")/lib.sh"
 
 ROOT=$(cd "$TESTS/.." && pwd)
@@ -60,5 +66,121 @@ layer 3 at 1.75: 2 contours, net area 3.000000 (shoelace 3.000000)" "four layers
 run "$TMP/slice_area" "$M/bad/no_such_model.ug" 0.5
 is "$RC" 1 "a missing model: exit 1"
 like "$ERR" 'no_such_model' "with lamina's message naming the file"
+
+
+# ---- the installed tree on its own -----------------------------------------
+U="$D/usr"
+for f in bin/lamina lib/lua/5.4/lamina.so share/lua/5.4/lamina/adaptive.lua share/lua/5.4/lamina/axes.lua \
+    lib/lamina/plugins/cli-binary.so share/doc/lamina/README.md share/doc/lamina/lua/API.md \
+    share/doc/lamina/machines/README.md share/doc/lamina/recipes/README.md \
+    share/man/man1/lamina.1 share/man/man1/lamina-slice.1 share/bash-completion/completions/lamina; do
+    [ -f "$U/$f" ]; ok $? "installed: $f"
+done
+nmach=$(ls "$ROOT"/machines/*.yaml | wc -l)
+is "$(ls "$U"/share/lamina/machines/*.yaml | wc -l)" "$nmach" "every shipped profile in share/lamina/machines"
+[ ! -e "$U/share/lamina/lua" ]; ok $? "no Lua modules outside the Lua path (share/lamina/lua)"
+
+W="$TMP/work"
+mkdir -p "$W"
+cp "$M/thesis_cube_hole.ug" "$W/part.ug"
+# a clean environment: no LAMINA_* variables, nothing pointing into the checkout
+clean() { (cd "$W" && env -i PATH=/usr/bin:/bin HOME="$TMP" LANG=C.UTF-8 ${ASAN_OPTIONS:+ASAN_OPTIONS=$ASAN_OPTIONS} \
+    ${UBSAN_OPTIONS:+UBSAN_OPTIONS=$UBSAN_OPTIONS} "$@"); }
+
+run clean "$U/bin/lamina" machines
+is "$RC" 0 "installed lamina machines"
+is "$(printf '%s\n' "$OUT" | wc -l)" "$nmach" "lists the $nmach installed profiles"
+
+# the shipped default recipe on the copied part: the SLS program of the
+# 2-high cube with its through hole at layers 0.25 (floor cut) has 8 layers
+# of 2 contours each (the square and the hole) at heights 0, 0.25, ..., 1.75
+run clean "$U/bin/lamina" run "$U/share/doc/lamina/recipes/default.lua" --out out part.ug
+is "$RC" 0 "installed lamina runs the installed default recipe"
+[ $RC -eq 0 ] || echo "$ERR" | sed 's/^/#   /' | head
+is "$(grep -c '^contour ' "$W/out/part.sls" 2>/dev/null)" 16 "its SLS program: 16 contours"
+is "$(sed -n 's/^contour //p' "$W/out/part.sls" 2>/dev/null | sort -u | tr '\n' ' ')" \
+    "0.000000 0.250000 0.500000 0.750000 1.000000 1.250000 1.500000 1.750000 " "at the 8 layer heights"
+[ -s "$W/out/part.ladrp" ] && [ -s "$W/out/part.svg" ]; ok $? "and its LADRP program and contact sheet"
+
+# a sandboxed recipe may require lamina's modules from the installed Lua
+# tree, and nothing else of that tree (other packages' modules live there)
+printf 'return 1\n' >"$U/share/lua/5.4/otherpkg.lua"
+printf 'print(type(require "lamina.axes"))\nprint(pcall(require, "otherpkg"))\n' >"$W/req.lua"
+run clean "$U/bin/lamina" run --safe --allow . req.lua
+is "$(printf '%s\n' "$OUT" | head -1)" "table" "lamina run --safe: require \"lamina.axes\" from share/lua/5.4"
+like "$OUT" "^false\t.*module 'otherpkg' not found" "but not another package's module there"
+rm -f "$U/share/lua/5.4/otherpkg.lua"
+
+# binary CLI through the plugin, found beside the installed executable
+run clean "$U/bin/lamina" slice part.ug -m cli-binary -w 0.5 -o part.cli
+is "$RC" 0 "installed lamina slices with the cli-binary profile (no LAMINA_PLUGINS)"
+[ $RC -eq 0 ] || echo "$ERR" | sed 's/^/#   /' | head
+like "$(head -c 400 "$W/part.cli" 2>/dev/null | tr -c '[:print:]\n' '.')" '^\$\$HEADERSTART' "a binary CLI file"
+like "$(head -c 400 "$W/part.cli" 2>/dev/null | tr -c '[:print:]\n' '.')" '\$\$LAYERS/4\b' "of 4 layers (height 2, width 0.5)"
+
+# a stock lua5.4 with LUA_PATH/LUA_CPATH on the installed tree
+if command -v lua5.4 >/dev/null; then
+    preload=""
+    [ $san -eq 1 ] && preload="$(cc -print-file-name=libasan.so):$(cc -print-file-name=libubsan.so)"
+    run clean env LD_PRELOAD=$preload ASAN_OPTIONS=detect_leaks=0 LUA_PATH="$U/share/lua/5.4/?.lua;;" \
+        LUA_CPATH="$U/lib/lua/5.4/?.so;;" lua5.4 -e '
+        local l = require "lamina"
+        local ad = require "lamina.adaptive"
+        print(#l.machines(), package.searchpath("lamina", package.cpath), package.searchpath("lamina.adaptive", package.path))
+        print(type(ad), l.machine("ded-gcode") ~= nil)
+        local m = assert(l.load("part.ug"))
+        local layers = assert(m:slice{width = 0.5})
+        local plan = assert(assert(l.machine("cli-binary")):plan(layers))
+        print(#layers, assert(plan:write("lua.cli")))'
+    is "$RC" 0 "stock lua5.4: require lamina, lamina.adaptive, plan cli-binary"
+    [ $RC -eq 0 ] || echo "$ERR" | sed 's/^/#   /' | head
+    is "$OUT" "$nmach	$U/lib/lua/5.4/lamina.so	$U/share/lua/5.4/lamina/adaptive.lua
+table	true
+4	true" "the machines found beside lamina.so, the modules from the installed tree, the plugin too"
+    cmp -s "$W/lua.cli" "$W/part.cli"; ok $? "the Lua plan's CLI file is the command line's"
+    # loaded by a relative path (package.cpath "./?.so" in lib/lua/5.4)
+    run env -i PATH=/usr/bin:/bin LD_PRELOAD=$preload ASAN_OPTIONS=detect_leaks=0 \
+        bash -c 'cd "$1" && LUA_CPATH="./?.so" lua5.4 -e "print(#require(\"lamina\").machines())"' _ "$U/lib/lua/5.4"
+    is "$OUT" "$nmach" "lamina.so loaded as ./lamina.so finds the machines too"
+else
+    echo "# skipped: stock lua5.4 (Debian lua5.4) not installable"
+fi
+
+# man pages: each renders with man -l (NAME and every command it documents)
+# and lints clean; the option lists themselves are compared in man.t
+if command -v man >/dev/null && command -v mandoc >/dev/null; then
+    for p in "$U"/share/man/man1/*.1; do
+        n=$(basename "$p" .1)
+        run env MANWIDTH=80 man -l "$p"
+        is "$RC" 0 "man -l $n.1"
+        like "$OUT" "^NAME\n +$n +- +\S" "$n.1 renders its NAME"
+        run mandoc -T lint -W warning "$p"
+        is "$OUT$ERR" "" "mandoc -T lint: $n.1 has no warnings"
+        run groff -man -ww -z "$p"
+        is "$ERR" "" "groff -ww: $n.1 has no warnings"
+    done
+    is "$(ls "$U"/share/man/man1/ | tr '\n' ' ')" \
+        "$(for c in $("$U/bin/lamina" --help | sed -n 's/^  lamina \([a-z][a-z0-9-]*\) .*/\1/p'); do
+            echo "lamina-$c.1"; done | sort | tr '\n' ' ')lamina.1 " "a page per command of lamina --help, and lamina(1)"
+else
+    echo "# skipped: man pages (Debian man-db and mandoc) not installable"
+fi
+
+# the installed completion, sourced into a bash
+comp=$(cd "$W" && bash -c '. "$1"
+    COMP_WORDS=("$2" sl); COMP_CWORD=1; _lamina; echo "${COMPREPLY[*]}"
+    COMP_WORDS=("$2" slice -m ""); COMP_CWORD=3; _lamina; echo "${COMPREPLY[*]}"
+    COMP_WORDS=("$2" info ""); COMP_CWORD=2; _lamina; echo "${COMPREPLY[*]}"' _ \
+    "$U/share/bash-completion/completions/lamina" "$U/bin/lamina" 2>&1)
+is "$comp" "slice
+$(ls "$ROOT"/machines/*.yaml | sed 's|.*/||; s|\.yaml$||' | tr '\n' ' ' | sed 's/ $//')
+out part.ug" "installed completion: commands, machine names, models"
+
+# ---- make uninstall ----------------------------------------------------------
+(unset MAKEFLAGS MFLAGS MAKELEVEL; make -s --no-print-directory -C "$ROOT" uninstall \
+    DESTDIR="$D" PREFIX=/usr BUILD="$B" SAN=$san) >"$TMP/make.out" 2>&1
+is "$?" 0 "make uninstall DESTDIR=... PREFIX=/usr"
+is "$(cd "$D" && find . -type f -o -type l | sort)" "" "make uninstall leaves no file"
+is "$(cd "$D" && find . -name '*lamina*' | sort)" "" "nor a directory of lamina's"
 
 done_testing
