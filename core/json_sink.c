@@ -9,6 +9,7 @@
 #include "fmt.h"
 #include "hatch.h"
 #include "slice.h"
+#include "vstream.h"
 
 /* Text waits in buf until a line ends or it passes FLUSH_AT bytes, so a
  * contour of a million points never needs its whole line in memory. */
@@ -24,11 +25,6 @@ typedef struct js {
     lam_frame frame;
     int frame_machine;
     double cut;              /* the layer's build height */
-    double stage[3];         /* LADRP: where the last move ended */
-    double scan[3];          /* SLS: where the scanner's last path ended in this layer */
-    int have_scan;
-    size_t order;            /* vectors of the layer so far */
-    double deposit, travel;  /* the layer's lengths */
     size_t layers, contours, vectors;
     double deposit_total, travel_total;
     lam_scan_time time;      /* the layers' estimates, summed */
@@ -188,7 +184,6 @@ static int j_begin(void *ctx, const lam_job_info *job)
     if (job->frame) s->frame = *job->frame;
     else lam_frame_axis('z', &s->frame, NULL);
     s->frame_machine = job->frame_machine;
-    memcpy(s->stage, job->origin, sizeof s->stage);
     put(s, "{\"format\": \"lamina-run\", \"version\": ");
     size(s, LAM_JSON_VERSION);
     put(s, ",");
@@ -263,9 +258,6 @@ static int j_layer(void *ctx, const lam_layer_info *li)
 {
     js *s = ctx;
     s->cut = li->z;
-    s->order = 0;
-    s->deposit = s->travel = 0;
-    s->have_scan = 0; /* the scanner starts each layer at its first path */
     put(s, s->layers ? "," : "");
     line(s);
     put(s, "  {\"index\": ");
@@ -313,66 +305,25 @@ static int j_layer(void *ctx, const lam_layer_info *li)
     return s->rc;
 }
 
-static int is_travel(const char *kind) { return !strcmp(kind, "travel") || !strcmp(kind, "jump"); }
-
-static int vector(js *s, const char *kind, const double a[3], const double b[3])
+/* The plan's vectors come decoded by vstream.h, by the rules the SVG
+ * preview draws them with. */
+static int j_vector(void *ctx, const lam_vec *v)
 {
-    double len = sqrt((b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]) + (b[2] - a[2]) * (b[2] - a[2]));
-    if (is_travel(kind)) s->travel += len;
-    else s->deposit += len;
-    put(s, s->order++ ? "," : "");
+    js *s = ctx;
+    put(s, v->order > 1 ? "," : "");
     line(s);
     put(s, "    {\"kind\": \"");
-    put(s, kind);
+    put(s, v->kind);
     put(s, "\", \"from\": ");
-    pt(s, a);
+    pt(s, v->from);
     put(s, ", \"to\": ");
-    pt(s, b);
+    pt(s, v->to);
     put(s, ", \"order\": ");
-    size(s, s->order);
+    size(s, v->order);
     put(s, "}");
     s->vectors++;
+    if (s->len >= FLUSH_AT) flush(s);
     return s->rc;
-}
-
-static int j_move(void *ctx, int deposit, const double xyz[3])
-{
-    js *s = ctx;
-    double from[3];
-    memcpy(from, s->stage, sizeof from);
-    memcpy(s->stage, xyz, sizeof s->stage);
-    return vector(s, deposit ? "deposit" : "travel", from, xyz);
-}
-
-/* The scanner's path from `start`: a jump there first when it is elsewhere. */
-static int jump_to(js *s, const double start[3])
-{
-    int rc = LAM_OK;
-    if (s->have_scan && memcmp(s->scan, start, sizeof s->scan)) rc = vector(s, "jump", s->scan, start);
-    s->have_scan = 1;
-    return rc;
-}
-
-static int j_contour(void *ctx, const lam_contour_info *c)
-{
-    js *s = ctx;
-    if (c->n < 2) return s->rc;
-    int rc = jump_to(s, c->xyz);
-    for (size_t i = 0; i < c->n && !rc; i++) rc = vector(s, "contour", c->xyz + 3 * i, c->xyz + 3 * ((i + 1) % c->n));
-    memcpy(s->scan, c->xyz, sizeof s->scan); /* a closed path ends where it starts */
-    return rc;
-}
-
-static int j_hatches(void *ctx, const lam_hatch_info *h)
-{
-    js *s = ctx;
-    int rc = s->rc;
-    for (size_t i = 0; i < h->n && !rc; i++) {
-        const double *p = h->xyz + 6 * i;
-        if (!(rc = jump_to(s, p))) rc = vector(s, h->kind, p, p + 3);
-        memcpy(s->scan, p + 3, sizeof s->scan);
-    }
-    return rc;
 }
 
 static void time_object(js *s, const lam_scan_time *t)
@@ -388,7 +339,7 @@ static void time_object(js *s, const lam_scan_time *t)
     put(s, "}");
 }
 
-static int j_layer_end(void *ctx, const lam_layer_info *li)
+static int j_layer_end(void *ctx, const lam_layer_info *li, const lam_vec_stats *st)
 {
     js *s = ctx;
     double area = 0;
@@ -398,11 +349,11 @@ static int j_layer_end(void *ctx, const lam_layer_info *li)
     put(s, "   \"stats\": {\"area\": ");
     num(s, area);
     put(s, ", \"vectors\": ");
-    size(s, s->order);
+    size(s, st->vectors);
     put(s, ", \"deposit_length\": ");
-    num(s, s->deposit);
+    num(s, st->deposit_length);
     put(s, ", \"travel_length\": ");
-    num(s, s->travel);
+    num(s, st->travel_length);
     put(s, ", \"time\": ");
     if (li->time) {
         num(s, lam_scan_time_total(li->time));
@@ -413,8 +364,8 @@ static int j_layer_end(void *ctx, const lam_layer_info *li)
     }
     put(s, "}}");
     s->layers++;
-    s->deposit_total += s->deposit;
-    s->travel_total += s->travel;
+    s->deposit_total += st->deposit_length;
+    s->travel_total += st->travel_length;
     flush(s); /* the layer is whole: out it goes */
     return s->rc;
 }
@@ -459,14 +410,6 @@ int lam_json_sink(lam_writer *w, unsigned flags, lam_sink *out, lam_error *err)
     s->w = w;
     s->err = err;
     s->flags = flags;
-    out->ctx = s;
-    out->begin = j_begin;
-    out->layer = j_layer;
-    out->layer_end = j_layer_end;
-    out->move = j_move;
-    out->contour = j_contour;
-    out->hatches = j_hatches;
-    out->end = j_end;
-    out->destroy = j_destroy;
-    return LAM_OK;
+    lam_vec_consumer c = { s, j_begin, j_layer, j_vector, j_layer_end, j_end, j_destroy };
+    return lam_vstream_sink(NULL, 0, &c, out, err);
 }

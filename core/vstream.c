@@ -63,6 +63,10 @@ static int start_at(vstream *s, const double p[3])
 static int vs_begin(void *ctx, const lam_job_info *job)
 {
     vstream *s = ctx;
+    if (job->frame) {
+        s->f = *job->frame;
+        s->machine = job->frame_machine;
+    }
     memcpy(s->pos, job->origin, sizeof s->pos);
     s->have_pos = 1;
     return s->c.begin ? s->c.begin(s->c.ctx, job) : LAM_OK;
@@ -132,7 +136,8 @@ int lam_vstream_sink(const lam_frame *f, int frame_machine, const lam_vec_consum
         if (c->destroy) c->destroy(c->ctx);
         return lam_error_nomem(err, "making a preview");
     }
-    s->f = *f;
+    if (f) s->f = *f;
+    else lam_frame_axis('z', &s->f, NULL);
     s->machine = frame_machine;
     s->c = *c;
     out->ctx = s;

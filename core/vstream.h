@@ -46,9 +46,10 @@ typedef struct lam_vec_consumer {
     void (*destroy)(void *ctx);     /* with the sink's destroy */
 } lam_vec_consumer;
 
-/* Make *out a sink that feeds c. f is the run's layer frame (borrowed; it
- * must outlive the sink); frame_machine: the output frame is the layer
- * frame (plan options' frame_machine). The sink's destroy frees what it
+/* Make *out a sink that feeds c. f is the run's layer frame (copied; NULL:
+ * the z axis's until begin brings the job's) and frame_machine says the
+ * output frame is the layer frame (plan options' frame_machine); a job that
+ * names its frame (lam_job_info.frame) overrides both at begin. The sink's destroy frees what it
  * holds and calls c's destroy. Errors: LAM_ENOMEM. */
 int lam_vstream_sink(const lam_frame *f, int frame_machine, const lam_vec_consumer *c, lam_sink *out,
                      lam_error *err);
