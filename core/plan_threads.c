@@ -335,7 +335,7 @@ int lam_plan_threaded(lam_slicer *s, const lam_plan_opts *o, const lam_sink *sin
     }
     /* text dialects are formatted by the workers when every worker has its
      * formatter (otherwise the recordings are replayed: the same bytes) */
-    r.text = !rc && !getenv("LAMINA_THREADS_REPLAY");
+    r.text = !rc;
     for (unsigned k = 0; k < threads && r.text; k++) {
         int frc = lam_dialect_fork(sink, o->kind == LAM_PLAN_LADRP, &r.ws[k].text, err);
         if (frc) r.text = 0;

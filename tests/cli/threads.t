@@ -42,6 +42,31 @@ done
 same lpbf-hatch-skins "$TMP/sphere.stl" -m lpbf-cli -w 0.1 -s hatch_strategy=islands -s island_size=2 \
     -s skin_layers=2 -s hatch_distance=0.2
 same binary-hatch "$TMP/torus.stl" -m cli-binary -w 0.1 -s hatch_strategy=stripes -s hatch_distance=0.2
+# Text dialects are formatted by the workers, a layer into a buffer each,
+# and written in order: what the text carries from the layers before must
+# still come out right. The separator goes between two blocks, never before
+# the program's first, also when the first layers are empty (planes below
+# the part) and the first block is in a layer a worker formatted alone.
+cat >"$TMP/sep.yaml" <<'EOF'
+inherits: sls-contours
+dialect:
+  preamble: "begin {layers} {label}"
+  layer: "layer {index} {number} {z:%.3f}"
+  layer_end: "end {number}"
+  separator: "---"
+  postamble: "done {layers}"
+EOF
+same sep-empty-first "$M/thesis_cube_hole.ug" -m "$TMP/sep.yaml" --planes=-3,-2,-1,-0.5,0.5,1,1.5,1.75,2.5
+same sep-sphere "$TMP/sphere.stl" -m "$TMP/sep.yaml" -w 0.1 -s hatch_strategy=lines -s hatch_distance=0.5
+is "$(grep -c -- '^---$' "$TMP/sep-empty-first.1")" \
+    "$(( $(grep -c '^contour ' "$TMP/sep-empty-first.1") - 1 ))" \
+    "separator: one fewer than the blocks (none before the first)"
+is "$(sed -n 2p "$TMP/sep-empty-first.1")" "layer 0 1 -2.500" "separator: the empty first layer is written"
+# relative moves (creol-ladrp, dx dy): every move's text depends on the
+# rounding of all the moves before, so that dialect is formatted in layer
+# order on the main thread; an absolute one (ded-gcode) by the workers
+same ladrp-relative-many "$TMP/sphere.stl" -m creol-ladrp -w 0.1 --islands
+same ladrp-absolute-many "$TMP/sphere.stl" -m ded-gcode -w 0.1 --islands
 # fewer layers than threads, and one layer
 same cube-two-layers "$M/thesis_cube_hole.ug" -w 1
 same cube-one-layer "$M/thesis_cube_hole.ug" -w 2
