@@ -45,6 +45,7 @@
  * that is neither (too short for binary and not "solid"). Linear time. */
 #include "import.h"
 #include "lexnum.h"
+#include "pool.h"
 
 #include <math.h>
 #include <stdarg.h>
@@ -60,8 +61,178 @@ static uint32_t rd_u32(const unsigned char *p)
     return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
 }
 
+/* ---- binary, welded on several threads (issue 15) ---------------------- *
+ * The same vertices, numbered the same, as the welder on one thread: a
+ * vertex is numbered when it first appears in the file. Three passes over
+ * the 3 * count vertex records (record r: facet r / 3, corner r % 3):
+ *  1. in chunks, one per thread: each record's hash (of x + 0.0, ...) and
+ *     the first non-finite coordinate;
+ *  2. by hash partition, one per thread, each scanning all records in
+ *     file order with its own table: the first record at that position,
+ *     written into the triangle array (a thread writes only its records);
+ *  3. on the calling thread, in file order: a record that comes first
+ *     becomes the next vertex, any other takes the number of its first.
+ * Only the table lookups, the costly part, run in parallel. */
+#define STL_PAR_MIN 20000 /* facets: below this one thread is as fast */
+
+typedef struct stl_par {
+    const unsigned char *data;
+    size_t nrec;
+    uint64_t *hash;          /* per record */
+    uint32_t *first;         /* per record: its position's first record */
+    size_t *bad;             /* per chunk: first record with a non-finite coordinate, or nrec */
+    int *oom;                /* per partition: its table could not be allocated */
+} stl_par;
+
+static const unsigned char *rec_at(const unsigned char *data, size_t r)
+{
+    return data + 84 + 12 + 50 * (r / 3) + 12 * (r % 3);
+}
+
+static void rec_xyz(const unsigned char *q, double p[3])
+{
+    for (int j = 0; j < 3; j++) {
+        uint32_t u = rd_u32(q + 4 * j);
+        float f;
+        memcpy(&f, &u, sizeof f);
+        p[j] = (double)f + 0.0;
+    }
+}
+
+static void par_hash(void *ctx, unsigned k, unsigned n)
+{
+    stl_par *P = ctx;
+    size_t lo = P->nrec * k / n, hi = P->nrec * (k + 1) / n;
+    P->bad[k] = P->nrec;
+    for (size_t r = lo; r < hi; r++) {
+        const unsigned char *q = rec_at(P->data, r);
+        uint32_t bad = 0;
+        for (int j = 0; j < 3; j++) bad |= (rd_u32(q + 4 * j) & 0x7f800000u) == 0x7f800000u;
+        if (bad) {
+            P->bad[k] = r;
+            return;
+        }
+        double p[3];
+        rec_xyz(q, p);
+        P->hash[r] = lam_welder_hash(p);
+    }
+}
+
+static void par_weld(void *ctx, unsigned k, unsigned n)
+{
+    stl_par *P = ctx;
+    size_t cap = 1024;
+    while (cap < 2 * (P->nrec / 6 / n + 16)) cap *= 2; /* about nrec / 6 vertices in all */
+    uint64_t *table = malloc(cap * sizeof *table);
+    if (!table) {
+        P->oom[k] = 1;
+        return;
+    }
+    memset(table, 0xff, cap * sizeof *table);
+    size_t count = 0;
+    for (size_t r = 0; r < P->nrec; r++) {
+        uint64_t h = P->hash[r];
+        if ((uint32_t)(h >> 32) % n != k) continue;
+        if (2 * (count + 1) > cap) {
+            uint64_t *nt = malloc(2 * cap * sizeof *nt);
+            if (!nt) {
+                free(table);
+                P->oom[k] = 1;
+                return;
+            }
+            memset(nt, 0xff, 2 * cap * sizeof *nt);
+            for (size_t i = 0; i < cap; i++) {
+                if (table[i] == UINT64_MAX) continue;
+                uint32_t f = (uint32_t)table[i];
+                size_t j = (size_t)P->hash[f] & (2 * cap - 1);
+                while (nt[j] != UINT64_MAX) j = (j + 1) & (2 * cap - 1);
+                nt[j] = table[i];
+            }
+            free(table);
+            table = nt;
+            cap *= 2;
+        }
+        double p[3], o[3];
+        rec_xyz(rec_at(P->data, r), p);
+        uint64_t tag = h & 0xffffffff00000000ull;
+        size_t i = (size_t)h & (cap - 1);
+        uint32_t first = (uint32_t)r;
+        for (;; i = (i + 1) & (cap - 1)) {
+            uint64_t slot = table[i];
+            if (slot == UINT64_MAX) {
+                table[i] = tag | r;
+                count++;
+                break;
+            }
+            if ((slot & 0xffffffff00000000ull) != tag) continue;
+            rec_xyz(rec_at(P->data, (uint32_t)slot), o);
+            if (o[0] == p[0] && o[1] == p[1] && o[2] == p[2]) {
+                first = (uint32_t)slot;
+                break;
+            }
+        }
+        P->first[r] = first;
+    }
+    free(table);
+}
+
+/* 1 when the binary facets were welded on threads (result or error in rc),
+ * 0 when the caller should weld them on one thread. */
+static int stl_binary_par(const char *path, const unsigned char *data, uint32_t count, lam_mesh *m,
+                          unsigned threads, int *rc, lam_error *err)
+{
+    if (threads > 64) threads = 64;
+    if (threads < 2 || count < STL_PAR_MIN || m->nverts || m->ntris) return 0;
+    size_t nrec = 3 * (size_t)count;
+    stl_par P = { data, nrec, malloc(nrec * sizeof *P.hash), m->tris, NULL, NULL };
+    size_t bad[64];
+    int oom[64] = { 0 };
+    P.bad = bad;
+    P.oom = oom;
+    if (!P.hash) return 0; /* one thread needs no such array */
+    lam_pool_each(threads, par_hash, &P);
+    for (unsigned k = 0; k < threads; k++) {
+        if (bad[k] == nrec) continue;
+        /* the first non-finite coordinate in the file, named as on one thread */
+        const unsigned char *q = rec_at(data, bad[k]);
+        for (int j = 0; j < 3; j++) {
+            uint32_t u = rd_u32(q + 4 * j);
+            if ((u & 0x7f800000u) != 0x7f800000u) continue;
+            float f;
+            memcpy(&f, &u, sizeof f);
+            free(P.hash);
+            *rc = lam_error_at_offset(err, LAM_EINVAL, path, (long long)(q + 4 * j - data),
+                                      "facet %lu, vertex %d: %c coordinate is not a finite number (%g)",
+                                      (unsigned long)(bad[k] / 3) + 1, (int)(bad[k] % 3) + 1, "xyz"[j], (double)f);
+            return 1;
+        }
+    }
+    lam_pool_each(threads, par_weld, &P);
+    free(P.hash);
+    for (unsigned k = 0; k < threads; k++)
+        if (oom[k]) return 0; /* m->tris is overwritten next: nothing else changed */
+    uint32_t *t = m->tris;
+    *rc = LAM_OK;
+    for (size_t r = 0; r < nrec && !*rc; r++) {
+        if (t[r] != r) {
+            t[r] = t[t[r]];
+            continue;
+        }
+        double p[3];
+        rec_xyz(rec_at(data, r), p);
+        *rc = lam_mesh_add_vertex(m, p[0], p[1], p[2], &t[r], err);
+    }
+    if (*rc) {
+        *rc = lam_error_set(err, *rc, path, 0, 0, "out of memory for %lu triangles", (unsigned long)count);
+        return 1;
+    }
+    m->ntris = count;
+    m->welded = 1;
+    return 1;
+}
+
 static int stl_binary(const char *path, const unsigned char *data, uint32_t count,
-                      lam_mesh *m, lam_error *err)
+                      lam_mesh *m, unsigned threads, lam_error *err)
 {
     if (m->nfaces || m->tri_face)
         return lam_error_set(err, LAM_EINVAL, path, 0, 0,
@@ -76,6 +247,7 @@ static int stl_binary(const char *path, const unsigned char *data, uint32_t coun
     if (rc) return lam_error_set(err, rc, path, 0, 0, "out of memory for %lu triangles", (unsigned long)count);
 
     int fresh = m->nverts == 0 && m->ntris == 0;
+    if (stl_binary_par(path, data, count, m, threads, &rc, err)) return rc;
     lam_welder wd;
     lam_welder_init(&wd);
     if ((rc = lam_welder_reserve(&wd, m, count / 2 + 16, err))) return rc;
@@ -358,6 +530,12 @@ static int stl_ascii(const char *path, const unsigned char *data, size_t len,
 int lam_import_stl_buf(const char *path, const unsigned char *data, size_t len,
                        lam_mesh *mesh, int *binary, lam_error *err)
 {
+    return lam_import_stl_buf_threads(path, data, len, mesh, binary, 1, err);
+}
+
+int lam_import_stl_buf_threads(const char *path, const unsigned char *data, size_t len, lam_mesh *mesh,
+                               int *binary, unsigned threads, lam_error *err)
+{
     lam_error own; /* err may be NULL (error.h); messages are wrapped below */
     if (!err) err = &own;
     if (binary) *binary = 0;
@@ -365,7 +543,7 @@ int lam_import_stl_buf(const char *path, const unsigned char *data, size_t len,
     uint32_t count = len >= 84 ? rd_u32(data + 80) : 0;
     if (len >= 84 && 84 + 50ull * count == (unsigned long long)len) {
         if (binary) *binary = 1;
-        return stl_binary(path, data, count, mesh, err);
+        return stl_binary(path, data, count, mesh, threads, err);
     }
     if (len && looks_ascii(data, len)) {
         int rc = stl_ascii(path, data, len, mesh, err);
