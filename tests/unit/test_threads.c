@@ -2,7 +2,12 @@
  * never more than the window in flight, a consumer's error stopping the
  * run), a forked sweep that seeks (the very layers of a sweep from the
  * bottom, bit for bit, in any order of jumps), and the recording sink (a
- * replay sends the same calls with the same numbers). */
+ * replay sends the same calls with the same numbers), the binary STL
+ * welded on threads (the mesh of one thread, against a numbering by first
+ * appearance written here) and a dialect's layer text formatted apart
+ * (the bytes of the sink itself). */
+#include "dialect.h"
+#include "import.h"
 #include "meshes.h"
 #include "plan_record.h"
 #include "pool.h"
@@ -10,6 +15,7 @@
 #include "tap.h"
 #include "util.h"
 
+#include <math.h>
 #include <pthread.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -231,6 +237,180 @@ static void record_replay(void)
     lam_record_free(&r);
 }
 
+/* ---- binary STL welded on threads ------------------------------------ */
+
+static void put_f32(unsigned char *p, float f)
+{
+    uint32_t u;
+    memcpy(&u, &f, sizeof u);
+    for (int k = 0; k < 4; k++) p[k] = (unsigned char)(u >> (8 * k));
+}
+
+/* A binary STL of nf facets whose corners are drawn from a grid of
+ * positions (so most repeat, many far apart in the file), with -0.0 and
+ * 0.0 both used, and repeated corners (collapsed facets). */
+static unsigned char *grid_stl(uint32_t nf, size_t *len)
+{
+    *len = 84 + 50 * (size_t)nf;
+    unsigned char *d = calloc(1, *len);
+    if (!d) return NULL;
+    d[80] = (unsigned char)nf, d[81] = (unsigned char)(nf >> 8), d[82] = (unsigned char)(nf >> 16);
+    uint32_t x = 12345;
+    for (uint32_t i = 0; i < nf; i++)
+        for (int k = 0; k < 3; k++) {
+            x = x * 1103515245u + 12345u;
+            uint32_t g = (x >> 8) % 9000; /* one of 9000 positions */
+            float c[3] = { (float)(g % 30) * 0.25f, (float)(g / 30 % 30) * 0.5f, (float)(g / 900) };
+            if (c[0] == 0 && (x & 1)) c[0] = -0.0f;
+            for (int j = 0; j < 3; j++) put_f32(d + 84 + 50 * (size_t)i + 12 + 12 * k + 4 * j, c[j]);
+        }
+    return d;
+}
+
+static void stl_threads(void)
+{
+    size_t len;
+    uint32_t nf = 30000;
+    unsigned char *d = grid_stl(nf, &len);
+    if (!d) return;
+    /* the reference: number each position when it first appears (a
+     * quadratic-free lookup: the grid index of the position) */
+    static uint32_t id_of[9000];
+    uint32_t *want = malloc(3 * (size_t)nf * sizeof *want);
+    for (size_t g = 0; g < 9000; g++) id_of[g] = UINT32_MAX;
+    uint32_t next = 0, x = 12345;
+    for (size_t r = 0; r < 3 * (size_t)nf; r++) {
+        x = x * 1103515245u + 12345u;
+        uint32_t g = (x >> 8) % 9000;
+        if (id_of[g] == UINT32_MAX) id_of[g] = next++;
+        want[r] = id_of[g];
+    }
+    lam_mesh one;
+    lam_mesh_init(&one);
+    lam_error err;
+    int rc1 = lam_import_stl_buf_threads("grid.stl", d, len, &one, NULL, 1, &err);
+    ok(rc1 == LAM_OK && one.ntris == nf && one.nverts == next &&
+           !memcmp(one.tris, want, 3 * (size_t)nf * sizeof *want),
+       "stl, one thread: %zu vertices numbered by first appearance (%u expected)", one.nverts, next);
+    unsigned ths[3] = { 2, 3, 8 };
+    for (int k = 0; k < 3; k++) {
+        lam_mesh m;
+        lam_mesh_init(&m);
+        int rc = lam_import_stl_buf_threads("grid.stl", d, len, &m, NULL, ths[k], &err);
+        ok(rc == LAM_OK && m.ntris == one.ntris && m.nverts == one.nverts && m.welded == one.welded &&
+               !memcmp(m.tris, one.tris, 3 * m.ntris * sizeof *m.tris) &&
+               !memcmp(m.xyz, one.xyz, 3 * m.nverts * sizeof *m.xyz),
+           "stl, %u threads: the same vertices, numbered the same, as one thread", ths[k]);
+        lam_mesh_free(&m);
+    }
+    /* no -0.0 among the vertices: x = -0.0 and 0.0 are one position */
+    int negzero = 0;
+    for (size_t v = 0; v < one.nverts; v++) negzero |= signbit(one.xyz[3 * v]) != 0;
+    ok(!negzero, "stl: -0.0 welded to 0.0");
+    lam_mesh_free(&one);
+    /* two non-finite coordinates, in different threads' chunks: the first
+     * in the file is named, as on one thread */
+    put_f32(d + 84 + 50 * 25000 + 12 + 12 * 2 + 4, NAN);
+    put_f32(d + 84 + 50 * 7000 + 12 + 12 * 1 + 8, INFINITY);
+    char msg1[1100] = "", msg3[1100] = "";
+    lam_mesh m;
+    lam_mesh_init(&m);
+    int e1 = lam_import_stl_buf_threads("grid.stl", d, len, &m, NULL, 1, &err);
+    snprintf(msg1, sizeof msg1, "%s", err.msg);
+    lam_mesh_free(&m);
+    lam_mesh_init(&m);
+    int e3 = lam_import_stl_buf_threads("grid.stl", d, len, &m, NULL, 3, &err);
+    snprintf(msg3, sizeof msg3, "%s", err.msg);
+    lam_mesh_free(&m);
+    ok(e1 == LAM_EINVAL && e3 == e1 && !strcmp(msg1, msg3) && strstr(msg1, "facet 7001, vertex 2: z"),
+       "stl, 3 threads: the first non-finite coordinate named as on one thread (%s)", msg3);
+    free(want);
+    free(d);
+}
+
+/* ---- a dialect's layer text formatted apart ------------------------------- */
+
+static int put_tpl(lam_dialect *d, lam_cmd c, const char *text)
+{
+    size_t off;
+    lam_error err;
+    return lam_template_parse(c, text, &d->cmd[c], &off, &err);
+}
+
+/* Two layers, the first with no blocks, the second with two contours,
+ * sent to a dialect sink directly and through lam_dialect_fork /
+ * lam_dialect_put: the same text. */
+static void dialect_fork(void)
+{
+    lam_dialect d;
+    memset(&d, 0, sizeof d);
+    int rc = put_tpl(&d, LAM_CMD_LAYER, "layer {number} {z:%.2f}") | put_tpl(&d, LAM_CMD_LAYER_END, "end {index}") |
+             put_tpl(&d, LAM_CMD_CONTOUR_BEGIN, "contour {index} {n} {points:%.1f}") |
+             put_tpl(&d, LAM_CMD_SEPARATOR, "--") | put_tpl(&d, LAM_CMD_PREAMBLE, "begin {layers}");
+    ok(rc == LAM_OK, "dialect: templates parse");
+    double xyz[9] = { 0, 0, 1, 1, 0, 1, 0, 1, 1 }, uv[6] = { 0, 0, 1, 0, 0, 1 };
+    lam_contour_info ci = { 1, 1, 0, 1, xyz, uv, 3, 0, 0, 0, 0 };
+    lam_layer_info li[2] = { { 0, 0.5, 0.5, 0, 0.5 }, { 1, 1, 0.5, 0.5, 1 } };
+    lam_job_info job;
+    memset(&job, 0, sizeof job);
+    job.layers = 2;
+    char *text[2] = { NULL, NULL };
+    for (int way = 0; way < 2; way++) {
+        lam_writer *w;
+        lam_error err;
+        lam_sink s;
+        lam_writer_memory(&w, &err);
+        lam_dialect_sink(&d, w, &s, &err);
+        s.begin(s.ctx, &job);
+        if (way == 0) {
+            for (int l = 0; l < 2; l++) {
+                s.layer(s.ctx, &li[l]);
+                for (int c = 0; c < 2 * l; c++) s.contour(s.ctx, &ci);
+                s.layer_end(s.ctx, &li[l]);
+            }
+        } else {
+            lam_sink ws;
+            lam_dialect_text t;
+            memset(&t, 0, sizeof t);
+            ok(lam_dialect_fork(&s, 1, &ws, &err) == LAM_OK, "dialect: a worker's formatter");
+            for (int l = 0; l < 2; l++) {
+                lam_dialect_fork_start(&ws, &err);
+                ws.layer(ws.ctx, &li[l]);
+                for (int c = 0; c < 2 * l; c++) ws.contour(ws.ctx, &ci);
+                ws.layer_end(ws.ctx, &li[l]);
+                lam_dialect_fork_take(&ws, &t);
+                lam_dialect_put(&s, &t);
+            }
+            lam_dialect_text_free(&t);
+            ws.destroy(ws.ctx);
+        }
+        s.end(s.ctx);
+        s.destroy(s.ctx);
+        size_t n;
+        lam_writer_take(w, &text[way], &n, &err);
+    }
+    const char *want = "begin 2\nlayer 1 0.50\nend 0\nlayer 2 1.00\ncontour 0 3 0.0,0.0,1.0,0.0,0.0,1.0\n--\n"
+                       "contour 1 3 0.0,0.0,1.0,0.0,0.0,1.0\nend 1\n";
+    is_str(text[0], want, "dialect: the sink's own text");
+    is_str(text[1], want, "dialect: layers formatted apart and put in order: the same text, no separator first");
+    /* relative moves depend on every move before: no worker formatter */
+    put_tpl(&d, LAM_CMD_TRAVEL, "G0 X{dx}");
+    lam_writer *w;
+    lam_error err;
+    lam_sink s, ws;
+    lam_writer_memory(&w, &err);
+    lam_dialect_sink(&d, w, &s, &err);
+    s.begin(s.ctx, &job);
+    ok(lam_dialect_fork(&s, 1, &ws, &err) == LAM_EUSAGE && lam_dialect_fork(&s, 0, &ws, &err) == LAM_OK,
+       "dialect: relative moves are formatted in order, unless the plan has no moves");
+    ws.destroy(ws.ctx);
+    s.destroy(s.ctx);
+    lam_writer_abort(w);
+    free(text[0]);
+    free(text[1]);
+    lam_dialect_free(&d);
+}
+
 int main(void)
 {
     pool_run(1, 1, NTASK, "pool, 1 worker, runs of 1");
@@ -251,5 +431,7 @@ int main(void)
         lam_model_free(cube);
     }
     record_replay();
+    stl_threads();
+    dialect_fork();
     return done_testing();
 }
