@@ -67,6 +67,27 @@ is "$(sed -n 2p "$TMP/sep-empty-first.1")" "layer 0 1 -2.500" "separator: the em
 # order on the main thread; an absolute one (ded-gcode) by the workers
 same ladrp-relative-many "$TMP/sphere.stl" -m creol-ladrp -w 0.1 --islands
 same ladrp-absolute-many "$TMP/sphere.stl" -m ded-gcode -w 0.1 --islands
+# A binary STL of over 20,000 facets is welded on the threads too: the
+# same vertices, numbered the same, so the same program
+python3 - "$TMP/bsphere.stl" <<'EOF'
+import math, struct, sys
+nu, nv, R = 160, 80, 5.0
+def p(i, j):
+    th, ph = 2 * math.pi * (i % nu) / nu, -math.pi / 2 + math.pi * j / nv
+    if j in (0, nv): return (0.0, 0.0, -R if j == 0 else R)
+    return (R * math.cos(ph) * math.cos(th), R * math.cos(ph) * math.sin(th), R * math.sin(ph))
+tris = []
+for i in range(nu):
+    for j in range(nv):
+        a, b, c, d = p(i, j), p(i + 1, j), p(i + 1, j + 1), p(i, j + 1)
+        if j > 0: tris.append((a, b, c))
+        if j < nv - 1: tris.append((a, c, d))
+with open(sys.argv[1], "wb") as f:
+    f.write(b"\0" * 80 + struct.pack("<I", len(tris)))
+    for t in tris:
+        f.write(struct.pack("<12fH", 0, 0, 0, *[x for v in t for x in v], 0))
+EOF
+same binary-sphere-big "$TMP/bsphere.stl" -w 0.2
 # fewer layers than threads, and one layer
 same cube-two-layers "$M/thesis_cube_hole.ug" -w 1
 same cube-one-layer "$M/thesis_cube_hole.ug" -w 2
