@@ -411,6 +411,7 @@ static char *room(buf *b, size_t n)
 
 static void put(buf *b, const char *s, size_t n)
 {
+    if (!n) return; /* s may be NULL: an empty layer's text */
     char *at = room(b, n);
     if (!at) return;
     memcpy(at, s, n);
