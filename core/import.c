@@ -54,11 +54,6 @@ static enum fmt by_content(const char *d, size_t n)
 
 int lam_model_load(const char *path, lam_model **out, lam_error *err)
 {
-    return lam_model_load_threads(path, 1, out, err);
-}
-
-int lam_model_load_threads(const char *path, unsigned threads, lam_model **out, lam_error *err)
-{
     *out = NULL;
     char *data;
     size_t len;
@@ -81,7 +76,7 @@ int lam_model_load_threads(const char *path, unsigned threads, lam_model **out, 
         break;
     case FMT_STL: {
         int binary = 0;
-        rc = lam_import_stl_buf_threads(path, (const unsigned char *)data, len, &mesh, &binary, threads, err);
+        rc = lam_import_stl_buf(path, (const unsigned char *)data, len, &mesh, &binary, err);
         format = binary ? "stl-binary" : "stl-ascii";
         break;
     }

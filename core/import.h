@@ -29,11 +29,6 @@ int lam_import_ug_buf(const char *path, const char *data, size_t len,
 int lam_import_stl_buf(const char *path, const unsigned char *data, size_t len,
                        lam_mesh *mesh, int *binary, lam_error *err);
 
-/* The same, a binary STL of many facets welded on up to `threads` threads
- * (issue 15): the same mesh, vertices numbered the same, as on one. */
-int lam_import_stl_buf_threads(const char *path, const unsigned char *data, size_t len, lam_mesh *mesh,
-                               int *binary, unsigned threads, lam_error *err);
-
 /* Wavefront OBJ: v, f (v, v/vt, v//vn, v/vt/vn, negative indices); polygons
  * triangulated; other statements ignored. */
 int lam_import_obj_buf(const char *path, const char *data, size_t len,

@@ -45,8 +45,6 @@
  * that is neither (too short for binary and not "solid"). Linear time. */
 #include "import.h"
 #include "lexnum.h"
-#include "pool.h"
-#include "prefetch.h"
 
 #include <math.h>
 #include <stdarg.h>
@@ -62,209 +60,8 @@ static uint32_t rd_u32(const unsigned char *p)
     return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
 }
 
-/* ---- binary, welded on several threads (issue 15) ---------------------- *
- * The same vertices, numbered the same, as the welder on one thread: a
- * vertex is numbered when it first appears in the file. Two passes over
- * the 3 * count vertex records (record r: facet r / 3, corner r % 3):
- *  1. one per thread, by hash partition: each thread reads every record in
- *     file order, hashes it, and looks up those of its share in a table of
- *     its own, writing each its position's first record (into the triangle
- *     array: a thread writes only its records); it stops at the first
- *     non-finite coordinate;
- *  2. on the calling thread, in file order: a record that comes first
- *     becomes the next vertex, any other takes the number of its first.
- * Hashing is repeated per thread (cheap, and reading the file once each
- * costs less than storing a hash per record); the table lookups, the
- * costly part, are split. */
-#define STL_PAR_MIN 20000 /* facets: below this one thread is as fast */
-
-typedef struct stl_par {
-    const unsigned char *data;
-    size_t nrec;
-    uint32_t *first;         /* per record: its position's first record */
-    size_t *bad;             /* per thread: the first record with a non-finite coordinate, or nrec */
-    int *oom;                /* per thread: its table could not be allocated */
-} stl_par;
-
-static const unsigned char *rec_at(const unsigned char *data, size_t r)
-{
-    return data + 84 + 12 + 50 * (r / 3) + 12 * (r % 3);
-}
-
-static void rec_xyz(const unsigned char *q, double p[3])
-{
-    for (int j = 0; j < 3; j++) {
-        uint32_t u = rd_u32(q + 4 * j);
-        float f;
-        memcpy(&f, &u, sizeof f);
-        p[j] = (double)f + 0.0;
-    }
-}
-
-/* A position in a thread's table: its coordinates (as floats, -0 made 0,
- * so equal positions have equal bits) beside its first record, so a
- * lookup never goes back to the file. */
-typedef struct wslot {
-    float c[3];
-    uint32_t first;          /* the record + 1; 0: empty (calloc'd tables need no clearing) */
-} wslot;
-
-static uint64_t slot_hash(const wslot *s)
-{
-    double p[3] = { s->c[0], s->c[1], s->c[2] };
-    return lam_welder_hash(p);
-}
-
-/* Room in a table of *cap slots for one more entry, doubling it when half
- * full. NULL when out of memory (the table is kept). */
-static wslot *table_room(wslot *table, size_t *cap, size_t count)
-{
-    if (2 * (count + 1) <= *cap) return table;
-    size_t nc = 2 * *cap;
-    wslot *nt = calloc(nc, sizeof *nt);
-    if (!nt) return NULL;
-    for (size_t i = 0; i < *cap; i++) {
-        if (!table[i].first) continue;
-        size_t j = (size_t)slot_hash(&table[i]) & (nc - 1);
-        while (nt[j].first) j = (j + 1) & (nc - 1);
-        nt[j] = table[i];
-    }
-    free(table);
-    *cap = nc;
-    return nt;
-}
-
-static int same_pos(const float *a, const float *b)
-{
-    return !memcmp(a, b, 3 * sizeof *a);
-}
-
-#define PAR_AHEAD 8 /* records whose slots are fetched ahead */
-
-/* The thread whose table holds hash h: a multiply, not a division. */
-static unsigned share(uint64_t h, unsigned n)
-{
-    return (unsigned)(((h >> 32) * n) >> 32);
-}
-
-static void par_weld(void *ctx, unsigned k, unsigned n)
-{
-    stl_par *P = ctx;
-    size_t cap = 1024;
-    while (cap < 2 * (P->nrec / 6 / n + 16)) cap *= 2; /* about nrec / 6 vertices in all */
-    wslot *table = calloc(cap, sizeof *table);
-    /* recent positions, as the welder keeps them: a file names a vertex
-     * again a few facets later */
-    wslot *recent = calloc(LAM_WELDER_RECENT, sizeof *recent);
-    P->bad[k] = P->nrec;
-    if (!table || !recent) {
-        free(table);
-        free(recent);
-        P->oom[k] = 1;
-        return;
-    }
-    /* each record's canonical floats and hash, PAR_AHEAD records ahead */
-    wslot ring[PAR_AHEAD];
-    uint64_t hring[PAR_AHEAD];
-    size_t count = 0, have = 0;
-    for (size_t r = 0; r < P->nrec; r++) {
-        for (; have < P->nrec && have <= r + PAR_AHEAD - 1; have++) {
-            const unsigned char *q = rec_at(P->data, have);
-            wslot *e = &ring[have % PAR_AHEAD];
-            uint32_t bad = 0;
-            for (int j = 0; j < 3; j++) {
-                uint32_t u = rd_u32(q + 4 * j);
-                bad |= (u & 0x7f800000u) == 0x7f800000u;
-                memcpy(&e->c[j], &u, sizeof u);
-                e->c[j] += 0.0f;
-            }
-            e->first = bad; /* 1: non-finite */
-            hring[have % PAR_AHEAD] = bad ? 0 : slot_hash(e);
-            if (!bad && share(hring[have % PAR_AHEAD], n) == k)
-                LAM_PREFETCH(table + ((size_t)hring[have % PAR_AHEAD] & (cap - 1)));
-        }
-        const wslot *e = &ring[r % PAR_AHEAD];
-        uint64_t h = hring[r % PAR_AHEAD];
-        if (e->first) {
-            P->bad[k] = r;
-            break;
-        }
-        if (share(h, n) != k) continue;
-        size_t c = (size_t)(h >> 20) & (LAM_WELDER_RECENT - 1);
-        if (recent[c].first && same_pos(recent[c].c, e->c)) {
-            P->first[r] = recent[c].first - 1;
-            continue;
-        }
-        wslot *nt = table_room(table, &cap, count);
-        if (!nt) {
-            P->oom[k] = 1;
-            break;
-        }
-        table = nt;
-        size_t i = (size_t)h & (cap - 1);
-        while (table[i].first && !same_pos(table[i].c, e->c)) i = (i + 1) & (cap - 1);
-        if (!table[i].first) {
-            table[i] = *e;
-            table[i].first = (uint32_t)r + 1;
-            count++;
-        }
-        P->first[r] = table[i].first - 1;
-        recent[c] = table[i];
-    }
-    free(recent);
-    free(table);
-}
-
-/* 1 when the binary facets were welded on threads (result or error in rc),
- * 0 when the caller should weld them on one thread. */
-static int stl_binary_par(const char *path, const unsigned char *data, uint32_t count, lam_mesh *m,
-                          unsigned threads, int *rc, lam_error *err)
-{
-    if (threads > 64) threads = 64;
-    if (threads < 2 || count < STL_PAR_MIN || m->nverts || m->ntris) return 0;
-    size_t nrec = 3 * (size_t)count, bad[64];
-    int oom[64] = { 0 };
-    stl_par P = { data, nrec, m->tris, bad, oom };
-    lam_pool_each(threads, par_weld, &P);
-    if (bad[0] < nrec) {
-        /* every thread reads every record: thread 0 met the first non-finite
-         * coordinate in the file; named as on one thread */
-        const unsigned char *q = rec_at(data, bad[0]);
-        for (int j = 0; j < 3; j++) {
-            uint32_t u = rd_u32(q + 4 * j);
-            if ((u & 0x7f800000u) != 0x7f800000u) continue;
-            float f;
-            memcpy(&f, &u, sizeof f);
-            *rc = lam_error_at_offset(err, LAM_EINVAL, path, (long long)(q + 4 * j - data),
-                                      "facet %lu, vertex %d: %c coordinate is not a finite number (%g)",
-                                      (unsigned long)(bad[0] / 3) + 1, (int)(bad[0] % 3) + 1, "xyz"[j], (double)f);
-            return 1;
-        }
-    }
-    for (unsigned k = 0; k < threads; k++)
-        if (oom[k]) return 0; /* m->tris is overwritten next: nothing else changed */
-    uint32_t *t = m->tris;
-    *rc = LAM_OK;
-    for (size_t r = 0; r < nrec && !*rc; r++) {
-        if (t[r] != r) {
-            t[r] = t[t[r]];
-            continue;
-        }
-        double p[3];
-        rec_xyz(rec_at(data, r), p);
-        *rc = lam_mesh_add_vertex(m, p[0], p[1], p[2], &t[r], err);
-    }
-    if (*rc) {
-        *rc = lam_error_set(err, *rc, path, 0, 0, "out of memory for %lu triangles", (unsigned long)count);
-        return 1;
-    }
-    m->ntris = count;
-    m->welded = 1;
-    return 1;
-}
-
 static int stl_binary(const char *path, const unsigned char *data, uint32_t count,
-                      lam_mesh *m, unsigned threads, lam_error *err)
+                      lam_mesh *m, lam_error *err)
 {
     if (m->nfaces || m->tri_face)
         return lam_error_set(err, LAM_EINVAL, path, 0, 0,
@@ -279,7 +76,6 @@ static int stl_binary(const char *path, const unsigned char *data, uint32_t coun
     if (rc) return lam_error_set(err, rc, path, 0, 0, "out of memory for %lu triangles", (unsigned long)count);
 
     int fresh = m->nverts == 0 && m->ntris == 0;
-    if (stl_binary_par(path, data, count, m, threads, &rc, err)) return rc;
     lam_welder wd;
     lam_welder_init(&wd);
     if ((rc = lam_welder_reserve(&wd, m, count / 2 + 16, err))) return rc;
@@ -562,12 +358,6 @@ static int stl_ascii(const char *path, const unsigned char *data, size_t len,
 int lam_import_stl_buf(const char *path, const unsigned char *data, size_t len,
                        lam_mesh *mesh, int *binary, lam_error *err)
 {
-    return lam_import_stl_buf_threads(path, data, len, mesh, binary, 1, err);
-}
-
-int lam_import_stl_buf_threads(const char *path, const unsigned char *data, size_t len, lam_mesh *mesh,
-                               int *binary, unsigned threads, lam_error *err)
-{
     lam_error own; /* err may be NULL (error.h); messages are wrapped below */
     if (!err) err = &own;
     if (binary) *binary = 0;
@@ -575,7 +365,7 @@ int lam_import_stl_buf_threads(const char *path, const unsigned char *data, size
     uint32_t count = len >= 84 ? rd_u32(data + 80) : 0;
     if (len >= 84 && 84 + 50ull * count == (unsigned long long)len) {
         if (binary) *binary = 1;
-        return stl_binary(path, data, count, mesh, threads, err);
+        return stl_binary(path, data, count, mesh, err);
     }
     if (len && looks_ascii(data, len)) {
         int rc = stl_ascii(path, data, len, mesh, err);

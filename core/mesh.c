@@ -201,11 +201,6 @@ static uint64_t hash_xyz(const double *p)
     return h;
 }
 
-uint64_t lam_welder_hash(const double p[3])
-{
-    return hash_xyz(p);
-}
-
 static int same_xyz(const double *a, const double *b)
 {
     return bits_of(a[0]) == bits_of(b[0]) && bits_of(a[1]) == bits_of(b[1]) &&

@@ -122,11 +122,6 @@ void lam_welder_prefetch(const lam_welder *w, double x, double y, double z);
 int lam_mesh_add_vertex_welded(lam_mesh *m, lam_welder *w, double x, double y, double z,
                                uint32_t *idx, lam_error *err);
 
-/* The welder's hash of a position (p holds x + 0.0, y + 0.0, z + 0.0, so
- * -0.0 hashes as 0.0): for importers that weld in parallel with the same
- * result (import_stl.c). */
-uint64_t lam_welder_hash(const double p[3]);
-
 /* Identify vertices with bitwise-equal coordinates (-0.0 counts as 0.0),
  * drop vertices no triangle or wire uses, and renumber. Triangle order and
  * face records are kept. Linear expected time (hashing). */

@@ -61,10 +61,6 @@ typedef struct lam_model {
  * *out is a new model the caller frees with lam_model_free. */
 int lam_model_load(const char *path, lam_model **out, lam_error *err);
 
-/* The same, with up to `threads` threads where that helps (a big binary
- * STL is welded in parallel): the same model for every number. */
-int lam_model_load_threads(const char *path, unsigned threads, lam_model **out, lam_error *err);
-
 /* Build a model from a mesh the caller filled. The mesh's contents move
  * into the model (mesh is left empty) whether or not this succeeds. */
 int lam_model_from_mesh(lam_mesh *mesh, const char *path, const char *format,

@@ -141,37 +141,3 @@ int lam_pool_ordered(unsigned threads, size_t n, size_t chunk, size_t ahead, siz
     free(ws);
     return rc;
 }
-
-typedef struct each_arg {
-    void (*fn)(void *ctx, unsigned k, unsigned n);
-    void *ctx;
-    unsigned k, n;
-} each_arg;
-
-static void *each_run(void *arg)
-{
-    each_arg *a = arg;
-    a->fn(a->ctx, a->k, a->n);
-    return NULL;
-}
-
-void lam_pool_each(unsigned n, void (*fn)(void *ctx, unsigned k, unsigned n), void *ctx)
-{
-    if (n > LAM_MAX_THREADS) n = LAM_MAX_THREADS;
-    if (n <= 1) {
-        if (n == 1) fn(ctx, 0, 1);
-        return;
-    }
-    pthread_t tid[LAM_MAX_THREADS];
-    each_arg args[LAM_MAX_THREADS];
-    int started[LAM_MAX_THREADS];
-    for (unsigned k = 1; k < n; k++) {
-        args[k] = (each_arg){ fn, ctx, k, n };
-        started[k] = pthread_create(&tid[k], NULL, each_run, &args[k]) == 0;
-    }
-    fn(ctx, 0, n);
-    for (unsigned k = 1; k < n; k++) {
-        if (started[k]) pthread_join(tid[k], NULL);
-        else fn(ctx, k, n);
-    }
-}

@@ -46,13 +46,6 @@ unsigned lam_default_threads(int *bad);
 int lam_pool_ordered(unsigned threads, size_t n, size_t chunk, size_t ahead, size_t window, lam_produce_fn produce,
                      lam_consume_fn consume, void *ctx, lam_error *err);
 
-/* Run fn(ctx, k, n) for k = 0 .. n-1 at once, each on its own thread (k = 0
- * on the calling thread), and return when all have returned. A thread that
- * cannot be started has its part run on the calling thread afterwards, so
- * the work done, and what it computes, are the same either way. For work
- * split into n independent parts (import, issue 15). */
-void lam_pool_each(unsigned n, void (*fn)(void *ctx, unsigned k, unsigned n), void *ctx);
-
 /* The window lam_pool_ordered will use for these values. */
 size_t lam_pool_window(size_t chunk, size_t ahead, size_t window);
 

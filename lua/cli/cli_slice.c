@@ -177,7 +177,7 @@ int cmd_slice(int argc, char **argv)
 
     lam_plan_opts po;
     if ((rc = cli_profile("slice", &a, &prof, &po))) goto done;
-    if (lam_model_load_threads(a.path, po.threads, &m, &err)) {
+    if (lam_model_load(a.path, &m, &err)) {
         rc = cli_fail(&err);
         goto done;
     }

@@ -67,8 +67,8 @@ is "$(sed -n 2p "$TMP/sep-empty-first.1")" "layer 0 1 -2.500" "separator: the em
 # order on the main thread; an absolute one (ded-gcode) by the workers
 same ladrp-relative-many "$TMP/sphere.stl" -m creol-ladrp -w 0.1 --islands
 same ladrp-absolute-many "$TMP/sphere.stl" -m ded-gcode -w 0.1 --islands
-# A binary STL of over 20,000 facets is welded on the threads too: the
-# same vertices, numbered the same, so the same program
+# A binary STL of 25,000 facets (read and welded as it comes, a few
+# hundred layers planned and formatted by the workers)
 python3 - "$TMP/bsphere.stl" <<'EOF'
 import math, struct, sys
 nu, nv, R = 160, 80, 5.0

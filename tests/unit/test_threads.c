@@ -2,12 +2,9 @@
  * never more than the window in flight, a consumer's error stopping the
  * run), a forked sweep that seeks (the very layers of a sweep from the
  * bottom, bit for bit, in any order of jumps), and the recording sink (a
- * replay sends the same calls with the same numbers), the binary STL
- * welded on threads (the mesh of one thread, against a numbering by first
- * appearance written here) and a dialect's layer text formatted apart
- * (the bytes of the sink itself). */
+ * replay sends the same calls with the same numbers) and a dialect's
+ * layer text formatted apart (the bytes of the sink itself). */
 #include "dialect.h"
-#include "import.h"
 #include "meshes.h"
 #include "plan_record.h"
 #include "pool.h"
@@ -15,7 +12,6 @@
 #include "tap.h"
 #include "util.h"
 
-#include <math.h>
 #include <pthread.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -237,97 +233,6 @@ static void record_replay(void)
     lam_record_free(&r);
 }
 
-/* ---- binary STL welded on threads ------------------------------------ */
-
-static void put_f32(unsigned char *p, float f)
-{
-    uint32_t u;
-    memcpy(&u, &f, sizeof u);
-    for (int k = 0; k < 4; k++) p[k] = (unsigned char)(u >> (8 * k));
-}
-
-/* A binary STL of nf facets whose corners are drawn from a grid of
- * positions (so most repeat, many far apart in the file), with -0.0 and
- * 0.0 both used, and repeated corners (collapsed facets). */
-static unsigned char *grid_stl(uint32_t nf, size_t *len)
-{
-    *len = 84 + 50 * (size_t)nf;
-    unsigned char *d = calloc(1, *len);
-    if (!d) return NULL;
-    d[80] = (unsigned char)nf, d[81] = (unsigned char)(nf >> 8), d[82] = (unsigned char)(nf >> 16);
-    uint32_t x = 12345;
-    for (uint32_t i = 0; i < nf; i++)
-        for (int k = 0; k < 3; k++) {
-            x = x * 1103515245u + 12345u;
-            uint32_t g = (x >> 8) % 9000; /* one of 9000 positions */
-            float c[3] = { (float)(g % 30) * 0.25f, (float)(g / 30 % 30) * 0.5f, (float)(g / 900) };
-            if (c[0] == 0 && (x & 1)) c[0] = -0.0f;
-            for (int j = 0; j < 3; j++) put_f32(d + 84 + 50 * (size_t)i + 12 + 12 * k + 4 * j, c[j]);
-        }
-    return d;
-}
-
-static void stl_threads(void)
-{
-    size_t len;
-    uint32_t nf = 30000;
-    unsigned char *d = grid_stl(nf, &len);
-    if (!d) return;
-    /* the reference: number each position when it first appears (a
-     * quadratic-free lookup: the grid index of the position) */
-    static uint32_t id_of[9000];
-    uint32_t *want = malloc(3 * (size_t)nf * sizeof *want);
-    for (size_t g = 0; g < 9000; g++) id_of[g] = UINT32_MAX;
-    uint32_t next = 0, x = 12345;
-    for (size_t r = 0; r < 3 * (size_t)nf; r++) {
-        x = x * 1103515245u + 12345u;
-        uint32_t g = (x >> 8) % 9000;
-        if (id_of[g] == UINT32_MAX) id_of[g] = next++;
-        want[r] = id_of[g];
-    }
-    lam_mesh one;
-    lam_mesh_init(&one);
-    lam_error err;
-    int rc1 = lam_import_stl_buf_threads("grid.stl", d, len, &one, NULL, 1, &err);
-    ok(rc1 == LAM_OK && one.ntris == nf && one.nverts == next &&
-           !memcmp(one.tris, want, 3 * (size_t)nf * sizeof *want),
-       "stl, one thread: %zu vertices numbered by first appearance (%u expected)", one.nverts, next);
-    unsigned ths[3] = { 2, 3, 8 };
-    for (int k = 0; k < 3; k++) {
-        lam_mesh m;
-        lam_mesh_init(&m);
-        int rc = lam_import_stl_buf_threads("grid.stl", d, len, &m, NULL, ths[k], &err);
-        ok(rc == LAM_OK && m.ntris == one.ntris && m.nverts == one.nverts && m.welded == one.welded &&
-               !memcmp(m.tris, one.tris, 3 * m.ntris * sizeof *m.tris) &&
-               !memcmp(m.xyz, one.xyz, 3 * m.nverts * sizeof *m.xyz),
-           "stl, %u threads: the same vertices, numbered the same, as one thread", ths[k]);
-        lam_mesh_free(&m);
-    }
-    /* no -0.0 among the vertices: x = -0.0 and 0.0 are one position */
-    int negzero = 0;
-    for (size_t v = 0; v < one.nverts; v++) negzero |= signbit(one.xyz[3 * v]) != 0;
-    ok(!negzero, "stl: -0.0 welded to 0.0");
-    lam_mesh_free(&one);
-    /* two non-finite coordinates, in different threads' chunks: the first
-     * in the file is named, as on one thread */
-    put_f32(d + 84 + 50 * 25000 + 12 + 12 * 2 + 4, NAN);
-    put_f32(d + 84 + 50 * 7000 + 12 + 12 * 1 + 8, INFINITY);
-    char msg1[1100] = "", msg3[1100] = "";
-    lam_mesh m;
-    lam_mesh_init(&m);
-    int e1 = lam_import_stl_buf_threads("grid.stl", d, len, &m, NULL, 1, &err);
-    snprintf(msg1, sizeof msg1, "%s", err.msg);
-    lam_mesh_free(&m);
-    lam_mesh_init(&m);
-    int e3 = lam_import_stl_buf_threads("grid.stl", d, len, &m, NULL, 3, &err);
-    snprintf(msg3, sizeof msg3, "%s", err.msg);
-    lam_mesh_free(&m);
-    ok(e1 == LAM_EINVAL && e3 == e1 && !strcmp(msg1, msg3) && strstr(msg1, "facet 7001, vertex 2: z"),
-       "stl, 3 threads: the first non-finite coordinate named as on one thread (%s)", msg3);
-    free(want);
-    free(d);
-}
-
 /* ---- a dialect's layer text formatted apart ------------------------------- */
 
 static int put_tpl(lam_dialect *d, lam_cmd c, const char *text)
@@ -431,7 +336,6 @@ int main(void)
         lam_model_free(cube);
     }
     record_replay();
-    stl_threads();
     dialect_fork();
     return done_testing();
 }
