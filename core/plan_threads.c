@@ -1,8 +1,10 @@
 /* lam_plan_run on several threads (issue 15): workers slice and plan whole
- * layers, each into a recording (plan_record.h); the calling thread hands
- * each layer to the callback and replays its recording onto the real sink,
- * strictly in layer order, so every sink (text dialects, plugin writers)
- * writes exactly what a run on one thread writes.
+ * layers, each into a recording (plan_record.h) or, for a text dialect
+ * whose text does not hang on the moves before (lam_dialect_fork), straight
+ * into that layer's text; the calling thread hands each layer to the
+ * callback and replays its recording onto the real sink or appends its text
+ * (lam_dialect_put), strictly in layer order, so every sink (text dialects,
+ * plugin writers) writes exactly what a run on one thread writes.
  *
  * What a layer's plan depends on besides the layer:
  *  - SLS: the layers around it (skins): a worker slices them too, and the
