@@ -412,6 +412,7 @@ static char *room(buf *b, size_t n)
 
 static void put(buf *b, const char *s, size_t n)
 {
+    if (!n) return; /* s may be NULL: an empty layer's text */
     char *at = room(b, n);
     if (!at) return;
     memcpy(at, s, n);
@@ -668,11 +669,21 @@ typedef struct dsink {
     size_t blocks;                  /* contour blocks written */
     size_t layer_index, in_layer;   /* contours seen in the current layer */
     buf b;
+    /* a worker's layer text (lam_dialect_fork): w is NULL, the strings are
+     * the main sink's, and the layer's first separator is noted */
+    int worker, borrowed, complete, has_sep;
+    size_t sep_at, sep_len, layer_blocks;
 } dsink;
 
-/* Commands collect in s->b and go to the writer in blocks of about this
- * size: one writer call per line was a fifth of the run time. */
+/* Commands collect in s->b and go to the writer at the end of a layer once
+ * they pass this size (one writer call per line was a fifth of the run
+ * time): the same places whether the text was formatted here or by worker
+ * threads, so a write error (a full disk, --max-output) stops the run at
+ * the same layer for every -j. A layer whose text passes FLUSH_BIG is
+ * written as it goes, to bound memory (layers that big are planned on one
+ * thread: LAM_THREAD_LAYER_MAX). */
 #define FLUSH_AT 65536
+#define FLUSH_BIG (16u << 20)
 
 static int flush(dsink *s)
 {
@@ -690,7 +701,7 @@ static int emit(dsink *s, lam_cmd c, const vals *v, double rel[3], int has_rel[3
     put(&s->b, "\n", 1);
     if (s->b.oom) return lam_error_set(s->err, LAM_ENOMEM, NULL, 0, 0, "out of memory writing the %s command",
                                        cmd_names[c]);
-    return s->b.len >= FLUSH_AT ? flush(s) : LAM_OK;
+    return s->w && s->b.len >= FLUSH_BIG ? flush(s) : LAM_OK;
 }
 
 static void job_vals(const dsink *s, vals *v)
@@ -756,7 +767,11 @@ static int d_layer(void *ctx, const lam_layer_info *L)
 
 static int d_layer_end(void *ctx, const lam_layer_info *L)
 {
-    return layer_cmd(ctx, LAM_CMD_LAYER_END, L);
+    dsink *s = ctx;
+    int rc = layer_cmd(s, LAM_CMD_LAYER_END, L);
+    if (rc) return rc;
+    s->complete = 1;
+    return s->w && s->b.len >= FLUSH_AT ? flush(s) : LAM_OK;
 }
 
 static int d_feed(void *ctx, double rate)
@@ -808,7 +823,15 @@ static int block_start(dsink *s, vals *v, double id, double power, double speed,
 {
     size_t index = s->in_layer++;
     memset(v, 0, sizeof *v);
+    size_t at = s->b.len;
     int rc = s->blocks++ > 0 ? emit(s, LAM_CMD_SEPARATOR, v, NULL, NULL) : LAM_OK;
+    if (s->worker && !s->layer_blocks++) {
+        /* a worker takes it that blocks came before; the writer drops this
+         * separator if none did */
+        s->has_sep = 1;
+        s->sep_at = at;
+        s->sep_len = s->b.len - at;
+    }
     v->num[F_INDEX] = (double)index;
     v->num[F_ID] = id;
     v->num[F_POWER] = power;
@@ -911,10 +934,12 @@ static void d_destroy(void *ctx)
 {
     dsink *s = ctx;
     if (!s) return;
-    free(s->name);
-    free(s->process);
-    free(s->units);
-    free(s->label);
+    if (!s->borrowed) {
+        free(s->name);
+        free(s->process);
+        free(s->units);
+        free(s->label);
+    }
     free(s->b.s);
     free(s);
 }
@@ -939,4 +964,100 @@ int lam_dialect_sink(const lam_dialect *d, lam_writer *w, lam_sink *out, lam_err
     out->end = d_end;
     out->destroy = d_destroy;
     return LAM_OK;
+}
+
+/* ---- layer text formatted by worker threads (issue 15) ------------------ */
+
+/* Whether the dialect's text for a layer depends on the layers before it
+ * beyond what lam_dialect_put makes right: relative moves (dx dy dz) are
+ * measured from where the text before left the stage, rounding included. */
+static int relative_moves(const lam_dialect *d)
+{
+    const lam_cmd moves[2] = { LAM_CMD_TRAVEL, LAM_CMD_DEPOSIT };
+    for (int m = 0; m < 2; m++) {
+        const lam_template *t = &d->cmd[moves[m]];
+        for (size_t i = 0; t->present && i < t->nsegs; i++)
+            if (t->segs[i].field == F_DX || t->segs[i].field == F_DY || t->segs[i].field == F_DZ) return 1;
+    }
+    return 0;
+}
+
+int lam_dialect_fork(const lam_sink *main, int moves, lam_sink *out, lam_error *err)
+{
+    memset(out, 0, sizeof *out);
+    if (!main || main->begin != d_begin) return LAM_EUSAGE;
+    const dsink *m = main->ctx;
+    if (moves && relative_moves(m->d)) return LAM_EUSAGE;
+    dsink *s = calloc(1, sizeof *s);
+    if (!s) return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory");
+    s->d = m->d;
+    s->err = err;
+    s->job = m->job;
+    s->name = m->name;
+    s->process = m->process;
+    s->units = m->units;
+    s->label = m->label;
+    s->borrowed = 1;
+    s->worker = 1;
+    memcpy(s->pos, m->job.origin, sizeof s->pos);
+    out->ctx = s;
+    out->layer = d_layer;
+    out->layer_end = d_layer_end;
+    out->feed = d_feed;
+    out->laser = d_laser;
+    out->move = d_move;
+    out->contour = d_contour;
+    out->hatches = d_hatches;
+    out->destroy = d_destroy;
+    return LAM_OK;
+}
+
+void lam_dialect_fork_start(const lam_sink *worker, lam_error *err)
+{
+    dsink *s = worker->ctx;
+    s->err = err;
+    s->b.len = 0;
+    s->b.oom = 0;
+    s->blocks = 1;
+    s->complete = s->has_sep = 0;
+    s->sep_at = s->sep_len = s->layer_blocks = 0;
+}
+
+void lam_dialect_fork_take(const lam_sink *worker, lam_dialect_text *t)
+{
+    dsink *s = worker->ctx;
+    char *keep = t->s;
+    size_t keep_cap = t->cap;
+    t->s = s->b.s;
+    t->len = s->b.len;
+    t->cap = s->b.cap;
+    t->complete = s->complete;
+    t->has_sep = s->has_sep;
+    t->sep_at = s->sep_at;
+    t->sep_len = s->sep_len;
+    t->blocks = s->layer_blocks;
+    s->b.s = keep; /* the buffer the writer is done with, for the next layer */
+    s->b.cap = keep_cap;
+    s->b.len = 0;
+}
+
+int lam_dialect_put(const lam_sink *main, const lam_dialect_text *t)
+{
+    dsink *s = main->ctx;
+    if (t->has_sep && s->blocks == 0) {
+        /* the first block of the program: no separator before it */
+        put(&s->b, t->s, t->sep_at);
+        put(&s->b, t->s + t->sep_at + t->sep_len, t->len - t->sep_at - t->sep_len);
+    } else {
+        put(&s->b, t->s, t->len);
+    }
+    s->blocks += t->blocks;
+    if (s->b.oom) return lam_error_set(s->err, LAM_ENOMEM, NULL, 0, 0, "out of memory writing a layer");
+    return t->complete && s->b.len >= FLUSH_AT ? flush(s) : LAM_OK;
+}
+
+void lam_dialect_text_free(lam_dialect_text *t)
+{
+    free(t->s);
+    memset(t, 0, sizeof *t);
 }

@@ -111,6 +111,42 @@ void lam_dialect_free(lam_dialect *d);
  * to err, which must outlive the sink. */
 int lam_dialect_sink(const lam_dialect *d, lam_writer *w, lam_sink *out, lam_error *err);
 
+/* Layer text formatted by worker threads (issue 15): a worker formats a
+ * whole layer (layer, its operations, layer_end) into its own buffer and
+ * the writer thread appends the buffers in layer order with
+ * lam_dialect_put; the bytes are those the sink writes on one thread. */
+typedef struct lam_dialect_text {
+    char *s;                 /* the text (owned; lam_dialect_text_free) */
+    size_t len, cap;
+    int complete;            /* the layer's layer_end was formatted */
+    int has_sep;             /* the first separator of the layer is s[sep_at .. +sep_len) */
+    size_t sep_at, sep_len;
+    size_t blocks;           /* contour and hatch blocks in it */
+} lam_dialect_text;
+
+/* A worker's sink formatting layers like `main`, a lam_dialect_sink after
+ * its begin (its job strings are shared: main must outlive it). Returns
+ * LAM_EUSAGE, making nothing, when main is not a dialect sink or, when
+ * `moves` (the planner sends moves), the dialect writes relative moves,
+ * whose text depends on the rounding of all the moves before. Only the
+ * layer callbacks are set; destroy releases it. */
+int lam_dialect_fork(const lam_sink *main, int moves, lam_sink *out, lam_error *err);
+
+/* Start a layer's text in a worker sink; its errors (out of memory) go to
+ * err until the next start. */
+void lam_dialect_fork_start(const lam_sink *worker, lam_error *err);
+
+/* Move the text formatted since the start into t, and t's old buffer into
+ * the worker for reuse. */
+void lam_dialect_fork_take(const lam_sink *worker, lam_dialect_text *t);
+
+/* Write t through main as if its layer had been sent to main (the
+ * separator before the program's first block dropped, blocks counted,
+ * flushed at the layer's end as main would). Returns the writer's error. */
+int lam_dialect_put(const lam_sink *main, const lam_dialect_text *t);
+
+void lam_dialect_text_free(lam_dialect_text *t);
+
 /* The default rendering of a number field: lam_fmt_num(buf, x, 17), the
  * fewest significant digits that read back as exactly x (fmt.h): 600,
  * 0.08, 0.1, 1e-05, 1e+20; never "-0". buf holds LAM_FMT_MAX bytes.

@@ -1,8 +1,10 @@
 /* lam_plan_run on several threads (issue 15): workers slice and plan whole
- * layers, each into a recording (plan_record.h); the calling thread hands
- * each layer to the callback and replays its recording onto the real sink,
- * strictly in layer order, so every sink (text dialects, plugin writers)
- * writes exactly what a run on one thread writes.
+ * layers, each into a recording (plan_record.h) or, for a text dialect
+ * whose text does not hang on the moves before (lam_dialect_fork), straight
+ * into that layer's text; the calling thread hands each layer to the
+ * callback and replays its recording onto the real sink or appends its text
+ * (lam_dialect_put), strictly in layer order, so every sink (text dialects,
+ * plugin writers) writes exactly what a run on one thread writes.
  *
  * What a layer's plan depends on besides the layer:
  *  - SLS: the layers around it (skins): a worker slices them too, and the
@@ -20,6 +22,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "dialect.h"
 #include "plan_record.h"
 #include "pool.h"
 
@@ -28,6 +31,8 @@ typedef struct result {
     int slice_rc, plan_rc;
     lam_error slice_err, plan_err;
     lam_record ops;          /* what planning it sent to the sink */
+    lam_dialect_text text;   /* or, for a text dialect, the layer's text */
+    int has_text;
     double entry[3], exit[3];/* LADRP: the stage before and after, as the worker had it */
     int entry_laser, exit_laser;
     lam_ladrp_stats stats;
@@ -42,6 +47,7 @@ typedef struct wstate {
     size_t exit_layer;
     double exit[3];
     lam_sls_state st;
+    lam_sink text;           /* formats layers for a text dialect (run.text) */
 } wstate;
 
 typedef struct run {
@@ -53,6 +59,7 @@ typedef struct run {
     void *cbctx;
     double origin[3];
     size_t S, skins, window;
+    int text;                /* workers format the layers' text (lam_dialect_fork) */
     result *res;             /* task t's result at t % window */
     wstate *ws;
     /* the writer's side */
@@ -147,9 +154,19 @@ static int produce(void *ctx, unsigned worker, size_t i)
         }
         if (j == i) L = Lj;
     }
-    lam_sink rs = lam_record_sink(&R->ops, r->sink);
-    int rc;
-    if (ladrp) {
+    /* a text dialect's layer is formatted here, whole; other sinks get
+     * the recording replayed */
+    lam_sink rs = r->text ? w->text : lam_record_sink(&R->ops, r->sink);
+    lam_layer_info li = { L->index, L->cut, L->width, L->floor, L->ceiling };
+    R->has_text = r->text;
+    int rc = LAM_OK;
+    if (r->text) {
+        lam_dialect_fork_start(&rs, &R->plan_err);
+        rc = rs.layer(rs.ctx, &li);
+    }
+    if (rc) {
+        /* out of memory for the layer command: the error is in plan_err */
+    } else if (ladrp) {
         double pos[3];
         int laser = i == 0 ? -1 : 0;
         memcpy(pos, i == 0 || !warm ? (i == 0 ? r->origin : w->exit) : r->origin, sizeof pos);
@@ -179,6 +196,8 @@ static int produce(void *ctx, unsigned worker, size_t i)
         rc = lam_plan_sls_layer(L, below, nb, above, na, r->f, o, &rs, NULL, &w->st, &R->plan_err);
         R->time = w->st.time;
     }
+    if (!rc && r->text) rc = rs.layer_end(rs.ctx, &li);
+    if (r->text) lam_dialect_fork_take(&rs, &R->text);
     if (rc && R->plan_err.code == LAM_OK) {
         if (R->ops.failed) lam_error_nomem(&R->plan_err, "planning a layer");
         else lam_error_set(&R->plan_err, rc, NULL, 0, 0, "planning failed");
@@ -219,6 +238,28 @@ static int consume(void *ctx, size_t i, int prc)
     }
     lam_layer *L = R->L;
     lam_layer_info li = { L->index, L->cut, L->width, L->floor, L->ceiling, L, NULL };
+    if (R->has_text && (R->plan_rc || o->kind != LAM_PLAN_LADRP ||
+                        (!memcmp(R->entry, r->pos, sizeof r->pos) && R->entry_laser == r->laser))) {
+        /* the layer's text as the worker formatted it: whole, or up to the
+         * error planning it */
+        int rc = lam_dialect_put(sink, &R->text);
+        if (!rc && R->plan_rc) {
+            copy_error(err, &R->plan_err);
+            rc = R->plan_rc;
+        }
+        if (!rc && o->kind == LAM_PLAN_LADRP) {
+            memcpy(r->pos, R->exit, sizeof r->pos);
+            r->laser = R->exit_laser;
+            if (o->totals) lam_ladrp_stats_add(o->totals, &R->stats);
+        }
+        if (!rc && o->kind == LAM_PLAN_SLS) {
+            if (o->time) lam_scan_time_add(o->time, &R->time);
+            if (o->layer_time) o->layer_time[L->index] = lam_scan_time_total(&R->time);
+        }
+        lam_layer_free(R->L);
+        R->L = NULL;
+        return rc;
+    }
     int rc = sink->layer ? sink->layer(sink->ctx, &li) : LAM_OK;
     if (!rc && R->plan_rc) {
         /* what the layer sent before it failed, then its error */
@@ -295,16 +336,26 @@ int lam_plan_threaded(lam_slicer *s, const lam_plan_opts *o, const lam_sink *sin
         if (!(w->cache = calloc(w->cap, sizeof *w->cache))) rc = lam_error_nomem(err, "starting threads");
         else rc = lam_slicer_fork(s, &w->sc, err);
     }
+    /* text dialects are formatted by the workers when every worker has its
+     * formatter (otherwise the recordings are replayed: the same bytes) */
+    r.text = !rc;
+    for (unsigned k = 0; k < threads && r.text; k++) {
+        int frc = lam_dialect_fork(sink, o->kind == LAM_PLAN_LADRP, &r.ws[k].text, err);
+        if (frc) r.text = 0;
+        if (frc == LAM_ENOMEM) rc = frc;
+    }
     if (!rc) rc = lam_pool_ordered(threads, r.S, chunk, r.skins, window, produce, consume, &r, err);
     for (unsigned k = 0; r.ws && k < threads; k++) {
         cache_clear(&r.ws[k]);
         free(r.ws[k].cache);
         lam_slicer_free(r.ws[k].sc);
         lam_sls_state_free(&r.ws[k].st);
+        if (r.ws[k].text.destroy) r.ws[k].text.destroy(r.ws[k].text.ctx);
     }
     for (size_t t = 0; r.res && t < window; t++) {
         lam_layer_free(r.res[t].L);
         lam_record_free(&r.res[t].ops);
+        lam_dialect_text_free(&r.res[t].text);
     }
     free(r.res);
     free(r.ws);

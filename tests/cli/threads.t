@@ -42,6 +42,52 @@ done
 same lpbf-hatch-skins "$TMP/sphere.stl" -m lpbf-cli -w 0.1 -s hatch_strategy=islands -s island_size=2 \
     -s skin_layers=2 -s hatch_distance=0.2
 same binary-hatch "$TMP/torus.stl" -m cli-binary -w 0.1 -s hatch_strategy=stripes -s hatch_distance=0.2
+# Text dialects are formatted by the workers, a layer into a buffer each,
+# and written in order: what the text carries from the layers before must
+# still come out right. The separator goes between two blocks, never before
+# the program's first, also when the first layers are empty (planes below
+# the part) and the first block is in a layer a worker formatted alone.
+cat >"$TMP/sep.yaml" <<'EOF'
+inherits: sls-contours
+dialect:
+  preamble: "begin {layers} {label}"
+  layer: "layer {index} {number} {z:%.3f}"
+  layer_end: "end {number}"
+  separator: "---"
+  postamble: "done {layers}"
+EOF
+same sep-empty-first "$M/thesis_cube_hole.ug" -m "$TMP/sep.yaml" --planes=-3,-2,-1,-0.5,0.5,1,1.5,1.75,2.5
+same sep-sphere "$TMP/sphere.stl" -m "$TMP/sep.yaml" -w 0.1 -s hatch_strategy=lines -s hatch_distance=0.5
+is "$(grep -c -- '^---$' "$TMP/sep-empty-first.1")" \
+    "$(( $(grep -c '^contour ' "$TMP/sep-empty-first.1") - 1 ))" \
+    "separator: one fewer than the blocks (none before the first)"
+is "$(sed -n 2p "$TMP/sep-empty-first.1")" "layer 0 1 -2.500" "separator: the empty first layer is written"
+# relative moves (creol-ladrp, dx dy): every move's text depends on the
+# rounding of all the moves before, so that dialect is formatted in layer
+# order on the main thread; an absolute one (ded-gcode) by the workers
+same ladrp-relative-many "$TMP/sphere.stl" -m creol-ladrp -w 0.1 --islands
+same ladrp-absolute-many "$TMP/sphere.stl" -m ded-gcode -w 0.1 --islands
+# A binary STL of 25,000 facets (read and welded as it comes, a few
+# hundred layers planned and formatted by the workers)
+python3 - "$TMP/bsphere.stl" <<'EOF'
+import math, struct, sys
+nu, nv, R = 160, 80, 5.0
+def p(i, j):
+    th, ph = 2 * math.pi * (i % nu) / nu, -math.pi / 2 + math.pi * j / nv
+    if j in (0, nv): return (0.0, 0.0, -R if j == 0 else R)
+    return (R * math.cos(ph) * math.cos(th), R * math.cos(ph) * math.sin(th), R * math.sin(ph))
+tris = []
+for i in range(nu):
+    for j in range(nv):
+        a, b, c, d = p(i, j), p(i + 1, j), p(i + 1, j + 1), p(i, j + 1)
+        if j > 0: tris.append((a, b, c))
+        if j < nv - 1: tris.append((a, c, d))
+with open(sys.argv[1], "wb") as f:
+    f.write(b"\0" * 80 + struct.pack("<I", len(tris)))
+    for t in tris:
+        f.write(struct.pack("<12fH", 0, 0, 0, *[x for v in t for x in v], 0))
+EOF
+same binary-sphere-big "$TMP/bsphere.stl" -w 0.2
 # fewer layers than threads, and one layer
 same cube-two-layers "$M/thesis_cube_hole.ug" -w 1
 same cube-one-layer "$M/thesis_cube_hole.ug" -w 2

@@ -2,7 +2,9 @@
  * never more than the window in flight, a consumer's error stopping the
  * run), a forked sweep that seeks (the very layers of a sweep from the
  * bottom, bit for bit, in any order of jumps), and the recording sink (a
- * replay sends the same calls with the same numbers). */
+ * replay sends the same calls with the same numbers) and a dialect's
+ * layer text formatted apart (the bytes of the sink itself). */
+#include "dialect.h"
 #include "meshes.h"
 #include "plan_record.h"
 #include "pool.h"
@@ -231,6 +233,89 @@ static void record_replay(void)
     lam_record_free(&r);
 }
 
+/* ---- a dialect's layer text formatted apart ------------------------------- */
+
+static int put_tpl(lam_dialect *d, lam_cmd c, const char *text)
+{
+    size_t off;
+    lam_error err;
+    return lam_template_parse(c, text, &d->cmd[c], &off, &err);
+}
+
+/* Two layers, the first with no blocks, the second with two contours,
+ * sent to a dialect sink directly and through lam_dialect_fork /
+ * lam_dialect_put: the same text. */
+static void dialect_fork(void)
+{
+    lam_dialect d;
+    memset(&d, 0, sizeof d);
+    int rc = put_tpl(&d, LAM_CMD_LAYER, "layer {number} {z:%.2f}") | put_tpl(&d, LAM_CMD_LAYER_END, "end {index}") |
+             put_tpl(&d, LAM_CMD_CONTOUR_BEGIN, "contour {index} {n} {points:%.1f}") |
+             put_tpl(&d, LAM_CMD_SEPARATOR, "--") | put_tpl(&d, LAM_CMD_PREAMBLE, "begin {layers}");
+    ok(rc == LAM_OK, "dialect: templates parse");
+    double xyz[9] = { 0, 0, 1, 1, 0, 1, 0, 1, 1 }, uv[6] = { 0, 0, 1, 0, 0, 1 };
+    lam_contour_info ci = { 1, 1, 0, 1, xyz, uv, 3, 0, 0, 0, 0 };
+    lam_layer_info li[2] = { { 0, 0.5, 0.5, 0, 0.5 }, { 1, 1, 0.5, 0.5, 1 } };
+    lam_job_info job;
+    memset(&job, 0, sizeof job);
+    job.layers = 2;
+    char *text[2] = { NULL, NULL };
+    for (int way = 0; way < 2; way++) {
+        lam_writer *w;
+        lam_error err;
+        lam_sink s;
+        lam_writer_memory(&w, &err);
+        lam_dialect_sink(&d, w, &s, &err);
+        s.begin(s.ctx, &job);
+        if (way == 0) {
+            for (int l = 0; l < 2; l++) {
+                s.layer(s.ctx, &li[l]);
+                for (int c = 0; c < 2 * l; c++) s.contour(s.ctx, &ci);
+                s.layer_end(s.ctx, &li[l]);
+            }
+        } else {
+            lam_sink ws;
+            lam_dialect_text t;
+            memset(&t, 0, sizeof t);
+            ok(lam_dialect_fork(&s, 1, &ws, &err) == LAM_OK, "dialect: a worker's formatter");
+            for (int l = 0; l < 2; l++) {
+                lam_dialect_fork_start(&ws, &err);
+                ws.layer(ws.ctx, &li[l]);
+                for (int c = 0; c < 2 * l; c++) ws.contour(ws.ctx, &ci);
+                ws.layer_end(ws.ctx, &li[l]);
+                lam_dialect_fork_take(&ws, &t);
+                lam_dialect_put(&s, &t);
+            }
+            lam_dialect_text_free(&t);
+            ws.destroy(ws.ctx);
+        }
+        s.end(s.ctx);
+        s.destroy(s.ctx);
+        size_t n;
+        lam_writer_take(w, &text[way], &n, &err);
+    }
+    const char *want = "begin 2\nlayer 1 0.50\nend 0\nlayer 2 1.00\ncontour 0 3 0.0,0.0,1.0,0.0,0.0,1.0\n--\n"
+                       "contour 1 3 0.0,0.0,1.0,0.0,0.0,1.0\nend 1\n";
+    is_str(text[0], want, "dialect: the sink's own text");
+    is_str(text[1], want, "dialect: layers formatted apart and put in order: the same text, no separator first");
+    /* relative moves depend on every move before: no worker formatter */
+    put_tpl(&d, LAM_CMD_TRAVEL, "G0 X{dx}");
+    lam_writer *w;
+    lam_error err;
+    lam_sink s, ws;
+    lam_writer_memory(&w, &err);
+    lam_dialect_sink(&d, w, &s, &err);
+    s.begin(s.ctx, &job);
+    ok(lam_dialect_fork(&s, 1, &ws, &err) == LAM_EUSAGE && lam_dialect_fork(&s, 0, &ws, &err) == LAM_OK,
+       "dialect: relative moves are formatted in order, unless the plan has no moves");
+    ws.destroy(ws.ctx);
+    s.destroy(s.ctx);
+    lam_writer_abort(w);
+    free(text[0]);
+    free(text[1]);
+    lam_dialect_free(&d);
+}
+
 int main(void)
 {
     pool_run(1, 1, NTASK, "pool, 1 worker, runs of 1");
@@ -251,5 +336,6 @@ int main(void)
         lam_model_free(cube);
     }
     record_replay();
+    dialect_fork();
     return done_testing();
 }
