@@ -157,7 +157,7 @@ static int produce(void *ctx, unsigned worker, size_t i)
     /* a text dialect's layer is formatted here, whole; other sinks get
      * the recording replayed */
     lam_sink rs = r->text ? w->text : lam_record_sink(&R->ops, r->sink);
-    lam_layer_info li = { L->index, L->cut, L->width, L->floor, L->ceiling };
+    lam_layer_info li = { L->index, L->cut, L->width, L->floor, L->ceiling, L, NULL };
     R->has_text = r->text;
     int rc = LAM_OK;
     if (r->text) {
