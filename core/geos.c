@@ -93,6 +93,27 @@ static GEOSGeometry *ring_of(lam_geos *c, const lam_layer *L, const lam_contour 
     return GEOSGeom_createLinearRing_r(c->h, cs);
 }
 
+/* A section is valid by construction up to rounding: where the plane meets
+ * the model at a point of two boundaries (a hole touching the outline, as
+ * an oblique cut through a cube with a hole makes), the hole's vertex may
+ * lie a rounding outside the outline, and GEOS's overlays refuse the
+ * region ("TopologyException: ... Self-intersection"). Such a region is
+ * repaired by GEOS's own MakeValid (the structure method: areas stay areas,
+ * collapsed slivers go), so hatching and offsets see the material the
+ * section means. Takes mp; NULL when GEOS fails. */
+static GEOSGeometry *valid_region(lam_geos *c, GEOSGeometry *mp)
+{
+    if (GEOSisValid_r(c->h, mp) == 1) return mp;
+    GEOSMakeValidParams *p = GEOSMakeValidParams_create_r(c->h);
+    GEOSGeometry *fixed = NULL;
+    if (p && GEOSMakeValidParams_setMethod_r(c->h, p, GEOS_MAKE_VALID_STRUCTURE) &&
+        GEOSMakeValidParams_setKeepCollapsed_r(c->h, p, 0))
+        fixed = GEOSMakeValidWithParams_r(c->h, mp, p);
+    if (p) GEOSMakeValidParams_destroy_r(c->h, p);
+    GEOSGeom_destroy_r(c->h, mp);
+    return fixed;
+}
+
 GEOSGeometry *lam_geos_layer_region(lam_geos *c, const lam_layer *L)
 {
     size_t n = L->ncontours;
@@ -128,5 +149,5 @@ GEOSGeometry *lam_geos_layer_region(lam_geos *c, const lam_layer *L)
     if (!mp)
         for (unsigned k = 0; k < np; k++) GEOSGeom_destroy_r(c->h, polys[k]);
     free(polys);
-    return mp;
+    return mp ? valid_region(c, mp) : NULL;
 }

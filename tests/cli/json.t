@@ -126,4 +126,14 @@ is "$(jq '.totals.layers' "$TMP/big.json")" 10000 "the big run has 10,000 layers
 ok $((size * 10 > m0 ? 0 : 1)) "the JSON (${size} KB) is over 10% of the run's peak memory (${m0} KB): holding it would show"
 ok $((m1 * 10 <= m0 * 11 ? 0 : 1)) "peak memory with --json ${m1} KB, without ${m0} KB: within 10%"
 
+# An oblique cut through the cube with a hole: in one layer the hole's
+# corner lies on the outline (within rounding); hatching used to stop there
+# ("TopologyException: ... Self-intersection"). The region is repaired, so
+# the run completes and its hatches are the program's.
+run "$LAMINA" slice "$M/thesis_cube_hole.ug" -m lpbf-cli -s hatch_strategy=islands -a 1,1,2 -o "$TMP/ob.cli" \
+    --json "$TMP/ob.json"
+is "$RC" 0 "oblique cut with a hole touching the outline: hatched (exit 0)"
+run "${CHECK[@]}" "$TMP/ob.json" --cli "$TMP/ob.cli"
+is "$RC $OUT" "0 " "... its JSON passes the schema and matches the CLI program's hatches"
+
 done_testing
