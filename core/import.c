@@ -54,40 +54,39 @@ static enum fmt by_content(const char *d, size_t n)
     return FMT_UNKNOWN;
 }
 
-/* The model in data (len bytes, NUL-terminated), named path. */
-static int load_buf(const char *path, const char *data, size_t len, lam_model **out, lam_error *err)
+/* The mesh in data (len bytes, NUL-terminated), named path: *mesh is
+ * initialised here and freed on failure. The caller releases data before
+ * building the model from the mesh: the file (as large as the mesh) need
+ * not stay beside the model's arrays while they are made. */
+static int parse_buf(const char *path, const char *data, size_t len, lam_mesh *mesh, const char **format,
+                     lam_error *err)
 {
+    lam_mesh_init(mesh);
     if (len == 0) return lam_error_set(err, LAM_EFORMAT, path, 0, 0, "empty file");
     enum fmt f = by_extension(path);
     if (f == FMT_UNKNOWN) f = by_content(data, len);
-    lam_mesh mesh;
-    lam_mesh_init(&mesh);
-    const char *format = NULL;
     int rc;
     switch (f) {
     case FMT_UG:
-        rc = lam_import_ug_buf(path, data, len, &mesh, err);
-        format = "unigrafix";
+        rc = lam_import_ug_buf(path, data, len, mesh, err);
+        *format = "unigrafix";
         break;
     case FMT_STL: {
         int binary = 0;
-        rc = lam_import_stl_buf(path, (const unsigned char *)data, len, &mesh, &binary, err);
-        format = binary ? "stl-binary" : "stl-ascii";
+        rc = lam_import_stl_buf(path, (const unsigned char *)data, len, mesh, &binary, err);
+        *format = binary ? "stl-binary" : "stl-ascii";
         break;
     }
     case FMT_OBJ:
-        rc = lam_import_obj_buf(path, data, len, &mesh, err);
-        format = "obj";
+        rc = lam_import_obj_buf(path, data, len, mesh, err);
+        *format = "obj";
         break;
     default:
         rc = lam_error_set(err, LAM_EFORMAT, path, 0, 0,
                            "unknown model format (lamina reads Unigrafix .ug, STL and OBJ)");
     }
-    if (rc) {
-        lam_mesh_free(&mesh);
-        return rc;
-    }
-    return lam_model_from_mesh(&mesh, path, format, out, err);
+    if (rc) lam_mesh_free(mesh);
+    return rc;
 }
 
 int lam_model_load(const char *path, lam_model **out, lam_error *err)
@@ -98,9 +97,11 @@ int lam_model_load(const char *path, lam_model **out, lam_error *err)
     int mapped;
     int rc = lam_map_file(path, lam_model_limit(), &data, &len, &mapped, err);
     if (rc) return rc;
-    rc = load_buf(path, data, len, out, err);
+    lam_mesh mesh;
+    const char *format = NULL;
+    rc = parse_buf(path, data, len, &mesh, &format, err);
     lam_unmap_file(data, len, mapped);
-    return rc;
+    return rc ? rc : lam_model_from_mesh(&mesh, path, format, out, err);
 }
 
 int lam_model_load_stdin(lam_model **out, lam_error *err)
@@ -110,7 +111,9 @@ int lam_model_load_stdin(lam_model **out, lam_error *err)
     size_t len;
     int rc = lam_read_stdin(lam_model_limit(), &data, &len, err);
     if (rc) return rc;
-    rc = load_buf(LAM_STDIN_NAME, data, len, out, err);
+    lam_mesh mesh;
+    const char *format = NULL;
+    rc = parse_buf(LAM_STDIN_NAME, data, len, &mesh, &format, err);
     free(data);
-    return rc;
+    return rc ? rc : lam_model_from_mesh(&mesh, LAM_STDIN_NAME, format, out, err);
 }
