@@ -255,7 +255,7 @@ static void dialect_fork(void)
     ok(rc == LAM_OK, "dialect: templates parse");
     double xyz[9] = { 0, 0, 1, 1, 0, 1, 0, 1, 1 }, uv[6] = { 0, 0, 1, 0, 0, 1 };
     lam_contour_info ci = { 1, 1, 0, 1, xyz, uv, 3, 0, 0, 0, 0 };
-    lam_layer_info li[2] = { { 0, 0.5, 0.5, 0, 0.5 }, { 1, 1, 0.5, 0.5, 1 } };
+    lam_layer_info li[2] = { { 0, 0.5, 0.5, 0, 0.5, NULL, NULL }, { 1, 1, 0.5, 0.5, 1, NULL, NULL } };
     lam_job_info job;
     memset(&job, 0, sizeof job);
     job.layers = 2;
