@@ -173,14 +173,9 @@ int lam_lua_validate(lua_State *L)
     if (!j->ls || !j->frames || !j->checks || !j->index || !j->z) return luaL_error(L, "out of memory");
     j->n = n;
     size_t total = 0;
-    char b[64];
     /* the layers' pointers: nothing allocates from here to the tables */
     for (size_t i = 0; i < n; i++) {
-        lua_rawgeti(L, 2, (lua_Integer)i + 1);
-        if (!LAM_TESTUD(L, -1, llayer, LAM_LAYER, LAM_TAG_LAYER))
-            lam_lua_opterror(L, 2, "layers[%zu] must be a lamina.layer, got %s", i + 1,
-                             lam_lua_describe(L, -1, b, sizeof b));
-        j->ls[i] = lam_lua_checklayer(L, -1);
+        j->ls[i] = lam_lua_layeritem(L, 2, 2, i);
         j->frames[i] = lam_lua_layerrun(L, -1)->frame;
         lua_getiuservalue(L, -1, 1); /* the run */
         lua_getiuservalue(L, -1, 1); /* its model */

@@ -173,6 +173,10 @@ typedef struct lplan {
 lmodel *lam_lua_checkmodel(lua_State *L, int idx);
 lam_layer *lam_lua_checklayer(lua_State *L, int idx);
 lrun *lam_lua_layerrun(lua_State *L, int idx);   /* run of the layer at idx */
+/* Item i (0-based) of the list at index `list` as a live layer: pushed and
+ * its lam_layer returned; anything else raises an error on argument `arg`
+ * ("layers[3] must be a lamina.layer, got string"). */
+lam_layer *lam_lua_layeritem(lua_State *L, int list, int arg, size_t i);
 lmachine *lam_lua_checkmachine(lua_State *L, int idx);
 
 /* Push the contour userdata k of the layer at idx (cached: the same

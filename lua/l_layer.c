@@ -231,6 +231,16 @@ lam_layer *lam_lua_checklayer(lua_State *L, int idx)
     return u->L;
 }
 
+lam_layer *lam_lua_layeritem(lua_State *L, int list, int arg, size_t i)
+{
+    lua_rawgeti(L, list, (lua_Integer)i + 1);
+    if (!LAM_TESTUD(L, -1, llayer, LAM_LAYER, LAM_TAG_LAYER)) {
+        char b[64];
+        lam_lua_opterror(L, arg, "layers[%zu] must be a lamina.layer, got %s", i + 1, lam_lua_describe(L, -1, b, sizeof b));
+    }
+    return lam_lua_checklayer(L, -1);
+}
+
 lrun *lam_lua_layerrun(lua_State *L, int idx)
 {
     lua_getiuservalue(L, idx, 1);

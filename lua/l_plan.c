@@ -59,13 +59,8 @@ static int job_gc(lua_State *L)
 static const lrun *check_layers(lua_State *L, const lam_layer **ls, size_t n)
 {
     const lrun *run = NULL;
-    char b[64];
     for (size_t i = 0; i < n; i++) {
-        lua_rawgeti(L, 2, (lua_Integer)i + 1);
-        if (!LAM_TESTUD(L, -1, llayer, LAM_LAYER, LAM_TAG_LAYER))
-            lam_lua_opterror(L, 2, "layers[%zu] must be a lamina.layer, got %s", i + 1,
-                             lam_lua_describe(L, -1, b, sizeof b));
-        ls[i] = lam_lua_checklayer(L, -1);
+        ls[i] = lam_lua_layeritem(L, 2, 2, i);
         const lrun *r = lam_lua_layerrun(L, -1);
         if (!run) run = r;
         else if (r != run)
