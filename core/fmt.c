@@ -23,11 +23,18 @@ int lam_fmt_scaled(double x, int d, unsigned long long *out)
     double s = pow10_tab[d];
     double ax = fabs(x);
     double p = ax * s;
-    double e = fma(ax, s, -p);          /* ax * s == p + e exactly */
-    double fl = floor(p);
-    double t = (p - fl) - 0.5;          /* p - fl is exact */
-    unsigned long long q = (unsigned long long)fl;
-    double r = t + e;                   /* its sign is the exact sum's sign */
+    unsigned long long q = (unsigned long long)p; /* floor: 0 <= p < 2^52 */
+    double t = (p - (double)q) - 0.5;            /* p - q is exact */
+    /* p is ax * s rounded, off by at most half an ulp of p (<= p * 2^-53):
+     * unless p lies that close to a midpoint, t's sign decides. Only then
+     * the exact error of the product (a fused multiply-add, a library call
+     * on a baseline x86-64 build) */
+    if (fabs(t) > p * 0x1p-52) {
+        *out = q + (t > 0);
+        return 1;
+    }
+    double e = fma(ax, s, -p);                   /* ax * s == p + e exactly */
+    double r = t + e;                            /* its sign is the exact sum's sign */
     if (r > 0 || (r == 0 && (q & 1))) q++;
     *out = q;
     return 1;
