@@ -386,10 +386,23 @@ nomem:
 
 /* ---- rendering ---------------------------------------------------------- */
 
+/* The text of the fixed-point number a segment printed last: a layer's
+ * points repeat its height, so the SLS point command writes the digits of
+ * z once per layer instead of once per point (a third of its numbers).
+ * The text depends only on the segment and the rounded value. */
+typedef struct numo {
+    const void *seg;
+    unsigned long long q;
+    int neg;
+    size_t len;
+    char txt[32];
+} numo;
+
 typedef struct buf {
     char *s;
     size_t len, cap;
     int oom;
+    numo memo[F_COUNT];      /* by the segment's field */
 } buf;
 
 /* Room for n more bytes and a NUL at the end of b; NULL when out of memory. */
@@ -562,7 +575,7 @@ static int negative_zero(const char *s)
 }
 
 /* Render number x with seg's conversion (or the default for ftype ty). */
-static size_t fmt_number(char *out, const lam_tseg *seg, double x, enum ftype ty)
+static size_t fmt_number(char *out, const lam_tseg *seg, double x, enum ftype ty, numo *m)
 {
     if (seg->conv == 0) {
         if (ty == T_INT && fabs(x) < 9e18) return (size_t)snprintf(out, LAM_FMT_MAX, "%lld", (long long)x);
@@ -571,6 +584,23 @@ static size_t fmt_number(char *out, const lam_tseg *seg, double x, enum ftype ty
     if (x == 0) x = 0; /* never "-0" */
     if ((seg->conv == 'f' || seg->conv == 'F') && seg->fast) {
         /* one formatting; a negative that rounds to zero loses its sign */
+        unsigned long long q;
+        if (m && lam_fmt_scaled(x, seg->prec, &q)) {
+            int neg = signbit(x) && q;
+            if (m->seg == seg && m->q == q && m->neg == neg) {
+                memcpy(out, m->txt, m->len + 1);
+                return m->len;
+            }
+            size_t n = lam_fmt_scaled_text(out, q, seg->prec, neg);
+            if (n < sizeof m->txt) {
+                m->seg = seg;
+                m->q = q;
+                m->neg = neg;
+                m->len = n;
+                memcpy(m->txt, out, n + 1);
+            }
+            return n;
+        }
         size_t n = lam_fmt_fixed(out, x, seg->prec);
         if (out[0] == '-' && negative_zero(out)) memmove(out, out + 1, n--);
         return n;
@@ -637,13 +667,13 @@ static void render(const lam_template *t, const vals *v, buf *b, double rel[3], 
                     if (k || j) put(b, ",", 1);
                     char *at = room(b, LAM_FMT_MAX);
                     if (!at) return;
-                    b->len += fmt_number(at, s, p[j], T_NUM);
+                    b->len += fmt_number(at, s, p[j], T_NUM, NULL);
                 }
             }
         } else {
             char *at = room(b, LAM_FMT_MAX);
             if (!at) return;
-            size_t n = fmt_number(at, s, v->num[s->field], ty);
+            size_t n = fmt_number(at, s, v->num[s->field], ty, &b->memo[s->field]);
             b->len += n;
             int k = s->field == F_DX ? 0 : s->field == F_DY ? 1 : s->field == F_DZ ? 2 : -1;
             if (rel && k >= 0 && !has_rel[k]) {

@@ -47,6 +47,11 @@ size_t lam_fmt_fixed(char *buf, double x, int d)
         int n = snprintf(buf, LAM_FMT_MAX, "%.*f", d < 0 ? 0 : d > 40 ? 40 : d, x);
         return n < 0 ? 0 : (size_t)n;
     }
+    return lam_fmt_scaled_text(buf, q, d, signbit(x) != 0);
+}
+
+size_t lam_fmt_scaled_text(char *buf, unsigned long long q, int d, int neg)
+{
     double s = pow10_tab[d];
     /* Digits from the right into the end of tmp: the d decimals, the point,
      * then the integer part. The split divides by a constant per case, so
@@ -73,9 +78,9 @@ size_t lam_fmt_fixed(char *buf, double x, int d)
      * straight to their places, right to left. */
     int nint = 1;
     for (uint64_t v = ip; v >= 10u; v /= 10u) nint++;
-    size_t len = (size_t)(signbit(x) ? 1 : 0) + (size_t)nint + (d > 0 ? 1 + (size_t)d : 0);
+    size_t len = (size_t)(neg ? 1 : 0) + (size_t)nint + (d > 0 ? 1 + (size_t)d : 0);
     char *w = buf + len;
-    if (signbit(x)) buf[0] = '-';
+    if (neg) buf[0] = '-';
     int k = d;
     for (; k >= 2; k -= 2) {
         unsigned two = (unsigned)(fp % 100u);

@@ -50,4 +50,9 @@ const char *lam_fmt_bytes(char *buf, size_t size, double n);
  * (where lam_fmt_fixed uses printf). */
 int lam_fmt_scaled(double x, int decimals, unsigned long long *q);
 
+/* The text of lam_fmt_fixed for a value lam_fmt_scaled turned into q
+ * (decimals 0..15), with a '-' when neg. Returns the length. Lets a caller
+ * that meets the same rounded value again reuse its text. */
+size_t lam_fmt_scaled_text(char *buf, unsigned long long q, int decimals, int neg);
+
 #endif
