@@ -405,8 +405,16 @@ typedef struct buf {
     numo memo[F_COUNT];      /* by the segment's field */
 } buf;
 
-/* Room for n more bytes and a NUL at the end of b; NULL when out of memory. */
-static char *room(buf *b, size_t n)
+static char *room_grow(buf *b, size_t n);
+
+/* Room for n more bytes and a NUL at the end of b; NULL when out of memory.
+ * The test inline (once per number written), the growth out of line. */
+static inline char *room(buf *b, size_t n)
+{
+    return !b->oom && b->len + n + 1 <= b->cap ? b->s + b->len : room_grow(b, n);
+}
+
+static char *room_grow(buf *b, size_t n)
 {
     if (b->oom) return NULL;
     if (b->len + n + 1 > b->cap) {
