@@ -380,7 +380,8 @@ static void square_span(const double q[8], double y, double *lo, double *hi)
         }
         if (y < y0 || y >= y1) continue;
         double x = x0 + (x1 - x0) * (y - y0) / (y1 - y0);
-        a = fmin(a, x), b = fmax(b, x);
+        if (x < a) a = x;
+        if (x > b) b = x;
     }
     *lo = a;
     *hi = b;
@@ -462,7 +463,8 @@ static int hatch_islands(hatcher *h, const GEOSGeometry *g, const lam_scan *sc, 
             if (y < ylo) continue;
             double xa, xb;
             square_span(sq, y, &xa, &xb);
-            xa = fmax(xa, p->x0), xb = fmin(xb, p->x1);
+            if (p->x0 > xa) xa = p->x0;
+            if (p->x1 < xb) xb = p->x1;
             /* a line along a side shared by the square and the area (a hole
              * filling a square) leaves a sliver of rounding: rotating the
              * area and the square moves their common side apart by an ulp */
@@ -636,7 +638,8 @@ void lam_scan_time_path(lam_scan_time *t, const lam_scan_cfg *cfg, const lam_exp
                         const double end[2], double length, int contour, double pos[2], int *have_pos)
 {
     if (*have_pos) {
-        double j = hypot(start[0] - pos[0], start[1] - pos[1]);
+        double du = start[0] - pos[0], dv = start[1] - pos[1];
+        double j = sqrt(du * du + dv * dv); /* not hypot: a jump per vector, and coordinates stay below 1e50 */
         t->jumps++;
         t->jump_length += j;
         t->jump += (cfg->jump_speed > 0 ? j / cfg->jump_speed : 0) + cfg->jump_delay;

@@ -95,7 +95,8 @@ static int emit_hatches(const lam_layer *L, const lam_hatches *h, const lam_fram
             const double *p = uv + 4 * i;
             to_out(L, f, o, p[0], p[1], xyz + 6 * i);
             to_out(L, f, o, p[2], p[3], xyz + 6 * i + 3);
-            lam_scan_time_path(&st->time, &o->scan, e, p, p + 2, hypot(p[2] - p[0], p[3] - p[1]), 0, st->pos,
+            double du = p[2] - p[0], dv = p[3] - p[1]; /* sqrt: hypot's care against overflow costs, and coordinates stay below 1e50 */
+            lam_scan_time_path(&st->time, &o->scan, e, p, p + 2, sqrt(du * du + dv * dv), 0, st->pos,
                                &st->have_pos);
         }
         lam_hatch_info hi = { st->part, type, lam_vec_type_name(type), L->cut, xyz, uv, B->n, B->angle,
