@@ -46,7 +46,8 @@ static int emit_contours(const lam_layer *L, const lam_layer *C, const lam_frame
         for (size_t i = 0; i < c->n; i++) {
             to_out(L, f, o, uv[2 * i], uv[2 * i + 1], xyz + 3 * i);
             size_t j = (i + 1) % c->n;
-            len += hypot(uv[2 * j] - uv[2 * i], uv[2 * j + 1] - uv[2 * i + 1]);
+            double du = uv[2 * j] - uv[2 * i], dv = uv[2 * j + 1] - uv[2 * i + 1];
+            len += sqrt(du * du + dv * dv);
         }
         lam_contour_info ci = { st->part, c->kind == LAM_SOLID, c->depth, L->cut, xyz, uv, c->n,
                                 e->power, e->speed, e->point_distance, e->exposure_time };
@@ -77,6 +78,8 @@ static int contour_passes(const lam_layer *L, const lam_frame *f, const lam_plan
     return rc;
 }
 
+/* Lengths by sqrt, not hypot: hypot's care against overflow cost a tenth
+ * of a hatched run, and coordinates stay below 1e50 (LAM_COORD_MAX). */
 static int emit_hatches(const lam_layer *L, const lam_hatches *h, const lam_frame *f, const lam_plan_opts *o,
                         const lam_sink *sink, lam_sls_state *st, lam_error *err)
 {
@@ -95,7 +98,7 @@ static int emit_hatches(const lam_layer *L, const lam_hatches *h, const lam_fram
             const double *p = uv + 4 * i;
             to_out(L, f, o, p[0], p[1], xyz + 6 * i);
             to_out(L, f, o, p[2], p[3], xyz + 6 * i + 3);
-            double du = p[2] - p[0], dv = p[3] - p[1]; /* sqrt: hypot's care against overflow costs, and coordinates stay below 1e50 */
+            double du = p[2] - p[0], dv = p[3] - p[1];
             lam_scan_time_path(&st->time, &o->scan, e, p, p + 2, sqrt(du * du + dv * dv), 0, st->pos,
                                &st->have_pos);
         }
