@@ -5,7 +5,6 @@
 #include <stdint.h>
 #include <stdlib.h>
 #include <sys/mman.h>
-#include <string.h>
 #include <unistd.h>
 
 void lam_huge_hint(void *p, size_t bytes)
@@ -20,32 +19,17 @@ void lam_huge_hint(void *p, size_t bytes)
 #endif
 }
 
-/* Where the block should start and how long it should be: blocks of a
- * huge page or more start on a huge-page boundary, so that their first
- * bytes are not wasted on small pages, and end on one when that costs at
- * most an eighth more memory (the tail is otherwise left to small pages). */
-static size_t big_size(size_t bytes)
-{
-    if (bytes < LAM_HUGE_MIN) return bytes;
-    size_t up = (bytes + LAM_HUGE_PAGE - 1) & ~(LAM_HUGE_PAGE - 1);
-    return up - bytes <= bytes / 8 ? up : bytes;
-}
-
 void *lam_big_malloc(size_t bytes)
 {
-    size_t size = big_size(bytes ? bytes : 1);
-    void *p = NULL;
-    if (size < LAM_HUGE_MIN) return malloc(size);
-    if (posix_memalign(&p, LAM_HUGE_PAGE, size)) return NULL;
-    lam_huge_hint(p, size);
+    void *p = malloc(bytes ? bytes : 1);
+    lam_huge_hint(p, bytes);
     return p;
 }
 
 void *lam_big_calloc(size_t n, size_t size)
 {
     if (size && n > SIZE_MAX / size) return NULL;
-    if (n * size < LAM_HUGE_MIN) return calloc(n ? n : 1, size ? size : 1);
-    void *p = lam_big_malloc(n * size);
-    if (p) memset(p, 0, n * size);
+    void *p = calloc(n ? n : 1, size ? size : 1);
+    lam_huge_hint(p, n * size);
     return p;
 }
