@@ -122,6 +122,7 @@ typedef struct lam_dialect_text {
     int has_sep;             /* the first separator of the layer is s[sep_at .. +sep_len) */
     size_t sep_at, sep_len;
     size_t blocks;           /* contour and hatch blocks in it */
+    size_t layer;            /* the layer's index (plugin writers, plugin.h) */
 } lam_dialect_text;
 
 /* A worker's sink formatting layers like `main`, a lam_dialect_sink after

@@ -57,6 +57,18 @@ struct lamina_writer {
      * plane) of part `id` (optional: a writer without it refuses jobs
      * with hatches). */
     int (*hatches)(void *state, size_t id, const double *xy, size_t n);
+    /* Optional: layers formatted apart, on several threads. Set it only
+     * when the bytes of a layer (its layer, polyline and hatches calls)
+     * depend on nothing but the job and those calls, and states from
+     * different begin calls share nothing writable (the host calls them
+     * from different threads at the same time; host->set_error is per
+     * thread). The host then formats a layer through a state of its own,
+     * begun with the same job (what that begin writes is dropped; the
+     * state is freed with abort, never ended), writes the bytes itself and
+     * calls this on the state that writes the file, in layer order, as if
+     * that state had written layer `index`: count it, check it. Non-zero
+     * fails the job (after host->set_error). */
+    int (*layer_written)(void *state, size_t index);
 };
 
 struct lamina_host {

@@ -1,9 +1,10 @@
 /* lam_plan_run on several threads (issue 15): workers slice and plan whole
  * layers, each into a recording (plan_record.h) or, for a text dialect
- * whose text does not hang on the moves before (lam_dialect_fork), straight
- * into that layer's text; the calling thread hands each layer to the
- * callback and replays its recording onto the real sink or appends its text
- * (lam_dialect_put), strictly in layer order, so every sink (text dialects,
+ * whose text does not hang on the moves before (lam_dialect_fork) or a
+ * plugin writer that allows it (lam_plugin_fork), straight into that
+ * layer's bytes; the calling thread hands each layer to the callback and
+ * replays its recording onto the real sink or appends its bytes
+ * (lam_dialect_put, lam_plugin_put), strictly in layer order, so every sink (text dialects,
  * plugin writers) writes exactly what a run on one thread writes.
  *
  * What a layer's plan depends on besides the layer:
@@ -24,6 +25,7 @@
 
 #include "dialect.h"
 #include "plan_record.h"
+#include "plugin.h"
 #include "pool.h"
 
 typedef struct result {
@@ -50,6 +52,8 @@ typedef struct wstate {
     lam_sink text;           /* formats layers for a text dialect (run.text) */
 } wstate;
 
+enum { TEXT_DIALECT = 1, TEXT_PLUGIN };
+
 typedef struct run {
     const lam_plan_opts *o;
     lam_plan_opts wo;        /* the workers' options: no run totals */
@@ -59,7 +63,7 @@ typedef struct run {
     void *cbctx;
     double origin[3];
     size_t S, skins, window;
-    int text;                /* workers format the layers' text (lam_dialect_fork) */
+    int text;                /* workers format the layers' bytes: TEXT_DIALECT, TEXT_PLUGIN, or 0 */
     result *res;             /* task t's result at t % window */
     wstate *ws;
     /* the writer's side */
@@ -161,7 +165,8 @@ static int produce(void *ctx, unsigned worker, size_t i)
     R->has_text = r->text;
     int rc = LAM_OK;
     if (r->text) {
-        lam_dialect_fork_start(&rs, &R->plan_err);
+        if (r->text == TEXT_PLUGIN) lam_plugin_fork_start(&rs, &R->plan_err);
+        else lam_dialect_fork_start(&rs, &R->plan_err);
         rc = rs.layer(rs.ctx, &li);
     }
     if (rc) {
@@ -197,7 +202,8 @@ static int produce(void *ctx, unsigned worker, size_t i)
         R->time = w->st.time;
     }
     if (!rc && r->text) rc = rs.layer_end(rs.ctx, &li);
-    if (r->text) lam_dialect_fork_take(&rs, &R->text);
+    if (r->text == TEXT_PLUGIN) lam_plugin_fork_take(&rs, &R->text);
+    else if (r->text) lam_dialect_fork_take(&rs, &R->text);
     if (rc && R->plan_err.code == LAM_OK) {
         if (R->ops.failed) lam_error_nomem(&R->plan_err, "planning a layer");
         else lam_error_set(&R->plan_err, rc, NULL, 0, 0, "planning failed");
@@ -242,7 +248,7 @@ static int consume(void *ctx, size_t i, int prc)
                         (!memcmp(R->entry, r->pos, sizeof r->pos) && R->entry_laser == r->laser))) {
         /* the layer's text as the worker formatted it: whole, or up to the
          * error planning it */
-        int rc = lam_dialect_put(sink, &R->text);
+        int rc = R->has_text == TEXT_PLUGIN ? lam_plugin_put(sink, &R->text) : lam_dialect_put(sink, &R->text);
         if (!rc && R->plan_rc) {
             copy_error(err, &R->plan_err);
             rc = R->plan_rc;
@@ -291,6 +297,21 @@ static int consume(void *ctx, size_t i, int prc)
     return rc;
 }
 
+/* A worker's formatter for sink: a text dialect's or, for contours, a
+ * plugin writer's that allows it (which, in *kind); LAM_EUSAGE when
+ * neither can. */
+static int fork_text(const lam_sink *sink, int ladrp, lam_sink *out, int *kind, lam_error *err)
+{
+    int rc = lam_dialect_fork(sink, ladrp, out, err);
+    if (rc != LAM_EUSAGE) {
+        *kind = TEXT_DIALECT;
+        return rc;
+    }
+    if (ladrp) return LAM_EUSAGE;
+    *kind = TEXT_PLUGIN;
+    return lam_plugin_fork(sink, out, err);
+}
+
 int lam_plan_threaded(lam_slicer *s, const lam_plan_opts *o, const lam_sink *sink, lam_layer_cb cb, void *cbctx,
                       const double origin[3], lam_error *err)
 {
@@ -336,12 +357,13 @@ int lam_plan_threaded(lam_slicer *s, const lam_plan_opts *o, const lam_sink *sin
         if (!(w->cache = calloc(w->cap, sizeof *w->cache))) rc = lam_error_nomem(err, "starting threads");
         else rc = lam_slicer_fork(s, &w->sc, err);
     }
-    /* text dialects are formatted by the workers when every worker has its
-     * formatter (otherwise the recordings are replayed: the same bytes) */
+    /* text dialects and plugin writers that allow it are formatted by the
+     * workers when every worker has its formatter (otherwise the
+     * recordings are replayed: the same bytes) */
     r.text = !rc;
     for (unsigned k = 0; k < threads && r.text; k++) {
-        int frc = lam_dialect_fork(sink, o->kind == LAM_PLAN_LADRP, &r.ws[k].text, err);
-        if (frc) r.text = 0;
+        int kind = 0, frc = fork_text(sink, o->kind == LAM_PLAN_LADRP, &r.ws[k].text, &kind, err);
+        r.text = frc ? 0 : kind;
         if (frc == LAM_ENOMEM) rc = frc;
     }
     if (!rc) rc = lam_pool_ordered(threads, r.S, chunk, r.skins, window, produce, consume, &r, err);

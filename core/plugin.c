@@ -29,7 +29,6 @@ typedef struct plugin {
     dev_t dev;
     ino_t ino;
     void *handle;
-    char msg[MSG_MAX];       /* last host->set_error message, "" if none */
     char reg_msg[MSG_MAX];   /* why a register_writer call was refused */
     int reg_failed;
 } plugin;
@@ -51,16 +50,20 @@ static size_t nwriters, cap_writers;
 
 /* ---- the host functions a plugin calls ---- */
 
+/* The last host->set_error message of this thread, "" if none: per thread,
+ * as worker threads format layers through writers at the same time
+ * (lamina_writer.layer_written); read right after the call that failed. */
+static _Thread_local char last_msg[MSG_MAX];
+
 static void host_set_error(const struct lamina_host *host, const char *fmt, ...)
     __attribute__((format(printf, 2, 3)));
 
 static void host_set_error(const struct lamina_host *host, const char *fmt, ...)
 {
     if (!host || !fmt) return;
-    plugin *p = (plugin *)(uintptr_t)host;
     va_list ap;
     va_start(ap, fmt);
-    vsnprintf(p->msg, sizeof p->msg, fmt, ap);
+    vsnprintf(last_msg, sizeof last_msg, fmt, ap);
     va_end(ap);
 }
 
@@ -261,12 +264,13 @@ int lam_plugin_load(const char *path, lam_error *err)
     p->host.write = host_write;
     p->host.set_error = host_set_error;
 
+    last_msg[0] = '\0';
     int rc = init(&p->host);
     if (rc != 0 || p->reg_failed) {
         if (p->reg_failed)
             lam_error_set(err, LAM_EINVAL, NULL, 0, 0, "%s", p->reg_msg);
-        else if (p->msg[0])
-            lam_error_set(err, LAM_EINVAL, NULL, 0, 0, "plugin %s failed to initialise: %s", path, p->msg);
+        else if (last_msg[0])
+            lam_error_set(err, LAM_EINVAL, NULL, 0, 0, "plugin %s failed to initialise: %s", path, last_msg);
         else
             lam_error_set(err, LAM_EINVAL, NULL, 0, 0,
                           "plugin %s failed to initialise (lamina_plugin_init returned %d)", path, rc);
@@ -274,7 +278,7 @@ int lam_plugin_load(const char *path, lam_error *err)
         free_plugin(p);
         return LAM_EINVAL;
     }
-    p->msg[0] = '\0';
+    last_msg[0] = '\0';
     plugins[nplugins++] = p;
     return LAM_OK;
 }
@@ -389,14 +393,34 @@ static int load_named(const char *name, char **dirs, size_t ndirs, lam_error *er
 
 /* ---- the sink adapter ---- */
 
+/* Where a writer's bytes go: the output, or (w NULL: a worker's state,
+ * lam_plugin_fork) a buffer holding the layer being formatted. */
 struct lamina_out {
     lam_writer *w;
     int failed;              /* a write failed (the lam_writer's error is sticky) */
+    char *buf;
+    size_t len, cap;
 };
 
 static int host_write(struct lamina_out *out, const void *data, size_t len)
 {
     if (!out || (!data && len)) return 1;
+    if (!out->w) {
+        if (len > out->cap - out->len) {
+            size_t cap = out->cap ? out->cap : 4096;
+            while (cap - out->len < len) {
+                if (cap > SIZE_MAX / 2) return out->failed = 1;
+                cap *= 2;
+            }
+            char *nb = realloc(out->buf, cap);
+            if (!nb) return out->failed = 1;
+            out->buf = nb;
+            out->cap = cap;
+        }
+        if (len) memcpy(out->buf + out->len, data, len);
+        out->len += len;
+        return 0;
+    }
     if (lam_writer_write(out->w, data, len) != LAM_OK) {
         out->failed = 1;
         return 1;
@@ -410,22 +434,25 @@ typedef struct plugin_sink {
     lam_error *err;
     void *state;             /* the writer's, between begin and end */
     int begun, ended;
+    struct lamina_job job;   /* as begin had it, for the workers' states */
+    size_t layer;            /* the layer last begun (a worker's) */
 } plugin_sink;
 
 /* Turn a writer's failure (rc != 0) or a failed write into an error. */
 static int writer_result(plugin_sink *s, int rc, const char *what)
 {
     const char *name = s->we->w.name;
-    plugin *p = s->we->owner;
+    const char *msg = last_msg;
+    if (s->out.failed && !s->out.w) return lam_error_nomem(s->err, "formatting a layer");
     if (s->out.failed)
         return lam_error_set(s->err, LAM_EIO, NULL, 0, 0, "writer %s: cannot write output", name);
     if (rc == 0) return LAM_OK;
-    if (p->msg[0]) {
+    if (msg[0]) {
         /* "cli-binary: ..." from the plugin already says which writer */
         size_t k = strlen(name);
-        int named = strncmp(p->msg, name, k) == 0 && p->msg[k] == ':';
-        if (named) return lam_error_set(s->err, LAM_EINVAL, NULL, 0, 0, "%s", p->msg);
-        return lam_error_set(s->err, LAM_EINVAL, NULL, 0, 0, "writer %s: %s", name, p->msg);
+        int named = strncmp(msg, name, k) == 0 && msg[k] == ':';
+        if (named) return lam_error_set(s->err, LAM_EINVAL, NULL, 0, 0, "%s", msg);
+        return lam_error_set(s->err, LAM_EINVAL, NULL, 0, 0, "writer %s: %s", name, msg);
     }
     return lam_error_set(s->err, LAM_EINVAL, NULL, 0, 0, "writer %s: %s failed", name, what);
 }
@@ -451,7 +478,8 @@ static int ps_begin(void *ctx, const lam_job_info *job)
     memcpy(j.bbox, job->bbox, sizeof j.bbox);
     j.bead = job->bead;
     j.label = job->label ? job->label : "part";
-    s->we->owner->msg[0] = '\0';
+    s->job = j;
+    last_msg[0] = '\0';
     s->state = s->we->w.begin(&s->out, &j);
     if (!s->state) return writer_result(s, 1, "begin");
     s->begun = 1;
@@ -462,7 +490,8 @@ static int ps_layer(void *ctx, const lam_layer_info *layer)
 {
     plugin_sink *s = ctx;
     if (!s->state) return not_running(s, "layer");
-    s->we->owner->msg[0] = '\0';
+    s->layer = layer->index;
+    last_msg[0] = '\0';
     return writer_result(s, s->we->w.layer(s->state, layer->index, layer->z), "layer");
 }
 
@@ -477,7 +506,7 @@ static int ps_contour(void *ctx, const lam_contour_info *c)
 {
     plugin_sink *s = ctx;
     if (!s->state) return not_running(s, "contour");
-    s->we->owner->msg[0] = '\0';
+    last_msg[0] = '\0';
     return writer_result(s, s->we->w.polyline(s->state, c->id, c->solid, c->uv, c->n), "polyline");
 }
 
@@ -488,7 +517,7 @@ static int ps_hatches(void *ctx, const lam_hatch_info *h)
     if (!s->we->w.hatches)
         return lam_error_set(s->err, LAM_EUSAGE, NULL, 0, 0, "writer %s cannot write hatches (set hatch_strategy: none)",
                              s->we->w.name);
-    s->we->owner->msg[0] = '\0';
+    last_msg[0] = '\0';
     return writer_result(s, s->we->w.hatches(s->state, h->id, h->uv, h->n), "hatches");
 }
 
@@ -496,7 +525,7 @@ static int ps_end(void *ctx)
 {
     plugin_sink *s = ctx;
     if (!s->state) return not_running(s, "end");
-    s->we->owner->msg[0] = '\0';
+    last_msg[0] = '\0';
     void *state = s->state;
     s->state = NULL;          /* end frees the state, whatever it returns */
     s->ended = 1;
@@ -533,7 +562,72 @@ static void ps_destroy(void *ctx)
     plugin_sink *s = ctx;
     if (!s) return;
     if (s->state && s->we->w.abort) s->we->w.abort(s->state);
+    free(s->out.buf);
     free(s);
+}
+
+int lam_plugin_fork(const lam_sink *main, lam_sink *out, lam_error *err)
+{
+    memset(out, 0, sizeof *out);
+    if (!main || main->begin != ps_begin) return LAM_EUSAGE;
+    const plugin_sink *m = main->ctx;
+    if (!m->state || !m->we->w.layer_written || !m->we->w.abort) return LAM_EUSAGE;
+    plugin_sink *s = calloc(1, sizeof *s);
+    if (!s) return lam_error_nomem(err, "starting threads");
+    s->we = m->we;
+    s->err = err;
+    s->job = m->job;
+    last_msg[0] = '\0';
+    s->state = s->we->w.begin(&s->out, &s->job);
+    if (!s->state || s->out.failed) {
+        ps_destroy(s); /* the caller formats on its own thread instead */
+        return LAM_EUSAGE;
+    }
+    s->begun = 1;
+    s->out.len = 0; /* the header: the file has it from main's begin */
+    out->ctx = s;
+    out->layer = ps_layer;
+    out->layer_end = ps_layer_end;
+    out->feed = ps_feed;
+    out->laser = ps_laser;
+    out->move = ps_move;
+    out->contour = ps_contour;
+    out->hatches = ps_hatches;
+    out->destroy = ps_destroy;
+    return LAM_OK;
+}
+
+void lam_plugin_fork_start(const lam_sink *worker, lam_error *err)
+{
+    plugin_sink *s = worker->ctx;
+    s->err = err;
+    s->out.len = 0;
+    s->out.failed = 0;
+}
+
+void lam_plugin_fork_take(const lam_sink *worker, lam_dialect_text *t)
+{
+    plugin_sink *s = worker->ctx;
+    char *keep = t->s;
+    size_t keep_cap = t->cap;
+    memset(t, 0, sizeof *t);
+    t->s = s->out.buf;
+    t->len = s->out.len;
+    t->cap = s->out.cap;
+    t->complete = 1;
+    t->layer = s->layer;
+    s->out.buf = keep; /* the buffer the writer is done with, for the next layer */
+    s->out.cap = keep_cap;
+    s->out.len = 0;
+}
+
+int lam_plugin_put(const lam_sink *main, const lam_dialect_text *t)
+{
+    plugin_sink *s = main->ctx;
+    if (!s->state) return not_running(s, "layer");
+    if (t->len && lam_writer_write(s->out.w, t->s, t->len) != LAM_OK) s->out.failed = 1;
+    last_msg[0] = '\0';
+    return writer_result(s, s->out.failed ? 1 : s->we->w.layer_written(s->state, t->layer), "layer");
 }
 
 int lam_plugin_writer_sink(const char *name, lam_writer *w, lam_sink *out, lam_error *err)

@@ -3,7 +3,8 @@
  * plugin writer to the lam_sink interface planners emit to.
  *
  * The registry is process-wide and not thread-safe: load plugins and create
- * sinks from one thread (lamina does all of this on its main thread).
+ * sinks from one thread (lamina does all of this on its main thread); the
+ * sinks of lam_plugin_fork run on worker threads.
  * Everything a plugin registered (writer names, the sinks built on them)
  * stays valid until lam_plugins_unload. */
 #ifndef LAM_PLUGIN_HOST_H
@@ -56,6 +57,24 @@ int lam_plugin_load(const char *path, lam_error *err);
 int lam_plugin_writer_sink(const char *name, lam_writer *w, lam_sink *out, lam_error *err);
 
 struct lam_dialect;
+struct lam_dialect_text;
+
+/* Layers formatted by worker threads through a plugin writer that allows
+ * it (lamina_writer.layer_written), as lam_dialect_fork does for text
+ * dialects (dialect.h), with the same lam_dialect_text holding a layer's
+ * bytes. lam_plugin_fork makes a worker's sink for the plugin sink `main`
+ * after its begin (main must outlive it; destroy releases it), or returns
+ * LAM_EUSAGE, making nothing, when main is not a plugin sink, its writer
+ * does not allow it or refuses a second state (its begin fails). Only the
+ * layer callbacks are set. lam_plugin_fork_start starts a layer (its
+ * errors go to err), lam_plugin_fork_take moves the bytes since into t (t's
+ * old buffer goes back to the worker), and lam_plugin_put writes them
+ * through main, in layer order, and tells the writer (the writer's or the
+ * output's error). */
+int lam_plugin_fork(const lam_sink *main, lam_sink *out, lam_error *err);
+void lam_plugin_fork_start(const lam_sink *worker, lam_error *err);
+void lam_plugin_fork_take(const lam_sink *worker, struct lam_dialect_text *t);
+int lam_plugin_put(const lam_sink *main, const struct lam_dialect_text *t);
 
 /* The sink a machine profile writes its programs through: the dialect's
  * templates (lam_dialect_sink) when writer is NULL or "text", else the

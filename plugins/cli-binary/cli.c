@@ -179,15 +179,23 @@ static void *cli_begin(struct lamina_out *out, const struct lamina_job *job)
     return c;
 }
 
-static int cli_layer(void *state, size_t index, double z)
+/* Count a layer written, refusing one more than the header announced. */
+static int count_layer(cli *c, size_t index)
 {
-    cli *c = state;
-    if (c->failed) return 1;
     if (c->layers_written >= c->layers) {
         host->set_error(host, "cli-binary: layer %zu is one more than the %zu the header announced", index,
                         c->layers);
         return 1;
     }
+    c->layers_written++;
+    return 0;
+}
+
+static int cli_layer(void *state, size_t index, double z)
+{
+    cli *c = state;
+    if (c->failed) return 1;
+    if (c->layers_written >= c->layers) return count_layer(c, index);
     float zf;
     if (to_f32(z, &zf) != 0) {
         host->set_error(host, "cli-binary: layer %zu: height %g does not fit a float32", index, z);
@@ -199,7 +207,7 @@ static int cli_layer(void *state, size_t index, double z)
     }
     put_u16(c, CMD_LAYER_LONG);
     put_f32(c, zf);
-    c->layers_written++;
+    count_layer(c, index);
     return flush(c);
 }
 
@@ -292,6 +300,15 @@ static void cli_abort(void *state)
     cli_free(state);
 }
 
+/* A layer's bytes hang only on the job and its own calls (the header is
+ * begin's), and a state is all a call touches: layers may be formatted
+ * apart. The state writing the file counts them. */
+static int cli_layer_written(void *state, size_t index)
+{
+    cli *c = state;
+    return c->failed ? 1 : count_layer(c, index);
+}
+
 static const struct lamina_writer cli_writer = {
     .size = sizeof(struct lamina_writer),
     .name = "cli-binary",
@@ -302,6 +319,7 @@ static const struct lamina_writer cli_writer = {
     .end = cli_end,
     .abort = cli_abort,
     .hatches = cli_hatches,
+    .layer_written = cli_layer_written,
 };
 
 int lamina_plugin_init(const struct lamina_host *h);

@@ -152,6 +152,37 @@ done
 # with --allow-open the layers are written without those outlines, the same for every N
 same open-allowed "$TMP/open.stl" -w 0.2 --allow-open
 
+# the binary CLI writer (a plugin) formats layers on the workers too; one
+# refusing a middle layer (a square bipyramid 2e39 across: from layer 4 on
+# the contours pass float32's 3.4e38) fails the same way for every N
+cat >"$TMP/huge.obj" <<'OBJ'
+v 0 0 -10
+v 0 0 10
+v 1e39 0 0
+v 0 1e39 0
+v -1e39 0 0
+v 0 -1e39 0
+f 2 3 4
+f 2 4 5
+f 2 5 6
+f 2 6 3
+f 1 4 3
+f 1 5 4
+f 1 6 5
+f 1 3 6
+OBJ
+for j in 1 2 8; do
+    rm -f "$TMP/huge.cli"
+    run "$LAMINA" slice "$TMP/huge.obj" -m cli-binary -w 1 -j $j -o "$TMP/huge.cli"
+    echo "$RC $ERR" >"$TMP/huge.$j"
+    [ ! -e "$TMP/huge.cli" ]
+    ok $? "a plugin writer refusing layer 4, -j $j: no output file"
+done
+like "$(cat "$TMP/huge.1")" '(?s)^1 .*cli-binary: contour 1 point 1 \(0, -3\.5e\+38\) does not fit float32' \
+    "a plugin writer refusing layer 4, -j 1: exit 1 and the writer's reason"
+cmp -s "$TMP/huge.1" "$TMP/huge.2" && cmp -s "$TMP/huge.1" "$TMP/huge.8"
+ok $? "a plugin writer refusing layer 4: the same message and exit for -j 1, 2 and 8"
+
 # an output limit reached while writing (the estimate passes): the same
 # error and no file, whoever planned the layers
 for j in 1 2 8; do
