@@ -49,18 +49,20 @@ same_v() {
     done
 }
 
+# the JSON report has every layer's figures (the text one only the layers
+# that disagree): all the models in JSON, two in text
+same "cube-hole-json" "$M/thesis_cube_hole.ug" -w 0.3 --json
+same "frame-island-json" "$M/frame_island.ug" -w 0.5 --cut floor --json
+same "frame-oblique-json" "$M/frame_island.stl" -a 1,1,2 -w 0.25 --json
+same "cube-hole-x-json" "$M/cube_hole.stl" -a x -w 0.1 --cut ceiling --json
+same "counterbores-json" "$M/validate/counterbores.ug" -w 0.5 --cut middle --json
+same "sphere-json" "$TMP/sphere.stl" -w 0.05 --json
+same "torus-oblique-json" "$TMP/torus.stl" -a 1,1,2 -w 0.05 --json
 for fmt in "" --json; do
-    f=${fmt:+-json}
-    same "cube-hole$f" "$M/thesis_cube_hole.ug" -w 0.3 $fmt
-    same "frame-island$f" "$M/frame_island.ug" -w 0.5 --cut floor $fmt
-    same "frame-oblique$f" "$M/frame_island.stl" -a 1,1,2 -w 0.25 $fmt
-    same "cube-hole-x$f" "$M/cube_hole.stl" -a x -w 0.1 --cut ceiling $fmt
-    same "counterbores$f" "$M/validate/counterbores.ug" -w 0.5 --cut middle $fmt
-    same "sphere$f" "$TMP/sphere.stl" -w 0.05 $fmt
-    same "torus-oblique$f" "$TMP/torus.stl" -a 1,1,2 -w 0.05 $fmt
-    same "overlap$f" "$M/validate/overlap_cubes.ug" -w 0.25 $fmt
+    same "overlap${fmt:+-json}" "$M/validate/overlap_cubes.ug" -w 0.25 $fmt
     is "$RC1" 3 "overlapping shells under even-odd disagree (exit 3), for every N above"
 done
+same "counterbores" "$M/validate/counterbores.ug" -w 0.5
 is "$(jq -c '[(.layers | length), .checked, .confirmed]' "$TMP/sphere-json.1")" "[160,160,160]" \
     "the sphere: 160 layers, one contour each, all confirmed"
 is "$(jq -c '[.layers[] | .index] == [range(160)]' "$TMP/sphere-json.8")" true \
@@ -72,10 +74,9 @@ same_v "overlap" "$M/validate/overlap_cubes.ug" -w 0.25 --fill nonzero
 # programs read back, each contour dialect and a run's JSON
 for mch in sls-contours cli-ascii cli-binary; do
     "$LAMINA" slice "$M/frame_island.ug" -m $mch -w 0.4 -o "$TMP/p.$mch" 2>/dev/null
-    same "program-$mch" "$M/frame_island.ug" -m $mch --program "$TMP/p.$mch"
     same "program-$mch-json" "$M/frame_island.ug" -m $mch --program "$TMP/p.$mch" --json
-    same_v "program-$mch" "$M/frame_island.ug" -m $mch --program "$TMP/p.$mch"
 done
+same_v "program-cli-binary" "$M/frame_island.ug" -m cli-binary --program "$TMP/p.cli-binary"
 "$LAMINA" slice "$TMP/torus.stl" -a 1,1,2 -w 0.1 --json "$TMP/torus.json" -o "$TMP/torus.sls" 2>/dev/null
 same "program-run-json" "$TMP/torus.stl" --program "$TMP/torus.json" --json
 same "program-oblique-sls" "$TMP/torus.stl" -a 1,1,2 --program "$TMP/torus.sls" --json
