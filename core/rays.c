@@ -75,6 +75,7 @@ struct lam_rays {
     int ecode;              /* first Embree error reported to the callback */
     char emsg[256];
     lam_rays_stats st;
+    lam_rays *parent;       /* a fork's (lam_rays_fork): it owns the device and the scene */
 };
 
 /* Intersection context handed to the filter: Embree's first, so the
@@ -237,11 +238,45 @@ int lam_rays_new(const lam_model *m, lam_rays **out, lam_error *err)
     return LAM_OK;
 }
 
+int lam_rays_fork(lam_rays *v, lam_rays **out, lam_error *err)
+{
+    *out = NULL;
+    lam_rays *f = malloc(sizeof *f);
+    if (!f) return nomem(err);
+    *f = *v;
+    f->sec = NULL;
+    f->hits = NULL;
+    f->nhits = f->cap = 0;
+    f->nomem = 0;
+    memset(&f->st, 0, sizeof f->st);
+    f->parent = v;
+    if (v->sec && lam_section_index_fork(v->sec, &f->sec, err)) {
+        free(f);
+        return LAM_ENOMEM;
+    }
+    *out = f;
+    return LAM_OK;
+}
+
+static void add_stats(lam_rays_stats *to, const lam_rays_stats *s)
+{
+    to->points += s->points;
+    to->rays += s->rays;
+    to->recasts += s->recasts;
+    to->unreliable += s->unreliable;
+    to->surface += s->surface;
+    to->undecided += s->undecided;
+}
+
 void lam_rays_free(lam_rays *v)
 {
     if (!v) return;
-    if (v->scene) rtcReleaseScene(v->scene);
-    if (v->dev) rtcReleaseDevice(v->dev);
+    if (v->parent) {
+        add_stats(&v->parent->st, &v->st);
+    } else {
+        if (v->scene) rtcReleaseScene(v->scene);
+        if (v->dev) rtcReleaseDevice(v->dev);
+    }
     lam_section_index_free(v->sec);
     free(v->hits);
     free(v);

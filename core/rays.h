@@ -48,13 +48,23 @@ typedef struct lam_rays lam_rays;
  * (no device, a buffer or build error), LAM_ENOMEM. */
 int lam_rays_new(const lam_model *m, lam_rays **out, lam_error *err);
 
+/* Free v; a fork's statistics are added to its parent's (so free forks on
+ * the parent's thread, after their last query). */
 void lam_rays_free(lam_rays *v);
+
+/* A second handle on v's scene for another thread. Embree's committed
+ * scene is only read by queries, so v and its forks may be queried at the
+ * same time from different threads; each keeps its own hit buffer,
+ * statistics and section index (a fork of v's index for the frame v last
+ * indexed, lam_section_index_fork, else its own on first use). The answers
+ * are v's, bit for bit. v must outlive it. Errors: LAM_ENOMEM. */
+int lam_rays_fork(lam_rays *v, lam_rays **out, lam_error *err);
 
 /* Winding number of the model's solid around p (model coordinates).
  * Errors: LAM_EGEOM "cannot decide the winding at (x, y, z)" when the
  * directions do not reach a majority, LAM_EGEOM when p is on the surface
  * (in the plane of a triangle a ray hits, to double rounding), LAM_ENOMEM. Not thread-safe for one
- * lam_rays (each call reuses its hit buffer). */
+ * lam_rays (each call reuses its hit buffer): one fork per thread (lam_rays_fork). */
 int lam_rays_winding(lam_rays *v, const double p[3], int *winding, lam_error *err);
 
 /* The winding at the section point (u, v) at height h of frame f (its

@@ -20,6 +20,8 @@ struct lam_section_index {
     uint32_t *seen;       /* per shell: the query that last counted it */
     double *heights;      /* the vertices' w, sorted (lam_section_snap) */
     uint32_t query;
+    int fork;             /* wuv, first and tris are another index's (lam_section_index_fork) */
+    int shared_heights;   /* and so are heights */
 };
 
 /* Skips zero terms, as the slicer does, so heights along an axis are the
@@ -108,14 +110,35 @@ int lam_section_index_new(const lam_model *m, const lam_frame *f, lam_section_in
     return LAM_OK;
 }
 
+int lam_section_index_fork(const lam_section_index *x, lam_section_index **out, lam_error *err)
+{
+    *out = NULL;
+    lam_section_index *y = malloc(sizeof *y);
+    uint32_t *seen = calloc(x->m->nshells + 1, sizeof *seen);
+    if (!y || !seen) {
+        free(y);
+        free(seen);
+        return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory indexing the model's sections");
+    }
+    *y = *x;
+    y->seen = seen;
+    y->query = 0;
+    y->fork = 1;
+    y->shared_heights = x->heights != NULL;
+    *out = y;
+    return LAM_OK;
+}
+
 void lam_section_index_free(lam_section_index *x)
 {
     if (!x) return;
-    free(x->wuv);
-    free(x->first);
-    free(x->tris);
+    if (!x->fork) {
+        free(x->wuv);
+        free(x->first);
+        free(x->tris);
+    }
+    if (!x->shared_heights) free(x->heights);
     free(x->seen);
-    free(x->heights);
     free(x);
 }
 

@@ -39,6 +39,14 @@ int lam_section_index_new(const lam_model *m, const lam_frame *f, lam_section_in
 
 void lam_section_index_free(lam_section_index *x);
 
+/* A second index for another thread: it shares x's arrays, which no query
+ * changes (and x's sorted heights when lam_section_snap has made them;
+ * otherwise it sorts its own on first use), and keeps its own scratch, so
+ * x and its forks can be queried at the same time from different threads.
+ * x must outlive it; free it with lam_section_index_free. Errors:
+ * LAM_ENOMEM. */
+int lam_section_index_fork(const lam_section_index *x, lam_section_index **out, lam_error *err);
+
 /* The frame the index was made for. */
 const lam_frame *lam_section_index_frame(const lam_section_index *x);
 

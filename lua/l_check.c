@@ -10,6 +10,7 @@
 #include "l_common.h"
 
 #include <limits.h>
+#include <math.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -17,8 +18,10 @@
 
 #include "drc.h"
 #include "mesh.h"
+#include "pool.h"
 #include "rays.h"
 #include "validate.h"
+#include "validate_run.h"
 
 #define LAM_CHECKJOB "lamina.checkjob"
 #define WHERE 512
@@ -134,6 +137,67 @@ static void push_contour(lua_State *L, const lam_contour_check *c, int kind)
 
 static const char *const fill_names[] = { "evenodd", "nonzero", NULL };
 
+/* threads = N of the options at t (1 when not given) */
+static unsigned get_threads(lua_State *L, int t)
+{
+    double x;
+    if (!lam_lua_numfield(L, t, 2, "threads", &x)) return 1;
+    if (!(x >= 1 && x <= LAM_MAX_THREADS) || x != floor(x))
+        lam_lua_opterror(L, 2, "threads must be a whole number from 1 to %d, got %.14g", LAM_MAX_THREADS, x);
+    return (unsigned)x;
+}
+
+/* The options at t without threads, at t (model:slice's key check sees
+ * its own keys only). */
+static void drop_threads(lua_State *L, int t)
+{
+    lua_newtable(L);
+    lua_pushnil(L);
+    while (lua_next(L, t)) {
+        if (lua_type(L, -2) == LUA_TSTRING && !strcmp(lua_tostring(L, -2), "threads")) {
+            lua_pop(L, 1);
+            continue;
+        }
+        lua_pushvalue(L, -2);
+        lua_insert(L, -2);
+        lua_rawset(L, -4);
+    }
+    lua_replace(L, t);
+}
+
+/* The layers' checks on the workers (validate_run.h): the layers are the
+ * list's, read only; the results are kept in layer order on this thread,
+ * which runs no Lua until every worker has stopped. */
+typedef struct vctx {
+    lua_State *L;
+    checkjob *j;
+    lam_validate_opts vo;
+    size_t k;                /* kinds filled so far */
+} vctx;
+
+#define STOPPED (-1)         /* interrupted, or out of time: raised once the workers stop */
+
+static int list_layer(void *ctx, unsigned worker, lam_rays *v, size_t i, lam_vlayer *out, lam_error *err)
+{
+    (void)worker, (void)v, (void)err;
+    const vctx *c = ctx;
+    out->L = c->j->ls[i];
+    out->f = &c->j->frames[i];
+    out->o = c->vo;
+    return LAM_OK;
+}
+
+static int keep_check(void *ctx, size_t i, const lam_vlayer *l, lam_layer_check *chk, lam_error *err)
+{
+    (void)err;
+    vctx *c = ctx;
+    checkjob *j = c->j;
+    j->checks[i] = *chk;
+    memset(chk, 0, sizeof *chk);
+    for (size_t q = 0; q < l->L->ncontours; q++) j->kinds[c->k++] = (unsigned char)l->L->contours[q].kind;
+    return lam_lua_interrupt || lam_lua_sandbox_time_up(c->L) ? STOPPED : LAM_OK;
+}
+
 /* model:validate{slice options | layers = {...} [, fill =]} -> report | nil, message */
 int lam_lua_validate(lua_State *L)
 {
@@ -145,8 +209,9 @@ int lam_lua_validate(lua_State *L)
     luaL_checktype(L, 2, LUA_TTABLE);
     lua_settop(L, 2);
     int fill = 0;
+    unsigned threads = get_threads(L, 2);
     if (lua_getfield(L, 2, "layers") != LUA_TNIL) {
-        static const char *const keys[] = { "layers", "fill", NULL };
+        static const char *const keys[] = { "layers", "fill", "threads", NULL };
         lam_lua_checkkeys(L, 2, 2, keys);
         char b[64];
         if (!lua_istable(L, 3))
@@ -156,6 +221,7 @@ int lam_lua_validate(lua_State *L)
     } else {
         lua_pop(L, 1);
         lam_lua_choicefield(L, 2, 2, "fill", fill_names, &fill);
+        drop_threads(L, 2);
         /* sliced as model:slice slices, in this call (its errors name validate) */
         int nr = lam_lua_slice(L); /* the layers replace the options at 2 */
         if (nr == 2) return 2;     /* nil, message */
@@ -190,16 +256,16 @@ int lam_lua_validate(lua_State *L)
     lam_error err;
     lam_error_clear(&err);
     if (lam_rays_new(lam_lua_checkmodel(L, 1)->m, &j->v, &err)) return lam_lua_fail(L, &err);
-    lam_validate_opts vo;
-    lam_validate_opts_init(&vo);
-    vo.fill_nonzero = fill;
-    for (size_t i = 0, k = 0; i < n; i++) {
-        lam_lua_check_interrupt(L);
-        if (lam_validate_layer(j->v, j->ls[i], &j->frames[i], &vo, &j->checks[i], &err)) return lam_lua_fail(L, &err);
-        for (size_t c = 0; c < j->ls[i]->ncontours; c++) j->kinds[k++] = (unsigned char)j->ls[i]->contours[c].kind;
-    }
+    vctx vc = { L, j, { 0 }, 0 };
+    lam_validate_opts_init(&vc.vo);
+    vc.vo.fill_nonzero = fill;
+    lam_lua_check_interrupt(L);
+    int rc = lam_validate_layers(j->v, n, threads, n ? &j->frames[0] : NULL, list_layer, keep_check, &vc, &err);
     lam_rays_free(j->v);
     j->v = NULL;
+    lam_lua_check_interrupt(L);
+    if (rc == STOPPED) return luaL_error(L, "interrupted");
+    if (rc) return lam_lua_fail(L, &err);
 
     /* the report, from the copies */
     size_t checked = 0, confirmed = 0, disagreeing = 0, unchecked = 0, compared = 0, differ = 0;

@@ -85,6 +85,10 @@ lam_sandbox *lam_lua_sandbox_of(lua_State *L);
 /* Raise "time limit exceeded" when L's sandbox is out of time. */
 void lam_lua_sandbox_check_time(lua_State *L);
 
+/* The same question without raising (1: out of time), for C loops that
+ * must stop their threads before raising; calls nothing in Lua. */
+int lam_lua_sandbox_time_up(lua_State *L);
+
 /* When L is sandboxed and path is outside what it may read (write 0) or
  * write (write 1): push nil, a message and EACCES, as io.open fails, and
  * return 3. Otherwise 0. For every lamina function that opens a file. */

@@ -93,13 +93,18 @@ static double now(void)
     return (double)t.tv_sec + (double)t.tv_nsec * 1e-9;
 }
 
-void lam_lua_sandbox_check_time(lua_State *L)
+int lam_lua_sandbox_time_up(lua_State *L)
 {
     lam_sandbox *sb = lam_lua_sandbox_of(L);
-    if (sb && (sb->timed_out || (sb->deadline > 0 && now() > sb->deadline))) {
-        sb->timed_out = 1;
-        luaL_error(L, "time limit exceeded (%f s; raise it with --time or the option time)", sb->time_limit);
-    }
+    if (sb && (sb->timed_out || (sb->deadline > 0 && now() > sb->deadline))) sb->timed_out = 1;
+    return sb && sb->timed_out;
+}
+
+void lam_lua_sandbox_check_time(lua_State *L)
+{
+    if (lam_lua_sandbox_time_up(L))
+        luaL_error(L, "time limit exceeded (%f s; raise it with --time or the option time)",
+                   lam_lua_sandbox_of(L)->time_limit);
 }
 
 /* pcall, xpcall, coroutine.resume: upvalue 1 after the call, but once the

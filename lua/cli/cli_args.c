@@ -226,7 +226,7 @@ static int o_part(const char *cmd, args *a, const cli_opt *o, const char *opt, c
 
 #define F(member) offsetof(args, member)
 static const cli_opt options[] = {
-    { "jobs", 'j', OPT_PLAN, "N", o_jobs, 0 },
+    { "jobs", 'j', OPT_PLAN | OPT_JOBS, "N", o_jobs, 0 },
     { "machine", 'm', OPT_SLICE, "MACHINE", o_text, F(machine) },
     { "axis", 'a', OPT_SLICE, "AXIS", o_axis, 0 },
     { "widths", 0, OPT_SLICE, "W1,W2,...", o_layers, F(so.widths) },
@@ -451,7 +451,7 @@ int cli_parse_args(const char *cmd, const char *usage_text, unsigned groups, int
     }
     if (rc) return rc;
     if (groups & OPT_MODEL && !a->path) return cli_usage(cmd, "no model given");
-    if (groups & OPT_PLAN && !a->threads) {
+    if (groups & (OPT_PLAN | OPT_JOBS) && !a->threads) {
         int bad;
         a->threads = lam_default_threads(&bad);
         if (bad)

@@ -34,7 +34,8 @@ enum {
     OPT_PROGRAM = 128, /* validate: --program FILE, and --frame (how it was written) */
     OPT_TALK = 256,    /* -q/--quiet, -v/--verbose (progress.h) */
     OPT_JSON_FILE = 512, /* slice: --json FILE (the run as JSON), instead of the --json flag */
-    OPT_PART = 1024    /* slice: --layers A:B or K/N (a part file) */
+    OPT_PART = 1024,   /* slice: --layers A:B or K/N (a part file) */
+    OPT_JOBS = 2048    /* -j N without the rest of OPT_PLAN (validate) */
 };
 
 /* A profile value from the command line: --set KEY=VALUE or an option short for it. */
@@ -55,7 +56,7 @@ typedef struct args {
     size_t nsets;
     unsigned long long max_output;  /* --max-output, 0: the default */
     int talk;                /* -q: -1, -v: 1 (the last given wins), else 0 */
-    unsigned threads;        /* -j N (OPT_PLAN): LAMINA_THREADS or the online processors */
+    unsigned threads;        /* -j N (OPT_PLAN, OPT_JOBS): LAMINA_THREADS or the online processors */
     const char *layers;      /* --layers as given (NULL: the whole run) */
     size_t layers_a, layers_b; /* A:B (1-based, inclusive), or with layers_split K/N */
     int layers_split;

@@ -30,6 +30,10 @@ typedef struct vsource {
 int vreport_layer(vreport *r, lam_rays *v, const lam_layer *L, const lam_frame *f, const lam_validate_opts *o,
                   const vsource *src, lam_error *err);
 
+/* Report layer L's check (made elsewhere: lam_validate_layer, or a worker
+ * of validate_run.h) and count it. Cannot fail. */
+void vreport_check(vreport *r, const lam_layer *L, const lam_layer_check *chk, const vsource *src);
+
 /* The report's last line (text) or closing fields (JSON), and the exit
  * status the checks call for: EXIT_CHECK when a contour or an area
  * disagrees, else EXIT_OK. */

@@ -14,17 +14,19 @@
 #include "program_read.h"
 #include "size_sense.h"
 #include "validate.h"
+#include "validate_run.h"
 
 #include <math.h>
 #include <stddef.h>
+#include <stdlib.h>
 #include <string.h>
 
 static const char usage_text[] =
     "usage: lamina validate MODEL [-m MACHINE] [-a AXIS] [-w WIDTH | --widths ... | --planes ...]\n"
     "                             [--cut floor|middle|ceiling] [--gap TOL] [--allow-open]\n"
-    "                             [--fill evenodd|nonzero] [--json] [-q | -v]\n"
+    "                             [--fill evenodd|nonzero] [--json] [-q | -v] [-j N]\n"
     "       lamina validate MODEL --program FILE [-m MACHINE] [-a AXIS] [--cut ...]\n"
-    "                             [--frame model|machine] [--fill ...] [--json] [-q | -v]\n"
+    "                             [--frame model|machine] [--fill ...] [--json] [-q | -v] [-j N]\n"
     "Slices like 'lamina slice' (or reads the program FILE back: sls-contours, cli-ascii,\n"
     "cli-binary or a run's JSON from 'slice --json', told apart by content) and checks every\n"
     "layer against the 3D model: each\n"
@@ -36,7 +38,10 @@ static const char usage_text[] =
     "JSON says it itself), --cut which side of a flat face a height on it meant (middle and\n"
     "floor: above, ceiling: below).\n"
     "-q (--quiet): only the layers that disagree and the summary, no progress line;\n"
-    "-v (--verbose): also the time each stage takes.\n";
+    "-v (--verbose): also the time each stage takes.\n"
+    "  -j, --jobs       threads that slice (or make the layers read back) and check them\n"
+    "                   (default: LAMINA_THREADS, else the processors); the report and\n"
+    "                   the exit status are the same for every number\n";
 
 static const char *kind_name(const lam_layer *L, size_t c)
 {
@@ -136,52 +141,57 @@ int vreport_layer(vreport *r, lam_rays *v, const lam_layer *L, const lam_frame *
     lam_layer_check chk;
     int rc = lam_validate_layer(v, L, f, o, &chk, err);
     if (rc) return rc;
+    vreport_check(r, L, &chk, src);
+    lam_layer_check_free(&chk);
+    return LAM_OK;
+}
+
+void vreport_check(vreport *r, const lam_layer *L, const lam_layer_check *c, const vsource *src)
+{
     r->layers++;
-    r->checked += chk.checked;
-    r->confirmed += chk.confirmed;
-    r->disagreeing += chk.disagreeing;
-    r->unchecked += chk.unchecked;
-    r->areas_compared += chk.area_checked;
-    r->areas_differ += !chk.area_ok;
+    r->checked += c->checked;
+    r->confirmed += c->confirmed;
+    r->disagreeing += c->disagreeing;
+    r->unchecked += c->unchecked;
+    r->areas_compared += c->area_checked;
+    r->areas_differ += !c->area_ok;
     if (r->json) {
         fprintf(r->out, "%s{\"index\":%zu,\"z\":", r->first ? "" : ",", L->index);
         cli_json_number(r->out, L->cut);
         fprintf(r->out, ",\"contours\":%zu,\"checked\":%zu,\"confirmed\":%zu,\"disagreeing\":%zu,\"unchecked\":%zu,"
                         "\"net_area\":",
-                L->ncontours, chk.checked, chk.confirmed, chk.disagreeing, chk.unchecked);
-        cli_json_number(r->out, chk.net_area);
+                L->ncontours, c->checked, c->confirmed, c->disagreeing, c->unchecked);
+        cli_json_number(r->out, c->net_area);
         fputs(",\"section_area\":", r->out);
-        cli_json_number(r->out, chk.area_checked ? chk.section_area : NAN);
+        cli_json_number(r->out, c->area_checked ? c->section_area : NAN);
         fputs(",\"area_tolerance\":", r->out);
-        cli_json_number(r->out, chk.area_checked ? chk.area_tolerance : NAN);
-        fprintf(r->out, ",\"area_ok\":%s,\"area\":", chk.area_ok ? "true" : "false");
-        cli_json_string(r->out, chk.area_why ? chk.area_why : "");
+        cli_json_number(r->out, c->area_checked ? c->area_tolerance : NAN);
+        fprintf(r->out, ",\"area_ok\":%s,\"area\":", c->area_ok ? "true" : "false");
+        cli_json_string(r->out, c->area_why ? c->area_why : "");
         fputs(",\"disagreements\":[", r->out);
         int firstd = 1;
-        for (size_t i = 0; i < chk.nitems; i++) {
-            if (chk.items[i].ok != 0) continue;
+        for (size_t i = 0; i < c->nitems; i++) {
+            if (c->items[i].ok != 0) continue;
             if (!firstd) fputc(',', r->out);
-            json_contour(r->out, L, &chk.items[i], src);
+            json_contour(r->out, L, &c->items[i], src);
             firstd = 0;
         }
         fputs("]}", r->out);
         r->first = 0;
     } else {
-        if (r->verbose || chk.disagreeing || chk.unchecked || !chk.area_ok) {
+        if (r->verbose || c->disagreeing || c->unchecked || !c->area_ok) {
             cli_progress_hide(r->progress);
             fprintf(r->out, "layer %zu (h=%s): %zu contour%s, %zu confirmed, %zu disagreeing%s\n", L->index + 1,
-                    LAM_NUM(L->cut), L->ncontours, L->ncontours == 1 ? "" : "s", chk.confirmed, chk.disagreeing,
-                    chk.unchecked ? ", some too small to check" : "");
+                    LAM_NUM(L->cut), L->ncontours, L->ncontours == 1 ? "" : "s", c->confirmed, c->disagreeing,
+                    c->unchecked ? ", some too small to check" : "");
         }
-        for (size_t i = 0; i < chk.nitems; i++)
-            if (chk.items[i].ok <= 0) text_contour(r->out, L, &chk.items[i], src);
-        if (!chk.area_ok)
+        for (size_t i = 0; i < c->nitems; i++)
+            if (c->items[i].ok <= 0) text_contour(r->out, L, &c->items[i], src);
+        if (!c->area_ok)
             fprintf(r->out, "  net area %.10g (solids minus holes) but the model's section has %.10g: off by %.3g, "
                             "tolerance %.3g (%s)\n",
-                    chk.net_area, chk.section_area, chk.net_area - chk.section_area, chk.area_tolerance, chk.area_why);
+                    c->net_area, c->section_area, c->net_area - c->section_area, c->area_tolerance, c->area_why);
     }
-    lam_layer_check_free(&chk);
-    return LAM_OK;
 }
 
 int vreport_finish(vreport *r, const char *what)
@@ -200,27 +210,87 @@ int vreport_finish(vreport *r, const char *what)
     return r->disagreeing || r->areas_differ ? EXIT_CHECK : EXIT_OK;
 }
 
-/* The layers of a program read back, each checked as it is written. */
+/* The layers of a program read back, each checked as it is written: the
+ * program is read whole first (on this thread), then the workers make
+ * each layer from it and check it (validate_run.h). */
+typedef struct pjob {
+    const args *a;
+    const lam_program *p;
+    const lam_frame *f;
+    int frame_machine, below;
+    lam_validate_opts vo;
+    vreport *r;
+} pjob;
+
+static int program_layer(void *ctx, unsigned worker, lam_rays *v, size_t i, lam_vlayer *out, lam_error *err)
+{
+    (void)worker;
+    const pjob *j = ctx;
+    const lam_program *p = j->p;
+    lam_layer *L = calloc(1, sizeof *L);
+    if (!L) return lam_error_nomem(err, "while validating");
+    lam_section_index *sec; /* the worker's own (lam_rays_fork) */
+    int rc = lam_rays_section(v, j->f, &sec, err);
+    if (!rc) rc = lam_program_layer_make(p, i, j->f, j->frame_machine, j->a->program, L, err);
+    if (rc) {
+        free(L);
+        return rc;
+    }
+    /* a height written on a flat face's plane (to its precision) means
+     * that plane, and the side the cut says */
+    double h = L->cut;
+    rc = lam_section_snap(sec, h, p->quantum_z * (1 + 1e-9), &L->cut, err);
+    double prev = i ? p->layers[i - 1].z : h - 1, next = i + 1 < p->nlayers ? p->layers[i + 1].z : h + 1;
+    L->floor = j->below ? prev : L->cut;
+    L->ceiling = j->below ? L->cut : next;
+    L->width = L->ceiling - L->floor;
+    if (rc) {
+        lam_layer_free(L);
+        return rc;
+    }
+    out->L = out->owned = L;
+    out->f = j->f;
+    out->o = j->vo;
+    return LAM_OK;
+}
+
+static int program_report(void *ctx, size_t i, const lam_vlayer *l, lam_layer_check *chk, lam_error *err)
+{
+    (void)err;
+    const pjob *j = ctx;
+    cli_progress_step(j->r->progress, i + 1);
+    vsource src = { j->a->program, j->p->contours + j->p->layers[i].first };
+    vreport_check(j->r, l->L, chk, &src);
+    return LAM_OK;
+}
+
 static int validate_program(const args *a, const lam_plan_opts *po, lam_rays *v, vreport *r, lam_error *err)
 {
     lam_program *p = NULL;
     int rc = lam_program_read(a->program, &p, err);
     if (rc) return rc;
+    pjob j;
+    memset(&j, 0, sizeof j);
+    j.a = a;
+    j.p = p;
+    j.r = r;
     /* a run's JSON says its own axis and frame (-a and --frame are for
      * programs that do not) */
-    const lam_frame *f = p->has_frame ? &p->frame : &a->so.frame;
-    int frame_machine = po->frame_machine; /* (a JSON's points are read in the layer frame) */
+    j.f = p->has_frame ? &p->frame : &a->so.frame;
+    j.frame_machine = po->frame_machine; /* (a JSON's points are read in the layer frame) */
+    j.below = a->so.cut == LAM_CUT_CEILING;
+    /* the model's sections, and its sorted heights made now (a snap that
+     * moves nothing), so the workers' indexes share them */
     lam_section_index *sec = NULL;
-    if ((rc = lam_rays_section(v, f, &sec, err))) {
+    double unused;
+    if ((rc = lam_rays_section(v, j.f, &sec, err)) || (rc = lam_section_snap(sec, 0, 0, &unused, err))) {
         lam_program_free(p);
         return rc;
     }
-    lam_validate_opts vo;
-    lam_validate_opts_init(&vo);
-    vo.fill_nonzero = a->so.fill_nonzero;
-    vo.quantum_uv = p->quantum_xy;
-    vo.quantum_h = p->quantum_z;
-    int below = a->so.cut == LAM_CUT_CEILING;
+    lam_validate_opts_init(&j.vo);
+    j.vo.fill_nonzero = a->so.fill_nonzero;
+    j.vo.quantum_uv = p->quantum_xy;
+    j.vo.quantum_h = p->quantum_z;
     if (r->json) {
         fputs("{\"model\":", r->out);
         cli_json_string(r->out, a->path);
@@ -230,22 +300,7 @@ static int validate_program(const args *a, const lam_plan_opts *po, lam_rays *v,
                 a->so.fill_nonzero ? "nonzero" : "evenodd");
     }
     cli_progress_begin(r->progress, "validating", a->program, p->nlayers);
-    for (size_t i = 0; i < p->nlayers && !rc; i++) {
-        cli_progress_step(r->progress, i + 1);
-        lam_layer L;
-        if ((rc = lam_program_layer_make(p, i, f, frame_machine, a->program, &L, err))) break;
-        /* a height written on a flat face's plane (to its precision) means
-         * that plane, and the side the cut says */
-        double h = L.cut;
-        rc = lam_section_snap(sec, h, p->quantum_z * (1 + 1e-9), &L.cut, err);
-        double prev = i ? p->layers[i - 1].z : h - 1, next = i + 1 < p->nlayers ? p->layers[i + 1].z : h + 1;
-        L.floor = below ? prev : L.cut;
-        L.ceiling = below ? L.cut : next;
-        L.width = L.ceiling - L.floor;
-        vsource src = { a->program, p->contours + p->layers[i].first };
-        if (!rc) rc = vreport_layer(r, v, &L, f, &vo, &src, err);
-        lam_layer_clear(&L);
-    }
+    rc = lam_validate_layers(v, p->nlayers, a->threads, j.f, program_layer, program_report, &j, err);
     cli_progress_end(r->progress);
     if (!rc && !r->json)
         fprintf(r->out, "%s: %s program, %zu layers, %zu contours, read back\n", a->program,
@@ -254,10 +309,27 @@ static int validate_program(const args *a, const lam_plan_opts *po, lam_rays *v,
     return rc;
 }
 
+/* The layers sliced here: the workers slice and check them
+ * (validate_run.h), this thread reports them in order. */
+typedef struct sjob {
+    vreport *r;
+    size_t open;             /* outlines left open, over the layers reported */
+} sjob;
+
+static int slice_report(void *ctx, size_t i, const lam_vlayer *l, lam_layer_check *chk, lam_error *err)
+{
+    (void)i, (void)err;
+    sjob *j = ctx;
+    cli_progress_step(j->r->progress, l->L->index + 1);
+    j->open += l->L->nopen;
+    vreport_check(j->r, l->L, chk, NULL);
+    return LAM_OK;
+}
+
 int cmd_validate(int argc, char **argv)
 {
     args a;
-    int rc = cli_parse_args("validate", usage_text, OPT_MODEL | OPT_SLICE | OPT_SET | OPT_JSON | OPT_PROGRAM | OPT_TALK,
+    int rc = cli_parse_args("validate", usage_text, OPT_MODEL | OPT_SLICE | OPT_SET | OPT_JSON | OPT_PROGRAM | OPT_TALK | OPT_JOBS,
                             argc, argv, &a);
     if (rc) {
         cli_args_free(&a);
@@ -319,29 +391,17 @@ int cmd_validate(int argc, char **argv)
     cli_progress_stage(&progress, "preparing the layers");
     cli_size_sense(a.path, a.machine ? prof : NULL, m, s, NULL);
     cli_progress_begin(&progress, "validating", a.path, lam_slicer_count(s));
-    size_t open = 0;
-    for (;;) {
-        lam_layer *L;
-        if (lam_slicer_next(s, &L, &err)) {
-            cli_progress_end(&progress);
-            rc = cli_fail(&err);
-            goto done;
-        }
-        if (!L) break;
-        cli_progress_step(&progress, L->index + 1);
-        open += L->nopen;
-        lam_validate_opts vo;
-        lam_validate_opts_init(&vo);
-        vo.fill_nonzero = a.so.fill_nonzero;
-        int vrc = vreport_layer(&r, v, L, lam_slicer_frame(s), &vo, NULL, &err);
-        lam_layer_free(L);
-        if (vrc) {
-            cli_progress_end(&progress);
-            rc = cli_fail(&err);
-            goto done;
-        }
-    }
+    lam_validate_opts vo;
+    lam_validate_opts_init(&vo);
+    vo.fill_nonzero = a.so.fill_nonzero;
+    sjob sj = { &r, 0 };
+    int vrc = lam_validate_slicer(s, v, &vo, a.threads, slice_report, &sj, &err);
     cli_progress_end(&progress);
+    if (vrc) {
+        rc = cli_fail(&err);
+        goto done;
+    }
+    size_t open = sj.open;
     rc = vreport_finish(&r, a.path);
     if (r.json) printf(",\"open_outlines\":%zu}\n", open);
     if (open && !a.allow_open) {

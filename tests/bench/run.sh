@@ -82,18 +82,25 @@ compare comb "$comb" 3
 awk -v lt="$lt" -v st="$st" 'BEGIN {
     printf "comb (1000 teeth, 100 layers of 1000 contours): lamina %.3f s, slic3r %.3f s (%.1fx)\n", lt, st, st / lt }'
 
-# Embree validation of every label: the sphere at 0.1 layers, and the model
-# load + slice alone for comparison.
-: >"$work/v.txt"; : >"$work/s.txt"
+# Embree validation of every label: the sphere at 0.1 layers with -j 1 and
+# -j 2 alternately (the two reports compared byte for byte first), and the
+# model load + slice alone for comparison.
+"$LAMINA" validate "$work/sphere.stl" -w 0.1 --json -j 1 >"$work/v1.json"
+"$LAMINA" validate "$work/sphere.stl" -w 0.1 --json -j 2 >"$work/v2.json"
+cmp -s "$work/v1.json" "$work/v2.json" || { echo "bench: validate -j 2 reports differently from -j 1" >&2; exit 1; }
+: >"$work/v1.txt"; : >"$work/v2.txt"; : >"$work/s.txt"
 for ((r = 0; r < RUNS; r++)); do
-    measure "$LAMINA" validate "$work/sphere.stl" -w 0.1 >>"$work/v.txt"
+    measure "$LAMINA" validate "$work/sphere.stl" -w 0.1 -j 1 >>"$work/v1.txt"
+    measure "$LAMINA" validate "$work/sphere.stl" -w 0.1 -j 2 >>"$work/v2.txt"
     fresh "$work/sphere.sls"
     measure "$LAMINA" slice "$work/sphere.stl" -w 0.1 -o "$work/sphere.sls" >>"$work/s.txt"
 done
-vt=$(cut -d' ' -f1 "$work/v.txt" | median); vm=$(cut -d' ' -f2 "$work/v.txt" | median)
+v1t=$(cut -d' ' -f1 "$work/v1.txt" | median); v1m=$(cut -d' ' -f2 "$work/v1.txt" | median)
+v2t=$(cut -d' ' -f1 "$work/v2.txt" | median); v2m=$(cut -d' ' -f2 "$work/v2.txt" | median)
 st=$(cut -d' ' -f1 "$work/s.txt" | median)
-awk -v vt="$vt" -v vm="$vm" -v st="$st" 'BEGIN {
-    printf "validate sphere (400 layers): %.3f s, %.1f MB peak (slice alone %.3f s)\n", vt, vm / 1024, st }'
+awk -v a="$v1t" -v am="$v1m" -v b="$v2t" -v bm="$v2m" -v st="$st" 'BEGIN {
+    printf "validate sphere (400 layers): -j 1 %.3f s, -j 2 %.3f s (%.2fx), %.1f / %.1f MB peak (slice alone %.3f s)\n",
+           a, b, a / (b > 0 ? b : 0.001), am / 1024, bm / 1024, st }'
 
 # Hatching: the sphere at 0.03 layers, hatch distance 0.1, islands (5 mm,
 # checker order), binary CLI; against PrusaSlicer writing 100% rectilinear
