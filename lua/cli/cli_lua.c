@@ -183,14 +183,14 @@ static void set_arg(lua_State *L, const char *cmd, const char *script, int argc,
 /* ---- lamina run ---------------------------------------------------------- */
 
 static const char run_usage[] =
-    "usage: lamina run [-j N] [--safe [--allow DIR]... [--out DIR]... [--memory SIZE] [--time SECONDS]]\n"
-    "                  RECIPE.lua [ARGS...]\n"
+    "usage: lamina run [--safe [--allow DIR]... [--out DIR]... [--memory SIZE] [--time SECONDS]]\n"
+    "                  [-j N] RECIPE.lua [ARGS...]\n"
     "Run a Lua recipe with the lamina module loaded (global `lamina`, or\n"
     "require \"lamina\"). ARGS are in the table `arg` (arg[0] is the recipe,\n"
     "arg[1] the first argument) and in `...`, as with lua. RECIPE '-' reads\n"
     "the recipe from standard input. Exit code 1 when the recipe fails.\n"
-    "  -j, --jobs N  threads machine:plan uses when the recipe does not say\n"
-    "              (lamina.threads(); default: LAMINA_THREADS, else 1)\n"
+    "  -j, --jobs N   threads machine:plan uses when the recipe gives none\n"
+    "                 (lamina.threads(); default: LAMINA_THREADS, else 1)\n"
     "  --safe      run it sandboxed: no os.execute, io.popen, C modules, debug\n"
     "              library or bytecode; files only in these directories:\n"
     "  --allow DIR    may be read (any number of them)\n"
