@@ -270,8 +270,10 @@ lhatchctl *lam_lua_hatch_split(lua_State *L, int opts);
 
 /* Run the functions for every layer of the table at index layers (checked
  * layers, in order), with the machine's profile p and its plan options
- * base: called before any pointer is taken that a collection could free. */
-void lam_lua_hatch_prepare(lua_State *L, lhatchctl *c, int layers, const lam_profile *p);
+ * base: called before any pointer is taken that a collection could free.
+ * Returns NULL, or the error of hatching a layer for `order` (the layers
+ * after it are not looked at): the plan fails with it as planning would. */
+const lam_error *lam_lua_hatch_prepare(lua_State *L, lhatchctl *c, int layers, const lam_profile *p);
 
 /* Layer i's profile (p with the layer's overrides) and hatch vectors
  * (NULL: the planner hatches). */

@@ -195,7 +195,8 @@ int lam_lua_plan(lua_State *L)
         /* the recipe's functions run now, before any pointer is kept */
         lam_profile base = lam_lua_checkmachine(L, 1)->p;
         lam_lua_apply_overrides(&ovr, &base);
-        lam_lua_hatch_prepare(L, ctl, 2, &base);
+        const lam_error *e = lam_lua_hatch_prepare(L, ctl, 2, &base);
+        if (e) return lam_lua_fail(L, e);
     }
     lua_settop(L, 4);
     lua_Unsigned nl = lua_rawlen(L, 2);
