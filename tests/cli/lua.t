@@ -116,7 +116,7 @@ run "$LAMINA" run
 is "$RC" 2 "run without a recipe: usage error"
 run "$LAMINA" run --help
 is "$RC" 0 "run --help"
-like "$OUT" 'usage: lamina run \[--safe .*\n +RECIPE\.lua \[ARGS\.\.\.\]' "run --help text"
+like "$OUT" 'usage: lamina run \[--safe .*\n +\[-j N\] RECIPE\.lua \[ARGS\.\.\.\]' "run --help text"
 
 # ---- lamina -e -------------------------------------------------------------
 run "$LAMINA" -e "print(lamina.load('$M/thesis_cube_hole.ug').volume)"
@@ -192,5 +192,13 @@ interrupt "slicing" 'local m = lamina.load(os.getenv("TESTS") .. "/models/thesis
 print("go") io.stdout:flush()
 for i = 1, 1000000 do m:slice{width = 2e-5} end'
 like "$(cat "$TMP/err")" "in method 'slice'" "Ctrl-C: the slice itself was interrupted"
+# planning on worker threads: the calling thread stops them between
+# layers, then raises the error
+interrupt "planning on 4 threads" 'local m = lamina.load(os.getenv("TESTS") .. "/models/thesis_cube.ug")
+local ladrp = lamina.machine("creol-ladrp")
+local layers = m:slice{machine = ladrp, width = 0.002}
+print("go") io.stdout:flush()
+for i = 1, 1000000 do ladrp:plan(layers, {threads = 4, bead_width = 0.002}) end'
+like "$(cat "$TMP/err")" "in method 'plan'" "Ctrl-C: the threaded plan itself was interrupted"
 
 done_testing
