@@ -7,7 +7,9 @@
  * job header mirrors lam_plan_run: bounding box of the model (or of the run
  * in the layer frame for `frame: machine`), the stage starting at the model
  * origin in the plane of the first layer planned. The program is kept in
- * memory: plan:text() returns it, plan:write(path) writes it atomically. */
+ * memory: plan:text() returns it, plan:write(path) writes it atomically.
+ * The option `threads` plans on worker threads (core/plan_layers.c); only
+ * the calling thread touches Lua and the writer. */
 #include "l_common.h"
 
 #include <limits.h>
