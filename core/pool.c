@@ -65,6 +65,11 @@ unsigned lam_default_threads(int *bad)
         if (!*end && !errno && v >= 1 && v <= LAM_MAX_THREADS) return (unsigned)v;
         if (bad) *bad = 1;
     }
+    return lam_online_cores();
+}
+
+unsigned lam_online_cores(void)
+{
     long n = sysconf(_SC_NPROCESSORS_ONLN);
     return n < 1 ? 1 : n > LAM_MAX_THREADS ? LAM_MAX_THREADS : (unsigned)n;
 }

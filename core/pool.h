@@ -35,6 +35,9 @@ typedef int (*lam_consume_fn)(void *ctx, size_t task, int rc);
 #define LAM_MAX_THREADS 256
 unsigned lam_default_threads(int *bad);
 
+/* The online processors: at least 1, at most LAM_MAX_THREADS. */
+unsigned lam_online_cores(void);
+
 /* Run tasks 0 .. n-1 with `threads` workers (>= 1; the calling thread only
  * consumes). Task t is consumed once tasks t .. t+ahead (those that exist)
  * are produced, so the consumer may look at the results of the `ahead`

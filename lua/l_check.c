@@ -137,14 +137,16 @@ static void push_contour(lua_State *L, const lam_contour_check *c, int kind)
 
 static const char *const fill_names[] = { "evenodd", "nonzero", NULL };
 
-/* threads = N of the options at t (1 when not given) */
+/* threads = N of the options at t, as machine:plan reads it (0: the
+ * online cores; not given: the script's default, lamina.threads()) */
 static unsigned get_threads(lua_State *L, int t)
 {
     double x;
-    if (!lam_lua_numfield(L, t, 2, "threads", &x)) return 1;
-    if (!(x >= 1 && x <= LAM_MAX_THREADS) || x != floor(x))
-        lam_lua_opterror(L, 2, "threads must be a whole number from 1 to %d, got %.14g", LAM_MAX_THREADS, x);
-    return (unsigned)x;
+    if (!lam_lua_numfield(L, t, 2, "threads", &x)) return lam_lua_threads(L);
+    if (!(x >= 0 && x <= LAM_MAX_THREADS) || x != floor(x))
+        lam_lua_opterror(L, 2, "threads must be a whole number from 0 to %d (0: the online cores), got %.14g",
+                         LAM_MAX_THREADS, x);
+    return x == 0 ? lam_online_cores() : (unsigned)x;
 }
 
 /* The options at t without threads, at t (model:slice's key check sees
@@ -195,7 +197,7 @@ static int keep_check(void *ctx, size_t i, const lam_vlayer *l, lam_layer_check 
     j->checks[i] = *chk;
     memset(chk, 0, sizeof *chk);
     for (size_t q = 0; q < l->L->ncontours; q++) j->kinds[c->k++] = (unsigned char)l->L->contours[q].kind;
-    return lam_lua_interrupt || lam_lua_sandbox_time_up(c->L) ? STOPPED : LAM_OK;
+    return lam_lua_stopping(c->L) ? STOPPED : LAM_OK;
 }
 
 /* model:validate{slice options | layers = {...} [, fill =]} -> report | nil, message */

@@ -57,6 +57,19 @@ extern volatile sig_atomic_t lam_lua_interrupt;
  * sandbox whose time is up. */
 void lam_lua_check_interrupt(lua_State *L);
 
+/* Whether lam_lua_check_interrupt would raise, without raising: for C
+ * loops that must stop their threads before the error is raised. */
+int lam_lua_stopping(lua_State *L);
+
+/* The number of threads machine:plan uses when its options give none
+ * (lamina.threads()): what lam_lua_set_threads stored in L, else 1. May
+ * allocate (a registry look-up): call it before keeping pointers. */
+unsigned lam_lua_threads(lua_State *L);
+
+/* Set that default for L (the lamina executable: `lamina run -j N`,
+ * LAMINA_THREADS); n >= 1. */
+void lam_lua_set_threads(lua_State *L, unsigned n);
+
 /* ---- sandboxes (l_sandbox.c) --------------------------------------------- */
 
 typedef struct lam_sandbox lam_sandbox;
@@ -85,9 +98,8 @@ lam_sandbox *lam_lua_sandbox_of(lua_State *L);
 /* Raise "time limit exceeded" when L's sandbox is out of time. */
 void lam_lua_sandbox_check_time(lua_State *L);
 
-/* The same question without raising (1: out of time), for C loops that
- * must stop their threads before raising; calls nothing in Lua. */
-int lam_lua_sandbox_time_up(lua_State *L);
+/* Whether L is a sandbox whose time is up (marks it so), without raising. */
+int lam_lua_sandbox_timed_out(lua_State *L);
 
 /* When L is sandboxed and path is outside what it may read (write 0) or
  * write (write 1): push nil, a message and EACCES, as io.open fails, and
@@ -258,8 +270,10 @@ lhatchctl *lam_lua_hatch_split(lua_State *L, int opts);
 
 /* Run the functions for every layer of the table at index layers (checked
  * layers, in order), with the machine's profile p and its plan options
- * base: called before any pointer is taken that a collection could free. */
-void lam_lua_hatch_prepare(lua_State *L, lhatchctl *c, int layers, const lam_profile *p);
+ * base: called before any pointer is taken that a collection could free.
+ * Returns NULL, or the error of hatching a layer for `order` (the layers
+ * after it are not looked at): the plan fails with it as planning would. */
+const lam_error *lam_lua_hatch_prepare(lua_State *L, lhatchctl *c, int layers, const lam_profile *p);
 
 /* Layer i's profile (p with the layer's overrides) and hatch vectors
  * (NULL: the planner hatches). */

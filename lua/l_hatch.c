@@ -17,6 +17,7 @@ struct lhatchctl {
     lam_lua_overrides *ovr;  /* per layer (NULL without a layer function) */
     lam_hatches *given;      /* per layer */
     unsigned char *has;      /* per layer: given[i] is the layer's vectors */
+    lam_error err;           /* hatching a layer for `order` failed */
 };
 
 static const char *const fn_names[] = { "layer", "hatcher", "order" };
@@ -173,9 +174,9 @@ static void read_vectors(lua_State *L, const char *who, size_t layer, lam_hatche
     }
 }
 
-void lam_lua_hatch_prepare(lua_State *L, lhatchctl *c, int layers, const lam_profile *p)
+const lam_error *lam_lua_hatch_prepare(lua_State *L, lhatchctl *c, int layers, const lam_profile *p)
 {
-    if (!c) return;
+    if (!c) return NULL;
     layers = lua_absindex(L, layers);
     int ctl = lua_gettop(L);
     /* find the control userdata (pushed by lam_lua_hatch_split) */
@@ -246,9 +247,8 @@ void lam_lua_hatch_prepare(lua_State *L, lhatchctl *c, int layers, const lam_pro
                 above[na++] = lam_lua_checklayer(L, -1);
                 lua_pop(L, 1);
             }
-            lam_error err;
-            lam_error_clear(&err);
-            if (lam_hatch_layer(ly, below, nb, above, na, &cfg, &c->given[i], &err)) lam_lua_fail(L, &err);
+            lam_error_clear(&c->err);
+            if (lam_hatch_layer(ly, below, nb, above, na, &cfg, &c->given[i], &c->err)) break;
             lua_getfield(L, fns, "order");
             push_vectors(L, &c->given[i]);
             lua_rawgeti(L, copy, (lua_Integer)i + 1);
@@ -260,6 +260,7 @@ void lam_lua_hatch_prepare(lua_State *L, lhatchctl *c, int layers, const lam_pro
         }
     }
     lua_settop(L, fns - 1);
+    return c->err.code ? &c->err : NULL;
 }
 
 void lam_lua_hatch_profile(const lhatchctl *c, size_t i, lam_profile *p)

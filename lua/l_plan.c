@@ -7,7 +7,9 @@
  * job header mirrors lam_plan_run: bounding box of the model (or of the run
  * in the layer frame for `frame: machine`), the stage starting at the model
  * origin in the plane of the first layer planned. The program is kept in
- * memory: plan:text() returns it, plan:write(path) writes it atomically. */
+ * memory: plan:text() returns it, plan:write(path) writes it atomically.
+ * The option `threads` plans on worker threads (core/plan_layers.c); only
+ * the calling thread touches Lua and the writer. */
 #include "l_common.h"
 
 #include <limits.h>
@@ -18,6 +20,8 @@
 #include "dialect.h"
 #include "plugin.h"
 #include "plan_data.h"
+#include "plan_layers.h"
+#include "pool.h"
 #include "writer.h"
 
 #define LAM_PLANJOB "lamina.planjob"
@@ -30,8 +34,6 @@ typedef struct planjob {
     lam_sink sink;
     int have_sink;
     lam_error err;           /* the sink reports through it: it must not move */
-    lam_sls_state st;        /* SLS planning's state (its hatch vectors) */
-    int have_st;
     lam_plan_data rec;          /* what was planned, per layer: handed to the plan */
     lam_sink tee;            /* records into rec, then writes into sink */
 } planjob;
@@ -42,8 +44,6 @@ static void job_release(planjob *j)
     j->have_sink = 0;
     lam_writer_abort(j->w);
     j->w = NULL;
-    if (j->have_st) lam_sls_state_free(&j->st);
-    j->have_st = 0;
     lam_plan_data_free(&j->rec);
 }
 
@@ -101,6 +101,71 @@ static size_t count_lines(const char *s, size_t len)
     return n;
 }
 
+/* What planning's callbacks (core/plan_layers.h) need. */
+typedef struct planctx {
+    lua_State *L;
+    lplan *pl;
+    planjob *j;
+    const lhatchctl *ctl;
+    const lam_profile *p;
+    int stopped;             /* an interrupt or the sandbox's time stopped the run */
+} planctx;
+
+/* The i-th layer's options: the recipe's `layer` function's keys (copied
+ * into ctl before planning: no Lua here, workers call it too). */
+static void layer_opts(void *ctx, size_t i, lam_plan_opts *oi)
+{
+    const planctx *c = ctx;
+    unsigned threads = oi->threads;
+    unsigned long long max_output = oi->max_output;
+    lam_profile pi = *c->p;
+    lam_lua_hatch_profile(c->ctl, i, &pi);
+    lam_lua_plan_opts(&pi, oi);
+    oi->threads = threads;
+    oi->max_output = max_output;
+}
+
+static const lam_hatches *given(void *ctx, size_t i)
+{
+    return lam_lua_hatch_given(((const planctx *)ctx)->ctl, i);
+}
+
+/* Between layers, on the calling thread: Ctrl-C or the sandbox's time
+ * stop the run, which raises the error once every worker has stopped. */
+static int stop(void *ctx, size_t i)
+{
+    (void)i;
+    planctx *c = ctx;
+    c->stopped = lam_lua_stopping(c->L);
+    return c->stopped ? LAM_EUSAGE : LAM_OK;
+}
+
+/* After a layer's operations, on the calling thread in layer order: the
+ * plan's totals and the record's figures. */
+static void planned(void *ctx, size_t i, const lam_ladrp_stats *ls, const lam_scan_time *t)
+{
+    planctx *c = ctx;
+    lplan *pl = c->pl;
+    lam_rec_layer *rl = lam_plan_data_current(&c->j->rec);
+    if (c->p->process != LAM_PROCESS_SLS) {
+        pl->travel += ls->travel_length;
+        pl->deposit += ls->deposit_length;
+        pl->deposits += ls->deposits;
+        if (rl) {
+            rl->deposit = ls->deposit_length;
+            rl->travel = ls->travel_length;
+        }
+    } else {
+        lam_scan_time_add(&pl->time, t);
+        pl->layer_time[i] = lam_scan_time_total(t);
+        if (rl) {
+            rl->deposit = t->exposure_length;
+            rl->travel = t->jump_length;
+            rl->time = pl->layer_time[i];
+        }
+    }
+}
+
 /* machine:plan(layers [, opts]) -> plan | nil, message */
 int lam_lua_plan(lua_State *L)
 {
@@ -108,16 +173,23 @@ int lam_lua_plan(lua_State *L)
     luaL_checktype(L, 2, LUA_TTABLE);
     lam_lua_overrides ovr;
     memset(&ovr, 0, sizeof ovr);
-    double max_output = 0;
+    double max_output = 0, nthreads = 0;
+    unsigned threads = lam_lua_threads(L); /* the script's default (lamina.threads()) */
     lua_settop(L, 3);
     lhatchctl *ctl = NULL;
     if (!lua_isnoneornil(L, 3)) {
         luaL_checktype(L, 3, LUA_TTABLE);
         ctl = lam_lua_hatch_split(L, 3); /* at 4 (or nil) */
-        static const char *const own[] = { "max_output", NULL }; /* read here, not a profile key */
+        static const char *const own[] = { "max_output", "threads", NULL }; /* read here, not profile keys */
         lam_lua_read_overrides(L, 3, 3, LAM_KEY_PLAN, own, &ovr); /* may run metamethods: before any pointer */
         if (lam_lua_numfield(L, 3, 3, "max_output", &max_output) && !(max_output >= 1 && max_output < 1.8e19))
             lam_lua_opterror(L, 3, "max_output must be a number of bytes >= 1, got %.14g", max_output);
+        if (lam_lua_numfield(L, 3, 3, "threads", &nthreads)) {
+            if (!(nthreads >= 0 && nthreads <= LAM_MAX_THREADS && nthreads == floor(nthreads)))
+                lam_lua_opterror(L, 3, "threads must be a whole number from 0 to %d (0: the online cores), got %.14g",
+                                 LAM_MAX_THREADS, nthreads);
+            threads = nthreads == 0 ? lam_online_cores() : (unsigned)nthreads;
+        }
     } else {
         lua_pushnil(L);
     }
@@ -125,7 +197,8 @@ int lam_lua_plan(lua_State *L)
         /* the recipe's functions run now, before any pointer is kept */
         lam_profile base = lam_lua_checkmachine(L, 1)->p;
         lam_lua_apply_overrides(&ovr, &base);
-        lam_lua_hatch_prepare(L, ctl, 2, &base);
+        const lam_error *e = lam_lua_hatch_prepare(L, ctl, 2, &base);
+        if (e) return lam_lua_fail(L, e);
     }
     lua_settop(L, 4);
     lua_Unsigned nl = lua_rawlen(L, 2);
@@ -160,6 +233,10 @@ int lam_lua_plan(lua_State *L)
     estimate(ls, n, &o, &est);
     if (lam_plan_check_estimate(&est, &o, o.max_output, &j->err))
         luaL_error(L, "plan: %s (raise the limit with the option max_output)", j->err.msg);
+    /* a worker holds a layer's operations until it is written: layers
+     * estimated beyond LAM_THREAD_LAYER_MAX are planned on this thread, as
+     * lam_plan_run does */
+    o.threads = est.layers && est.bytes / (double)est.layers > LAM_THREAD_LAYER_MAX ? 1 : threads;
 
     lam_error_clear(&j->err);
     if (!(pl->layer_time = calloc(n, sizeof *pl->layer_time))) return luaL_error(L, "out of memory");
@@ -192,57 +269,26 @@ int lam_lua_plan(lua_State *L)
     }
     const lam_sink *s = &j->tee;
     rc = s->begin ? s->begin(s->ctx, &job) : LAM_OK;
-    double pos[3] = { job.origin[0], job.origin[1], job.origin[2] };
-    int laser = -1;
-    lam_sls_state *st = &j->st;
-    lam_sls_state_init(st);
-    j->have_st = 1;
-    size_t nskin = o.scan.skin_layers > 0 ? (size_t)o.scan.skin_layers : 0;
-    for (size_t i = 0; i < n && !rc; i++) {
-        lam_lua_check_interrupt(L);
-        const lam_layer *ly = ls[i];
-        lam_layer_info li = { ly->index, ly->cut, ly->width, ly->floor, ly->ceiling, ly, NULL };
-        lam_plan_opts oi = o;
-        if (ctl) {
-            lam_profile pi = p;
-            lam_lua_hatch_profile(ctl, i, &pi);
-            lam_lua_plan_opts(&pi, &oi);
-        }
-        if (s->layer) rc = s->layer(s->ctx, &li);
-        if (!rc) {
-            if (o.kind == LAM_PLAN_LADRP) {
-                lam_ladrp_stats lst;
-                rc = lam_plan_ladrp_layer(ly, &run->frame, &oi, s, pos, &laser, &lst, &j->err);
-                pl->travel += lst.travel_length;
-                pl->deposit += lst.deposit_length;
-                pl->deposits += lst.deposits;
-                lam_rec_layer *rl = lam_plan_data_current(&j->rec);
-                if (rl) {
-                    rl->deposit = lst.deposit_length;
-                    rl->travel = lst.travel_length;
-                }
-            } else {
-                /* skins look at the neighbours in the list given */
-                const lam_layer *below[LAM_SKIN_MAX], *above[LAM_SKIN_MAX];
-                size_t nb = 0, na = 0;
-                for (size_t k = 1; k <= nskin && k <= i; k++) below[nb++] = ls[i - k];
-                for (size_t k = 1; k <= nskin && i + k < n; k++) above[na++] = ls[i + k];
-                rc = lam_plan_sls_layer(ly, below, nb, above, na, &run->frame, &oi, s, lam_lua_hatch_given(ctl, i), st,
-                                        &j->err);
-                lam_scan_time_add(&pl->time, &st->time);
-                pl->layer_time[i] = lam_scan_time_total(&st->time);
-                lam_rec_layer *rl = lam_plan_data_current(&j->rec);
-                if (rl) {
-                    rl->deposit = st->time.exposure_length;
-                    rl->travel = st->time.jump_length;
-                    rl->time = pl->layer_time[i];
-                }
-            }
-        }
-        if (!rc && s->layer_end) rc = s->layer_end(s->ctx, &li);
+    lam_plan_layers_job lj;
+    memset(&lj, 0, sizeof lj);
+    lj.layers = ls;
+    lj.n = n;
+    lj.frame = &run->frame;
+    lj.o = &o;
+    memcpy(lj.origin, job.origin, sizeof lj.origin);
+    planctx pc = { L, pl, j, ctl, &p, 0 };
+    if (ctl) {
+        lj.layer_opts = layer_opts;
+        lj.given = given;
     }
-    lam_sls_state_free(st);
-    j->have_st = 0;
+    lj.stop = stop;
+    lj.planned = planned;
+    lj.ctx = &pc;
+    if (!rc) rc = lam_plan_layers(&lj, s, &j->err);
+    if (pc.stopped) {
+        lam_lua_check_interrupt(L); /* raises: the job's __gc cleans up */
+        return luaL_error(L, "interrupted");
+    }
     if (!rc && s->end) rc = s->end(s->ctx);
     if (j->sink.destroy) j->sink.destroy(j->sink.ctx);
     j->have_sink = 0;

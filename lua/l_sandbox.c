@@ -93,7 +93,7 @@ static double now(void)
     return (double)t.tv_sec + (double)t.tv_nsec * 1e-9;
 }
 
-int lam_lua_sandbox_time_up(lua_State *L)
+int lam_lua_sandbox_timed_out(lua_State *L)
 {
     lam_sandbox *sb = lam_lua_sandbox_of(L);
     if (sb && (sb->timed_out || (sb->deadline > 0 && now() > sb->deadline))) sb->timed_out = 1;
@@ -102,7 +102,7 @@ int lam_lua_sandbox_time_up(lua_State *L)
 
 void lam_lua_sandbox_check_time(lua_State *L)
 {
-    if (lam_lua_sandbox_time_up(L))
+    if (lam_lua_sandbox_timed_out(L))
         luaL_error(L, "time limit exceeded (%f s; raise it with --time or the option time)",
                    lam_lua_sandbox_of(L)->time_limit);
 }
@@ -737,6 +737,7 @@ static int l_sandbox(lua_State *L)
     o.nout = string_list(L, "out", &o.out);
     int args = lua_getfield(L, 1, "args") == LUA_TNIL ? 0 : lua_gettop(L);
     if (args && !lua_istable(L, args)) lam_lua_opterror(L, 1, "args must be a list");
+    unsigned threads = lam_lua_threads(L); /* the sandbox plans as its host does */
 
     lua_State **S = lua_newuserdatauv(L, sizeof *S, 0);
     *S = NULL;
@@ -756,6 +757,7 @@ static int l_sandbox(lua_State *L)
         return 2;
     }
     lua_State *s = *S;
+    lam_lua_set_threads(s, threads);
     /* arg as `lamina run` sets it, and the same values as ... */
     size_t nargs = args ? (size_t)lua_rawlen(L, args) : 0;
     if (!lua_checkstack(s, (int)nargs + 8)) return luaL_error(L, "too many arguments to the sandbox");

@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "plugin.h"
+#include "pool.h"
 
 LUAMOD_API int luaopen_lamina(lua_State *L);
 
@@ -20,6 +21,33 @@ void lam_lua_check_interrupt(lua_State *L)
 {
     if (lam_lua_interrupt) luaL_error(L, "interrupted");
     lam_lua_sandbox_check_time(L);
+}
+
+int lam_lua_stopping(lua_State *L)
+{
+    return lam_lua_interrupt || lam_lua_sandbox_timed_out(L);
+}
+
+#define THREADS_KEY "lamina.threads"
+
+unsigned lam_lua_threads(lua_State *L)
+{
+    lua_Integer n = lua_getfield(L, LUA_REGISTRYINDEX, THREADS_KEY) == LUA_TNUMBER ? lua_tointeger(L, -1) : 1;
+    lua_pop(L, 1);
+    return n >= 1 && n <= LAM_MAX_THREADS ? (unsigned)n : 1;
+}
+
+void lam_lua_set_threads(lua_State *L, unsigned n)
+{
+    lua_pushinteger(L, (lua_Integer)n);
+    lua_setfield(L, LUA_REGISTRYINDEX, THREADS_KEY);
+}
+
+/* lamina.threads() -> the number of threads machine:plan uses by default */
+static int l_threads(lua_State *L)
+{
+    lua_pushinteger(L, (lua_Integer)lam_lua_threads(L));
+    return 1;
 }
 
 /* ---- classes ------------------------------------------------------------ */
@@ -301,6 +329,7 @@ static const luaL_Reg lamina_funcs[] = {
     { "plugin", l_plugin },
     { "writers", l_writers },
     { "preview", lam_lua_preview },
+    { "threads", l_threads },
     { NULL, NULL },
 };
 

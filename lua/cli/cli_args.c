@@ -191,17 +191,37 @@ static int o_talk(const char *cmd, args *a, const cli_opt *o, const char *opt, c
     return 0;
 }
 
-/* -j N: worker threads (pool.h); LAMINA_THREADS or the processors when not given */
-static int o_jobs(const char *cmd, args *a, const cli_opt *o, const char *opt, const char *val)
+int cli_threads_arg(const char *cmd, const char *opt, const char *val, unsigned *out)
 {
-    (void)o;
     char *end;
     errno = 0;
     long n = strtol(val, &end, 10);
     if (end == val || *end || errno || n < 1 || n > LAM_MAX_THREADS)
         return cli_usage(cmd, "%s takes a number of threads from 1 to %d (got '%s')", opt, LAM_MAX_THREADS, val);
-    a->threads = (unsigned)n;
+    *out = (unsigned)n;
     return 0;
+}
+
+int cli_threads_env(const char *cmd, unsigned otherwise, unsigned *out)
+{
+    const char *env = getenv("LAMINA_THREADS");
+    if (!env || !*env) {
+        *out = otherwise;
+        return 0;
+    }
+    int bad;
+    *out = lam_default_threads(&bad);
+    if (bad)
+        return cli_usage(cmd, "LAMINA_THREADS must be a number of threads from 1 to %d (got '%s')", LAM_MAX_THREADS,
+                         env);
+    return 0;
+}
+
+/* -j N: worker threads (pool.h); LAMINA_THREADS or the processors when not given */
+static int o_jobs(const char *cmd, args *a, const cli_opt *o, const char *opt, const char *val)
+{
+    (void)o;
+    return cli_threads_arg(cmd, opt, val, &a->threads);
 }
 
 /* --layers A:B (1-based, inclusive) or K/N (the K-th of N near-equal
@@ -451,13 +471,8 @@ int cli_parse_args(const char *cmd, const char *usage_text, unsigned groups, int
     }
     if (rc) return rc;
     if (groups & OPT_MODEL && !a->path) return cli_usage(cmd, "no model given");
-    if (groups & (OPT_PLAN | OPT_JOBS) && !a->threads) {
-        int bad;
-        a->threads = lam_default_threads(&bad);
-        if (bad)
-            return cli_usage(cmd, "LAMINA_THREADS must be a number of threads from 1 to %d (got '%s')",
-                             LAM_MAX_THREADS, getenv("LAMINA_THREADS"));
-    }
+    if (groups & (OPT_PLAN | OPT_JOBS) && !a->threads && (rc = cli_threads_env(cmd, lam_online_cores(), &a->threads)))
+        return rc;
     if ((rc = one_stdout(cmd, groups, a))) return rc;
     int width = 0;
     for (size_t i = 0; i < a->nsets; i++) width |= a->sets[i].key->offset == offsetof(lam_profile, layer_width);

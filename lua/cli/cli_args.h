@@ -67,6 +67,14 @@ typedef struct args {
  * profile options of the command's groups), or EXIT_USAGE after printing
  * the problem. Free with cli_args_free. */
 int cli_parse_args(const char *cmd, const char *usage, unsigned groups, int argc, char **argv, args *a);
+
+/* -j N's value: a number of threads from 1 to LAM_MAX_THREADS into *out,
+ * else a usage error of cmd naming opt (EXIT_USAGE). */
+int cli_threads_arg(const char *cmd, const char *opt, const char *val, unsigned *out);
+
+/* LAMINA_THREADS into *out when it is set (a usage error when it is not a
+ * number of threads), else `otherwise`. */
+int cli_threads_env(const char *cmd, unsigned otherwise, unsigned *out);
 void cli_args_free(args *a);
 
 /* The machine profile of a run: -m's, or the built-in SLS profile, with the

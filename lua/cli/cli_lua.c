@@ -15,6 +15,7 @@
 #include <lualib.h>
 
 #include "cli.h"
+#include "cli_args.h"
 #include "l_common.h"
 #include "paths.h"
 #include "writer.h"
@@ -183,11 +184,13 @@ static void set_arg(lua_State *L, const char *cmd, const char *script, int argc,
 
 static const char run_usage[] =
     "usage: lamina run [--safe [--allow DIR]... [--out DIR]... [--memory SIZE] [--time SECONDS]]\n"
-    "                  RECIPE.lua [ARGS...]\n"
+    "                  [-j N] RECIPE.lua [ARGS...]\n"
     "Run a Lua recipe with the lamina module loaded (global `lamina`, or\n"
     "require \"lamina\"). ARGS are in the table `arg` (arg[0] is the recipe,\n"
     "arg[1] the first argument) and in `...`, as with lua. RECIPE '-' reads\n"
     "the recipe from standard input. Exit code 1 when the recipe fails.\n"
+    "  -j, --jobs N   threads machine:plan uses when the recipe gives none\n"
+    "                 (lamina.threads(); default: LAMINA_THREADS, else 1)\n"
     "  --safe      run it sandboxed: no os.execute, io.popen, C modules, debug\n"
     "              library or bytecode; files only in these directories:\n"
     "  --allow DIR    may be read (any number of them)\n"
@@ -202,6 +205,7 @@ typedef struct runargs {
     int status;
     int safe;
     int (*body)(lua_State *L); /* lam_cli_host's */
+    unsigned threads;          /* lamina.threads(): machine:plan's default */
 } runargs;
 
 /* In a sandbox: the recipe's os.exit(n), or a memory error said plainly. */
@@ -227,6 +231,7 @@ static int run_main(lua_State *L)
 {
     runargs *a = lua_touserdata(L, 1);
     set_arg(L, "run", a->script, a->argc, a->argv);
+    lam_lua_set_threads(L, a->threads);
     const char *fname = strcmp(a->script, "-") == 0 ? NULL : a->script;
     /* sandboxed: source text only, never bytecode */
     if (luaL_loadfilex(L, fname, a->safe ? "t" : NULL) != LUA_OK) {
@@ -299,10 +304,17 @@ int cmd_run(int argc, char **argv)
     so.allow = allow;
     so.out = out;
     int i = 1, safe = 0, limits = 0;
+    unsigned threads = 0;
     for (; i < argc && argv[i][0] == '-' && argv[i][1]; i++) {
         const char *o = argv[i];
         if (!strcmp(o, "--safe")) {
             safe = 1;
+            continue;
+        }
+        if (!strcmp(o, "-j") || !strcmp(o, "--jobs")) {
+            if (i + 1 >= argc) return cli_usage("run", "option %s needs a value", o);
+            int rc = cli_threads_arg("run", o, argv[++i], &threads);
+            if (rc) return rc;
             continue;
         }
         if (strcmp(o, "--allow") && strcmp(o, "--out") && strcmp(o, "--memory") && strcmp(o, "--time"))
@@ -326,7 +338,9 @@ int cmd_run(int argc, char **argv)
     }
     if (limits && !safe) return cli_usage("run", "--allow, --out, --memory and --time go with --safe");
     if (i >= argc) return cli_usage("run", "no recipe given");
-    runargs a = { argv[i], argc - i - 1, argv + i + 1, EXIT_OK, safe, NULL };
+    int rc = threads ? 0 : cli_threads_env("run", 1, &threads);
+    if (rc) return rc;
+    runargs a = { argv[i], argc - i - 1, argv + i + 1, EXIT_OK, safe, NULL, threads };
     if (!safe) return protected_run(NULL, run_main, &a);
     char msg[1024];
     lua_State *L = lam_lua_sandbox_open(&so, msg, sizeof msg);
@@ -340,7 +354,7 @@ int cmd_run(int argc, char **argv)
         signal(SIGALRM, watchdog);
         setitimer(ITIMER_REAL, &t, NULL);
     }
-    int rc = protected_run(L, run_main, &a);
+    rc = protected_run(L, run_main, &a);
     memset(&t, 0, sizeof t);
     setitimer(ITIMER_REAL, &t, NULL);
     return rc;
@@ -352,6 +366,7 @@ static int eval_main(lua_State *L)
 {
     runargs *a = lua_touserdata(L, 1);
     set_arg(L, "-e", "", 0, NULL);
+    lam_lua_set_threads(L, a->threads);
     for (int i = 1; i < a->argc; i += 2) {
         const char *code = a->argv[i];
         if (luaL_loadbuffer(L, code, strlen(code), "=(command line)") != LUA_OK ||
@@ -369,8 +384,9 @@ int cmd_eval(int argc, char **argv)
         if (strcmp(argv[i], "-e") != 0) return cli_usage(NULL, "unexpected '%s' after -e CODE (give -e CODE ...)", argv[i]);
         if (i + 1 >= argc) return cli_usage(NULL, "-e needs Lua code");
     }
-    runargs a = { "", argc, argv, EXIT_OK, 0, NULL };
-    return protected_run(NULL, eval_main, &a);
+    runargs a = { "", argc, argv, EXIT_OK, 0, NULL, 1 };
+    int rc = cli_threads_env(NULL, 1, &a.threads);
+    return rc ? rc : protected_run(NULL, eval_main, &a);
 }
 
 /* ---- the host of other Lua commands (lamina repl) ------------------------- */
@@ -379,12 +395,14 @@ static int host_main(lua_State *L)
 {
     runargs *a = lua_touserdata(L, 1);
     set_arg(L, a->script, "", 0, NULL);
+    lam_lua_set_threads(L, a->threads);
     a->status = a->body(L);
     return 0;
 }
 
 int lam_cli_host(const char *cmd, int (*body)(lua_State *L))
 {
-    runargs a = { cmd, 0, NULL, EXIT_OK, 0, body };
-    return protected_run(NULL, host_main, &a);
+    runargs a = { cmd, 0, NULL, EXIT_OK, 0, body, 1 };
+    int rc = cli_threads_env(cmd, 1, &a.threads);
+    return rc ? rc : protected_run(NULL, host_main, &a);
 }

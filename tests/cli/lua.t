@@ -116,7 +116,7 @@ run "$LAMINA" run
 is "$RC" 2 "run without a recipe: usage error"
 run "$LAMINA" run --help
 is "$RC" 0 "run --help"
-like "$OUT" 'usage: lamina run \[--safe .*\n +RECIPE\.lua \[ARGS\.\.\.\]' "run --help text"
+like "$OUT" 'usage: lamina run \[--safe .*\n +\[-j N\] RECIPE\.lua \[ARGS\.\.\.\]' "run --help text"
 
 # ---- lamina -e -------------------------------------------------------------
 run "$LAMINA" -e "print(lamina.load('$M/thesis_cube_hole.ug').volume)"
@@ -178,8 +178,10 @@ interrupt() { # interrupt LABEL LUA-CODE
     printf '%s\n' "$2" >"$TMP/long.lua"
     "$LAMINA" run "$TMP/long.lua" >"$TMP/out" 2>"$TMP/err" &
     local pid=$! t=0
-    # wait until it has started (it prints a line), then interrupt it
-    while [ ! -s "$TMP/out" ] && kill -0 $pid 2>/dev/null && [ $t -lt 100 ]; do sleep 0.1; t=$((t + 1)); done
+    # wait until it has started (it prints a line), then interrupt it; a
+    # signal sent before the handler is set is ignored (a background job),
+    # so wait as long as a loaded machine with sanitizers needs
+    while [ ! -s "$TMP/out" ] && kill -0 $pid 2>/dev/null && [ $t -lt 1200 ]; do sleep 0.1; t=$((t + 1)); done
     sleep 0.3
     kill -INT $pid 2>/dev/null
     wait $pid
@@ -192,5 +194,13 @@ interrupt "slicing" 'local m = lamina.load(os.getenv("TESTS") .. "/models/thesis
 print("go") io.stdout:flush()
 for i = 1, 1000000 do m:slice{width = 2e-5} end'
 like "$(cat "$TMP/err")" "in method 'slice'" "Ctrl-C: the slice itself was interrupted"
+# planning on worker threads: the calling thread stops them between
+# layers, then raises the error
+interrupt "planning on 4 threads" 'local m = lamina.load(os.getenv("TESTS") .. "/models/thesis_cube.ug")
+local ladrp = lamina.machine("creol-ladrp")
+local layers = m:slice{machine = ladrp, width = 0.01}
+print("go") io.stdout:flush()
+for i = 1, 1000000 do ladrp:plan(layers, {threads = 4, bead_width = 0.002}) end'
+like "$(cat "$TMP/err")" "in method 'plan'" "Ctrl-C: the threaded plan itself was interrupted"
 
 done_testing

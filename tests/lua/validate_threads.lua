@@ -75,10 +75,12 @@ T.is(text(frame:validate{ layers = mixed, threads = 2 }), want, "mixed axes, thr
 T.is(text(frame:validate{ layers = mixed, threads = 8 }), want, "mixed axes, threads = 8")
 T.is(#frame:validate{ layers = {}, threads = 4 }, 0, "no layers, four threads: an empty report")
 
-T.raises("threads must be a whole number from 1 to 256, got 0", "threads = 0 is refused", holed.validate, holed,
-         { width = 1, threads = 0 })
-T.raises("threads must be a whole number from 1 to 256, got 1.5", "threads = 1.5 is refused", holed.validate, holed,
-         { layers = {}, threads = 1.5 })
+T.is(text(holed:validate{ width = 1, threads = 0 }), text(holed:validate{ width = 1, threads = 1 }),
+     "threads = 0 (the online cores): the report of one thread")
+T.raises("threads must be a whole number from 0 to 256 (0: the online cores), got -1", "threads = -1 is refused",
+         holed.validate, holed, { width = 1, threads = -1 })
+T.raises("threads must be a whole number from 0 to 256 (0: the online cores), got 1.5", "threads = 1.5 is refused",
+         holed.validate, holed, { layers = {}, threads = 1.5 })
 T.raises("threads must be a number", "threads = 'two' is refused", holed.validate, holed, { threads = "two" })
 T.raises("unknown option 'thread'", "a misspelt key is still caught", holed.validate, holed, { thread = 2 })
 T.done()
