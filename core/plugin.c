@@ -566,6 +566,20 @@ static void ps_destroy(void *ctx)
     free(s);
 }
 
+/* A sink on s with the calls of a layer (a worker's sink has no more). */
+static void layer_calls(lam_sink *out, plugin_sink *s)
+{
+    out->ctx = s;
+    out->layer = ps_layer;
+    out->layer_end = ps_layer_end;
+    out->feed = ps_feed;
+    out->laser = ps_laser;
+    out->move = ps_move;
+    out->contour = ps_contour;
+    out->hatches = ps_hatches;
+    out->destroy = ps_destroy;
+}
+
 int lam_plugin_fork(const lam_sink *main, lam_sink *out, lam_error *err)
 {
     memset(out, 0, sizeof *out);
@@ -585,15 +599,7 @@ int lam_plugin_fork(const lam_sink *main, lam_sink *out, lam_error *err)
     }
     s->begun = 1;
     s->out.len = 0; /* the header: the file has it from main's begin */
-    out->ctx = s;
-    out->layer = ps_layer;
-    out->layer_end = ps_layer_end;
-    out->feed = ps_feed;
-    out->laser = ps_laser;
-    out->move = ps_move;
-    out->contour = ps_contour;
-    out->hatches = ps_hatches;
-    out->destroy = ps_destroy;
+    layer_calls(out, s);
     return LAM_OK;
 }
 
@@ -656,17 +662,9 @@ int lam_plugin_writer_sink(const char *name, lam_writer *w, lam_sink *out, lam_e
     s->we = we;
     s->out.w = w;
     s->err = err;
-    out->ctx = s;
+    layer_calls(out, s);
     out->begin = ps_begin;
-    out->layer = ps_layer;
-    out->layer_end = ps_layer_end;
-    out->feed = ps_feed;
-    out->laser = ps_laser;
-    out->move = ps_move;
-    out->contour = ps_contour;
-    out->hatches = ps_hatches;
     out->end = ps_end;
-    out->destroy = ps_destroy;
     return LAM_OK;
 }
 
