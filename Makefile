@@ -211,7 +211,7 @@ $(BUILD)/tests/plugins/%.so: tests/plugins/%.c core/lamina_plugin.h tests/plugin
 	$(CC) $(CPPFLAGS) $(CFLAGS) -fPIC -shared -o $@ $< $(LDFLAGS)
 
 check: all $(UNIT_BIN) $(TEST_PLUGIN_SO) $(FUZZ_BIN) man
-	LAMINA=$(abspath $(LAMINA)) TESTS=$(abspath tests) BUILD=$(abspath $(BUILD)) \
+	LAMINA=$(abspath $(LAMINA)) TESTS=$(abspath tests) BUILD=$(abspath $(BUILD)) LAZY=$(LAZY) \
 	  prove --exec '' $(UNIT_BIN) $(sort $(wildcard tests/cli/*.t)) tests/fuzz/fuzz.t
 
 test: deps

@@ -14,7 +14,8 @@ cube="$M/thesis_cube.ug"
 hatch=(-m cli-ascii -w 2 -s hatch_distance=0.25 -s hatch_strategy=islands -s island_size=1)
 
 needed() { readelf -d "$1" 2>/dev/null | sed -n 's/.*(NEEDED).*\[\(.*\)\]/\1/p' | tr '\n' ' '; }
-if [[ "$(needed "$LAMINA")" == *libembree3* ]]; then
+# make LAZY=0 (which make check passes on) links them as before
+if [ "${LAZY:-1}" = 0 ]; then
     echo "1..0 # SKIP built with LAZY=0: Embree and GEOS are linked"
     exit 0
 fi
