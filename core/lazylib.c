@@ -1,3 +1,4 @@
+/* Opening a library on first use; see lazylib.h. */
 #include "lazylib.h"
 
 #include <dlfcn.h>
@@ -5,20 +6,21 @@
 
 void lam_lazylib_open(lam_lazylib *lib)
 {
-    /* RTLD_LOCAL: lamina's own symbols, and a plugin's, stay apart from
-     * the library's; RTLD_NOW: a missing symbol fails here, not mid-job */
+    /* RTLD_LOCAL: the library's symbols stay out of the way of lamina's
+     * and a plugin's; RTLD_NOW: the library's own dependencies are bound
+     * here, where a failure is an error, not in the middle of a job */
     void *h = dlopen(lib->soname, RTLD_NOW | RTLD_LOCAL);
     const char *e = h ? NULL : dlerror();
-    for (size_t i = 0; h && !e && i < lib->nfns; i++) {
+    for (size_t i = 0; !e && i < lib->nfns; i++) {
         dlerror();
-        *lib->fns[i].slot = dlsym(h, lib->fns[i].name);
-        if (!*lib->fns[i].slot) e = dlerror();
-        if (!*lib->fns[i].slot && !e) e = "a function resolved to NULL";
+        if (!(*lib->fns[i].slot = dlsym(h, lib->fns[i].name))) e = dlerror();
+        if (!*lib->fns[i].slot && !e) e = "a function it should export is NULL";
     }
     if (!e) return;
-    /* never dlclose: dlerror's text may live in the handle, and a half
-     * resolved table must stay unused anyway */
+    /* the message first: dlerror's text may belong to the handle */
     snprintf(lib->why, sizeof lib->why, "cannot load %s: %s; install %s", lib->soname, e, lib->package);
+    for (size_t i = 0; i < lib->nfns; i++) *lib->fns[i].slot = NULL;
+    if (h) dlclose(h);
 }
 
 int lam_lazylib_load(lam_lazylib *lib, void (*open_once)(void), lam_error *err)

@@ -77,4 +77,17 @@ run "$LAMINA" validate "$cube" -w 0.5
 like "$ERR" 'cannot load libembree3\.so\.3: .*; install libembree3-3' "... saying which library is missing"
 [[ "$ERR" != *Sanitizer* ]]; ok $? "... without a crash"
 
+# a library that loads but lacks a function lamina calls (an old GEOS):
+# the same error, naming the function, instead of a crash at the call
+mkdir -p "$TMP/old"
+echo 'int lamina_test_not_geos;' >"$TMP/old/empty.c"
+cc -shared -fPIC -o "$TMP/old/libgeos_c.so.1" "$TMP/old/empty.c"
+ok $? "an empty library named libgeos_c.so.1 builds"
+rm -f "$TMP/o"/*
+LD_LIBRARY_PATH="$TMP/old" run "$LAMINA" slice "$cube" "${hatch[@]}" -o "$TMP/o/hatch.cli"
+[ "$RC" -ne 0 ]; ok $? "a hatched slice with a GEOS lacking its functions fails (exit $RC)"
+like "$ERR" 'cannot load libgeos_c\.so\.1: .*undefined symbol: GEOS\w+_r; install libgeos-c1v5' \
+    "... naming the missing function"
+is "$(ls -A "$TMP/o")" "" "... and leaves no output file behind"
+
 done_testing
