@@ -30,8 +30,8 @@ int lam_fill_nonzero(lam_loops *loops, lam_error *err)
 {
     if (loops->nloops == 0) return LAM_OK;
     lam_geos c;
-    if (lam_geos_init(&c)) return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory (GEOS)");
-    int rc = LAM_OK;
+    int rc = lam_geos_init(&c, err);
+    if (rc) return rc;
     size_t nl = loops->nloops;
     GEOSGeometry **lines = calloc(nl, sizeof *lines), *mls = NULL, *noded = NULL, *faces = NULL, *uni = NULL;
     GEOSGeometry **kept = NULL;

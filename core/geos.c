@@ -14,11 +14,14 @@ static void on_error(const char *message, void *userdata)
     snprintf(g->msg, sizeof g->msg, "%s", message);
 }
 
-int lam_geos_init(lam_geos *g)
+int lam_geos_init(lam_geos *g, lam_error *err)
 {
     g->msg[0] = '\0';
+    g->h = NULL;
+    int rc = lam_geos_load(err);
+    if (rc) return rc;
     g->h = GEOS_init_r();
-    if (!g->h) return LAM_ENOMEM;
+    if (!g->h) return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory (GEOS)");
     GEOSContext_setErrorMessageHandler_r(g->h, on_error, g);
     return LAM_OK;
 }

@@ -3,17 +3,18 @@
 #ifndef LAM_GEOS_H
 #define LAM_GEOS_H
 
-#include <geos_c.h>
-
 #include "contour.h"
+#include "geos_lazy.h"
 
 typedef struct lam_geos {
     GEOSContextHandle_t h;
     char msg[256];           /* GEOS's last error message, "" if none */
 } lam_geos;
 
-/* Start a context (returns LAM_ENOMEM when GEOS cannot) / end it. */
-int lam_geos_init(lam_geos *g);
+/* Start a context, loading GEOS on the first call (geos_lazy.h) / end it
+ * (also after a failed start). Errors: LAM_EIO when GEOS cannot be loaded,
+ * LAM_ENOMEM when it cannot start a context. */
+int lam_geos_init(lam_geos *g, lam_error *err);
 void lam_geos_finish(lam_geos *g);
 
 /* Growable lam_loops being filled from GEOS output. */

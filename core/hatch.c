@@ -553,12 +553,12 @@ int lam_hatch_layer(const lam_layer *L, const lam_layer *const *below, size_t nb
     lam_hatches_clear(out);
     if (!L->ncontours) return LAM_OK;
     lam_geos g;
-    if (lam_geos_init(&g)) return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory (GEOS)");
+    int rc = lam_geos_init(&g, err);
+    if (rc) return rc;
     hatcher h;
     memset(&h, 0, sizeof h);
     h.g = &g;
     h.budget = (size_t)MAX_VECTORS;
-    int rc = LAM_OK;
     GEOSGeometry *region = NULL, *hatch = NULL, *down_cov = NULL, *up_cov = NULL;
     GEOSGeometry *part[LAM_VEC_TYPES] = { NULL };
     if (!(region = lam_geos_layer_region(&g, L))) rc = LAM_EGEOM;

@@ -13,9 +13,13 @@
  * in a lam_error (error.h). Plugins are written against lamina_plugin.h
  * alone, which does not need this library.
  *
+ * The library opens Embree and GEOS itself when first needed (validation,
+ * hatching, offsets: lazylib.h), so a program does not link them.
+ *
  * The headers not included here (nest.h, enclose.h, geos.h, lexnum.h,
- * fmt.h, paths.h, prefetch.h, grow.h, test_hooks.h, viewer_html.h) are internal to core/
- * and not installed. */
+ * fmt.h, paths.h, prefetch.h, grow.h, test_hooks.h, viewer_html.h,
+ * lazylib.h, geos_lazy.h, embree_lazy.h) are internal to core/ and not
+ * installed. */
 #ifndef LAMINA_H
 #define LAMINA_H
 

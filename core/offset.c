@@ -22,11 +22,11 @@ int lam_layer_offset(const lam_layer *L, double distance, lam_layer **out, lam_e
         return LAM_OK;
     }
     lam_geos c;
-    if (lam_geos_init(&c)) {
+    int rc = lam_geos_init(&c, err);
+    if (rc) {
         free(R);
-        return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory (GEOS)");
+        return rc;
     }
-    int rc = LAM_OK;
     lam_loops_builder loops = { 0 };
     GEOSGeometry *mp = lam_geos_layer_region(&c, L), *buf = NULL;
     if (!mp) rc = LAM_EGEOM;

@@ -1,7 +1,6 @@
 /* The Embree scene, the ray cast and the winding vote; see rays.h. */
 #include "rays.h"
 
-#include <embree3/rtcore.h>
 #include <float.h>
 #include <math.h>
 #include <stdint.h>
@@ -9,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "embree_lazy.h"
 #include "grow.h"
 #include "section.h"
 
@@ -149,6 +149,8 @@ int lam_rays_new(const lam_model *m, lam_rays **out, lam_error *err)
     const lam_mesh *mesh = &m->mesh;
     if (mesh->nverts > UINT32_MAX)
         return lam_error_set(err, LAM_EGEOM, NULL, 0, 0, "too many vertices for Embree");
+    int rc = lam_embree_load(err);
+    if (rc) return rc;
     lam_rays *v = calloc(1, sizeof *v);
     if (!v) return nomem(err);
     v->m = m;
@@ -230,7 +232,7 @@ int lam_rays_new(const lam_model *m, lam_rays **out, lam_error *err)
         snprintf(v->emsg, sizeof v->emsg, "%s", rtc_error_name((enum RTCError)v->ecode));
     }
     if (v->ecode != RTC_ERROR_NONE) {
-        int rc = lam_error_set(err, LAM_EGEOM, NULL, 0, 0, "Embree: %s", v->emsg);
+        rc = lam_error_set(err, LAM_EGEOM, NULL, 0, 0, "Embree: %s", v->emsg);
         lam_rays_free(v);
         return rc;
     }

@@ -43,9 +43,10 @@
 
 typedef struct lam_rays lam_rays;
 
-/* Build the Embree scene of model's triangles. The model must outlive the
- * lam_rays. Errors: LAM_EGEOM with Embree's message when Embree fails
- * (no device, a buffer or build error), LAM_ENOMEM. */
+/* Build the Embree scene of model's triangles, loading Embree on the first
+ * call (embree_lazy.h). The model must outlive the lam_rays. Errors:
+ * LAM_EIO when Embree cannot be loaded, LAM_EGEOM with Embree's message
+ * when Embree fails (no device, a buffer or build error), LAM_ENOMEM. */
 int lam_rays_new(const lam_model *m, lam_rays **out, lam_error *err);
 
 /* Free v; a fork's statistics are added to its parent's (so free forks on

@@ -128,12 +128,12 @@ static int geos_triangulate(lam_mesh *m, proj p, const uint32_t *idx, const size
                             size_t nrings, size_t total, double outer_area, uint32_t face,
                             lam_error *err)
 {
-    int rc = LAM_OK;
     lam_geos c;
-    int ginit = lam_geos_init(&c);
+    int rc = lam_geos_init(&c, err);
     GEOSGeometry **holes = NULL, *shell = NULL, *poly = NULL, *tris = NULL;
-    key2 *keys = malloc(total * sizeof *keys);
-    if (ginit || !keys) {
+    key2 *keys = rc ? NULL : malloc(total * sizeof *keys);
+    if (rc) goto done;
+    if (!keys) {
         rc = lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory triangulating a face");
         goto done;
     }

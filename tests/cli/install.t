@@ -28,7 +28,7 @@ inc="$D/usr/include/lamina"
 [ -f "$inc/lamina.h" ]; ok $? "lamina.h installed"
 [ -f "$D/usr/lib/liblamina.a" ]; ok $? "liblamina.a installed"
 [ -f "$D/usr/lib/pkgconfig/lamina.pc" ]; ok $? "lamina.pc installed"
-for h in nest.h enclose.h test_hooks.h geos.h prefetch.h grow.h; do
+for h in nest.h enclose.h test_hooks.h geos.h prefetch.h grow.h lazylib.h geos_lazy.h embree_lazy.h; do
     [ ! -e "$inc/$h" ]; ok $? "internal $h not installed"
 done
 # every header an installed header includes is installed

@@ -116,15 +116,19 @@ like "$RC $ERR" "^1 lamina: $TMP/m.json:$line:[0-9]+: a point must be 3 numbers"
 
 # ---- streamed: a 10,000-layer run's peak memory, with and without --json ------
 # 10,000 layers of the cube with a hole: the JSON is some 15 MB, more than a
-# tenth of the run's whole memory (8 MB; more under ASan), so a sink that
-# kept the layers could not stay within 10%.
+# tenth of the run's whole memory (4-6 MB; more under ASan), so a sink that
+# kept a quarter of it would show. The margin is that quarter of the JSON,
+# not a share of the run's memory: the run's peak varies by up to about
+# 2 MB from run to run (3.3-5.5 MB measured without --json: one huge page
+# of the heap, lua/cli/main.c), more than 10% of the run since Embree and
+# GEOS are no longer mapped at start (8 -> 4 MB).
 /usr/bin/time -f %M -o "$TMP/m0" "$LAMINA" slice "$M/thesis_cube_hole.ug" -w 0.0002 -o "$TMP/big.sls"
 /usr/bin/time -f %M -o "$TMP/m1" "$LAMINA" slice "$M/thesis_cube_hole.ug" -w 0.0002 -o "$TMP/big.sls" --json "$TMP/big.json"
 m0=$(tail -1 "$TMP/m0") m1=$(tail -1 "$TMP/m1")
 size=$(($(stat -c %s "$TMP/big.json") / 1024))
 is "$(jq '.totals.layers' "$TMP/big.json")" 10000 "the big run has 10,000 layers"
 ok $((size * 10 > m0 ? 0 : 1)) "the JSON (${size} KB) is over 10% of the run's peak memory (${m0} KB): holding it would show"
-ok $((m1 * 10 <= m0 * 11 ? 0 : 1)) "peak memory with --json ${m1} KB, without ${m0} KB: within 10%"
+ok $(((m1 - m0) * 4 <= size ? 0 : 1)) "peak memory with --json ${m1} KB, without ${m0} KB: within a quarter of the JSON"
 
 # An oblique cut through the cube with a hole: in one layer the hole's
 # corner lies on the outline (within rounding); hatching used to stop there
