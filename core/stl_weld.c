@@ -1,0 +1,294 @@
+/* A binary STL welded by a team of threads; see stl_weld.h.
+ *
+ * Corners (facet f's vertex k is corner 3 f + k) are taken a chunk at a
+ * time, in four passes over each chunk:
+ *   A  (ranges of facets, in parallel) decode the nine floats of each
+ *      facet, find the first non-finite one, hash each corner as the
+ *      serial welder does (weld_hash.h);
+ *   B  (one task per partition of the hash table) every task scans all of
+ *      the chunk's hashes in corner order and handles the corners whose
+ *      hash falls in its partition: it records for each the first corner
+ *      of the file at the same position (itself when new) and counts the
+ *      new ones per range of corners. A partition is a table of its own
+ *      (growing on its own), holding corner numbers: a corner's position
+ *      is read back from the file, which stays mapped;
+ *   C  (ranges of corners) a prefix sum of those counts numbers the new
+ *      corners' vertices in corner order (first appearance, as the serial
+ *      welder numbers them) and stores their positions;
+ *   D  (ranges of corners) every other corner takes its first corner's
+ *      vertex.
+ * Since each corner's first corner does not depend on how the table is
+ * split, nor the numbering on how the ranges are, the mesh is the same for
+ * any number of threads. Scratch: 12 bytes per corner of a chunk (9.4 MB)
+ * beside the tables, which are the size of the serial welder's. */
+#include "stl_weld.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+#include "hugemem.h"
+#include "prefetch.h"
+#include "weld_hash.h"
+
+/* Corners per chunk: a multiple of 3, so chunks hold whole facets. */
+#define CHUNK_CORNERS ((size_t)3 << 18)
+#define EMPTY UINT64_MAX
+#define TAG 0xffffffff00000000ull
+#define NONE SIZE_MAX
+
+typedef struct part {
+    uint64_t *table; /* hash tag << 32 | the first corner at that position */
+    size_t cap, count;
+    int failed;      /* out of memory growing the table */
+} part;
+
+typedef struct job {
+    lam_team *team;
+    const unsigned char *data;
+    lam_mesh *m;
+    size_t c0, nc;   /* the chunk: corners c0 .. c0 + nc - 1 of the file */
+    uint64_t *h;     /* per corner of the chunk: its hash */
+    uint32_t *first; /* per corner of the chunk: the first corner at its position */
+    unsigned np;     /* partitions of the table */
+    part *parts;
+    size_t nr, len;  /* ranges of corners (passes A, C, D) of len corners (a multiple of 3) */
+    size_t *bad;     /* per range: the offset of its first non-finite float, or NONE */
+    size_t *cnt;     /* np x nr: new corners of partition k in range r */
+    size_t *base;    /* per range: its first new vertex */
+} job;
+
+static const unsigned char *corner_at(const unsigned char *data, size_t c)
+{
+    return data + 84 + 50 * (c / 3) + 12 + 12 * (c % 3);
+}
+
+static void corner_xyz(const unsigned char *p, double xyz[3])
+{
+    for (int j = 0; j < 3; j++) {
+        uint32_t u = lam_rd_u32(p + 4 * j);
+        float f;
+        memcpy(&f, &u, sizeof f);
+        xyz[j] = (double)f + 0.0; /* -0.0 is stored as 0.0, as the serial welder stores it */
+    }
+}
+
+/* The same position: float bits equal, -0.0 and 0.0 alike (the floats
+ * are finite, and widening them to double, as the serial welder compares
+ * them, is one to one). */
+static int same_corner(const unsigned char *a, const unsigned char *b)
+{
+    for (int j = 0; j < 12; j += 4) {
+        uint32_t x = lam_rd_u32(a + j), y = lam_rd_u32(b + j);
+        if (x != y && ((x | y) != 0x80000000u || (x & y) != 0)) return 0;
+    }
+    return 1;
+}
+
+static unsigned part_of(uint64_t h, unsigned np) { return (unsigned)((h >> 32) * np >> 32); }
+
+static void pass_a(void *ctx, unsigned worker, size_t r)
+{
+    (void)worker;
+    job *j = ctx;
+    size_t lo = r * j->len, hi = lo + j->len < j->nc ? lo + j->len : j->nc;
+    j->bad[r] = NONE;
+    for (size_t i = lo; i < hi; i += 3) {
+        const unsigned char *p = corner_at(j->data, j->c0 + i);
+        uint32_t bad = 0;
+        double xyz[9];
+        for (int k = 0; k < 9; k++) {
+            uint32_t u = lam_rd_u32(p + 4 * k);
+            float f;
+            memcpy(&f, &u, sizeof f);
+            xyz[k] = f;
+            bad |= (u & 0x7f800000u) == 0x7f800000u;
+        }
+        if (bad) {
+            int k = 0;
+            while ((lam_rd_u32(p + 4 * k) & 0x7f800000u) != 0x7f800000u) k++;
+            j->bad[r] = (size_t)(p + 4 * k - j->data);
+            return;
+        }
+        for (int k = 0; k < 3; k++) j->h[i + (size_t)k] = lam_weld_hash(xyz + 3 * k);
+    }
+}
+
+static void part_put(part *pt, uint64_t h, uint64_t entry)
+{
+    size_t s = (size_t)h & (pt->cap - 1);
+    while (pt->table[s] != EMPTY) s = (s + 1) & (pt->cap - 1);
+    pt->table[s] = entry;
+}
+
+static int part_grow(part *pt, const unsigned char *data, size_t cap)
+{
+    uint64_t *nt = lam_big_malloc(cap * sizeof *nt);
+    if (!nt) return -1;
+    memset(nt, 0xff, cap * sizeof *nt);
+    uint64_t *old = pt->table;
+    size_t oldcap = pt->cap;
+    pt->table = nt;
+    pt->cap = cap;
+    for (size_t s = 0; s < oldcap; s++)
+        if (old[s] != EMPTY) {
+            double xyz[3];
+            corner_xyz(corner_at(data, (uint32_t)old[s]), xyz);
+            part_put(pt, lam_weld_hash(xyz), old[s]);
+        }
+    free(old);
+    return 0;
+}
+
+/* How far ahead pass B asks for a table slot. */
+#define AHEAD 16
+
+static void pass_b(void *ctx, unsigned worker, size_t k)
+{
+    (void)worker;
+    job *j = ctx;
+    part *pt = &j->parts[k];
+    if (pt->failed) return;
+    size_t *cnt = j->cnt + k * j->nr;
+    memset(cnt, 0, j->nr * sizeof *cnt);
+    const uint64_t *h = j->h;
+    for (size_t i = 0; i < j->nc; i++) {
+        if (i + AHEAD < j->nc && part_of(h[i + AHEAD], j->np) == k)
+            LAM_PREFETCH(pt->table + ((size_t)h[i + AHEAD] & (pt->cap - 1)));
+        uint64_t hv = h[i];
+        if (part_of(hv, j->np) != k) continue;
+        size_t c = j->c0 + i;
+        const unsigned char *p = corner_at(j->data, c);
+        uint64_t tag = hv & TAG;
+        size_t s = (size_t)hv & (pt->cap - 1);
+        for (;;) {
+            uint64_t e = pt->table[s];
+            if (e == EMPTY) {
+                pt->table[s] = tag | c;
+                j->first[i] = (uint32_t)c;
+                cnt[i / j->len]++;
+                if (2 * ++pt->count > pt->cap && part_grow(pt, j->data, 2 * pt->cap)) {
+                    pt->failed = 1;
+                    return;
+                }
+                break;
+            }
+            if ((e & TAG) == tag && same_corner(corner_at(j->data, (uint32_t)e), p)) {
+                j->first[i] = (uint32_t)e;
+                break;
+            }
+            s = (s + 1) & (pt->cap - 1);
+        }
+    }
+}
+
+static void pass_c(void *ctx, unsigned worker, size_t r)
+{
+    (void)worker;
+    job *j = ctx;
+    size_t lo = r * j->len, hi = lo + j->len < j->nc ? lo + j->len : j->nc;
+    size_t v = j->base[r];
+    uint32_t *tris = j->m->tris;
+    for (size_t i = lo; i < hi; i++) {
+        size_t c = j->c0 + i;
+        if (j->first[i] != c) continue;
+        tris[c] = (uint32_t)v;
+        corner_xyz(corner_at(j->data, c), j->m->xyz + 3 * v);
+        v++;
+    }
+}
+
+static void pass_d(void *ctx, unsigned worker, size_t r)
+{
+    (void)worker;
+    job *j = ctx;
+    size_t lo = r * j->len, hi = lo + j->len < j->nc ? lo + j->len : j->nc;
+    uint32_t *tris = j->m->tris;
+    for (size_t i = lo; i < hi; i++) {
+        size_t c = j->c0 + i;
+        if (j->first[i] != c) tris[c] = tris[j->first[i]];
+    }
+}
+
+int lam_stl_nonfinite(const char *path, const unsigned char *data, size_t off, lam_error *err)
+{
+    size_t facet = (off - 84) / 50, word = (off - 84 - 50 * facet - 12) / 4;
+    uint32_t u = lam_rd_u32(data + off);
+    float f;
+    memcpy(&f, &u, sizeof f);
+    return lam_error_at_offset(err, LAM_EINVAL, path, (long long)off,
+                               "facet %zu, vertex %d: %c coordinate is not a finite number (%g)", facet + 1,
+                               (int)(word / 3) + 1, "xyz"[word % 3], (double)f);
+}
+
+static int run(job *j, uint32_t count, const char *path, lam_error *err)
+{
+    lam_mesh *m = j->m;
+    size_t ncorners = 3 * (size_t)count;
+    for (j->c0 = 0; j->c0 < ncorners; j->c0 += j->nc) {
+        j->nc = ncorners - j->c0 < CHUNK_CORNERS ? ncorners - j->c0 : CHUNK_CORNERS;
+        /* whole facets per range, every range but the last full */
+        j->len = 3 * ((j->nc / 3 + j->nr - 1) / j->nr);
+        size_t nr = (j->nc + j->len - 1) / j->len;
+        lam_team_for(j->team, nr, pass_a, j);
+        for (size_t r = 0; r < nr; r++)
+            if (j->bad[r] != NONE) return lam_stl_nonfinite(path, j->data, j->bad[r], err);
+        lam_team_for(j->team, j->np, pass_b, j);
+        size_t v = m->nverts;
+        for (size_t r = 0; r < nr; r++) {
+            j->base[r] = v;
+            for (unsigned k = 0; k < j->np; k++) v += j->cnt[k * j->nr + r];
+        }
+        for (unsigned k = 0; k < j->np; k++)
+            if (j->parts[k].failed) return lam_error_nomem(err, "welding vertices");
+        int rc = lam_mesh_reserve(m, v - m->nverts, 0, err);
+        if (rc) return rc;
+        lam_team_for(j->team, nr, pass_c, j);
+        lam_team_for(j->team, nr, pass_d, j);
+        m->nverts = v;
+        m->ntris = (j->c0 + j->nc) / 3;
+    }
+    return LAM_OK;
+}
+
+int lam_stl_binary_team(const char *path, const unsigned char *data, uint32_t count, lam_mesh *m, lam_team *team,
+                        lam_error *err)
+{
+    size_t ncorners = 3 * (size_t)count, chunk = ncorners < CHUNK_CORNERS ? ncorners : CHUNK_CORNERS;
+    /* a closed mesh has about half as many vertices as triangles */
+    size_t expect = count / 2 + 16;
+    int rc = lam_mesh_reserve(m, expect, count, err);
+    if (rc) return lam_error_set(err, rc, path, 0, 0, "out of memory for %lu triangles", (unsigned long)count);
+    job j = { .team = team, .data = data, .m = m, .np = lam_team_size(team) };
+    j.nr = 4 * (size_t)j.np; /* a few ranges per thread: a busy core does not hold the others up */
+    j.h = lam_big_malloc(chunk * sizeof *j.h);
+    j.first = lam_big_malloc(chunk * sizeof *j.first);
+    j.parts = calloc(j.np, sizeof *j.parts);
+    j.bad = malloc(j.nr * sizeof *j.bad);
+    j.base = malloc(j.nr * sizeof *j.base);
+    j.cnt = malloc(j.np * j.nr * sizeof *j.cnt);
+    rc = !j.h || !j.first || !j.parts || !j.bad || !j.base || !j.cnt;
+    /* each partition sized as the serial welder sizes its table, with a
+     * sixteenth for the partitions' uneven shares */
+    size_t share = expect / j.np + expect / (16 * j.np) + 16;
+    for (unsigned k = 0; !rc && k < j.np; k++) {
+        part *pt = &j.parts[k];
+        size_t cap = 1024;
+        while (cap < 2 * share) cap *= 2;
+        pt->table = lam_big_malloc(cap * sizeof *pt->table);
+        if (!pt->table) rc = 1;
+        else memset(pt->table, 0xff, cap * sizeof *pt->table);
+        pt->cap = cap;
+    }
+    rc = rc ? lam_error_nomem(err, "welding vertices") : run(&j, count, path, err);
+    if (rc == LAM_ENOMEM) lam_error_set(err, rc, path, 0, 0, "out of memory for %lu triangles", (unsigned long)count);
+    for (unsigned k = 0; j.parts && k < j.np; k++) free(j.parts[k].table);
+    free(j.h);
+    free(j.first);
+    free(j.parts);
+    free(j.bad);
+    free(j.base);
+    free(j.cnt);
+    /* every vertex came through the welder and is used */
+    if (!rc) m->welded = 1;
+    return rc;
+}

@@ -1,0 +1,45 @@
+/* The binary STL reader's threaded half (issue 15): a large binary STL is
+ * decoded, checked and welded by a team of threads, into the mesh the
+ * serial reader (import_stl.c) makes, bit for bit: the same vertices,
+ * numbered by first appearance in corner order, the same triangles, the
+ * same error for the same bad file. Internal to lamina. */
+#ifndef LAM_STL_WELD_H
+#define LAM_STL_WELD_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "error.h"
+#include "mesh.h"
+#include "pool.h"
+
+/* Fewer facets than this are read by the calling thread alone: below it
+ * waking the team costs more than it saves (measured: see stl_weld.c). */
+#define LAM_STL_TEAM_MIN 16384u
+
+/* A little-endian uint32 read byte by byte (no alignment or byte order
+ * assumption). */
+static inline uint32_t lam_rd_u32(const unsigned char *p)
+{
+    return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
+}
+
+/* The error for the non-finite vertex coordinate at byte offset off of a
+ * binary STL (data: the whole file): "facet F, vertex V: x coordinate is
+ * not a finite number (nan)" at that offset. Returns LAM_EINVAL. */
+int lam_stl_nonfinite(const char *path, const unsigned char *data, size_t off, lam_error *err);
+
+/* Read the `count` facets of the binary STL data (the whole file, its size
+ * already checked against count, count * 3 < UINT32_MAX - 1) into the
+ * empty mesh m, welded, with the team's threads. Errors as the serial
+ * reader's: the first non-finite coordinate by offset, LAM_ENOMEM. */
+int lam_stl_binary_team(const char *path, const unsigned char *data, uint32_t count, lam_mesh *m, lam_team *team,
+                        lam_error *err);
+
+/* lam_import_stl_buf (import.h) with a team (NULL: the calling thread
+ * alone) for a binary STL of LAM_STL_TEAM_MIN facets or more read into an
+ * empty mesh. (import_stl.c) */
+int lam_import_stl_team(const char *path, const unsigned char *data, size_t len, lam_mesh *mesh, int *binary,
+                        lam_team *team, lam_error *err);
+
+#endif
