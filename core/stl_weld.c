@@ -1,26 +1,29 @@
 /* A binary STL welded by a team of threads; see stl_weld.h.
  *
  * Corners (facet f's vertex k is corner 3 f + k) are taken a chunk at a
- * time, in four passes over each chunk:
+ * time, in passes over each chunk:
  *   A  (ranges of facets, in parallel) decode the nine floats of each
- *      facet, find the first non-finite one, hash each corner as the
- *      serial welder does (weld_hash.h);
+ *      facet, find the first non-finite one, and keep each corner's
+ *      coordinates (-0.0 made 0.0) and hash (the serial welder's,
+ *      weld_hash.h);
  *   B  (one task per partition of the hash table) every task scans all of
  *      the chunk's hashes in corner order and handles the corners whose
  *      hash falls in its partition: it records for each the first corner
  *      of the file at the same position (itself when new) and counts the
  *      new ones per range of corners. A partition is a table of its own
- *      (growing on its own), holding corner numbers: a corner's position
- *      is read back from the file, which stays mapped;
+ *      (growing on its own) of corner numbers; a corner's position is
+ *      found in the chunk or, for an earlier chunk, at its vertex;
  *   C  (ranges of corners) a prefix sum of those counts numbers the new
  *      corners' vertices in corner order (first appearance, as the serial
  *      welder numbers them) and stores their positions;
- *   D  (ranges of corners) every other corner takes its first corner's
- *      vertex.
- * Since each corner's first corner does not depend on how the table is
- * split, nor the numbering on how the ranges are, the mesh is the same for
- * any number of threads. Scratch: 12 bytes per corner of a chunk (9.4 MB)
- * beside the tables, which are the size of the serial welder's. */
+ *   D  (ranges of corners, run with the next chunk's A) every other corner
+ *      takes its first corner's vertex.
+ * Each corner's first corner does not depend on how the table is split,
+ * nor the numbering on how the ranges are: the mesh is the same for any
+ * number of threads. Chunks are small enough (49,152 corners, 1.2 MB of
+ * scratch) that a pass finds the previous one's output in cache, and the
+ * scratch is touched (page faults) once; the tables are the size of the
+ * serial welder's. */
 #include "stl_weld.h"
 
 #include <stdlib.h>
@@ -31,16 +34,27 @@
 #include "weld_hash.h"
 
 /* Corners per chunk: a multiple of 3, so chunks hold whole facets. */
-#define CHUNK_CORNERS ((size_t)3 << 18)
+#define CHUNK_CORNERS ((size_t)3 << 14)
 #define EMPTY UINT64_MAX
 #define TAG 0xffffffff00000000ull
 #define NONE SIZE_MAX
+
+typedef struct recent {
+    uint64_t h;
+    uint32_t c;
+} recent;
 
 typedef struct part {
     uint64_t *table; /* hash tag << 32 | the first corner at that position */
     size_t cap, count;
     int failed;      /* out of memory growing the table */
+    recent *rec;     /* the serial welder's cache of recent vertices (mesh.h):
+                        a vertex comes back a few facets later */
 } part;
+
+typedef struct chunk {
+    size_t c0, nc, len;
+} chunk;
 
 typedef struct job {
     lam_team *team;
@@ -48,6 +62,7 @@ typedef struct job {
     lam_mesh *m;
     size_t c0, nc;   /* the chunk: corners c0 .. c0 + nc - 1 of the file */
     uint64_t *h;     /* per corner of the chunk: its hash */
+    uint32_t *fx;    /* 3 per corner of the chunk: its coordinates' bits (zero_bits) */
     uint32_t *first; /* per corner of the chunk: the first corner at its position */
     unsigned np;     /* partitions of the table */
     part *parts;
@@ -55,6 +70,7 @@ typedef struct job {
     size_t *bad;     /* per range: the offset of its first non-finite float, or NONE */
     size_t *cnt;     /* np x nr: new corners of partition k in range r */
     size_t *base;    /* per range: its first new vertex */
+    chunk prev;      /* the chunk before, for pass D */
 } job;
 
 static const unsigned char *corner_at(const unsigned char *data, size_t c)
@@ -62,26 +78,38 @@ static const unsigned char *corner_at(const unsigned char *data, size_t c)
     return data + 84 + 50 * (c / 3) + 12 + 12 * (c % 3);
 }
 
-static void corner_xyz(const unsigned char *p, double xyz[3])
+/* A float's bits with -0.0 made 0.0: equal bits, the same coordinate. */
+static uint32_t zero_bits(uint32_t u) { return u == 0x80000000u ? 0 : u; }
+
+static double bits_double(uint32_t u)
 {
-    for (int j = 0; j < 3; j++) {
-        uint32_t u = lam_rd_u32(p + 4 * j);
-        float f;
-        memcpy(&f, &u, sizeof f);
-        xyz[j] = (double)f + 0.0; /* -0.0 is stored as 0.0, as the serial welder stores it */
+    float f;
+    memcpy(&f, &u, sizeof f);
+    return f;
+}
+
+/* The position of corner c, seen in an earlier chunk (its vertex's) or in
+ * this one (fx). */
+static void corner_pos(const job *j, size_t c, double xyz[3])
+{
+    if (c >= j->c0) {
+        for (int k = 0; k < 3; k++) xyz[k] = bits_double(j->fx[3 * (c - j->c0) + (size_t)k]);
+    } else {
+        memcpy(xyz, j->m->xyz + 3 * (size_t)j->m->tris[c], 3 * sizeof *xyz);
     }
 }
 
-/* The same position: float bits equal, -0.0 and 0.0 alike (the floats
- * are finite, and widening them to double, as the serial welder compares
- * them, is one to one). */
-static int same_corner(const unsigned char *a, const unsigned char *b)
+/* Is corner c (of an earlier chunk or this one) at the position fx[0..2]?
+ * Compared as the serial welder compares: the floats widened to double,
+ * which is one to one (they are finite), and -0.0 equal to 0.0. */
+static int same_pos(const job *j, size_t c, const uint32_t *fx)
 {
-    for (int j = 0; j < 12; j += 4) {
-        uint32_t x = lam_rd_u32(a + j), y = lam_rd_u32(b + j);
-        if (x != y && ((x | y) != 0x80000000u || (x & y) != 0)) return 0;
+    if (c >= j->c0) {
+        const uint32_t *q = j->fx + 3 * (c - j->c0);
+        return q[0] == fx[0] && q[1] == fx[1] && q[2] == fx[2];
     }
-    return 1;
+    const double *q = j->m->xyz + 3 * (size_t)j->m->tris[c];
+    return q[0] == bits_double(fx[0]) && q[1] == bits_double(fx[1]) && q[2] == bits_double(fx[2]);
 }
 
 static unsigned part_of(uint64_t h, unsigned np) { return (unsigned)((h >> 32) * np >> 32); }
@@ -110,6 +138,7 @@ static void pass_a(void *ctx, unsigned worker, size_t r)
             return;
         }
         for (int k = 0; k < 3; k++) j->h[i + (size_t)k] = lam_weld_hash(xyz + 3 * k);
+        for (int k = 0; k < 9; k++) j->fx[3 * i + (size_t)k] = zero_bits(lam_rd_u32(p + 4 * k));
     }
 }
 
@@ -120,7 +149,7 @@ static void part_put(part *pt, uint64_t h, uint64_t entry)
     pt->table[s] = entry;
 }
 
-static int part_grow(part *pt, const unsigned char *data, size_t cap)
+static int part_grow(part *pt, const job *j, size_t cap)
 {
     uint64_t *nt = lam_big_malloc(cap * sizeof *nt);
     if (!nt) return -1;
@@ -132,7 +161,7 @@ static int part_grow(part *pt, const unsigned char *data, size_t cap)
     for (size_t s = 0; s < oldcap; s++)
         if (old[s] != EMPTY) {
             double xyz[3];
-            corner_xyz(corner_at(data, (uint32_t)old[s]), xyz);
+            corner_pos(j, (uint32_t)old[s], xyz);
             part_put(pt, lam_weld_hash(xyz), old[s]);
         }
     free(old);
@@ -157,22 +186,29 @@ static void pass_b(void *ctx, unsigned worker, size_t k)
         uint64_t hv = h[i];
         if (part_of(hv, j->np) != k) continue;
         size_t c = j->c0 + i;
-        const unsigned char *p = corner_at(j->data, c);
+        const uint32_t *fx = j->fx + 3 * i;
+        recent *rc = &pt->rec[(size_t)(hv >> 20) & (LAM_WELDER_RECENT - 1)];
+        if (rc->h == hv && rc->c != UINT32_MAX && same_pos(j, rc->c, fx)) {
+            j->first[i] = rc->c;
+            continue;
+        }
         uint64_t tag = hv & TAG;
         size_t s = (size_t)hv & (pt->cap - 1);
         for (;;) {
             uint64_t e = pt->table[s];
             if (e == EMPTY) {
                 pt->table[s] = tag | c;
+                *rc = (recent){ hv, (uint32_t)c };
                 j->first[i] = (uint32_t)c;
                 cnt[i / j->len]++;
-                if (2 * ++pt->count > pt->cap && part_grow(pt, j->data, 2 * pt->cap)) {
+                if (2 * ++pt->count > pt->cap && part_grow(pt, j, 2 * pt->cap)) {
                     pt->failed = 1;
                     return;
                 }
                 break;
             }
-            if ((e & TAG) == tag && same_corner(corner_at(j->data, (uint32_t)e), p)) {
+            if ((e & TAG) == tag && same_pos(j, (uint32_t)e, fx)) {
+                *rc = (recent){ hv, (uint32_t)e };
                 j->first[i] = (uint32_t)e;
                 break;
             }
@@ -192,21 +228,26 @@ static void pass_c(void *ctx, unsigned worker, size_t r)
         size_t c = j->c0 + i;
         if (j->first[i] != c) continue;
         tris[c] = (uint32_t)v;
-        corner_xyz(corner_at(j->data, c), j->m->xyz + 3 * v);
+        corner_pos(j, c, j->m->xyz + 3 * v);
         v++;
     }
 }
 
-static void pass_d(void *ctx, unsigned worker, size_t r)
+/* Pass D of the chunk before (its c0, nc and len in j->prev), then pass A
+ * of this one: the two touch different arrays. */
+static void pass_da(void *ctx, unsigned worker, size_t r)
 {
-    (void)worker;
     job *j = ctx;
-    size_t lo = r * j->len, hi = lo + j->len < j->nc ? lo + j->len : j->nc;
-    uint32_t *tris = j->m->tris;
-    for (size_t i = lo; i < hi; i++) {
-        size_t c = j->c0 + i;
-        if (j->first[i] != c) tris[c] = tris[j->first[i]];
+    const chunk *d = &j->prev;
+    if (r * d->len < d->nc) {
+        size_t lo = r * d->len, hi = lo + d->len < d->nc ? lo + d->len : d->nc;
+        uint32_t *tris = j->m->tris;
+        for (size_t i = lo; i < hi; i++) {
+            size_t c = d->c0 + i;
+            if (j->first[i] != c) tris[c] = tris[j->first[i]];
+        }
     }
+    if (r * j->len < j->nc) pass_a(ctx, worker, r);
 }
 
 int lam_stl_nonfinite(const char *path, const unsigned char *data, size_t off, lam_error *err)
@@ -220,16 +261,23 @@ int lam_stl_nonfinite(const char *path, const unsigned char *data, size_t off, l
                                (int)(word / 3) + 1, "xyz"[word % 3], (double)f);
 }
 
+static void set_chunk(job *j, size_t c0, size_t ncorners)
+{
+    j->c0 = c0;
+    j->nc = c0 >= ncorners ? 0 : ncorners - c0 < CHUNK_CORNERS ? ncorners - c0 : CHUNK_CORNERS;
+    /* whole facets per range, every range but the last full */
+    j->len = j->nc ? 3 * ((j->nc / 3 + j->nr - 1) / j->nr) : 1;
+}
+
 static int run(job *j, uint32_t count, const char *path, lam_error *err)
 {
     lam_mesh *m = j->m;
     size_t ncorners = 3 * (size_t)count;
-    for (j->c0 = 0; j->c0 < ncorners; j->c0 += j->nc) {
-        j->nc = ncorners - j->c0 < CHUNK_CORNERS ? ncorners - j->c0 : CHUNK_CORNERS;
-        /* whole facets per range, every range but the last full */
-        j->len = 3 * ((j->nc / 3 + j->nr - 1) / j->nr);
+    j->prev = (chunk){ 0, 0, 1 };
+    for (set_chunk(j, 0, ncorners);; set_chunk(j, j->c0 + j->nc, ncorners)) {
+        lam_team_for(j->team, j->nr, pass_da, j);
+        if (!j->nc) return LAM_OK;
         size_t nr = (j->nc + j->len - 1) / j->len;
-        lam_team_for(j->team, nr, pass_a, j);
         for (size_t r = 0; r < nr; r++)
             if (j->bad[r] != NONE) return lam_stl_nonfinite(path, j->data, j->bad[r], err);
         lam_team_for(j->team, j->np, pass_b, j);
@@ -243,30 +291,30 @@ static int run(job *j, uint32_t count, const char *path, lam_error *err)
         int rc = lam_mesh_reserve(m, v - m->nverts, 0, err);
         if (rc) return rc;
         lam_team_for(j->team, nr, pass_c, j);
-        lam_team_for(j->team, nr, pass_d, j);
         m->nverts = v;
         m->ntris = (j->c0 + j->nc) / 3;
+        j->prev = (chunk){ j->c0, j->nc, j->len };
     }
-    return LAM_OK;
 }
 
 int lam_stl_binary_team(const char *path, const unsigned char *data, uint32_t count, lam_mesh *m, lam_team *team,
                         lam_error *err)
 {
-    size_t ncorners = 3 * (size_t)count, chunk = ncorners < CHUNK_CORNERS ? ncorners : CHUNK_CORNERS;
+    size_t ncorners = 3 * (size_t)count, per = ncorners < CHUNK_CORNERS ? ncorners : CHUNK_CORNERS;
     /* a closed mesh has about half as many vertices as triangles */
     size_t expect = count / 2 + 16;
     int rc = lam_mesh_reserve(m, expect, count, err);
     if (rc) return lam_error_set(err, rc, path, 0, 0, "out of memory for %lu triangles", (unsigned long)count);
     job j = { .team = team, .data = data, .m = m, .np = lam_team_size(team) };
     j.nr = 4 * (size_t)j.np; /* a few ranges per thread: a busy core does not hold the others up */
-    j.h = lam_big_malloc(chunk * sizeof *j.h);
-    j.first = lam_big_malloc(chunk * sizeof *j.first);
+    j.h = lam_big_malloc(per * sizeof *j.h);
+    j.first = lam_big_malloc(per * sizeof *j.first);
+    j.fx = lam_big_malloc(3 * per * sizeof *j.fx);
     j.parts = calloc(j.np, sizeof *j.parts);
     j.bad = malloc(j.nr * sizeof *j.bad);
     j.base = malloc(j.nr * sizeof *j.base);
     j.cnt = malloc(j.np * j.nr * sizeof *j.cnt);
-    rc = !j.h || !j.first || !j.parts || !j.bad || !j.base || !j.cnt;
+    rc = !j.h || !j.first || !j.fx || !j.parts || !j.bad || !j.base || !j.cnt;
     /* each partition sized as the serial welder sizes its table, with a
      * sixteenth for the partitions' uneven shares */
     size_t share = expect / j.np + expect / (16 * j.np) + 16;
@@ -275,15 +323,24 @@ int lam_stl_binary_team(const char *path, const unsigned char *data, uint32_t co
         size_t cap = 1024;
         while (cap < 2 * share) cap *= 2;
         pt->table = lam_big_malloc(cap * sizeof *pt->table);
-        if (!pt->table) rc = 1;
-        else memset(pt->table, 0xff, cap * sizeof *pt->table);
+        pt->rec = malloc(LAM_WELDER_RECENT * sizeof *pt->rec);
+        if (!pt->table || !pt->rec) {
+            rc = 1;
+            break;
+        }
+        memset(pt->table, 0xff, cap * sizeof *pt->table);
+        for (size_t r = 0; r < LAM_WELDER_RECENT; r++) pt->rec[r] = (recent){ 0, UINT32_MAX };
         pt->cap = cap;
     }
     rc = rc ? lam_error_nomem(err, "welding vertices") : run(&j, count, path, err);
     if (rc == LAM_ENOMEM) lam_error_set(err, rc, path, 0, 0, "out of memory for %lu triangles", (unsigned long)count);
-    for (unsigned k = 0; j.parts && k < j.np; k++) free(j.parts[k].table);
+    for (unsigned k = 0; j.parts && k < j.np; k++) {
+        free(j.parts[k].table);
+        free(j.parts[k].rec);
+    }
     free(j.h);
     free(j.first);
+    free(j.fx);
     free(j.parts);
     free(j.bad);
     free(j.base);
