@@ -67,8 +67,9 @@ is "$(sed -n 2p "$TMP/sep-empty-first.1")" "layer 0 1 -2.500" "separator: the em
 # order on the main thread; an absolute one (ded-gcode) by the workers
 same ladrp-relative-many "$TMP/sphere.stl" -m creol-ladrp -w 0.1 --islands
 same ladrp-absolute-many "$TMP/sphere.stl" -m ded-gcode -w 0.1 --islands
-# A binary STL of 25,000 facets (read and welded as it comes, a few
-# hundred layers planned and formatted by the workers)
+# A binary STL of 25,280 facets: over the 16,384 from which the threads
+# also decode and weld it (two chunks of the reader, core/stl_weld.c), a
+# few hundred layers planned and formatted by the workers
 python3 - "$TMP/bsphere.stl" <<'EOF'
 import math, struct, sys
 nu, nv, R = 160, 80, 5.0
@@ -88,6 +89,31 @@ with open(sys.argv[1], "wb") as f:
         f.write(struct.pack("<12fH", 0, 0, 0, *[x for v in t for x in v], 0))
 EOF
 same binary-sphere-big "$TMP/bsphere.stl" -w 0.2
+# the model itself: `lamina info` (no -j: LAMINA_THREADS) the same but for
+# the peak memory line; a NaN in facet 20,000: the same error, no output
+for j in 1 3; do
+    LAMINA_THREADS=$j "$LAMINA" info "$TMP/bsphere.stl" | grep -v '^peak memory' >"$TMP/binfo$j"
+done
+cmp -s "$TMP/binfo1" "$TMP/binfo3" && grep -q '^vertices  *12642$' "$TMP/binfo1"
+ok $? "binary STL: info reads the same model (12,642 vertices) with 1 and 3 threads"
+python3 - "$TMP/bsphere.stl" "$TMP/bnan.stl" <<'EOF'
+import struct, sys
+b = bytearray(open(sys.argv[1], "rb").read())
+at = 84 + 50 * 19999 + 12 + 12 * 2 + 4  # facet 20,000, vertex 3, y
+b[at:at + 4] = struct.pack("<f", float("nan"))
+open(sys.argv[2], "wb").write(b)
+EOF
+for j in 1 3; do
+    rm -f "$TMP/bnan.out"
+    run "$LAMINA" slice "$TMP/bnan.stl" -w 0.2 -j $j -o "$TMP/bnan.out"
+    echo "$RC $ERR" >"$TMP/bnan.$j"
+    [ ! -e "$TMP/bnan.out" ]
+    ok $? "binary STL with a NaN, -j $j: no output file"
+done
+like "$(cat "$TMP/bnan.1")" '^1 lamina: .*bnan.stl: byte 1000074: facet 20000, vertex 3: y coordinate is not a finite number \(nan\)' \
+    "binary STL with a NaN, -j 1: exit 1, the float's offset and facet"
+cmp -s "$TMP/bnan.1" "$TMP/bnan.3"
+ok $? "binary STL with a NaN: the same message and exit for -j 1 and -j 3"
 # fewer layers than threads, and one layer
 same cube-two-layers "$M/thesis_cube_hole.ug" -w 1
 same cube-one-layer "$M/thesis_cube_hole.ug" -w 2
