@@ -20,10 +20,10 @@
  *      takes its first corner's vertex.
  * Each corner's first corner does not depend on how the table is split,
  * nor the numbering on how the ranges are: the mesh is the same for any
- * number of threads. Chunks are small enough (49,152 corners, 1.2 MB of
- * scratch) that a pass finds the previous one's output in cache, and the
- * scratch is touched (page faults) once; the tables are the size of the
- * serial welder's. */
+ * number of threads. Chunks are small enough (74,898 corners, 2 MB of
+ * scratch on one huge page) that a pass finds the previous one's output
+ * in cache, and the scratch is touched (page faults) once; the tables are
+ * the size of the serial welder's. */
 #include "stl_weld.h"
 
 #include <stdlib.h>
@@ -33,8 +33,9 @@
 #include "prefetch.h"
 #include "weld_hash.h"
 
-/* Corners per chunk: a multiple of 3, so chunks hold whole facets. */
-#define CHUNK_CORNERS ((size_t)3 << 14)
+/* Corners per chunk: a multiple of 3, so chunks hold whole facets; their
+ * 28 bytes of scratch each fill a huge page. */
+#define CHUNK_CORNERS ((size_t)3 * 24966)
 #define EMPTY UINT64_MAX
 #define TAG 0xffffffff00000000ull
 #define NONE SIZE_MAX
@@ -48,6 +49,7 @@ typedef struct part {
     uint64_t *table; /* hash tag << 32 | the first corner at that position */
     size_t cap, count;
     int failed;      /* out of memory growing the table */
+    int own;         /* table is a block of its own (grown), not in job.tables */
     recent *rec;     /* the serial welder's cache of recent vertices (mesh.h):
                         a vertex comes back a few facets later */
 } part;
@@ -64,6 +66,9 @@ typedef struct job {
     uint64_t *h;     /* per corner of the chunk: its hash */
     uint32_t *fx;    /* 3 per corner of the chunk: its coordinates' bits (zero_bits) */
     uint32_t *first; /* per corner of the chunk: the first corner at its position */
+    uint32_t *idx;   /* the chunk's corners by range, then partition (pass A) */
+    size_t *ps, *pe; /* nr x np: where range r's list for partition k starts and ends in idx */
+    size_t nrc;      /* ranges in this chunk */
     unsigned np;     /* partitions of the table */
     part *parts;
     size_t nr, len;  /* ranges of corners (passes A, C, D) of len corners (a multiple of 3) */
@@ -71,6 +76,9 @@ typedef struct job {
     size_t *cnt;     /* np x nr: new corners of partition k in range r */
     size_t *base;    /* per range: its first new vertex */
     chunk prev;      /* the chunk before, for pass D */
+    uint64_t *tables;/* the partitions' first tables, cap0 slots each */
+    size_t cap0;
+    recent *recs;    /* the partitions' caches, LAM_WELDER_RECENT each */
 } job;
 
 static const unsigned char *corner_at(const unsigned char *data, size_t c)
@@ -102,7 +110,7 @@ static void corner_pos(const job *j, size_t c, double xyz[3])
 /* Is corner c (of an earlier chunk or this one) at the position fx[0..2]?
  * Compared as the serial welder compares: the floats widened to double,
  * which is one to one (they are finite), and -0.0 equal to 0.0. */
-static int same_pos(const job *j, size_t c, const uint32_t *fx)
+static inline int same_pos(const job *j, size_t c, const uint32_t *fx)
 {
     if (c >= j->c0) {
         const uint32_t *q = j->fx + 3 * (c - j->c0);
@@ -140,6 +148,19 @@ static void pass_a(void *ctx, unsigned worker, size_t r)
         for (int k = 0; k < 3; k++) j->h[i + (size_t)k] = lam_weld_hash(xyz + 3 * k);
         for (int k = 0; k < 9; k++) j->fx[3 * i + (size_t)k] = zero_bits(lam_rd_u32(p + 4 * k));
     }
+    /* the range's corners listed by partition, each list in corner order:
+     * pass B then reads only its own (a test per corner of which partition
+     * it falls in is a branch mispredicted every other time) */
+    size_t *ps = j->ps + r * j->np, *pe = j->pe + r * j->np;
+    memset(pe, 0, j->np * sizeof *pe);
+    for (size_t i = lo; i < hi; i++) pe[part_of(j->h[i], j->np)]++;
+    size_t at = lo;
+    for (unsigned k = 0; k < j->np; k++) {
+        size_t n = pe[k];
+        ps[k] = pe[k] = at;
+        at += n;
+    }
+    for (size_t i = lo; i < hi; i++) j->idx[pe[part_of(j->h[i], j->np)]++] = (uint32_t)i;
 }
 
 static void part_put(part *pt, uint64_t h, uint64_t entry)
@@ -147,6 +168,20 @@ static void part_put(part *pt, uint64_t h, uint64_t entry)
     size_t s = (size_t)h & (pt->cap - 1);
     while (pt->table[s] != EMPTY) s = (s + 1) & (pt->cap - 1);
     pt->table[s] = entry;
+}
+
+/* Partition k's first table and cache, made ready by the thread that
+ * will use them (the page faults shared out). */
+static void part_init(void *ctx, unsigned worker, size_t k)
+{
+    (void)worker;
+    job *j = ctx;
+    part *pt = &j->parts[k];
+    pt->cap = j->cap0;
+    pt->table = j->tables + k * j->cap0;
+    memset(pt->table, 0xff, pt->cap * sizeof *pt->table);
+    pt->rec = j->recs + k * LAM_WELDER_RECENT;
+    for (size_t r = 0; r < LAM_WELDER_RECENT; r++) pt->rec[r] = (recent){ 0, UINT32_MAX };
 }
 
 static int part_grow(part *pt, const job *j, size_t cap)
@@ -164,7 +199,8 @@ static int part_grow(part *pt, const job *j, size_t cap)
             corner_pos(j, (uint32_t)old[s], xyz);
             part_put(pt, lam_weld_hash(xyz), old[s]);
         }
-    free(old);
+    if (pt->own) free(old);
+    pt->own = 1;
     return 0;
 }
 
@@ -177,43 +213,42 @@ static void pass_b(void *ctx, unsigned worker, size_t k)
     job *j = ctx;
     part *pt = &j->parts[k];
     if (pt->failed) return;
-    size_t *cnt = j->cnt + k * j->nr;
-    memset(cnt, 0, j->nr * sizeof *cnt);
-    const uint64_t *h = j->h;
-    for (size_t i = 0; i < j->nc; i++) {
-        if (i + AHEAD < j->nc && part_of(h[i + AHEAD], j->np) == k)
-            LAM_PREFETCH(pt->table + ((size_t)h[i + AHEAD] & (pt->cap - 1)));
-        uint64_t hv = h[i];
-        if (part_of(hv, j->np) != k) continue;
-        size_t c = j->c0 + i;
-        const uint32_t *fx = j->fx + 3 * i;
-        recent *rc = &pt->rec[(size_t)(hv >> 20) & (LAM_WELDER_RECENT - 1)];
-        if (rc->h == hv && rc->c != UINT32_MAX && same_pos(j, rc->c, fx)) {
-            j->first[i] = rc->c;
-            continue;
-        }
-        uint64_t tag = hv & TAG;
-        size_t s = (size_t)hv & (pt->cap - 1);
-        for (;;) {
-            uint64_t e = pt->table[s];
-            if (e == EMPTY) {
-                pt->table[s] = tag | c;
-                *rc = (recent){ hv, (uint32_t)c };
-                j->first[i] = (uint32_t)c;
-                cnt[i / j->len]++;
-                if (2 * ++pt->count > pt->cap && part_grow(pt, j, 2 * pt->cap)) {
-                    pt->failed = 1;
-                    return;
+    for (size_t r = 0; r < j->nrc; r++) {
+        size_t a = j->ps[r * j->np + k], z = j->pe[r * j->np + k], fresh = 0;
+        for (size_t q = a; q < z; q++) {
+            if (q + AHEAD < z) LAM_PREFETCH(pt->table + ((size_t)j->h[j->idx[q + AHEAD]] & (pt->cap - 1)));
+            size_t i = j->idx[q], c = j->c0 + i;
+            uint64_t hv = j->h[i];
+            const uint32_t *fx = j->fx + 3 * i;
+            recent *rc = &pt->rec[(size_t)(hv >> 20) & (LAM_WELDER_RECENT - 1)];
+            if (rc->h == hv && rc->c != UINT32_MAX && same_pos(j, rc->c, fx)) {
+                j->first[i] = rc->c;
+                continue;
+            }
+            uint64_t tag = hv & TAG;
+            size_t s = (size_t)hv & (pt->cap - 1);
+            for (;;) {
+                uint64_t e = pt->table[s];
+                if (e == EMPTY) {
+                    pt->table[s] = tag | c;
+                    *rc = (recent){ hv, (uint32_t)c };
+                    j->first[i] = (uint32_t)c;
+                    fresh++;
+                    if (2 * ++pt->count > pt->cap && part_grow(pt, j, 2 * pt->cap)) {
+                        pt->failed = 1;
+                        return;
+                    }
+                    break;
                 }
-                break;
+                if ((e & TAG) == tag && same_pos(j, (uint32_t)e, fx)) {
+                    *rc = (recent){ hv, (uint32_t)e };
+                    j->first[i] = (uint32_t)e;
+                    break;
+                }
+                s = (s + 1) & (pt->cap - 1);
             }
-            if ((e & TAG) == tag && same_pos(j, (uint32_t)e, fx)) {
-                *rc = (recent){ hv, (uint32_t)e };
-                j->first[i] = (uint32_t)e;
-                break;
-            }
-            s = (s + 1) & (pt->cap - 1);
         }
+        j->cnt[k * j->nr + r] = fresh;
     }
 }
 
@@ -277,7 +312,7 @@ static int run(job *j, uint32_t count, const char *path, lam_error *err)
     for (set_chunk(j, 0, ncorners);; set_chunk(j, j->c0 + j->nc, ncorners)) {
         lam_team_for(j->team, j->nr, pass_da, j);
         if (!j->nc) return LAM_OK;
-        size_t nr = (j->nc + j->len - 1) / j->len;
+        size_t nr = j->nrc = (j->nc + j->len - 1) / j->len;
         for (size_t r = 0; r < nr; r++)
             if (j->bad[r] != NONE) return lam_stl_nonfinite(path, j->data, j->bad[r], err);
         lam_team_for(j->team, j->np, pass_b, j);
@@ -307,44 +342,43 @@ int lam_stl_binary_team(const char *path, const unsigned char *data, uint32_t co
     if (rc) return lam_error_set(err, rc, path, 0, 0, "out of memory for %lu triangles", (unsigned long)count);
     job j = { .team = team, .data = data, .m = m, .np = lam_team_size(team) };
     j.nr = 4 * (size_t)j.np; /* a few ranges per thread: a busy core does not hold the others up */
-    j.h = lam_big_malloc(per * sizeof *j.h);
-    j.first = lam_big_malloc(per * sizeof *j.first);
-    j.fx = lam_big_malloc(3 * per * sizeof *j.fx);
+    /* the scratch in one block: a chunk's fills one huge page */
+    j.h = lam_big_malloc(per * (sizeof *j.h + 3 * sizeof *j.fx + sizeof *j.first + sizeof *j.idx));
     j.parts = calloc(j.np, sizeof *j.parts);
     j.bad = malloc(j.nr * sizeof *j.bad);
     j.base = malloc(j.nr * sizeof *j.base);
     j.cnt = malloc(j.np * j.nr * sizeof *j.cnt);
-    rc = !j.h || !j.first || !j.fx || !j.parts || !j.bad || !j.base || !j.cnt;
+    j.ps = malloc(j.np * j.nr * sizeof *j.ps);
+    j.pe = malloc(j.np * j.nr * sizeof *j.pe);
     /* each partition sized as the serial welder sizes its table, with a
-     * sixteenth for the partitions' uneven shares */
+     * sixteenth for the partitions' uneven shares, all in one block (huge
+     * pages) until one grows */
     size_t share = expect / j.np + expect / (16 * j.np) + 16;
-    for (unsigned k = 0; !rc && k < j.np; k++) {
-        part *pt = &j.parts[k];
-        size_t cap = 1024;
-        while (cap < 2 * share) cap *= 2;
-        pt->table = lam_big_malloc(cap * sizeof *pt->table);
-        pt->rec = malloc(LAM_WELDER_RECENT * sizeof *pt->rec);
-        if (!pt->table || !pt->rec) {
-            rc = 1;
-            break;
-        }
-        memset(pt->table, 0xff, cap * sizeof *pt->table);
-        for (size_t r = 0; r < LAM_WELDER_RECENT; r++) pt->rec[r] = (recent){ 0, UINT32_MAX };
-        pt->cap = cap;
+    j.cap0 = 1024;
+    while (j.cap0 < 2 * share) j.cap0 *= 2;
+    j.tables = lam_big_malloc(j.np * j.cap0 * sizeof *j.tables);
+    j.recs = malloc(j.np * LAM_WELDER_RECENT * sizeof *j.recs);
+    if (!j.h || !j.parts || !j.bad || !j.base || !j.cnt || !j.ps || !j.pe || !j.tables || !j.recs) {
+        rc = lam_error_nomem(err, "welding vertices");
+    } else {
+        j.fx = (uint32_t *)(j.h + per);
+        j.first = j.fx + 3 * per;
+        j.idx = j.first + per;
+        lam_team_for(team, j.np, part_init, &j);
+        rc = run(&j, count, path, err);
     }
-    rc = rc ? lam_error_nomem(err, "welding vertices") : run(&j, count, path, err);
     if (rc == LAM_ENOMEM) lam_error_set(err, rc, path, 0, 0, "out of memory for %lu triangles", (unsigned long)count);
-    for (unsigned k = 0; j.parts && k < j.np; k++) {
-        free(j.parts[k].table);
-        free(j.parts[k].rec);
-    }
+    for (unsigned k = 0; j.parts && k < j.np; k++)
+        if (j.parts[k].own) free(j.parts[k].table);
+    free(j.tables);
+    free(j.recs);
     free(j.h);
-    free(j.first);
-    free(j.fx);
     free(j.parts);
     free(j.bad);
     free(j.base);
     free(j.cnt);
+    free(j.ps);
+    free(j.pe);
     /* every vertex came through the welder and is used */
     if (!rc) m->welded = 1;
     return rc;

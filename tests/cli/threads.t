@@ -68,7 +68,7 @@ is "$(sed -n 2p "$TMP/sep-empty-first.1")" "layer 0 1 -2.500" "separator: the em
 same ladrp-relative-many "$TMP/sphere.stl" -m creol-ladrp -w 0.1 --islands
 same ladrp-absolute-many "$TMP/sphere.stl" -m ded-gcode -w 0.1 --islands
 # A binary STL of 25,280 facets: over the 16,384 from which the threads
-# also decode and weld it (two chunks of the reader, core/stl_weld.c), a
+# also decode and weld it (core/stl_weld.c), a
 # few hundred layers planned and formatted by the workers
 python3 - "$TMP/bsphere.stl" <<'EOF'
 import math, struct, sys
