@@ -30,4 +30,16 @@ void lam_huge_hint(void *p, size_t bytes);
 void *lam_big_malloc(size_t bytes);
 void *lam_big_calloc(size_t n, size_t size);
 
+/* A block of its own (an anonymous mapping starting on a huge page,
+ * hinted), for scratch freed before the arrays that outlive it are made:
+ * lam_big_unmap hands it back to the kernel, where a block of the heap
+ * would leave a hole (the CLI's heap is never trimmed, main.c) that later
+ * arrays fit around, not into: the 5M-triangle run's peak was 72 MB higher
+ * with the threaded STL reader's tables on the heap. NULL when out of
+ * memory. Its pages read as zero. */
+void *lam_big_map(size_t bytes);
+
+/* Release a block of lam_big_map(bytes) (NULL is fine). */
+void lam_big_unmap(void *p, size_t bytes);
+
 #endif

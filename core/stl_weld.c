@@ -23,7 +23,8 @@
  * number of threads. Chunks are small enough (74,898 corners, 2 MB of
  * scratch on one huge page) that a pass finds the previous one's output
  * in cache, and the scratch is touched (page faults) once; the tables are
- * the size of the serial welder's. */
+ * the size of the serial welder's. Both are mappings of their own
+ * (lam_big_map), gone before the model's arrays are made. */
 #include "stl_weld.h"
 
 #include <stdlib.h>
@@ -36,6 +37,15 @@
 /* Corners per chunk: a multiple of 3, so chunks hold whole facets; their
  * 28 bytes of scratch each fill a huge page. */
 #define CHUNK_CORNERS ((size_t)3 * 24966)
+/* Partitions per thread: pass B's tasks are claimed as threads come, so
+ * one thread that the system keeps waiting holds up a quarter of a pass,
+ * not half of it (or more). */
+#define PARTS_PER_THREAD 4
+/* Each partition's cache of recent vertices: it sees one corner in
+ * (threads x PARTS_PER_THREAD), so it needs fewer slots than the serial
+ * welder's 4096 for the same reach. */
+#define PART_RECENT 1024
+
 #define EMPTY UINT64_MAX
 #define TAG 0xffffffff00000000ull
 #define NONE SIZE_MAX
@@ -50,8 +60,9 @@ typedef struct part {
     size_t cap, count;
     int failed;      /* out of memory growing the table */
     int own;         /* table is a block of its own (grown), not in job.tables */
-    recent *rec;     /* the serial welder's cache of recent vertices (mesh.h):
-                        a vertex comes back a few facets later */
+    recent *rec;     /* PART_RECENT slots like the serial welder's cache of
+                        recent vertices (mesh.h): a vertex comes back a few
+                        facets later */
 } part;
 
 typedef struct chunk {
@@ -78,7 +89,7 @@ typedef struct job {
     chunk prev;      /* the chunk before, for pass D */
     uint64_t *tables;/* the partitions' first tables, cap0 slots each */
     size_t cap0;
-    recent *recs;    /* the partitions' caches, LAM_WELDER_RECENT each */
+    recent *recs;    /* the partitions' caches, PART_RECENT each */
 } job;
 
 static const unsigned char *corner_at(const unsigned char *data, size_t c)
@@ -180,13 +191,13 @@ static void part_init(void *ctx, unsigned worker, size_t k)
     pt->cap = j->cap0;
     pt->table = j->tables + k * j->cap0;
     memset(pt->table, 0xff, pt->cap * sizeof *pt->table);
-    pt->rec = j->recs + k * LAM_WELDER_RECENT;
-    for (size_t r = 0; r < LAM_WELDER_RECENT; r++) pt->rec[r] = (recent){ 0, UINT32_MAX };
+    pt->rec = j->recs + k * PART_RECENT;
+    for (size_t r = 0; r < PART_RECENT; r++) pt->rec[r] = (recent){ 0, UINT32_MAX };
 }
 
 static int part_grow(part *pt, const job *j, size_t cap)
 {
-    uint64_t *nt = lam_big_malloc(cap * sizeof *nt);
+    uint64_t *nt = lam_big_map(cap * sizeof *nt);
     if (!nt) return -1;
     memset(nt, 0xff, cap * sizeof *nt);
     uint64_t *old = pt->table;
@@ -199,7 +210,7 @@ static int part_grow(part *pt, const job *j, size_t cap)
             corner_pos(j, (uint32_t)old[s], xyz);
             part_put(pt, lam_weld_hash(xyz), old[s]);
         }
-    if (pt->own) free(old);
+    if (pt->own) lam_big_unmap(old, oldcap * sizeof *old);
     pt->own = 1;
     return 0;
 }
@@ -220,7 +231,7 @@ static void pass_b(void *ctx, unsigned worker, size_t k)
             size_t i = j->idx[q], c = j->c0 + i;
             uint64_t hv = j->h[i];
             const uint32_t *fx = j->fx + 3 * i;
-            recent *rc = &pt->rec[(size_t)(hv >> 20) & (LAM_WELDER_RECENT - 1)];
+            recent *rc = &pt->rec[(size_t)(hv >> 20) & (PART_RECENT - 1)];
             if (rc->h == hv && rc->c != UINT32_MAX && same_pos(j, rc->c, fx)) {
                 j->first[i] = rc->c;
                 continue;
@@ -340,10 +351,11 @@ int lam_stl_binary_team(const char *path, const unsigned char *data, uint32_t co
     size_t expect = count / 2 + 16;
     int rc = lam_mesh_reserve(m, expect, count, err);
     if (rc) return lam_error_set(err, rc, path, 0, 0, "out of memory for %lu triangles", (unsigned long)count);
-    job j = { .team = team, .data = data, .m = m, .np = lam_team_size(team) };
-    j.nr = 4 * (size_t)j.np; /* a few ranges per thread: a busy core does not hold the others up */
+    job j = { .team = team, .data = data, .m = m, .np = PARTS_PER_THREAD * lam_team_size(team) };
+    j.nr = j.np; /* ranges too: a few per thread */
     /* the scratch in one block: a chunk's fills one huge page */
-    j.h = lam_big_malloc(per * (sizeof *j.h + 3 * sizeof *j.fx + sizeof *j.first + sizeof *j.idx));
+    size_t scratch = per * (sizeof *j.h + 3 * sizeof *j.fx + sizeof *j.first + sizeof *j.idx);
+    j.h = lam_big_map(scratch);
     j.parts = calloc(j.np, sizeof *j.parts);
     j.bad = malloc(j.nr * sizeof *j.bad);
     j.base = malloc(j.nr * sizeof *j.base);
@@ -356,8 +368,8 @@ int lam_stl_binary_team(const char *path, const unsigned char *data, uint32_t co
     size_t share = expect / j.np + expect / (16 * j.np) + 16;
     j.cap0 = 1024;
     while (j.cap0 < 2 * share) j.cap0 *= 2;
-    j.tables = lam_big_malloc(j.np * j.cap0 * sizeof *j.tables);
-    j.recs = malloc(j.np * LAM_WELDER_RECENT * sizeof *j.recs);
+    j.tables = lam_big_map(j.np * j.cap0 * sizeof *j.tables);
+    j.recs = malloc(j.np * PART_RECENT * sizeof *j.recs);
     if (!j.h || !j.parts || !j.bad || !j.base || !j.cnt || !j.ps || !j.pe || !j.tables || !j.recs) {
         rc = lam_error_nomem(err, "welding vertices");
     } else {
@@ -369,10 +381,10 @@ int lam_stl_binary_team(const char *path, const unsigned char *data, uint32_t co
     }
     if (rc == LAM_ENOMEM) lam_error_set(err, rc, path, 0, 0, "out of memory for %lu triangles", (unsigned long)count);
     for (unsigned k = 0; j.parts && k < j.np; k++)
-        if (j.parts[k].own) free(j.parts[k].table);
-    free(j.tables);
+        if (j.parts[k].own) lam_big_unmap(j.parts[k].table, j.parts[k].cap * sizeof *j.tables);
+    lam_big_unmap(j.tables, j.np * j.cap0 * sizeof *j.tables);
     free(j.recs);
-    free(j.h);
+    lam_big_unmap(j.h, scratch);
     free(j.parts);
     free(j.bad);
     free(j.base);
