@@ -7,7 +7,11 @@
  * sweep's state goes on from where it stopped) and never start a task more
  * than `window` tasks ahead of the one being consumed: memory stays
  * bounded by window results, however long the run. Waiting is on a
- * condition variable, never a busy loop. POSIX threads. */
+ * condition variable, never a busy loop. POSIX threads.
+ *
+ * Teams (lam_team_*, below) are the other shape: threads started once for
+ * a series of parallel loops whose tasks write disjoint parts of shared
+ * arrays (the binary STL reader's passes). */
 #ifndef LAM_POOL_H
 #define LAM_POOL_H
 

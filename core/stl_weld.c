@@ -3,14 +3,14 @@
  * Corners (facet f's vertex k is corner 3 f + k) are taken a chunk at a
  * time, in passes over each chunk:
  *   A  (ranges of facets, in parallel) decode the nine floats of each
- *      facet, find the first non-finite one, and keep each corner's
+ *      facet, find the first non-finite one, keep each corner's
  *      coordinates (-0.0 made 0.0) and hash (the serial welder's,
- *      weld_hash.h);
- *   B  (one task per partition of the hash table) every task scans all of
- *      the chunk's hashes in corner order and handles the corners whose
- *      hash falls in its partition: it records for each the first corner
- *      of the file at the same position (itself when new) and counts the
- *      new ones per range of corners. A partition is a table of its own
+ *      weld_hash.h), and list the range's corners by the partition of the
+ *      hash table their hash falls in;
+ *   B  (one task per partition) every task takes the corners listed for
+ *      its partition, range by range, so in corner order: it records for
+ *      each the first corner of the file at the same position (itself
+ *      when new) and counts the new ones per range. A partition is a table of its own
  *      (growing on its own) of corner numbers; a corner's position is
  *      found in the chunk or, for an earlier chunk, at its vertex;
  *   C  (ranges of corners) a prefix sum of those counts numbers the new
