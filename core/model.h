@@ -61,8 +61,8 @@ typedef struct lam_model {
 typedef struct lam_load_opts {
     unsigned threads; /* threads that read it (0 or 1: the calling thread
                          alone); the model is the same, bit for bit, for
-                         every number. A binary STL of 16,384 facets or
-                         more is decoded and welded in parallel. */
+                         every number. A binary STL of 524,288 facets
+                         or more is decoded and welded in parallel. */
 } lam_load_opts;
 
 /* Load a model file. The format is chosen by extension (.ug, .stl, .obj)

@@ -13,9 +13,16 @@
 #include "mesh.h"
 #include "pool.h"
 
-/* Fewer facets than this are read by the calling thread alone: below it
- * waking the team costs more than it saves (measured: see stl_weld.c). */
-#define LAM_STL_TEAM_MIN 16384u
+/* Fewer facets than this are read by the calling thread alone. Measured
+ * (the "reading the model" phase of `slice -v`, -j 1 against -j 2 in
+ * ABBA order, medians of 16-24, at nice -20 on a 2-core VM with other
+ * work running): 30k facets 36 -> 44 ms, 100k 56 -> 79 ms, 160k (the
+ * bench's sphere) 76 -> 80 ms, 361k (its torus) 156 -> 160 ms, 1M 568 ->
+ * 454 ms, 5M 2.33 -> 1.66 s. Below some hundreds of thousands of facets
+ * the first reads of the mapped file (page faults, which two threads do
+ * no faster than one on these VMs) and the passes' hand-overs outweigh
+ * the shared hashing and lookups. */
+#define LAM_STL_TEAM_MIN (1u << 19)
 
 /* A little-endian uint32 read byte by byte (no alignment or byte order
  * assumption). */

@@ -204,16 +204,29 @@ static size_t reference_problems(const unsigned char *b, uint32_t n, const lam_m
 
 /* ---- comparing runs ------------------------------------------------------- */
 
-static int import(const unsigned char *b, size_t len, unsigned threads, lam_mesh *m, lam_error *err)
+/* Read b with one thread (the importer's serial reader) or with a team of
+ * `threads`: the threaded reader itself, which the importer takes from
+ * LAM_STL_TEAM_MIN facets (the files here are smaller, and the reader is
+ * the same), or with `via_importer` the importer's choice. */
+static int import_via(const unsigned char *b, size_t len, unsigned threads, int via_importer, lam_mesh *m,
+                      lam_error *err)
 {
     lam_team *team = NULL;
     if (threads > 1 && lam_team_new(threads, &team, err)) return -1;
     lam_mesh_init(m);
     lam_error_clear(err);
-    int bin = -1;
-    int rc = lam_import_stl_team("t.stl", b, len, m, &bin, team, err);
+    int bin = -1, rc;
+    if (team && !via_importer)
+        rc = lam_stl_binary_team("t.stl", b, (uint32_t)((len - 84) / 50), m, team, err);
+    else
+        rc = lam_import_stl_team("t.stl", b, len, m, &bin, team, err);
     lam_team_free(team);
     return rc;
+}
+
+static int import(const unsigned char *b, size_t len, unsigned threads, lam_mesh *m, lam_error *err)
+{
+    return import_via(b, len, threads, 0, m, err);
 }
 
 static int same_mesh(const lam_mesh *a, const lam_mesh *b)
@@ -339,10 +352,15 @@ int main(void)
     is_int(st.vertices, 3 * 30000, "soup: three vertices per facet");
     free(b);
 
-    /* just below the threaded path's threshold: the calling thread alone,
-     * whatever the team (the same mesh all the same) */
-    b = closed_mesh(LAM_STL_TEAM_MIN / 16, 7, &len);
-    check_file("below the threshold", b, len, NULL);
+    /* the importer with a team, under LAM_STL_TEAM_MIN facets: the
+     * calling thread alone, the same mesh */
+    b = closed_mesh(60, 50, &len);
+    lam_mesh one, three;
+    lam_error e1, e3;
+    int r1 = import_via(b, len, 1, 1, &one, &e1), r3 = import_via(b, len, 3, 1, &three, &e3);
+    ok(!r1 && !r3 && same_mesh(&one, &three), "the importer, 3 threads, a small file: the same mesh");
+    lam_mesh_free(&one);
+    lam_mesh_free(&three);
     free(b);
 
     /* lam_model_load_opts: the threads option reaches the reader (a file) */
