@@ -8,7 +8,6 @@
 #include "file.h"
 #include "import.h"
 #include "model.h"
-#include "pool.h"
 #include "stl_weld.h"
 
 #include <stdint.h>
@@ -61,7 +60,7 @@ static enum fmt by_content(const char *d, size_t n)
  * building the model from the mesh: the file (as large as the mesh) need
  * not stay beside the model's arrays while they are made. */
 static int parse_buf(const char *path, const char *data, size_t len, lam_mesh *mesh, const char **format,
-                     lam_team *team, lam_error *err)
+                     unsigned threads, lam_error *err)
 {
     lam_mesh_init(mesh);
     if (len == 0) return lam_error_set(err, LAM_EFORMAT, path, 0, 0, "empty file");
@@ -75,7 +74,7 @@ static int parse_buf(const char *path, const char *data, size_t len, lam_mesh *m
         break;
     case FMT_STL: {
         int binary = 0;
-        rc = lam_import_stl_team(path, (const unsigned char *)data, len, mesh, &binary, team, err);
+        rc = lam_import_stl_threads(path, (const unsigned char *)data, len, mesh, &binary, threads, err);
         *format = binary ? "stl-binary" : "stl-ascii";
         break;
     }
@@ -91,17 +90,7 @@ static int parse_buf(const char *path, const char *data, size_t len, lam_mesh *m
     return rc;
 }
 
-/* The team for o's threads, NULL for one thread (or when none could be
- * started: the model is the same either way). */
-static lam_team *team_for(const lam_load_opts *o)
-{
-    lam_team *team = NULL;
-    if (o && o->threads > 1) {
-        lam_error ignored;
-        lam_team_new(o->threads, &team, &ignored);
-    }
-    return team;
-}
+static unsigned threads_of(const lam_load_opts *o) { return o && o->threads > 1 ? o->threads : 1; }
 
 int lam_model_load_opts(const char *path, const lam_load_opts *o, lam_model **out, lam_error *err)
 {
@@ -113,9 +102,7 @@ int lam_model_load_opts(const char *path, const lam_load_opts *o, lam_model **ou
     if (rc) return rc;
     lam_mesh mesh;
     const char *format = NULL;
-    lam_team *team = team_for(o);
-    rc = parse_buf(path, data, len, &mesh, &format, team, err);
-    lam_team_free(team);
+    rc = parse_buf(path, data, len, &mesh, &format, threads_of(o), err);
     lam_unmap_file(data, len, mapped);
     return rc ? rc : lam_model_from_mesh(&mesh, path, format, out, err);
 }
@@ -134,9 +121,7 @@ int lam_model_load_stdin_opts(const lam_load_opts *o, lam_model **out, lam_error
     if (rc) return rc;
     lam_mesh mesh;
     const char *format = NULL;
-    lam_team *team = team_for(o);
-    rc = parse_buf(LAM_STDIN_NAME, data, len, &mesh, &format, team, err);
-    lam_team_free(team);
+    rc = parse_buf(LAM_STDIN_NAME, data, len, &mesh, &format, threads_of(o), err);
     free(data);
     return rc ? rc : lam_model_from_mesh(&mesh, LAM_STDIN_NAME, format, out, err);
 }

@@ -57,7 +57,7 @@
 /* ---- binary ------------------------------------------------------------- */
 
 static int stl_binary(const char *path, const unsigned char *data, uint32_t count,
-                      lam_mesh *m, lam_team *team, lam_error *err)
+                      lam_mesh *m, unsigned threads, lam_error *err)
 {
     if (m->nfaces || m->tri_face)
         return lam_error_set(err, LAM_EINVAL, path, 0, 0,
@@ -67,8 +67,14 @@ static int stl_binary(const char *path, const unsigned char *data, uint32_t coun
                                    "binary STL declares %lu triangles: too many for 32-bit vertex indices",
                                    (unsigned long)count);
     if (count == 0) return LAM_OK;
-    if (team && count >= LAM_STL_TEAM_MIN && m->nverts == 0 && m->ntris == 0)
-        return lam_stl_binary_team(path, data, count, m, team, err);
+    lam_team *team = NULL;
+    lam_error ignored; /* no thread started: the calling thread reads it, the same mesh */
+    if (threads > 1 && count >= LAM_STL_TEAM_MIN && m->nverts == 0 && m->ntris == 0 &&
+        lam_team_new(threads, &team, &ignored) == LAM_OK) {
+        int trc = lam_stl_binary_team(path, data, count, m, team, err);
+        lam_team_free(team);
+        return trc;
+    }
     /* a closed mesh has about half as many vertices as triangles */
     int rc = lam_mesh_reserve(m, count / 2 + 16, count, err);
     if (rc) return lam_error_set(err, rc, path, 0, 0, "out of memory for %lu triangles", (unsigned long)count);
@@ -350,11 +356,11 @@ static int stl_ascii(const char *path, const unsigned char *data, size_t len,
 int lam_import_stl_buf(const char *path, const unsigned char *data, size_t len,
                        lam_mesh *mesh, int *binary, lam_error *err)
 {
-    return lam_import_stl_team(path, data, len, mesh, binary, NULL, err);
+    return lam_import_stl_threads(path, data, len, mesh, binary, 1, err);
 }
 
-int lam_import_stl_team(const char *path, const unsigned char *data, size_t len, lam_mesh *mesh, int *binary,
-                        lam_team *team, lam_error *err)
+int lam_import_stl_threads(const char *path, const unsigned char *data, size_t len, lam_mesh *mesh, int *binary,
+                           unsigned threads, lam_error *err)
 {
     lam_error own; /* err may be NULL (error.h); messages are wrapped below */
     if (!err) err = &own;
@@ -363,7 +369,7 @@ int lam_import_stl_team(const char *path, const unsigned char *data, size_t len,
     uint32_t count = len >= 84 ? lam_rd_u32(data + 80) : 0;
     if (len >= 84 && 84 + 50ull * count == (unsigned long long)len) {
         if (binary) *binary = 1;
-        return stl_binary(path, data, count, mesh, team, err);
+        return stl_binary(path, data, count, mesh, threads, err);
     }
     if (len && looks_ascii(data, len)) {
         int rc = stl_ascii(path, data, len, mesh, err);

@@ -43,10 +43,11 @@ int lam_stl_nonfinite(const char *path, const unsigned char *data, size_t off, l
 int lam_stl_binary_team(const char *path, const unsigned char *data, uint32_t count, lam_mesh *m, lam_team *team,
                         lam_error *err);
 
-/* lam_import_stl_buf (import.h) with a team (NULL: the calling thread
- * alone) for a binary STL of LAM_STL_TEAM_MIN facets or more read into an
- * empty mesh. (import_stl.c) */
-int lam_import_stl_team(const char *path, const unsigned char *data, size_t len, lam_mesh *mesh, int *binary,
-                        lam_team *team, lam_error *err);
+/* lam_import_stl_buf (import.h) with up to `threads` threads: a team is
+ * started for a binary STL of LAM_STL_TEAM_MIN facets or more read into an
+ * empty mesh, and stopped before returning; anything else is read by the
+ * calling thread. (import_stl.c) */
+int lam_import_stl_threads(const char *path, const unsigned char *data, size_t len, lam_mesh *mesh, int *binary,
+                           unsigned threads, lam_error *err);
 
 #endif

@@ -211,15 +211,13 @@ static size_t reference_problems(const unsigned char *b, uint32_t n, const lam_m
 static int import_via(const unsigned char *b, size_t len, unsigned threads, int via_importer, lam_mesh *m,
                       lam_error *err)
 {
-    lam_team *team = NULL;
-    if (threads > 1 && lam_team_new(threads, &team, err)) return -1;
     lam_mesh_init(m);
     lam_error_clear(err);
-    int bin = -1, rc;
-    if (team && !via_importer)
-        rc = lam_stl_binary_team("t.stl", b, (uint32_t)((len - 84) / 50), m, team, err);
-    else
-        rc = lam_import_stl_team("t.stl", b, len, m, &bin, team, err);
+    int bin = -1;
+    if (threads == 1 || via_importer) return lam_import_stl_threads("t.stl", b, len, m, &bin, threads, err);
+    lam_team *team = NULL;
+    if (lam_team_new(threads, &team, err)) return -1;
+    int rc = lam_stl_binary_team("t.stl", b, (uint32_t)((len - 84) / 50), m, team, err);
     lam_team_free(team);
     return rc;
 }
