@@ -33,3 +33,22 @@ void *lam_big_calloc(size_t n, size_t size)
     lam_huge_hint(p, n * size);
     return p;
 }
+
+void *lam_big_map(size_t bytes)
+{
+    size_t size = (bytes + 4095) & ~(size_t)4095, pad = size >= LAM_HUGE_MIN ? LAM_HUGE_PAGE : 0;
+    if (!bytes || size < bytes || size + pad < size) return NULL;
+    unsigned char *p = mmap(NULL, size + pad, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+    if (p == MAP_FAILED) return NULL;
+    /* keep the part that starts on a huge page */
+    size_t head = pad ? (LAM_HUGE_PAGE - ((uintptr_t)p & (LAM_HUGE_PAGE - 1))) & (LAM_HUGE_PAGE - 1) : 0;
+    if (head) munmap(p, head);
+    if (pad - head) munmap(p + head + size, pad - head);
+    lam_huge_hint(p + head, size);
+    return p + head;
+}
+
+void lam_big_unmap(void *p, size_t bytes)
+{
+    if (p) munmap(p, (bytes + 4095) & ~(size_t)4095);
+}

@@ -14,6 +14,7 @@
 
 /* Arrays smaller than this are left to ordinary pages. */
 #define LAM_HUGE_MIN ((size_t)4 << 20)
+#define LAM_HUGE_PAGE ((size_t)2 << 20) /* the huge page size */
 
 /* Ask for huge pages for the whole pages of [p, p + bytes) when bytes is at
  * least LAM_HUGE_MIN. Changes no data; best effort (errors are ignored). */
@@ -25,5 +26,17 @@ void lam_huge_hint(void *p, size_t bytes);
  * speed; a hint leaves the memory as it was. */
 void *lam_big_malloc(size_t bytes);
 void *lam_big_calloc(size_t n, size_t size);
+
+/* A block of its own (an anonymous mapping starting on a huge page,
+ * hinted), for scratch freed before the arrays that outlive it are made:
+ * lam_big_unmap hands it back to the kernel, where a block of the heap
+ * would leave a hole (the CLI's heap is never trimmed, main.c) that later
+ * arrays fit around, not into: the 5M-triangle run's peak was 72 MB higher
+ * with the threaded STL reader's tables on the heap. NULL when out of
+ * memory. Its pages read as zero. */
+void *lam_big_map(size_t bytes);
+
+/* Release a block of lam_big_map(bytes) (NULL is fine). */
+void lam_big_unmap(void *p, size_t bytes);
 
 #endif

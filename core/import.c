@@ -8,6 +8,7 @@
 #include "file.h"
 #include "import.h"
 #include "model.h"
+#include "stl_weld.h"
 
 #include <stdint.h>
 #include <stdio.h>
@@ -59,7 +60,7 @@ static enum fmt by_content(const char *d, size_t n)
  * building the model from the mesh: the file (as large as the mesh) need
  * not stay beside the model's arrays while they are made. */
 static int parse_buf(const char *path, const char *data, size_t len, lam_mesh *mesh, const char **format,
-                     lam_error *err)
+                     unsigned threads, lam_error *err)
 {
     lam_mesh_init(mesh);
     if (len == 0) return lam_error_set(err, LAM_EFORMAT, path, 0, 0, "empty file");
@@ -73,7 +74,7 @@ static int parse_buf(const char *path, const char *data, size_t len, lam_mesh *m
         break;
     case FMT_STL: {
         int binary = 0;
-        rc = lam_import_stl_buf(path, (const unsigned char *)data, len, mesh, &binary, err);
+        rc = lam_import_stl_threads(path, (const unsigned char *)data, len, mesh, &binary, threads, err);
         *format = binary ? "stl-binary" : "stl-ascii";
         break;
     }
@@ -89,7 +90,9 @@ static int parse_buf(const char *path, const char *data, size_t len, lam_mesh *m
     return rc;
 }
 
-int lam_model_load(const char *path, lam_model **out, lam_error *err)
+static unsigned threads_of(const lam_load_opts *o) { return o && o->threads > 1 ? o->threads : 1; }
+
+int lam_model_load_opts(const char *path, const lam_load_opts *o, lam_model **out, lam_error *err)
 {
     *out = NULL;
     char *data;
@@ -99,12 +102,17 @@ int lam_model_load(const char *path, lam_model **out, lam_error *err)
     if (rc) return rc;
     lam_mesh mesh;
     const char *format = NULL;
-    rc = parse_buf(path, data, len, &mesh, &format, err);
+    rc = parse_buf(path, data, len, &mesh, &format, threads_of(o), err);
     lam_unmap_file(data, len, mapped);
     return rc ? rc : lam_model_from_mesh(&mesh, path, format, out, err);
 }
 
-int lam_model_load_stdin(lam_model **out, lam_error *err)
+int lam_model_load(const char *path, lam_model **out, lam_error *err)
+{
+    return lam_model_load_opts(path, NULL, out, err);
+}
+
+int lam_model_load_stdin_opts(const lam_load_opts *o, lam_model **out, lam_error *err)
 {
     *out = NULL;
     char *data;
@@ -113,7 +121,12 @@ int lam_model_load_stdin(lam_model **out, lam_error *err)
     if (rc) return rc;
     lam_mesh mesh;
     const char *format = NULL;
-    rc = parse_buf(LAM_STDIN_NAME, data, len, &mesh, &format, err);
+    rc = parse_buf(LAM_STDIN_NAME, data, len, &mesh, &format, threads_of(o), err);
     free(data);
     return rc ? rc : lam_model_from_mesh(&mesh, LAM_STDIN_NAME, format, out, err);
+}
+
+int lam_model_load_stdin(lam_model **out, lam_error *err)
+{
+    return lam_model_load_stdin_opts(NULL, out, err);
 }

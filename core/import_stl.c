@@ -45,6 +45,7 @@
  * that is neither (too short for binary and not "solid"). Linear time. */
 #include "import.h"
 #include "lexnum.h"
+#include "stl_weld.h"
 
 #include <math.h>
 #include <stdarg.h>
@@ -55,13 +56,8 @@
 
 /* ---- binary ------------------------------------------------------------- */
 
-static uint32_t rd_u32(const unsigned char *p)
-{
-    return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
-}
-
 static int stl_binary(const char *path, const unsigned char *data, uint32_t count,
-                      lam_mesh *m, lam_error *err)
+                      lam_mesh *m, unsigned threads, lam_error *err)
 {
     if (m->nfaces || m->tri_face)
         return lam_error_set(err, LAM_EINVAL, path, 0, 0,
@@ -71,6 +67,14 @@ static int stl_binary(const char *path, const unsigned char *data, uint32_t coun
                                    "binary STL declares %lu triangles: too many for 32-bit vertex indices",
                                    (unsigned long)count);
     if (count == 0) return LAM_OK;
+    lam_team *team = NULL;
+    lam_error ignored; /* no thread started: the calling thread reads it, the same mesh */
+    if (threads > 1 && count >= LAM_STL_TEAM_MIN && m->nverts == 0 && m->ntris == 0 &&
+        lam_team_new(threads, &team, &ignored) == LAM_OK) {
+        int trc = lam_stl_binary_team(path, data, count, m, team, err);
+        lam_team_free(team);
+        return trc;
+    }
     /* a closed mesh has about half as many vertices as triangles */
     int rc = lam_mesh_reserve(m, count / 2 + 16, count, err);
     if (rc) return lam_error_set(err, rc, path, 0, 0, "out of memory for %lu triangles", (unsigned long)count);
@@ -89,7 +93,7 @@ static int stl_binary(const char *path, const unsigned char *data, uint32_t coun
             for (int k = 0; k < 3; k++) {
                 float c[3];
                 for (int j = 0; j < 3; j++) {
-                    uint32_t u = rd_u32(q + 12 * k + 4 * j);
+                    uint32_t u = lam_rd_u32(q + 12 * k + 4 * j);
                     memcpy(&c[j], &u, sizeof c[j]);
                 }
                 lam_welder_prefetch(&wd, c[0], c[1], c[2]);
@@ -98,23 +102,17 @@ static int stl_binary(const char *path, const unsigned char *data, uint32_t coun
         uint32_t bad = 0;
         double xyz[9];
         for (int k = 0; k < 9; k++) {
-            uint32_t u = rd_u32(p + 4 * k);
+            uint32_t u = lam_rd_u32(p + 4 * k);
             float f;
             memcpy(&f, &u, sizeof f);
             xyz[k] = f;
             bad |= (u & 0x7f800000u) == 0x7f800000u;
         }
         if (bad) {
-            for (int k = 0; k < 9; k++) {
-                uint32_t u = rd_u32(p + 4 * k);
-                if ((u & 0x7f800000u) != 0x7f800000u) continue;
-                float f;
-                memcpy(&f, &u, sizeof f);
-                lam_welder_free(&wd);
-                return lam_error_at_offset(err, LAM_EINVAL, path, (long long)(p + 4 * k - data),
-                                           "facet %lu, vertex %d: %c coordinate is not a finite number (%g)",
-                                           (unsigned long)i + 1, k / 3 + 1, "xyz"[k % 3], (double)f);
-            }
+            int k = 0;
+            while ((lam_rd_u32(p + 4 * k) & 0x7f800000u) != 0x7f800000u) k++;
+            lam_welder_free(&wd);
+            return lam_stl_nonfinite(path, data, (size_t)(p + 4 * k - data), err);
         }
         for (int k = 0; k < 3; k++) {
             if ((rc = lam_mesh_add_vertex_welded(m, &wd, xyz[3 * k], xyz[3 * k + 1], xyz[3 * k + 2], &t[k], err))) {
@@ -358,14 +356,20 @@ static int stl_ascii(const char *path, const unsigned char *data, size_t len,
 int lam_import_stl_buf(const char *path, const unsigned char *data, size_t len,
                        lam_mesh *mesh, int *binary, lam_error *err)
 {
+    return lam_import_stl_threads(path, data, len, mesh, binary, 1, err);
+}
+
+int lam_import_stl_threads(const char *path, const unsigned char *data, size_t len, lam_mesh *mesh, int *binary,
+                           unsigned threads, lam_error *err)
+{
     lam_error own; /* err may be NULL (error.h); messages are wrapped below */
     if (!err) err = &own;
     if (binary) *binary = 0;
     if (!data) len = 0;
-    uint32_t count = len >= 84 ? rd_u32(data + 80) : 0;
+    uint32_t count = len >= 84 ? lam_rd_u32(data + 80) : 0;
     if (len >= 84 && 84 + 50ull * count == (unsigned long long)len) {
         if (binary) *binary = 1;
-        return stl_binary(path, data, count, mesh, err);
+        return stl_binary(path, data, count, mesh, threads, err);
     }
     if (len && looks_ascii(data, len)) {
         int rc = stl_ascii(path, data, len, mesh, err);

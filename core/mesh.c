@@ -8,6 +8,7 @@
 #include "grow.h"
 #include "hugemem.h"
 #include "prefetch.h"
+#include "weld_hash.h"
 
 void lam_mesh_init(lam_mesh *m)
 {
@@ -178,35 +179,6 @@ int lam_mesh_add_wire_seg(lam_mesh *m, uint32_t a, uint32_t b, lam_error *err)
 
 /* ---- welding ---------------------------------------------------------- */
 
-static uint64_t bits_of(double d)
-{
-    uint64_t u;
-    d += 0.0; /* -0.0 + 0.0 == +0.0: both zeros weld */
-    memcpy(&u, &d, sizeof u);
-    return u;
-}
-
-static uint64_t hash_xyz(const double *p)
-{
-    /* floats widened to double end in 29 zero bits: mix thoroughly
-     * (murmur3's finaliser) before the low bits pick a slot */
-    uint64_t h = bits_of(p[0]) * 0x9e3779b97f4a7c15ull;
-    h = (h ^ bits_of(p[1])) * 0xc2b2ae3d27d4eb4full;
-    h = (h ^ bits_of(p[2])) * 0x165667b19e3779f9ull;
-    h ^= h >> 33;
-    h *= 0xff51afd7ed558ccdull;
-    h ^= h >> 33;
-    h *= 0xc4ceb9fe1a85ec53ull;
-    h ^= h >> 33;
-    return h;
-}
-
-static int same_xyz(const double *a, const double *b)
-{
-    return bits_of(a[0]) == bits_of(b[0]) && bits_of(a[1]) == bits_of(b[1]) &&
-           bits_of(a[2]) == bits_of(b[2]);
-}
-
 int lam_mesh_weld(lam_mesh *m, lam_error *err)
 {
     size_t n = m->nverts;
@@ -233,7 +205,7 @@ int lam_mesh_weld(lam_mesh *m, lam_error *err)
     for (size_t v = 0; v < n; v++) {
         if (remap[v] == unused) continue;
         const double *p = m->xyz + 3 * v;
-        size_t h = (size_t)hash_xyz(p) & (cap - 1);
+        size_t h = (size_t)lam_weld_hash(p) & (cap - 1);
         for (;;) {
             uint32_t slot = table[h];
             if (slot == unused) {
@@ -245,7 +217,7 @@ int lam_mesh_weld(lam_mesh *m, lam_error *err)
                 remap[v] = (uint32_t)out++;
                 break;
             }
-            if (same_xyz(m->xyz + 3 * (size_t)slot, p)) {
+            if (lam_weld_same(m->xyz + 3 * (size_t)slot, p)) {
                 remap[v] = slot;
                 break;
             }
@@ -298,7 +270,7 @@ int lam_welder_reserve(lam_welder *w, const lam_mesh *m, size_t n, lam_error *er
     for (size_t i = 0; i < oldcap; i++)
         if (old[i] != SLOT_EMPTY) {
             uint32_t v = (uint32_t)old[i];
-            welder_put(w, hash_xyz(m->xyz + 3 * (size_t)v), v);
+            welder_put(w, lam_weld_hash(m->xyz + 3 * (size_t)v), v);
         }
     free(old);
     return LAM_OK;
@@ -308,7 +280,7 @@ void lam_welder_prefetch(const lam_welder *w, double x, double y, double z)
 {
     if (!w->cap) return;
     double p[3] = { x + 0.0, y + 0.0, z + 0.0 };
-    uint64_t h = hash_xyz(p);
+    uint64_t h = lam_weld_hash(p);
     LAM_PREFETCH(w->table + ((size_t)h & (w->cap - 1)));
 }
 
@@ -325,9 +297,9 @@ int lam_mesh_add_vertex_welded(lam_mesh *m, lam_welder *w, double x, double y, d
         for (size_t k = 0; k < LAM_WELDER_RECENT; k++) w->recent[k].v = UINT32_MAX;
     }
     double p[3] = { x + 0.0, y + 0.0, z + 0.0 };
-    uint64_t h = hash_xyz(p), tag = h & 0xffffffff00000000ull;
+    uint64_t h = lam_weld_hash(p), tag = h & 0xffffffff00000000ull;
     size_t r = (size_t)(h >> 20) & (LAM_WELDER_RECENT - 1);
-    if (w->recent[r].h == h && w->recent[r].v != UINT32_MAX && same_xyz(m->xyz + 3 * (size_t)w->recent[r].v, p)) {
+    if (w->recent[r].h == h && w->recent[r].v != UINT32_MAX && lam_weld_same(m->xyz + 3 * (size_t)w->recent[r].v, p)) {
         *idx = w->recent[r].v;
         return LAM_OK;
     }
@@ -335,7 +307,7 @@ int lam_mesh_add_vertex_welded(lam_mesh *m, lam_welder *w, double x, double y, d
     for (;;) {
         uint64_t slot = w->table[i];
         if (slot == SLOT_EMPTY) break;
-        if ((slot & 0xffffffff00000000ull) == tag && same_xyz(m->xyz + 3 * (size_t)(uint32_t)slot, p)) {
+        if ((slot & 0xffffffff00000000ull) == tag && lam_weld_same(m->xyz + 3 * (size_t)(uint32_t)slot, p)) {
             *idx = (uint32_t)slot;
             w->recent[r].h = h;
             w->recent[r].v = *idx;

@@ -56,16 +56,31 @@ typedef struct lam_model {
     lam_model_stats stats;
 } lam_model;
 
+/* How a model is loaded (zero-initialise; a NULL pointer means all
+ * defaults). */
+typedef struct lam_load_opts {
+    unsigned threads; /* threads that read it (0 or 1: the calling thread
+                         alone); the model is the same, bit for bit, for
+                         every number. A binary STL of 524,288 facets
+                         or more is decoded and welded in parallel. */
+} lam_load_opts;
+
 /* Load a model file. The format is chosen by extension (.ug, .stl, .obj)
  * and confirmed by content; an unknown extension is sniffed. On success
  * *out is a new model the caller frees with lam_model_free. */
 int lam_model_load(const char *path, lam_model **out, lam_error *err);
+
+/* lam_model_load with options (o may be NULL). */
+int lam_model_load_opts(const char *path, const lam_load_opts *o, lam_model **out, lam_error *err);
 
 /* The same from standard input (lam_read_stdin: the model size limit),
  * the format told by content; the model and its messages are named
  * "<stdin>" (LAM_STDIN_NAME), a Unigrafix include is resolved against the
  * working directory. */
 int lam_model_load_stdin(lam_model **out, lam_error *err);
+
+/* lam_model_load_stdin with options (o may be NULL). */
+int lam_model_load_stdin_opts(const lam_load_opts *o, lam_model **out, lam_error *err);
 
 /* Build a model from a mesh the caller filled. The mesh's contents move
  * into the model (mesh is left empty) whether or not this succeeds. */

@@ -146,3 +146,123 @@ int lam_pool_ordered(unsigned threads, size_t n, size_t chunk, size_t ahead, siz
     free(ws);
     return rc;
 }
+
+/* ---- teams -------------------------------------------------------------- */
+
+typedef struct team_worker {
+    lam_team *t;
+    unsigned id;
+} team_worker;
+
+struct lam_team {
+    pthread_mutex_t mu;
+    pthread_cond_t go;       /* workers: a new loop, or quit */
+    pthread_cond_t done;     /* the caller: the loop's last task returned */
+    unsigned size;           /* started threads + the caller */
+    unsigned long gen;       /* loops started so far */
+    int quit;
+    lam_team_fn fn;
+    void *ctx;
+    size_t n, next, finished;
+    pthread_t *tid;
+    team_worker *ws;
+};
+
+/* Claim and run the current loop's tasks until none is left (mutex held
+ * on entry and on return). */
+static void team_tasks(lam_team *t, unsigned id)
+{
+    while (t->next < t->n) {
+        size_t task = t->next++;
+        pthread_mutex_unlock(&t->mu);
+        t->fn(t->ctx, id, task);
+        pthread_mutex_lock(&t->mu);
+        if (++t->finished == t->n) pthread_cond_signal(&t->done);
+    }
+}
+
+static void *team_work(void *arg)
+{
+    team_worker *w = arg;
+    lam_team *t = w->t;
+    unsigned long seen = 0;
+    pthread_mutex_lock(&t->mu);
+    for (;;) {
+        while (!t->quit && t->gen == seen) pthread_cond_wait(&t->go, &t->mu);
+        if (t->quit) break;
+        seen = t->gen;
+        team_tasks(t, w->id);
+    }
+    pthread_mutex_unlock(&t->mu);
+    return NULL;
+}
+
+int lam_team_new(unsigned threads, lam_team **out, lam_error *err)
+{
+    *out = NULL;
+    if (threads < 2) threads = 2;
+    lam_team *t = calloc(1, sizeof *t);
+    pthread_t *tid = calloc(threads - 1, sizeof *tid);
+    team_worker *ws = calloc(threads - 1, sizeof *ws);
+    if (!t || !tid || !ws) {
+        free(t);
+        free(tid);
+        free(ws);
+        return lam_error_nomem(err, "starting threads");
+    }
+    t->tid = tid;
+    t->ws = ws;
+    pthread_mutex_init(&t->mu, NULL);
+    pthread_cond_init(&t->go, NULL);
+    pthread_cond_init(&t->done, NULL);
+    unsigned started = 0;
+    int why = 0;
+    for (; started < threads - 1; started++) {
+        ws[started] = (team_worker){ t, started + 1 };
+        if ((why = pthread_create(&tid[started], NULL, team_work, &ws[started]))) break;
+    }
+    t->size = started + 1;
+    if (!started) {
+        lam_team_free(t);
+        return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "could not start a thread (%s)", strerror(why));
+    }
+    *out = t;
+    return LAM_OK;
+}
+
+unsigned lam_team_size(const lam_team *t) { return t ? t->size : 1; }
+
+void lam_team_for(lam_team *t, size_t n, lam_team_fn fn, void *ctx)
+{
+    if (!t) {
+        for (size_t i = 0; i < n; i++) fn(ctx, 0, i);
+        return;
+    }
+    if (!n) return;
+    pthread_mutex_lock(&t->mu);
+    t->fn = fn;
+    t->ctx = ctx;
+    t->n = n;
+    t->next = t->finished = 0;
+    t->gen++;
+    pthread_cond_broadcast(&t->go);
+    team_tasks(t, 0);
+    while (t->finished < t->n) pthread_cond_wait(&t->done, &t->mu);
+    pthread_mutex_unlock(&t->mu);
+}
+
+void lam_team_free(lam_team *t)
+{
+    if (!t) return;
+    pthread_mutex_lock(&t->mu);
+    t->quit = 1;
+    pthread_cond_broadcast(&t->go);
+    pthread_mutex_unlock(&t->mu);
+    for (unsigned k = 0; k + 1 < t->size; k++) pthread_join(t->tid[k], NULL);
+    pthread_cond_destroy(&t->done);
+    pthread_cond_destroy(&t->go);
+    pthread_mutex_destroy(&t->mu);
+    free(t->tid);
+    free(t->ws);
+    free(t);
+}

@@ -7,7 +7,11 @@
  * sweep's state goes on from where it stopped) and never start a task more
  * than `window` tasks ahead of the one being consumed: memory stays
  * bounded by window results, however long the run. Waiting is on a
- * condition variable, never a busy loop. POSIX threads. */
+ * condition variable, never a busy loop. POSIX threads.
+ *
+ * Teams (lam_team_*, below) are the other shape: threads started once for
+ * a series of parallel loops whose tasks write disjoint parts of shared
+ * arrays (the binary STL reader's passes). */
 #ifndef LAM_POOL_H
 #define LAM_POOL_H
 
@@ -51,5 +55,32 @@ int lam_pool_ordered(unsigned threads, size_t n, size_t chunk, size_t ahead, siz
 
 /* The window lam_pool_ordered will use for these values. */
 size_t lam_pool_window(size_t chunk, size_t ahead, size_t window);
+
+/* A team: threads started once and kept waiting (on a condition variable)
+ * for parallel loops, for work made of several short passes in a row (the
+ * binary STL reader's), where starting threads per pass would cost more
+ * than the pass. */
+typedef struct lam_team lam_team;
+
+/* Run task `task` of a loop on worker `worker` (0 .. lam_team_size - 1;
+ * worker 0 is the calling thread). Tasks of one loop run in any order and
+ * at the same time: each must write only what is its own. */
+typedef void (*lam_team_fn)(void *ctx, unsigned worker, size_t task);
+
+/* A team of `threads` (>= 2): threads - 1 are started, the caller is the
+ * other. *out is NULL (and LAM_ENOMEM returned, message in err) when no
+ * thread could be started; fewer started than asked makes a smaller team. */
+int lam_team_new(unsigned threads, lam_team **out, lam_error *err);
+
+/* The team's threads, the caller included (1 for a NULL team). */
+unsigned lam_team_size(const lam_team *t);
+
+/* Run fn(ctx, worker, task) for tasks 0 .. n-1 on the team's threads and
+ * return once every task has returned (a parallel for: a barrier at the
+ * end). A NULL team runs them in order on the calling thread. */
+void lam_team_for(lam_team *t, size_t n, lam_team_fn fn, void *ctx);
+
+/* Stop and join the team's threads and free it (NULL is fine). */
+void lam_team_free(lam_team *t);
 
 #endif

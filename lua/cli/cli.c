@@ -3,6 +3,7 @@
 #include "dialect.h"
 #include "fmt.h"
 #include "model.h"
+#include "pool.h"
 #include "svg.h"
 #include "writer.h"
 
@@ -63,9 +64,10 @@ void cli_json_number(FILE *f, double x)
     else fputs(cli_num(buf, sizeof buf, x), f);
 }
 
-int cli_load_model(const char *path, lam_model **m, lam_error *err)
+int cli_load_model(const char *path, unsigned threads, lam_model **m, lam_error *err)
 {
-    return strcmp(path, "-") ? lam_model_load(path, m, err) : lam_model_load_stdin(m, err);
+    lam_load_opts o = { .threads = threads ? threads : lam_default_threads(NULL) };
+    return strcmp(path, "-") ? lam_model_load_opts(path, &o, m, err) : lam_model_load_stdin_opts(&o, m, err);
 }
 
 int cli_writer(const char *path, lam_writer **w, lam_error *err)

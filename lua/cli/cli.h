@@ -24,9 +24,10 @@ void cli_json_number(FILE *f, double x);
 const char *cli_num(char *buf, size_t size, double x);
 
 /* Load the model a command names: a file, or standard input for "-" (its
- * messages then name it "<stdin>"). */
+ * messages then name it "<stdin>"), read with `threads` threads (-j; 0:
+ * LAMINA_THREADS, else the online processors). */
 struct lam_model;
-int cli_load_model(const char *path, struct lam_model **m, lam_error *err);
+int cli_load_model(const char *path, unsigned threads, struct lam_model **m, lam_error *err);
 
 /* The writer of an output option: the file `path` (atomic, lam_writer_file)
  * or standard output for "-". */

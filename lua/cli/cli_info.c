@@ -173,7 +173,7 @@ int cmd_info(int argc, char **argv)
     lam_error err;
     lam_error_clear(&err);
     lam_model *m;
-    if (cli_load_model(path, &m, &err)) {
+    if (cli_load_model(path, 0, &m, &err)) {
         cli_args_free(&a);
         return cli_fail(&err);
     }

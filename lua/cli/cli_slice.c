@@ -191,7 +191,7 @@ int cmd_slice(int argc, char **argv)
 
     lam_plan_opts po;
     if ((rc = cli_profile("slice", &a, &prof, &po))) goto done;
-    if (cli_load_model(a.path, &m, &err)) {
+    if (cli_load_model(a.path, a.threads, &m, &err)) {
         rc = cli_fail(&err);
         goto done;
     }

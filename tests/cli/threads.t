@@ -88,6 +88,56 @@ with open(sys.argv[1], "wb") as f:
         f.write(struct.pack("<12fH", 0, 0, 0, *[x for v in t for x in v], 0))
 EOF
 same binary-sphere-big "$TMP/bsphere.stl" -w 0.2
+# A binary STL of 540,800 facets (a torus of 520 x 520 quads): over the
+# 524,288 from which the threads also decode and weld it (core/stl_weld.c).
+# The program, `lamina info` (no -j: LAMINA_THREADS) but for its peak
+# memory line, and the error for a NaN in facet 520,000 are the same for
+# 1 and 3 threads.
+python3 - "$TMP/btorus.stl" <<'EOF'
+import math, struct, sys
+nu = nv = 520
+def p(i, j):
+    th, ph = 2 * math.pi * (i % nu) / nu, 2 * math.pi * (j % nv) / nv
+    r = 20 + 10 * math.cos(ph)
+    return (r * math.cos(th), r * math.sin(th), 10 * math.sin(ph))
+pts = [[p(i, j) for j in range(nv)] for i in range(nu)]
+rec = struct.Struct("<12fH")
+out = bytearray(b"\0" * 80 + struct.pack("<I", 2 * nu * nv))
+for i in range(nu):
+    for j in range(nv):
+        a, b, c, d = pts[i][j], pts[(i + 1) % nu][j], pts[(i + 1) % nu][(j + 1) % nv], pts[i][(j + 1) % nv]
+        out += rec.pack(0, 0, 0, *a, *b, *c, 0) + rec.pack(0, 0, 0, *a, *c, *d, 0)
+open(sys.argv[1], "wb").write(out)
+EOF
+for j in 1 3; do
+    "$LAMINA" slice "$TMP/btorus.stl" -w 2 -j $j -o "$TMP/btorus.$j" 2>"$TMP/btorus.err$j"
+    echo "rc $?" >>"$TMP/btorus.err$j"
+    LAMINA_THREADS=$j "$LAMINA" info "$TMP/btorus.stl" | grep -v '^peak memory' >"$TMP/binfo$j"
+done
+cmp -s "$TMP/btorus.1" "$TMP/btorus.3" && cmp -s "$TMP/btorus.err1" "$TMP/btorus.err3" && grep -q '^rc 0$' "$TMP/btorus.err1" &&
+    [ "$(stat -c %s "$TMP/btorus.1")" -gt 100000 ]
+ok $? "binary STL over the threaded reader's threshold: the same program for -j 1 and -j 3"
+cmp -s "$TMP/binfo1" "$TMP/binfo3" && grep -q '^vertices  *270400$' "$TMP/binfo1" && grep -q '^edges  *811200$' "$TMP/binfo1"
+ok $? "binary STL: info reads the same model (270,400 vertices, 811,200 edges) with 1 and 3 threads"
+python3 - "$TMP/btorus.stl" "$TMP/bnan.stl" <<'EOF'
+import struct, sys
+b = bytearray(open(sys.argv[1], "rb").read())
+at = 84 + 50 * 519999 + 12 + 12 * 2 + 4  # facet 520,000, vertex 3, y
+b[at:at + 4] = struct.pack("<f", float("nan"))
+open(sys.argv[2], "wb").write(b)
+EOF
+for j in 1 3; do
+    rm -f "$TMP/bnan.out"
+    run "$LAMINA" slice "$TMP/bnan.stl" -w 2 -j $j -o "$TMP/bnan.out"
+    echo "$RC $ERR" >"$TMP/bnan.$j"
+    [ ! -e "$TMP/bnan.out" ]
+    ok $? "binary STL with a NaN, -j $j: no output file"
+done
+like "$(cat "$TMP/bnan.1")" '^1 lamina: .*bnan.stl: byte 26000074: facet 520000, vertex 3: y coordinate is not a finite number \(nan\)' \
+    "binary STL with a NaN, -j 1: exit 1, the float's offset and facet"
+cmp -s "$TMP/bnan.1" "$TMP/bnan.3"
+ok $? "binary STL with a NaN: the same message and exit for -j 1 and -j 3"
+rm -f "$TMP/btorus.stl" "$TMP/bnan.stl"
 # fewer layers than threads, and one layer
 same cube-two-layers "$M/thesis_cube_hole.ug" -w 1
 same cube-one-layer "$M/thesis_cube_hole.ug" -w 2
