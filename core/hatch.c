@@ -356,7 +356,7 @@ static int lineset_scan(hatcher *h, const GEOSGeometry *g, double angle, double 
     if (rc) return rc;
     ls->segs = malloc((h->nsegs ? h->nsegs : 1) * sizeof *ls->segs);
     if (!ls->segs) return LAM_ENOMEM;
-    memcpy(ls->segs, h->segs, h->nsegs * sizeof *ls->segs);
+    if (h->nsegs) memcpy(ls->segs, h->segs, h->nsegs * sizeof *ls->segs);
     ls->n = h->nsegs;
     ls->done = 1;
     return LAM_OK;
