@@ -99,20 +99,11 @@ static int stl_binary(const char *path, const unsigned char *data, uint32_t coun
                 lam_welder_prefetch(&wd, c[0], c[1], c[2]);
             }
         }
-        uint32_t bad = 0;
         double xyz[9];
-        for (int k = 0; k < 9; k++) {
-            uint32_t u = lam_rd_u32(p + 4 * k);
-            float f;
-            memcpy(&f, &u, sizeof f);
-            xyz[k] = f;
-            bad |= (u & 0x7f800000u) == 0x7f800000u;
-        }
-        if (bad) {
-            int k = 0;
-            while ((lam_rd_u32(p + 4 * k) & 0x7f800000u) != 0x7f800000u) k++;
+        int bad = lam_stl_facet(p, xyz);
+        if (bad >= 0) {
             lam_welder_free(&wd);
-            return lam_stl_nonfinite(path, data, (size_t)(p + 4 * k - data), err);
+            return lam_stl_nonfinite(path, data, (size_t)(p + 4 * bad - data), err);
         }
         for (int k = 0; k < 3; k++) {
             if ((rc = lam_mesh_add_vertex_welded(m, &wd, xyz[3 * k], xyz[3 * k + 1], xyz[3 * k + 2], &t[k], err))) {

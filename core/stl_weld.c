@@ -141,19 +141,10 @@ static void pass_a(void *ctx, unsigned worker, size_t r)
     j->bad[r] = NONE;
     for (size_t i = lo; i < hi; i += 3) {
         const unsigned char *p = corner_at(j->data, j->c0 + i);
-        uint32_t bad = 0;
         double xyz[9];
-        for (int k = 0; k < 9; k++) {
-            uint32_t u = lam_rd_u32(p + 4 * k);
-            float f;
-            memcpy(&f, &u, sizeof f);
-            xyz[k] = f;
-            bad |= (u & 0x7f800000u) == 0x7f800000u;
-        }
-        if (bad) {
-            int k = 0;
-            while ((lam_rd_u32(p + 4 * k) & 0x7f800000u) != 0x7f800000u) k++;
-            j->bad[r] = (size_t)(p + 4 * k - j->data);
+        int bad = lam_stl_facet(p, xyz);
+        if (bad >= 0) {
+            j->bad[r] = (size_t)(p + 4 * bad - j->data);
             return;
         }
         for (int k = 0; k < 3; k++) j->h[i + (size_t)k] = lam_weld_hash(xyz + 3 * k);

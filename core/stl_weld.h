@@ -8,6 +8,7 @@
 
 #include <stddef.h>
 #include <stdint.h>
+#include <string.h>
 
 #include "error.h"
 #include "mesh.h"
@@ -29,6 +30,25 @@
 static inline uint32_t lam_rd_u32(const unsigned char *p)
 {
     return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
+}
+
+/* The nine vertex coordinates of the facet record whose first vertex is
+ * at p, as doubles; returns -1, or the index (0..8) of the first that is
+ * not finite (both readers report it by its byte offset). */
+static inline int lam_stl_facet(const unsigned char *p, double xyz[9])
+{
+    uint32_t bad = 0;
+    for (int k = 0; k < 9; k++) {
+        uint32_t u = lam_rd_u32(p + 4 * k);
+        float f;
+        memcpy(&f, &u, sizeof f);
+        xyz[k] = f;
+        bad |= (u & 0x7f800000u) == 0x7f800000u;
+    }
+    if (!bad) return -1;
+    int k = 0;
+    while ((lam_rd_u32(p + 4 * k) & 0x7f800000u) != 0x7f800000u) k++;
+    return k;
 }
 
 /* The error for the non-finite vertex coordinate at byte offset off of a
