@@ -343,7 +343,6 @@ typedef struct cell {
  * x (a copy of scan's result: the two angles of the islands live side by
  * side). */
 typedef struct lineset {
-    int done;
     double c, s;
     seg *segs;
     size_t n;
@@ -358,7 +357,6 @@ static int lineset_scan(hatcher *h, const GEOSGeometry *g, double angle, double 
     if (!ls->segs) return LAM_ENOMEM;
     if (h->nsegs) memcpy(ls->segs, h->segs, h->nsegs * sizeof *ls->segs);
     ls->n = h->nsegs;
-    ls->done = 1;
     return LAM_OK;
 }
 
@@ -428,7 +426,8 @@ static int hatch_islands(hatcher *h, const GEOSGeometry *g, const lam_scan *sc, 
             cells[r] = t;
         }
     }
-    lineset set[2] = { { 0 }, { 0 } };
+    lineset set[2];
+    memset(set, 0, sizeof set); /* segs NULL until scanned */
     seg *piece = NULL;
     size_t cap = 0;
     int rc = LAM_OK;
@@ -438,7 +437,7 @@ static int hatch_islands(hatcher *h, const GEOSGeometry *g, const lam_scan *sc, 
         int odd = (int)((cells[k].i + cells[k].j) & 1);
         double a = angle + (odd ? 90.0 : 0.0);
         lineset *ls = &set[odd];
-        if (!ls->done && (rc = lineset_scan(h, g, a, d, ls))) break;
+        if (!ls->segs && (rc = lineset_scan(h, g, a, d, ls))) break; /* scanned on first use */
         /* the square, rotated as ring_crossings rotates a ring; its lines
          * from its lowest corner up to its highest */
         double ylo = INFINITY, yhi = -INFINITY, sq[8];
