@@ -165,7 +165,7 @@ run: deps
 	@tail -n 1 out/thesis_cube_hole.validate.txt
 	@$(LAMINA) slice $(RUN_PART) -m creol-ladrp --svg out/thesis_cube_hole.paths.svg \
 	  --html out/thesis_cube_hole.html -o /dev/null
-	@echo "lamina: outputs in $(abspath out)/:"
+	@echo "lamina: outputs in $(CURDIR)/out/:"
 	@echo "  thesis_cube_hole.ladrp         LADRP program for the thesis's CREOL cell"
 	@echo "  thesis_cube_hole.sls           SLS contour program (thesis dialect)"
 	@echo "  thesis_cube_hole.svg           contact sheet of the SLS layers"
@@ -173,7 +173,7 @@ run: deps
 	@echo "  thesis_cube_hole.validate.txt  Embree check of every solid/hole label"
 	@echo "  thesis_cube_hole.paths.svg     the LADRP layers with their deposits and travel"
 	@echo "  thesis_cube_hole.html          viewer of the LADRP plan (one file, open it in a browser)"
-	@echo "lamina: viewer: $(abspath out/thesis_cube_hole.html)"
+	@echo "lamina: viewer: $(CURDIR)/out/thesis_cube_hole.html"
 
 # Tests: C unit tests are compiled to TAP programs; tests/cli/*.t are shell
 # scripts that drive the executable. prove runs both and prints the summary.
@@ -211,7 +211,7 @@ $(BUILD)/tests/plugins/%.so: tests/plugins/%.c core/lamina_plugin.h tests/plugin
 	$(CC) $(CPPFLAGS) $(CFLAGS) -fPIC -shared -o $@ $< $(LDFLAGS)
 
 check: all $(UNIT_BIN) $(TEST_PLUGIN_SO) $(FUZZ_BIN) man
-	LAMINA=$(abspath $(LAMINA)) TESTS=$(abspath tests) BUILD=$(abspath $(BUILD)) LAZY=$(LAZY) \
+	LAMINA="$(CURDIR)/$(LAMINA)" TESTS="$(CURDIR)/tests" BUILD="$(CURDIR)/$(BUILD)" LAZY=$(LAZY) \
 	  prove --exec '' $(UNIT_BIN) $(sort $(wildcard tests/cli/*.t)) tests/fuzz/fuzz.t
 
 test: deps
@@ -219,7 +219,7 @@ test: deps
 
 bench:
 	@$(MAKE) --no-print-directory OPT="-O3 -march=native -DNDEBUG" BUILD=build-bench all
-	@bash tests/bench/run.sh $(abspath build-bench/lamina)
+	@bash tests/bench/run.sh "$(CURDIR)/build-bench/lamina"
 
 # ---- installation ----------------------------------------------------------
 # One list, INSTALL_FILES (MODE:SOURCE:DESTINATION, destinations without
@@ -259,37 +259,51 @@ $(MAN_STAMP): $(LAMINA) man/genman.py $(wildcard man/*.in) completion/lamina.bas
 	@touch $@
 $(MAN_PAGES) $(BUILD)/completion/lamina: $(MAN_STAMP)
 
-$(BUILD)/lamina.pc: lamina.pc.in core/version.h
+# Made on every install (FORCE) but replaced only when its text changes:
+# it holds PREFIX and the directories, which are not files make can see.
+$(BUILD)/lamina.pc: lamina.pc.in core/version.h FORCE
 	@mkdir -p $(dir $@)
-	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@LIBDIR@|$(patsubst $(PREFIX)/%,$${prefix}/%,$(LIBDIR))|' \
+	@sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@LIBDIR@|$(patsubst $(PREFIX)/%,$${prefix}/%,$(LIBDIR))|' \
 	  -e 's|@INCLUDEDIR@|$(patsubst $(PREFIX)/%,$${prefix}/%,$(INCLUDEDIR))|' \
-	  -e 's|@VERSION@|$(VERSION)|' -e 's|@LIBS@|$(strip $(SANFLAGS) $(LDLIBS))|' $< > $@
+	  -e 's|@VERSION@|$(VERSION)|' -e 's|@LIBS@|$(strip $(SANFLAGS) $(LDLIBS))|' $< > $@.tmp
+	@if cmp -s $@.tmp $@; then rm -f $@.tmp; else mv $@.tmp $@; fi
+.PHONY: FORCE
+FORCE:
 
 # What the Lua module needs (also all a LuaRocks rock installs: install-lua).
-INSTALL_LUA := 755:$(LUAMOD):$(LUA_CMODDIR)/lamina.so \
-  $(foreach f,$(wildcard lua/lamina/*.lua),644:$(f):$(LUA_MODDIR)/lamina/$(notdir $(f))) \
-  $(foreach f,$(wildcard machines/*.yaml),644:$(f):$(MACHINEDIR)/$(notdir $(f))) \
-  $(foreach f,$(PLUGIN_SO),755:$(f):$(PLUGINDIR)/$(notdir $(f)))
+# Each entry is MODE:SOURCE:DIR/NAME with DIR the name of one of the
+# directory variables above (INSTALL_DIRS): make splits a list at spaces,
+# so the directories themselves, which may hold spaces (a LuaRocks tree in
+# "My Projects"), are put in by the shell (install_vars), quoted.
+INSTALL_DIRS := BINDIR LIBDIR INCLUDEDIR DATADIR LUA_CMODDIR LUA_MODDIR MACHINEDIR PLUGINDIR DOCDIR MANDIR BASHCOMPDIR
+INSTALL_LUA := 755:$(LUAMOD):LUA_CMODDIR/lamina.so \
+  $(foreach f,$(wildcard lua/lamina/*.lua),644:$(f):LUA_MODDIR/lamina/$(notdir $(f))) \
+  $(foreach f,$(wildcard machines/*.yaml),644:$(f):MACHINEDIR/$(notdir $(f))) \
+  $(foreach f,$(PLUGIN_SO),755:$(f):PLUGINDIR/$(notdir $(f)))
 INSTALL_FILES := $(INSTALL_LUA) \
-  755:$(LAMINA):$(BINDIR)/lamina \
-  644:$(LIB):$(LIBDIR)/liblamina.a \
-  $(foreach f,$(PUBLIC_H),644:$(f):$(INCLUDEDIR)/lamina/$(notdir $(f))) \
-  644:$(BUILD)/lamina.pc:$(LIBDIR)/pkgconfig/lamina.pc \
-  644:README.md:$(DOCDIR)/README.md 644:lua/API.md:$(DOCDIR)/lua/API.md \
-  644:machines/README.md:$(DOCDIR)/machines/README.md 644:docs/json.md:$(DOCDIR)/json.md \
-  $(foreach f,$(wildcard schema/*.json),644:$(f):$(DATADIR)/lamina/schema/$(notdir $(f))) \
-  $(foreach f,recipes/README.md $(wildcard recipes/*.lua),644:$(f):$(DOCDIR)/recipes/$(notdir $(f))) \
-  $(foreach f,$(wildcard recipes/parts/*),644:$(f):$(DOCDIR)/recipes/parts/$(notdir $(f))) \
-  $(foreach f,$(MAN_PAGES),644:$(f):$(MANDIR)/man1/$(notdir $(f))) \
-  644:$(BUILD)/completion/lamina:$(BASHCOMPDIR)/lamina
+  755:$(LAMINA):BINDIR/lamina \
+  644:$(LIB):LIBDIR/liblamina.a \
+  $(foreach f,$(PUBLIC_H),644:$(f):INCLUDEDIR/lamina/$(notdir $(f))) \
+  644:$(BUILD)/lamina.pc:LIBDIR/pkgconfig/lamina.pc \
+  644:README.md:DOCDIR/README.md 644:lua/API.md:DOCDIR/lua/API.md \
+  644:machines/README.md:DOCDIR/machines/README.md 644:docs/json.md:DOCDIR/json.md \
+  $(foreach f,$(wildcard schema/*.json),644:$(f):DATADIR/lamina/schema/$(notdir $(f))) \
+  $(foreach f,recipes/README.md $(wildcard recipes/*.lua),644:$(f):DOCDIR/recipes/$(notdir $(f))) \
+  $(foreach f,$(wildcard recipes/parts/*),644:$(f):DOCDIR/recipes/parts/$(notdir $(f))) \
+  $(foreach f,$(MAN_PAGES),644:$(f):MANDIR/man1/$(notdir $(f))) \
+  644:$(BUILD)/completion/lamina:BASHCOMPDIR/lamina
 # Directories that are lamina's alone: removed by uninstall when empty.
-INSTALL_OWN_DIRS := $(DATADIR)/lamina/schema $(DOCDIR)/recipes/parts $(DOCDIR)/recipes $(DOCDIR)/lua $(DOCDIR)/machines $(DOCDIR) \
-  $(INCLUDEDIR)/lamina $(MACHINEDIR) $(DATADIR)/lamina $(PLUGINDIR) $(LIBDIR)/lamina $(LUA_MODDIR)/lamina \
-  $(LUA_MODDIR)/lamina/machines $(LUA_CMODDIR)/lamina/plugins $(LUA_CMODDIR)/lamina
+INSTALL_OWN_DIRS := DATADIR/lamina/schema DOCDIR/recipes/parts DOCDIR/recipes DOCDIR/lua DOCDIR/machines DOCDIR/. \
+  INCLUDEDIR/lamina MACHINEDIR/. DATADIR/lamina PLUGINDIR/. LIBDIR/lamina LUA_MODDIR/lamina \
+  LUA_MODDIR/lamina/machines LUA_CMODDIR/lamina/plugins LUA_CMODDIR/lamina
 
-# install_files LIST: each MODE:SOURCE:DESTINATION under $(DESTDIR)
-install_files = for e in $(1); do \
-	  mode=$${e%%:*}; rest=$${e\#*:}; src=$${rest%%:*}; dst="$(DESTDIR)$${rest\#*:}"; \
+# install_vars: the directories as shell variables (with DESTDIR before
+# them), and dest, which turns DIR/NAME into the path it names.
+install_vars = $(foreach d,$(INSTALL_DIRS),$(d)='$(DESTDIR)$($(d))';) \
+	dest() { v=$${1%%/*}; eval "b=\$$$$v"; dst="$$b/$${1\#*/}"; };
+# install_files LIST: each MODE:SOURCE:DIR/NAME
+install_files = $(install_vars) for e in $(1); do \
+	  mode=$${e%%:*}; rest=$${e\#*:}; src=$${rest%%:*}; dest "$${rest\#*:}"; \
 	  install -d "$${dst%/*}" && install -m $$mode "$$src" "$$dst" || exit 1; \
 	done
 
@@ -304,8 +318,8 @@ install-lua: lua-module
 	@$(call install_files,$(INSTALL_LUA))
 
 uninstall:
-	@for e in $(INSTALL_FILES); do rest=$${e#*:}; rm -f "$(DESTDIR)$${rest#*:}"; done
-	@for d in $(sort $(INSTALL_OWN_DIRS)); do echo "$(DESTDIR)$$d"; done | sort -r | \
+	@$(install_vars) for e in $(INSTALL_FILES); do rest=$${e#*:}; dest "$${rest#*:}"; rm -f "$$dst"; done; \
+	  for d in $(INSTALL_OWN_DIRS); do dest "$$d"; echo "$${dst%/.}"; done | sort -ru | \
 	  while read -r d; do [ ! -d "$$d" ] || rmdir --ignore-fail-on-non-empty "$$d"; done
 	@echo "lamina: uninstalled from $(DESTDIR)$(PREFIX)"
 

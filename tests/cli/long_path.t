@@ -1,18 +1,21 @@
 #!/usr/bin/env bash
 # The command-line tests from a checkout whose path is over 150
-# characters: a link to the checkout inside a deliberately deep folder,
-# with LAMINA and TESTS named through it. A test that matches a path on a
-# wrapped terminal line, or that builds names from the current directory,
-# fails here and not from a short checkout (CI clones into a folder of its
-# own choosing). Each script is one test; its failing lines are shown.
+# characters and holds spaces: a link to the checkout inside a deliberately
+# deep folder whose names have spaces (as "My Documents" has), with LAMINA
+# and TESTS named through it. A test that matches a path on a wrapped
+# terminal line, builds names from the current directory or leaves a path
+# unquoted fails here and not from a short checkout (CI clones into a
+# folder of its own choosing). Each script is one test; its failing lines
+# are shown.
 . "$(dirname "$0")/lib.sh"
 
 ROOT=$(cd "$TESTS/.." && pwd)
-LONG="$TMP/$(printf 'a%.0s' $(seq 1 70))/$(printf 'b%.0s' $(seq 1 70))"
+LONG="$TMP/a folder/$(printf 'a%.0s' $(seq 1 70))/b $(printf 'b%.0s' $(seq 1 70))"
 mkdir -p "$LONG"
 ln -s "$ROOT" "$LONG/lamina-checkout"
 R="$LONG/lamina-checkout"
 [ ${#R} -ge 150 ]; ok $? "the checkout's path is ${#R} characters"
+case "$R" in *" "*) ok 0 "the checkout's path holds spaces" ;; *) ok 1 "the checkout's path holds spaces" ;; esac
 
 # the executable through the link when it lies in the checkout
 case "$LAMINA" in
@@ -33,7 +36,7 @@ for t in "$R"/tests/cli/*.t; do
     failed=$(grep -c '^not ok' "$TMP/tap")
     plan=$(grep -c '^1\.\.[1-9]' "$TMP/tap")
     [ $rc -eq 0 ] && [ "$failed" -eq 0 ] && [ "$plan" -eq 1 ]
-    ok $? "$name from a ${#R}-character path"
+    ok $? "$name from a ${#R}-character path with spaces"
     if [ $rc -ne 0 ] || [ "$failed" -ne 0 ]; then
         grep -A6 '^not ok' "$TMP/tap" | sed 's/^/#   /' | head -40
     fi
