@@ -71,6 +71,11 @@ lua_State *lam_cli_newstate(void)
 /* ---- calls, interrupts, errors -------------------------------------------- */
 
 static lua_State *globalL;
+/* Set by a Ctrl-C during any lam_cli_docall of this process: `run` and
+ * `-e` end by SIGINT once the state is closed (finalizers ran, outputs
+ * aborted), as every other command does, so a shell loop calling lamina
+ * stops too. The recipe still sees the error first, so it may clean up. */
+static volatile sig_atomic_t interrupted_once;
 
 /* The hook set by laction. It stays armed, on Lua instructions only (a
  * count hook never runs inside C functions such as the message handler),
@@ -92,6 +97,7 @@ static void laction(int sig)
 {
     if (lam_lua_interrupt) cli_fatal_signal(sig);
     lam_lua_interrupt = 1;
+    interrupted_once = 1;
     lua_sethook(globalL, lstop, LUA_MASKCALL | LUA_MASKRET | LUA_MASKLINE | LUA_MASKCOUNT, 1);
 }
 
@@ -124,9 +130,12 @@ int lam_cli_docall(lua_State *L, int narg, int nres)
     sa.sa_handler = laction;
     sigemptyset(&sa.sa_mask);
     lam_lua_interrupt = 0;
-    sigaction(SIGINT, &sa, &old);
+    /* SIGINT ignored when lamina started (nohup, a background job of a
+     * script) stays ignored, as for every other command */
+    int take = sigaction(SIGINT, NULL, &old) == 0 && old.sa_handler != SIG_IGN;
+    if (take) sigaction(SIGINT, &sa, &old);
     int status = lua_pcall(L, narg, nres, base);
-    sigaction(SIGINT, &old, NULL);
+    if (take) sigaction(SIGINT, &old, NULL);
     lua_sethook(L, NULL, 0, 0);
     lam_lua_interrupt = 0;
     lua_remove(L, base);
@@ -264,6 +273,16 @@ static int protected_run(lua_State *L, lua_CFunction f, void *ud)
     return a->status;
 }
 
+/* A command whose Lua code was interrupted ends by SIGINT (status 130 in a
+ * shell) after what it printed is flushed; else it returns rc. */
+static int end_run(int rc)
+{
+    if (!interrupted_once) return rc;
+    fflush(stdout);
+    cli_fatal_signal(SIGINT);
+    return rc;
+}
+
 /* The last resort of --time: Lua's own C functions (a string pattern that
  * backtracks for ever) never reach the hook. Two seconds after the
  * limit, the process ends, temporary files removed. */
@@ -341,7 +360,7 @@ int cmd_run(int argc, char **argv)
     int rc = threads ? 0 : cli_threads_env("run", 1, &threads);
     if (rc) return rc;
     runargs a = { argv[i], argc - i - 1, argv + i + 1, EXIT_OK, safe, NULL, threads };
-    if (!safe) return protected_run(NULL, run_main, &a);
+    if (!safe) return end_run(protected_run(NULL, run_main, &a));
     char msg[1024];
     lua_State *L = lam_lua_sandbox_open(&so, msg, sizeof msg);
     if (!L) return cli_usage("run", "%s", msg);
@@ -357,7 +376,7 @@ int cmd_run(int argc, char **argv)
     rc = protected_run(L, run_main, &a);
     memset(&t, 0, sizeof t);
     setitimer(ITIMER_REAL, &t, NULL);
-    return rc;
+    return end_run(rc);
 }
 
 /* ---- lamina -e ------------------------------------------------------------- */
@@ -386,7 +405,7 @@ int cmd_eval(int argc, char **argv)
     }
     runargs a = { "", argc, argv, EXIT_OK, 0, NULL, 1 };
     int rc = cli_threads_env(NULL, 1, &a.threads);
-    return rc ? rc : protected_run(NULL, eval_main, &a);
+    return rc ? rc : end_run(protected_run(NULL, eval_main, &a));
 }
 
 /* ---- the host of other Lua commands (lamina repl) ------------------------- */

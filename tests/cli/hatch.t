@@ -6,7 +6,7 @@
 # hand-computed layer, and the CLI round trip.
 . "$TESTS/cli/lib.sh"
 export LAMINA_MACHINES="$M/machines"
-CHECK="python3 $TESTS/cli/hatchcheck.py"
+CHECK() { python3 "$TESTS/cli/hatchcheck.py" "$@"; } # a function: the path may hold spaces
 
 # ---- golden programs: the thesis cube ([-1,1]^3), one layer cut at z = 0 ----
 # hatch distance 0.25 at 0 degrees: lines at y = (k + 1/2) 0.25, k = -4..3,
@@ -83,7 +83,7 @@ check() { # check MODEL SLICE-OPTIONS -- CHECK-OPTIONS
     rm -f "$TMP/c.cli"
     "$LAMINA" slice "$model" -m cli-kinds "${sopts[@]}" -o "$TMP/c.cli" 2>"$TMP/c.err"
     local rc=$?
-    out=$($CHECK "$TMP/c.cli" "$@" 2>&1)
+    out=$(CHECK "$TMP/c.cli" "$@" 2>&1)
     [ $rc -eq 0 ] && [ "$(grep -vc '^lamina: .*estimated build time' "$TMP/c.err")" = 0 ]
     ok $(($? || rc)) "$name ${sopts[*]}: ${out##*# }"
     [ $? -eq 0 ] || printf '%s\n' "$out" | head -5 | sed 's/^/#   /'
@@ -122,10 +122,10 @@ check "$TMP/wall.stl" -w 0.5 -s hatch_strategy=stripes -s hatch_distance=0.05 -s
 # and a hole in the coverage
 "$LAMINA" slice "$TMP/sphere.stl" -m cli-kinds -w 1 -s hatch_strategy=lines -o "$TMP/s.cli" 2>/dev/null
 perl -pe 'if (!$d && s{^(\$\$HATCHES/1,\d+,)([-0-9.]+)}{$1 . ($2 - 0.5)}e) { $d = 1 }' "$TMP/s.cli" >"$TMP/bad.cli"
-$CHECK "$TMP/bad.cli" --distance 0.1 >/dev/null; ok $((!$?)) "checker: a vector moved 0.5 out of its region fails"
-$CHECK "$TMP/s.cli" --distance 0.1 --angle 0 --increment 66 >/dev/null; ok $((!$?)) "checker: a wrong angle increment fails"
+CHECK "$TMP/bad.cli" --distance 0.1 >/dev/null; ok $((!$?)) "checker: a vector moved 0.5 out of its region fails"
+CHECK "$TMP/s.cli" --distance 0.1 --angle 0 --increment 66 >/dev/null; ok $((!$?)) "checker: a wrong angle increment fails"
 perl -ne 'print unless /^\$\$HATCHES/ && ++$n == 3' "$TMP/s.cli" >"$TMP/hole.cli"
-$CHECK "$TMP/hole.cli" --distance 0.1 --coverage 1 >/dev/null; ok $((!$?)) "checker: a block left out fails (area, coverage)"
+CHECK "$TMP/hole.cli" --distance 0.1 --coverage 1 >/dev/null; ok $((!$?)) "checker: a block left out fails (area, coverage)"
 
 # ---- skins: every vector's kind from the layers around it -----------------
 skin=(-s hatch_strategy=lines -s hatch_distance=0.1 -s upskin.hatch_distance=0.05 -s downskin.hatch_distance=0.05)

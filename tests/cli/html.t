@@ -6,13 +6,13 @@
 # stepped ring (tests/models/viewer/stepped.ug: 6 x 6 below z = 1, 4 x 4
 # above, a 2 x 2 hole through both), as the test computes it.
 . "$(dirname "$0")/lib.sh"
-V="python3 $TESTS/cli/viewercheck.py"
+V() { python3 "$TESTS/cli/viewercheck.py" "$@"; } # a function: the path may hold spaces
 PART="$M/viewer/stepped.ug"
 
 run "$LAMINA" slice "$PART" -w 0.5 --html "$TMP/s.html" -o "$TMP/s.sls"
 is "$RC" 0 "slice --html: exit 0"
 # areas from the geometry: 36 - 4 below, 16 - 4 above
-is "$($V json "$TMP/s.html" | tr '\n' '|')" "1 32 1 1 True|2 32 1 1 True|3 12 1 1 True|4 12 1 1 True|deposits 0|" \
+is "$(V json "$TMP/s.html" | tr '\n' '|')" "1 32 1 1 True|2 32 1 1 True|3 12 1 1 True|4 12 1 1 True|deposits 0|" \
    "the embedded run: 4 layers, 1-based, a solid and its hole each, net areas 32, 32, 12, 12"
 # the data is the layer interchange JSON: the schema and the JSON's own checker accept it
 python3 -c 'import re, sys; s = open(sys.argv[1]).read(); sys.stdout.write(re.search(r"id=\"lamina-run\">(.*?)</script>", s, re.S).group(1))' \
@@ -33,7 +33,7 @@ is "$(python3 -c 'import json,re,sys; s=open(sys.argv[1]).read(); print(json.loa
 # LADRP: the page's deposits are the program's
 run "$LAMINA" slice "$M/thesis_cube_hole.ug" -m creol-ladrp -w 0.5 --html "$TMP/l.html" -o "$TMP/l.ladrp"
 deposits=$(awk '/pendown/ {d = 1; next} /penup/ {d = 0; next} d && /uline/ {n++} END {print n + 0}' "$TMP/l.ladrp")
-is "$($V json "$TMP/l.html" | tail -1)" "deposits $deposits" "LADRP: as many deposit vectors as the program has deposits"
+is "$(V json "$TMP/l.html" | tail -1)" "deposits $deposits" "LADRP: as many deposit vectors as the program has deposits"
 
 run "$LAMINA" slice "$PART" -w 0.5 --html "$PART" -o "$TMP/x.sls"
 like "$RC $ERR" "^2 lamina slice: --html .* is the model being read" "--html onto the model: refused"
@@ -60,7 +60,7 @@ shot() {
 # check PNG Z: every grid point shows what the part at height Z must
 check() {
     local pts got
-    pts=$($V grid "$2" $W $H)
+    pts=$(V grid "$2" $W $H)
     got=$(python3 "$TESTS/cli/pixel.py" "$1" $(echo "$pts" | cut -d' ' -f1))
     paste -d' ' <(echo "$pts") <(echo "$got" | tr ' ' '\n') |
         awk '{n++; if ($2 != $3) {bad++; if (bad <= 3) ex = ex " (" $1 ": " $3 ", expected " $2 ")"}}

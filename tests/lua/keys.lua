@@ -7,6 +7,8 @@
 local T = dofile(os.getenv("TESTS") .. "/lua/tap.lua")
 local lamina = T.lamina
 local LAMINA = assert(os.getenv("LAMINA"), "LAMINA must name the executable")
+-- quoted for the shell: the checkout's path may hold spaces
+local LAMINA_SH = "'" .. LAMINA:gsub("'", "'\\''") .. "'"
 
 local function write(path, text)
   local f = assert(io.open(path, "w"))
@@ -79,7 +81,7 @@ for _, k in ipairs(keys) do
     local again = lamina.machine("dump-" .. file)
     T.ok(again and again[k.lua] == v and strip(again:yaml()) == strip(dump),
          k.name .. ": the dump (machines --show) loads again as the same profile")
-    local shown = sh(("%s machines --show base.yaml --set '%s=%s'"):format(LAMINA, k.name, text))
+    local shown = sh(("%s machines --show base.yaml --set '%s=%s'"):format(LAMINA_SH, k.name, text))
     T.is(strip(shown), strip(dump), k.name .. ": --set gives the same profile as YAML")
     if k.fixed then
       T.raises("cannot be changed here", k.name .. ": override refuses it", base.override, base, {[k.lua] = v})
@@ -97,7 +99,7 @@ for _, k in ipairs(keys) do
       write("bad-" .. file, base_with(k, yaml_line(k, bad)))
       local _, yerr = lamina.machine("bad-" .. file)
       local ymsg = yerr and yerr:match("%.yaml:%d+:%d+: (.*)$")
-      local out, ok = sh(("%s machines --show base.yaml --set '%s=%s'"):format(LAMINA, k.name, bad))
+      local out, ok = sh(("%s machines --show base.yaml --set '%s=%s'"):format(LAMINA_SH, k.name, bad))
       local smsg = out:match(": %-%-set [^\n]-=[^\n]-: ([^\n]*)")
       T.ok(not ok and ymsg and smsg and smsg:sub(1, #ymsg) == ymsg,
            k.name .. ": a bad value, the same message from YAML and --set", ("%s | %s"):format(yerr, out))
@@ -106,6 +108,6 @@ for _, k in ipairs(keys) do
   end
 end
 T.ok(walked == #keys - 1, "every key but inherits walked", walked)
-local out, ok = sh(LAMINA .. " machines --show base.yaml --set inherits=x")
+local out, ok = sh(LAMINA_SH .. " machines --show base.yaml --set inherits=x")
 T.ok(not ok and out:find("inherits is only read while a profile loads", 1, true), "--set inherits is refused", out)
 T.done()
