@@ -183,4 +183,19 @@ is "$?" 0 "make uninstall DESTDIR=... PREFIX=/usr"
 is "$(cd "$D" && find . -type f -o -type l | sort)" "" "make uninstall leaves no file"
 is "$(cd "$D" && find . -name '*lamina*' | sort)" "" "nor a directory of lamina's"
 
+# ---- another prefix, with a space ----------------------------------------------
+# lamina.pc is made again for the new prefix (it used to depend only on
+# lamina.pc.in and keep the first prefix), and every destination may hold
+# spaces (make splits its lists at spaces: the shell puts them in)
+(unset MAKEFLAGS MFLAGS MAKELEVEL; make -s --no-print-directory -C "$ROOT" install \
+    DESTDIR="$D" PREFIX="/opt/my lamina" BUILD="$B" SAN=$san) >"$TMP/make.out" 2>&1
+is "$?" 0 "make install PREFIX='/opt/my lamina' after PREFIX=/usr"
+like "$(cat "$D/opt/my lamina/lib/pkgconfig/lamina.pc" 2>&1)" '^prefix=/opt/my lamina$' "lamina.pc names the new prefix"
+[ -x "$D/opt/my lamina/bin/lamina" ] && [ -f "$D/opt/my lamina/share/lamina/machines/sls-contours.yaml" ]
+ok $? "the executable and the profiles under the prefix with a space"
+is "$(cd "$D" && find . -type f | grep -vc '^\./opt/my lamina/')" 0 "nothing installed elsewhere"
+(unset MAKEFLAGS MFLAGS MAKELEVEL; make -s --no-print-directory -C "$ROOT" uninstall \
+    DESTDIR="$D" PREFIX="/opt/my lamina" BUILD="$B" SAN=$san) >"$TMP/make.out" 2>&1
+is "$?$(cd "$D" && find . -type f -o -type l | sort)" "0" "make uninstall from it leaves no file"
+
 done_testing

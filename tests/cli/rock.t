@@ -15,7 +15,7 @@ if ! command -v luarocks >/dev/null || ! command -v lua5.4 >/dev/null; then
     echo "1..0 # SKIP luarocks or lua5.4 missing"
     exit 0
 fi
-R="$TMP/rocks"
+R="$TMP/my rocks" # a tree whose path has a space, as a user's may
 # a make of its own, the default build directory: not the test's BUILD or
 # the jobserver of a make around the test
 (cd "$ROOT" && env -u BUILD -u MAKEFLAGS -u MFLAGS -u MAKELEVEL -u SAN HOME="$TMP" \
