@@ -7,7 +7,7 @@
 # else; and a real browser must run none of it (headless Chromium's
 # console, with a page that does log as the control).
 . "$(dirname "$0")/lib.sh"
-C="python3 $TESTS/cli/svgcheck.py"
+svgcheck() { python3 "$TESTS/cli/svgcheck.py" "$@"; }
 PART="$M/viewer/stepped.ug"   # 4 layers at -w 0.5
 LOG='console.log(7)'
 
@@ -16,8 +16,8 @@ for u in "<script>$LOG</script>" "<svg onload=$LOG>" "a&b\"c'd"; do
     rm -f "$TMP/u.svg"
     run "$LAMINA" slice "$PART" -w 0.5 -s "units=$u" --svg "$TMP/u.svg" -o "$TMP/u.sls"
     if [ "$RC" -eq 0 ]; then
-        is "$($C inert "$TMP/u.svg")" ok "units=$u: the sheet is well-formed and only draws"
-        is "$($C scale "$TMP/u.svg" | cut -d' ' -f2-)" "$u" "... and its scale bar says the units as given, as text"
+        is "$(svgcheck inert "$TMP/u.svg")" ok "units=$u: the sheet is well-formed and only draws"
+        is "$(svgcheck scale "$TMP/u.svg" | cut -d' ' -f2-)" "$u" "... and its scale bar says the units as given, as text"
         cp "$TMP/u.svg" "$TMP/units-$((T_N / 2)).svg"
     else
         like "$RC $ERR" "^[12] .*units" "units=$u: refused, the error names units"
@@ -32,14 +32,14 @@ mkdir -p "$D/script>" && cp "$PART" "$D/script>/$name"
 P="$D/script>/$name"
 run "$LAMINA" slice "$P" -w 0.5 --svg "$TMP/p.svg" --html "$TMP/p.html" -o "$TMP/p.sls"
 is "$RC" 0 "a model path with <, &, quotes, \\xff and control bytes: exit 0"
-is "$($C inert "$TMP/p.svg")" ok "the sheet is well-formed XML and only draws"
+is "$(svgcheck inert "$TMP/p.svg")" ok "the sheet is well-formed XML and only draws"
 # what the title must say: the path as UTF-8, each byte that is not (and
 # each control character) one U+FFFD, computed here by Python's decoder
 want=$(python3 -c 'import os, sys
 p = os.fsencode(sys.argv[1]).decode("utf-8", "replace")
 p = "".join("\ufffd" if ord(c) < 32 or 0x7f <= ord(c) <= 0x9f else c for c in p)
 print(ascii("lamina: %s (4 layers)" % p))' "$P")
-is "$($C texts "$TMP/p.svg" | head -1)" "$want" "the sheet's title is the path, as text, U+FFFD for what XML cannot hold"
+is "$(svgcheck texts "$TMP/p.svg" | head -1)" "$want" "the sheet's title is the path, as text, U+FFFD for what XML cannot hold"
 # the page: the viewer's own, byte for byte, around JSON holding no '<'
 run python3 -c 'import sys
 page = open(sys.argv[1], "rb").read()
