@@ -9,8 +9,11 @@
  *
  * The JSON is streamed as the run goes (the JSON sink writes each layer
  * when it is planned and forgets it), so memory does not grow with the
- * run; its strings write '<' as \u003c (LAM_JSON_SCRIPT), so no "</script>"
- * can end the element early. */
+ * run; it is the page's only text from the run, and its strings write '<'
+ * as \u003c (LAM_JSON_SCRIPT, escape.h's LAM_ESC_JSON_SCRIPT), so no
+ * "</script>" or "<!--" can end or change the element. The page's script
+ * shows the run's strings (model path, machine, units) as text only
+ * (textContent, document.title, canvas text), never as markup. */
 #ifndef LAM_HTML_H
 #define LAM_HTML_H
 

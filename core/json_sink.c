@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "dialect.h"
+#include "escape.h"
 #include "fmt.h"
 #include "hatch.h"
 #include "slice.h"
@@ -117,46 +118,19 @@ static void pt(js *s, const double p[3])
     memcpy(s->seen[k].text, s->buf + at, s->len - at);
 }
 
-/* The length of a valid UTF-8 sequence at p (at most n bytes), 0 if none. */
-static size_t utf8_len(const unsigned char *p, size_t n)
-{
-    size_t k = p[0] < 0x80 ? 1 : (p[0] & 0xE0) == 0xC0 ? 2 : (p[0] & 0xF0) == 0xE0 ? 3 : (p[0] & 0xF8) == 0xF0 ? 4 : 0;
-    if (!k || k > n || (k == 2 && p[0] < 0xC2)) return 0;
-    for (size_t i = 1; i < k; i++)
-        if ((p[i] & 0xC0) != 0x80) return 0;
-    unsigned cp = k == 1 ? p[0] : k == 2 ? (p[0] & 0x1Fu) << 6 | (p[1] & 0x3Fu)
-                              : k == 3 ? (p[0] & 0x0Fu) << 12 | (p[1] & 0x3Fu) << 6 | (p[2] & 0x3Fu)
-                                       : (p[0] & 0x07u) << 18 | (p[1] & 0x3Fu) << 12 | (p[2] & 0x3Fu) << 6 | (p[3] & 0x3Fu);
-    /* overlong forms, surrogates and past U+10FFFF are not UTF-8 */
-    if ((k == 3 && cp < 0x800) || (k == 4 && (cp < 0x10000 || cp > 0x10FFFF)) || (cp >= 0xD800 && cp <= 0xDFFF))
-        return 0;
-    return k;
-}
-
-/* A JSON string; bytes that are not UTF-8 (a path may hold any) become
- * U+FFFD, so the document stays valid. */
+/* A JSON string, escaped by escape.h (bytes that are not UTF-8, which a
+ * path may hold, become U+FFFD, so the document stays valid). */
 static void str(js *s, const char *t)
 {
+    lam_esc_mode mode = s->flags & LAM_JSON_SCRIPT ? LAM_ESC_JSON_SCRIPT : LAM_ESC_JSON;
+    size_t n = t ? strlen(t) : 0;
     put(s, "\"");
-    const unsigned char *p = (const unsigned char *)(t ? t : "");
-    size_t n = strlen((const char *)p);
     while (n) {
-        char e[8];
-        size_t k = utf8_len(p, n);
-        if (!k) {
-            put(s, "\\ufffd");
-            p++, n--;
-            continue;
-        }
-        if (k > 1 || (*p >= 0x20 && *p != '"' && *p != '\\' && !(*p == '<' && s->flags & LAM_JSON_SCRIPT))) {
-            putn(s, (const char *)p, k);
-        } else if (*p == '"' || *p == '\\') {
-            e[0] = '\\', e[1] = (char)*p;
-            putn(s, e, 2);
-        } else {
-            put(s, (snprintf(e, sizeof e, "\\u%04x", *p), e));
-        }
-        p += k, n -= k;
+        char e[LAM_ESC_MAX];
+        size_t k = lam_esc_plain(t, n, mode);
+        if (k) putn(s, t, k);
+        else put(s, (k = lam_esc_one(t, n, mode, e), e));
+        t += k, n -= k;
     }
     put(s, "\"");
 }

@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "escape.h"
 #include "grow.h"
 #include "vstream.h"
 
@@ -48,7 +49,7 @@ struct lam_svg {
     panel *panels;
     double box[4];
     char *title;
-    char units[32];   /* of the job (the sink's begin), "" unknown */
+    char *units;      /* of the job (the sink's begin), owned; NULL unknown */
     char axis[2][8];  /* names of the layer frame's u and v axes */
     int vectors;      /* a sink feeds scan paths */
     /* the sink's layer */
@@ -164,19 +165,6 @@ int lam_svg_mark(lam_svg *s, size_t index, double u, double v, lam_error *err)
     return LAM_OK;
 }
 
-static void xml_text(lam_writer *w, const char *t)
-{
-    for (; *t; t++) {
-        switch (*t) {
-        case '<': lam_writer_write(w, "&lt;", 4); break;
-        case '>': lam_writer_write(w, "&gt;", 4); break;
-        case '&': lam_writer_write(w, "&amp;", 5); break;
-        case '"': lam_writer_write(w, "&quot;", 6); break;
-        default: lam_writer_write(w, t, 1);
-        }
-    }
-}
-
 /* A round length for the scale bar: 1, 2 or 5 times a power of ten, the
  * largest not longer than `most`. */
 static double nice_length(double most)
@@ -194,9 +182,9 @@ static void write_footer(const lam_svg *s, lam_writer *w, double y)
                       "<path d=\"M%.0f %.0f h24 m-5 -3 l5 3 l-5 3 M%.0f %.0f v-24 m-3 5 l3 -5 l3 5\" fill=\"none\"/>\n"
                       "<text x=\"%.0f\" y=\"%.0f\" stroke=\"none\">",
                       PAD, y + 26, PAD, y + 26, PAD + 28, y + 30);
-    xml_text(w, s->axis[0]);
+    lam_esc_write(w, s->axis[0], LAM_ESC_XML);
     lam_writer_printf(w, "</text><text x=\"%.0f\" y=\"%.0f\" stroke=\"none\">", PAD - 3, y);
-    xml_text(w, s->axis[1]);
+    lam_esc_write(w, s->axis[1], LAM_ESC_XML);
     lam_writer_printf(w, "</text>\n</g>\n");
     double len = nice_length(60 / sc);
     double x = PAD + 60;
@@ -204,9 +192,10 @@ static void write_footer(const lam_svg *s, lam_writer *w, double y)
                       "<line class=\"scalebar\" x1=\"%.3f\" y1=\"%.0f\" x2=\"%.3f\" y2=\"%.0f\" stroke=\"#222\" "
                       "stroke-width=\"2\"/>\n"
                       "<text class=\"scalebar\" x=\"%.3f\" y=\"%.0f\" font-family=\"sans-serif\" font-size=\"11\" "
-                      "fill=\"#222\">%g %s</text>\n",
-                      x, y + 26, x + len * sc, y + 26, x + len * sc + 6, y + 30, len,
-                      s->units[0] ? s->units : "model units");
+                      "fill=\"#222\">%g ",
+                      x, y + 26, x + len * sc, y + 26, x + len * sc + 6, y + 30, len);
+    lam_esc_write(w, s->units ? s->units : "model units", LAM_ESC_XML);
+    lam_writer_printf(w, "</text>\n");
     if (s->vectors) {
         x += len * sc + 80;
         lam_writer_printf(w,
@@ -237,7 +226,7 @@ int lam_svg_write(const lam_svg *s, lam_writer *w)
                       "<rect width=\"100%%\" height=\"100%%\" fill=\"#ffffff\"/>\n"
                       "<text x=\"%.0f\" y=\"22\" font-family=\"sans-serif\" font-size=\"15\" fill=\"#222\">",
                       width, height, width, height, PAD);
-    xml_text(w, s->title);
+    lam_esc_write(w, s->title, LAM_ESC_XML);
     if (s->npanels < s->nlayers)
         lam_writer_printf(w, " (%zu of %zu layers shown, evenly chosen)", s->npanels, s->nlayers);
     else
@@ -299,8 +288,9 @@ static void order_colour(double t, char out[8])
 static int sv_begin(void *ctx, const lam_job_info *job)
 {
     lam_svg *s = ctx;
-    snprintf(s->units, sizeof s->units, "%s", job->units ? job->units : "");
-    return LAM_OK;
+    free(s->units);
+    s->units = job->units && job->units[0] ? strdup(job->units) : NULL;
+    return job->units && job->units[0] && !s->units ? lam_error_nomem(s->err, "drawing the scale bar") : LAM_OK;
 }
 
 static int sv_layer(void *ctx, const lam_layer_info *li)
@@ -345,12 +335,13 @@ static int sv_layer_end(void *ctx, const lam_layer_info *li, const lam_vec_stats
         const rvec *r = &s->rv[i];
         char col[8];
         order_colour(s->nrv > 1 ? (double)i / (double)(s->nrv - 1) : 0, col);
+        lam_writer_write(w, "<path class=\"", 13);
+        lam_esc_write(w, r->kind, LAM_ESC_XML);
         if (!r->exposed)
-            lam_writer_printf(w, "<path class=\"%s\" stroke=\"" TRAVEL "\" stroke-dasharray=\"2 1.5\" d=\"M%.2f %.2fL%.2f %.2f\"/>\n",
-                              r->kind, X(r->a), Y(r->a), X(r->b), Y(r->b));
+            lam_writer_printf(w, "\" stroke=\"" TRAVEL "\" stroke-dasharray=\"2 1.5\" d=\"M%.2f %.2fL%.2f %.2f\"/>\n",
+                              X(r->a), Y(r->a), X(r->b), Y(r->b));
         else {
-            lam_writer_printf(w, "<path class=\"%s\" stroke=\"%s\" d=\"M%.2f %.2fL%.2f %.2f", r->kind, col, X(r->a),
-                              Y(r->a), X(r->b), Y(r->b));
+            lam_writer_printf(w, "\" stroke=\"%s\" d=\"M%.2f %.2fL%.2f %.2f", col, X(r->a), Y(r->a), X(r->b), Y(r->b));
             while (!strcmp(r->kind, "contour") && i + 1 < s->nrv && !strcmp(s->rv[i + 1].kind, "contour") &&
                    s->rv[i + 1].a[0] == r->b[0] && s->rv[i + 1].a[1] == r->b[1]) {
                 r = &s->rv[++i];
@@ -404,6 +395,7 @@ void lam_svg_free(lam_svg *s)
     free(s->panels);
     free(s->wanted);
     free(s->title);
+    free(s->units);
     free(s->rv);
     free(s);
 }

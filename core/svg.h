@@ -14,7 +14,11 @@
  * whose class is its kind (deposit, contour, core, upskin, downskin;
  * travel and jump dashed grey; a contour pass's edges joined into one
  * path), coloured from dark blue through magenta to orange along the
- * layer's order, with a legend. */
+ * layer's order, with a legend.
+ *
+ * Every string written (the title, the unit name, a vector's kind) goes
+ * through escape.h (LAM_ESC_XML): whatever bytes it holds, the sheet is
+ * well-formed XML and the string only ever shows as text. */
 #ifndef LAM_SVG_H
 #define LAM_SVG_H
 

@@ -14,7 +14,14 @@ standard XML parser (independently of lamina):
                                     the material: RECTS "u0,v0,u1,v1;..." are nested
                                     rectangles (even-odd; a solid's edge, within a
                                     pixel, is material, a hole's is not), panel pixel
-                                    (x, y) is model (UMIN + x / SCALE, VMAX - y / SCALE)"""
+                                    (x, y) is model (UMIN + x / SCALE, VMAX - y / SCALE)
+  svgcheck.py inert FILE            "ok" when the sheet only draws: every element one a
+                                    contact sheet has (svg g rect path line circle text
+                                    defs linearGradient stop, SVG namespace), no event
+                                    handler (on...) or link (href) attribute; else those
+                                    that are not so
+  svgcheck.py texts FILE            each <text>'s text, one a line, as Python's ascii()
+Any command: a file that is not well-formed XML prints "not well-formed: ..." and exits 1."""
 import re
 import sys
 import xml.etree.ElementTree as ET
@@ -42,8 +49,13 @@ def rgb(c):
     return tuple(int(c[i:i + 2], 16) for i in (1, 3, 5))
 
 
-root = ET.parse(sys.argv[2]).getroot()
+try:
+    root = ET.parse(sys.argv[2]).getroot()
+except ET.ParseError as e:
+    print("not well-formed: %s" % e)
+    sys.exit(1)
 cmd = sys.argv[1]
+DRAWS = ("svg", "g", "rect", "path", "line", "circle", "text", "defs", "linearGradient", "stop")
 if cmd == "count":
     print(sum(1 for p in paths(root) if p.get("class") in sys.argv[3:]))
 elif cmd == "dashes":
@@ -82,3 +94,10 @@ elif cmd == "outside":
                      and r[1] - e * (-1) ** k < v < r[3] + e * (-1) ** k) % 2
         n += 0 if inside else 1
     print(n)
+elif cmd == "inert":
+    bad = ["<%s>" % e.tag for e in root.iter() if e.tag not in [NS + t for t in DRAWS]]
+    bad += ["%s=" % a for e in root.iter() for a in e.attrib if a.lower().startswith("on") or a.endswith("href")]
+    print("ok" if not bad else " ".join(bad))
+elif cmd == "texts":
+    for e in root.iter(NS + "text"):
+        print(ascii(e.text))
