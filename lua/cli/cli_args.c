@@ -471,8 +471,10 @@ int cli_parse_args(const char *cmd, const char *usage_text, unsigned groups, int
     }
     if (rc) return rc;
     if (groups & OPT_MODEL && !a->path) return cli_usage(cmd, "no model given");
-    if (groups & (OPT_PLAN | OPT_JOBS) && !a->threads && (rc = cli_threads_env(cmd, lam_online_cores(), &a->threads)))
-        return rc;
+    /* LAMINA_THREADS is checked for every command, also those without -j
+     * (info and check read a big binary STL with it) */
+    unsigned otherwise = groups & (OPT_PLAN | OPT_JOBS) ? lam_online_cores() : 0;
+    if (!a->threads && (rc = cli_threads_env(cmd, otherwise, &a->threads))) return rc;
     if ((rc = one_stdout(cmd, groups, a))) return rc;
     int width = 0;
     for (size_t i = 0; i < a->nsets; i++) width |= a->sets[i].key->offset == offsetof(lam_profile, layer_width);

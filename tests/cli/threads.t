@@ -272,6 +272,17 @@ run "$LAMINA" slice "$M/thesis_cube_hole.ug" --jobs=two -o "$TMP/x"
 like "$RC $ERR" "^2 .*--jobs takes a number of threads .*'two'" "--jobs=two: usage error"
 LAMINA_THREADS=lots run "$LAMINA" slice "$M/thesis_cube_hole.ug" -o "$TMP/x"
 like "$RC $ERR" "^2 .*LAMINA_THREADS must be a number of threads .*'lots'" "LAMINA_THREADS=lots: an error naming it"
+# every command reads LAMINA_THREADS the same way, also those without -j
+for v in abc 0 -1 257; do
+    for c in "info" "check -m sls-contours" "validate" "machines"; do
+        model=("$M/thesis_cube_hole.ug")
+        [ "$c" = machines ] && model=()
+        # shellcheck disable=SC2086 # $c is the command and its options
+        LAMINA_THREADS=$v run "$LAMINA" $c "${model[@]}"
+        like "$RC $ERR" "^2 lamina ${c%% *}: LAMINA_THREADS must be a number of threads .*'$v'" \
+            "LAMINA_THREADS=$v: lamina ${c%% *} refuses it (exit 2)"
+    done
+done
 LAMINA_THREADS=3 run "$LAMINA" slice "$TMP/sphere.stl" -w 0.2 -o "$TMP/env3"
 [ "$RC" = 0 ] && "$LAMINA" slice "$TMP/sphere.stl" -w 0.2 -j 1 -o "$TMP/env1" 2>/dev/null && cmp -s "$TMP/env3" "$TMP/env1"
 ok $? "LAMINA_THREADS=3: the program of -j 1"
