@@ -2,7 +2,8 @@
 # An output never replaces a file the command read, by device and inode
 # (any spelling, link or hard link): the model, a Unigrafix include, a
 # machine profile and the profiles it inherits, part files, a program read
-# back, and standard output sent there with > or >>. Each
+# back, a plugin loaded after the output was opened (refused when the
+# output is committed), and standard output sent there with > or >>. Each
 # is refused with exit 2, naming the option and the file as it was read;
 # the input stays as it was and no temporary is left. join refuses a FIFO
 # at once, as every other reader does.
@@ -80,6 +81,25 @@ run sh -c '"$1" validate incb.ug --program prog.sls >>prog.sls' sh "$LAMINA"
 like "$RC $ERR" "^2 lamina validate: standard output is an input of this command \\(read as prog\\.sls\\)" \
     "validate --program with its report appended to the program: refused"
 untouched prog.sls "$sum" "validate >> the program"
+
+# ---- a plugin loaded after the output was opened: refused at commit ------------------------
+SO="$BUILD/plugins/cli-binary.so"
+[ -f "$SO" ] || SO="$ROOT/plugins/cli-binary.so"
+mkdir -m 755 plug
+cp "$SO" plug/cli-binary.so
+chmod 644 plug/cli-binary.so
+sum=$(cksum <plug/cli-binary.so)
+run env LAMINA_PLUGINS="$TMP/plug" "$LAMINA" slice incb.ug -m cli-binary -w 0.5 -o plug/cli-binary.so
+if [[ $ERR == *"refusing plugin"* ]]; then
+    # (the test tree is under a directory others may write: no plugin loads here)
+    ok 1 "# SKIP no trusted place for a plugin: $ERR"
+    ok 1 "# SKIP"
+    ok 1 "# SKIP"
+else
+    like "$RC $ERR" "^2 lamina slice: plug/cli-binary\\.so is an input of this command \\(read as .*plug/cli-binary\\.so\\)" \
+        "-o onto the plugin the profile names: refused when committed"
+    untouched plug/cli-binary.so "$sum" "-o onto the plugin"
+fi
 
 # ---- the model itself, and outputs that are not inputs -------------------------------------
 sum=$(cksum <incb.ug)
