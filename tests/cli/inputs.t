@@ -81,6 +81,10 @@ run sh -c '"$1" validate incb.ug --program prog.sls >>prog.sls' sh "$LAMINA"
 like "$RC $ERR" "^2 lamina validate: standard output is an input of this command \\(read as prog\\.sls\\)" \
     "validate --program with its report appended to the program: refused"
 untouched prog.sls "$sum" "validate >> the program"
+# with > the shell has emptied it before lamina runs: not a pass (exit 0) either
+run sh -c '"$1" validate incb.ug --program prog.sls >prog.sls' sh "$LAMINA"
+like "$RC $ERR" "^2 lamina validate: standard output is an input of this command \\(read as prog\\.sls\\)" \
+    "validate --program with its report written over the program: refused"
 
 # ---- a plugin loaded after the output was opened: refused at commit ------------------------
 SO="$BUILD/plugins/cli-binary.so"
