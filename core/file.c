@@ -3,12 +3,16 @@
 
 #include <errno.h>
 #include <fcntl.h>
+#include <pthread.h>
 #include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/mman.h>
 #include <sys/stat.h>
 #include <unistd.h>
+
+#include "grow.h"
 
 size_t lam_max_input(void)
 {
@@ -56,15 +60,75 @@ static int bad_limit(const char *path, lam_error *err)
                          "cannot read: LAMINA_MAX_INPUT is not a size (bytes, or a number with K, M or G)");
 }
 
-/* Open a regular file within the limit for reading into *fd. */
-static int open_regular(const char *path, lam_read_limit limit, struct stat *st, int *fd_out, lam_error *err)
+/* ---- the files a command read ---------------------------------------------- */
+
+typedef struct read_entry {
+    dev_t dev;
+    ino_t ino;
+    char *path;
+} read_entry;
+
+/* Guarded by a mutex: a reader may run on a worker thread. */
+static pthread_mutex_t reads_mu = PTHREAD_MUTEX_INITIALIZER;
+static int tracking;
+static read_entry *reads;
+static size_t nreads, cap_reads;
+
+void lam_file_track(int on)
 {
-    if (limit.bytes == 0) return bad_limit(path, err);
+    pthread_mutex_lock(&reads_mu);
+    for (size_t i = 0; i < nreads; i++) free(reads[i].path);
+    free(reads);
+    reads = NULL;
+    nreads = cap_reads = 0;
+    tracking = on;
+    pthread_mutex_unlock(&reads_mu);
+}
+
+static read_entry *find_read(const struct stat *st)
+{
+    for (size_t i = 0; i < nreads; i++)
+        if (reads[i].dev == st->st_dev && reads[i].ino == st->st_ino) return &reads[i];
+    return NULL;
+}
+
+int lam_file_note_read(const struct stat *st, const char *path)
+{
+    int rc = LAM_OK;
+    pthread_mutex_lock(&reads_mu);
+    if (tracking && !find_read(st)) {
+        read_entry *nr = lam_grow(reads, &cap_reads, nreads + 1, sizeof *nr, 16);
+        char *copy = strdup(path);
+        if (nr) reads = nr;
+        if (nr && copy) reads[nreads++] = (read_entry){ st->st_dev, st->st_ino, copy };
+        else {
+            free(copy);
+            rc = LAM_ENOMEM;
+        }
+    }
+    pthread_mutex_unlock(&reads_mu);
+    return rc;
+}
+
+int lam_file_was_read(const struct stat *st, char *as, size_t size)
+{
+    pthread_mutex_lock(&reads_mu);
+    const read_entry *e = find_read(st);
+    if (e && as && size) snprintf(as, size, "%s", e->path);
+    pthread_mutex_unlock(&reads_mu);
+    return e != NULL;
+}
+
+/* ---- opening ------------------------------------------------------------------ */
+
+int lam_file_open(const char *path, int *fd_out, struct stat *st, lam_error *err)
+{
+    *fd_out = -1;
     if (gate) {
         int rc = gate(gate_ctx, path, err);
         if (rc) return rc;
     }
-    int fd = open(path, O_RDONLY | O_NONBLOCK | O_NOCTTY);
+    int fd = open(path, O_RDONLY | O_NONBLOCK | O_NOCTTY | O_CLOEXEC);
     if (fd < 0) return lam_error_set(err, LAM_EIO, path, 0, 0, "cannot open: %s", strerror(errno));
     const char *bad = NULL;
     if (fstat(fd, st) != 0) bad = strerror(errno);
@@ -74,6 +138,22 @@ static int open_regular(const char *path, lam_read_limit limit, struct stat *st,
         close(fd);
         return lam_error_set(err, LAM_EIO, path, 0, 0, "cannot read: %s", bad);
     }
+    /* recorded when opened: an output refuses it from here on, also when
+     * the read fails half-way */
+    if (lam_file_note_read(st, path)) {
+        close(fd);
+        return lam_error_set(err, LAM_ENOMEM, path, 0, 0, "out of memory");
+    }
+    *fd_out = fd;
+    return LAM_OK;
+}
+
+/* Open a regular file within the limit for reading into *fd. */
+static int open_regular(const char *path, lam_read_limit limit, struct stat *st, int *fd_out, lam_error *err)
+{
+    if (limit.bytes == 0) return bad_limit(path, err);
+    int fd, rc = lam_file_open(path, &fd, st, err);
+    if (rc) return rc;
     if ((unsigned long long)st->st_size > limit.bytes) {
         close(fd);
         return too_large(path, limit, (unsigned long long)st->st_size, err);

@@ -1,5 +1,5 @@
-/* Whole-file input, the one way lamina reads a model, a Unigrafix include
- * or a machine profile.
+/* File input, the one way lamina reads a model, a Unigrafix include, a
+ * machine profile, a program read back or a part file.
  *
  * Only regular files are read: a device (/dev/zero, /dev/urandom), a FIFO,
  * a socket or a directory is refused before a byte is read. The file is
@@ -12,6 +12,7 @@
 #define LAM_FILE_H
 
 #include <stddef.h>
+#include <sys/stat.h>
 
 #include "error.h"
 
@@ -72,6 +73,36 @@ int lam_map_file(const char *path, lam_read_limit limit, char **data, size_t *le
  * NULL). */
 typedef int (*lam_file_gate)(void *ctx, const char *path, lam_error *err);
 void lam_file_set_gate(lam_file_gate gate, void *ctx, lam_file_gate *old_gate, void **old_ctx);
+
+/* Open `path` for reading as every reader here does: the gate is asked,
+ * the file is opened non-blocking (a FIFO without a writer cannot hang
+ * the open) and close-on-exec, and refused unless fstat on that descriptor
+ * says it is a regular file; it is then recorded as read (below). For a
+ * reader that streams a file instead of reading it whole (part files).
+ * *fd (regular-file reads ignore O_NONBLOCK) is the caller's to close; *st
+ * is its fstat. Errors (naming the file): LAM_EIO "cannot open: REASON",
+ * "cannot read: is a directory" / "is not a regular file"; LAM_ENOMEM. */
+int lam_file_open(const char *path, int *fd, struct stat *st, lam_error *err);
+
+/* The files a command read. While tracking is on, every file opened
+ * through this module (the model, its Unigrafix includes, machine profiles
+ * and the profiles they inherit, programs read back, part files) is
+ * recorded by device and inode with the path it was opened as, and
+ * lam_writer_file refuses to replace any of them (writer.h): an output may
+ * not destroy an input, under any name or link. lam_file_track(1) starts
+ * an empty record, lam_file_track(0) forgets it and stops. Off by default:
+ * the CLI turns it on for a command's run; a Lua session (which may well
+ * rewrite a file it read) is not held to it. Thread-safe. */
+void lam_file_track(int on);
+
+/* Record a file read by other means (a plugin, plugin.h) as read, when
+ * tracking is on. Returns LAM_OK or LAM_ENOMEM (nothing recorded). */
+int lam_file_note_read(const struct stat *st, const char *path);
+
+/* Whether the file st names (st_dev, st_ino) was recorded as read; if so
+ * and `as` is not NULL, the path it was read as goes into as (size bytes,
+ * truncated, NUL-terminated). */
+int lam_file_was_read(const struct stat *st, char *as, size_t size);
 
 /* Releases what lam_map_file returned. */
 void lam_unmap_file(char *data, size_t len, int mapped);

@@ -6,7 +6,9 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
+#include "file.h"
 #include "grow.h"
 
 static const char MAGIC[8] = { 'L', 'A', 'M', 'P', 'A', 'R', 'T', 0 };
@@ -504,12 +506,17 @@ int lam_part_open(const char *path, lam_part **out, lam_error *err)
         return lam_error_nomem(err, NULL);
     }
     p->hash = FNV_BASIS;
+    /* the one opening of a file to read (file.h): a FIFO or device is
+     * refused at once, not waited on */
     struct stat st;
-    if (!(p->f = fopen(path, "rb")) || fstat(fileno(p->f), &st) != 0 || !S_ISREG(st.st_mode)) {
-        int e = p->f ? EINVAL : errno;
-        lam_error_set(err, LAM_EIO, path, 0, 0, "cannot open: %s", p->f ? "not a regular file" : strerror(e));
+    int fd = -1, orc = lam_file_open(path, &fd, &st, err);
+    if (!orc && !(p->f = fdopen(fd, "rb"))) {
+        close(fd);
+        orc = lam_error_set(err, LAM_EIO, path, 0, 0, "cannot open: %s", strerror(errno));
+    }
+    if (orc) {
         lam_part_close(p);
-        return LAM_EIO;
+        return orc;
     }
     p->size = (long long)st.st_size;
     int rc = read_header(p, err);

@@ -1,3 +1,5 @@
+/* realpath, S_ISVTX (XSI) */
+#define _XOPEN_SOURCE 700
 #include "plugin.h"
 
 #include "dialect.h"
@@ -5,13 +7,17 @@
 
 #include <dlfcn.h>
 #include <errno.h>
+#include <fcntl.h>
+#include <limits.h>
 #include <stdarg.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
+#include "file.h"
 #include "lamina_plugin.h"
 #include "paths.h"
 
@@ -28,6 +34,7 @@ typedef struct plugin {
     char *path;
     dev_t dev;
     ino_t ino;
+    int fd;                  /* the file checked and loaded, open while loaded */
     void *handle;
     char reg_msg[MSG_MAX];   /* why a register_writer call was refused */
     int reg_failed;
@@ -149,22 +156,69 @@ static void free_plugin(plugin *p)
 {
     if (!p) return;
     if (p->handle) dlclose(p->handle);
+    if (p->fd >= 0) close(p->fd); /* after: the loaded object goes by its number */
     free(p->path);
     free(p);
 }
 
-/* Refuse a plugin file or directory that someone other than its owner may
- * write: whoever can replace the code lamina runs could run their own. */
-static int safe_mode(const char *path, const char *what, lam_error *err)
+/* ---- trusting a plugin's file ----
+ *
+ * A plugin is code lamina runs, so it must be code nobody but root and the
+ * user could have put there (OpenSSH's StrictModes rule for its key files):
+ * the file opened, and every directory from where it really is up to /,
+ * and from the directory it was named in up to /, owned by root or the
+ * user and not writable by group or others. One difference from OpenSSH: a
+ * sticky directory (/tmp, mode 1777) passes when root or the user owns it,
+ * since in it nobody may rename or remove an entry but the entry's owner
+ * (checked at the next step down), the directory's owner and root; staging
+ * installs and test trees live under /tmp. What is checked is the open
+ * descriptor, and that descriptor is what is loaded (/proc/self/fd/N, so
+ * Linux with /proc mounted): nothing can be swapped in between. */
+
+/* Owned by root or by the user lamina runs as. */
+static int trusted_owner(const struct stat *st) { return st->st_uid == 0 || st->st_uid == geteuid(); }
+
+/* The file opened as fd, named path: a regular file, trusted (above). */
+static int trusted_file(int fd, const char *path, struct stat *st, lam_error *err)
 {
-    struct stat st;
-    if (stat(path, &st) != 0)
-        return lam_error_set(err, LAM_EIO, NULL, 0, 0, "cannot load plugin: %s: %s", path, strerror(errno));
-    if (st.st_mode & (S_IWGRP | S_IWOTH))
+    if (fstat(fd, st) != 0)
+        return lam_error_set(err, LAM_EIO, NULL, 0, 0, "cannot load plugin %s: %s", path, strerror(errno));
+    if (!S_ISREG(st->st_mode))
+        return lam_error_set(err, LAM_EIO, NULL, 0, 0, "refusing plugin %s: not a regular file", path);
+    if (!trusted_owner(st))
         return lam_error_set(err, LAM_EIO, NULL, 0, 0,
-                             "refusing plugin %s: %s is writable by others than its owner (mode %03o)", what, path,
-                             (unsigned)(st.st_mode & 0777));
+                             "refusing plugin %s: the file belongs to uid %u, neither root nor you (uid %u)", path,
+                             (unsigned)st->st_uid, (unsigned)geteuid());
+    if (st->st_mode & (S_IWGRP | S_IWOTH))
+        return lam_error_set(err, LAM_EIO, NULL, 0, 0,
+                             "refusing plugin %s: the file is writable by others than its owner (mode %03o)", path,
+                             (unsigned)(st->st_mode & 0777));
     return LAM_OK;
+}
+
+/* dir (a realpath: absolute, no links) and every directory above it,
+ * trusted; dir is cut down as it goes. */
+static int trusted_dirs(char *dir, const char *path, lam_error *err)
+{
+    for (;;) {
+        struct stat st;
+        if (lstat(dir, &st) != 0)
+            return lam_error_set(err, LAM_EIO, NULL, 0, 0, "cannot load plugin %s: %s: %s", path, dir, strerror(errno));
+        if (!S_ISDIR(st.st_mode))
+            return lam_error_set(err, LAM_EIO, NULL, 0, 0, "refusing plugin %s: %s changed while it was checked", path,
+                                 dir);
+        if (!trusted_owner(&st))
+            return lam_error_set(err, LAM_EIO, NULL, 0, 0,
+                                 "refusing plugin %s: directory %s belongs to uid %u, neither root nor you (uid %u)",
+                                 path, dir, (unsigned)st.st_uid, (unsigned)geteuid());
+        if ((st.st_mode & (S_IWGRP | S_IWOTH)) && !(st.st_mode & S_ISVTX))
+            return lam_error_set(err, LAM_EIO, NULL, 0, 0,
+                                 "refusing plugin %s: directory %s is writable by others than its owner (mode %03o)",
+                                 path, dir, (unsigned)(st.st_mode & 0777));
+        char *slash = strrchr(dir, '/');
+        if (!slash || slash[1] == '\0') return LAM_OK; /* "/" done */
+        slash[slash == dir ? 1 : 0] = '\0';
+    }
 }
 
 /* The directory part of path ("." when none), malloc'd. */
@@ -181,54 +235,133 @@ static char *dir_of(const char *path)
     return d;
 }
 
-static int safe_plugin(const char *path, lam_error *err)
+/* The directories of the file opened (st), named path: where it really is
+ * and where it was named (a link's directory), each up to /. The file must
+ * still be at its real path when they are found trusted: from then on
+ * nobody else can move it. */
+static int trusted_place(const char *path, const struct stat *st, lam_error *err)
 {
-    char *dir = dir_of(path);
-    if (!dir) return lam_error_nomem(err, NULL);
-    int rc = safe_mode(dir, "directory", err);
-    free(dir);
-    return rc ? rc : safe_mode(path, "file", err);
+    char *real = realpath(path, NULL), *named = dir_of(path), *named_real = named ? realpath(named, NULL) : NULL;
+    char *real_dir = real ? dir_of(real) : NULL;
+    int rc = LAM_OK;
+    if (!named || (real && !real_dir)) rc = lam_error_nomem(err, NULL);
+    else if (!real || !named_real)
+        rc = lam_error_set(err, LAM_EIO, NULL, 0, 0, "cannot load plugin %s: %s", path, strerror(errno));
+    /* "DIR/x.so, which is /elsewhere/x.so": where a link led */
+    char shown[2 * PATH_MAX + 16];
+    const char *base = strrchr(path, '/') ? strrchr(path, '/') + 1 : path;
+    if (!rc) {
+        size_t k = strlen(named_real);
+        int same = strncmp(real, named_real, k) == 0 && real[k] == '/' && strcmp(real + k + 1, base) == 0;
+        if (!strcmp(named_real, "/")) same = real[0] == '/' && strcmp(real + 1, base) == 0;
+        if (same) snprintf(shown, sizeof shown, "%s", path);
+        else snprintf(shown, sizeof shown, "%s, which is %s", path, real);
+    }
+    if (!rc) rc = trusted_dirs(named_real, shown, err);
+    if (!rc) rc = trusted_dirs(real_dir, shown, err);
+    struct stat now;
+    if (!rc && (stat(real, &now) != 0 || now.st_dev != st->st_dev || now.st_ino != st->st_ino))
+        rc = lam_error_set(err, LAM_EIO, NULL, 0, 0, "refusing plugin %s: the file changed while it was checked", path);
+    free(real);
+    free(real_dir);
+    free(named);
+    free(named_real);
+    return rc;
+}
+
+/* Open the plugin at path and check what was opened (above): *fd, with its
+ * fstat in *st. Non-blocking: a FIFO cannot hang the open. */
+static int open_trusted(const char *path, int *fd_out, struct stat *st, lam_error *err)
+{
+    int fd = open(path, O_RDONLY | O_CLOEXEC | O_NONBLOCK | O_NOCTTY);
+    if (fd < 0) return lam_error_set(err, LAM_EIO, NULL, 0, 0, "cannot load plugin %s: %s", path, strerror(errno));
+    int rc = trusted_file(fd, path, st, err);
+    if (!rc) rc = trusted_place(path, st, err);
+    if (rc) close(fd);
+    else *fd_out = fd;
+    return rc;
+}
+
+/* dlopen the file open as *fd (the one checked) through /proc/self/fd.
+ * glibc takes a name an object was loaded by for that object: a plugin that
+ * could not be unloaded (C++'s unique symbols make one) keeps the name of a
+ * descriptor since closed, so a number no object goes by is found first
+ * (*fd may change; the plugin keeps it open while loaded, so its own name
+ * stays its). name gets the name used. */
+static void *dlopen_fd(int *fd, char *name, size_t size)
+{
+    for (int tries = 0;; tries++) {
+        snprintf(name, size, "/proc/self/fd/%d", *fd);
+        void *old = tries < 16 ? dlopen(name, RTLD_NOW | RTLD_LOCAL | RTLD_NOLOAD) : NULL;
+        if (!old) break;
+        dlclose(old);
+        int nfd = fcntl(*fd, F_DUPFD_CLOEXEC, *fd + 1);
+        if (nfd < 0) break;
+        close(*fd);
+        *fd = nfd;
+    }
+    dlerror();
+    return dlopen(name, RTLD_NOW | RTLD_LOCAL);
+}
+
+/* dlerror's message, without the /proc name it gives for the file. */
+static const char *load_error(const char *name)
+{
+    const char *why = dlerror();
+    size_t k = strlen(name);
+    if (!why) return "unknown dlopen error";
+    if (access("/proc/self/fd", F_OK) != 0)
+        return "/proc is not mounted (lamina loads the plugin it checked through /proc/self/fd)";
+    return strncmp(why, name, k) == 0 && why[k] == ':' ? why + k + (why[k + 1] == ' ' ? 2 : 1) : why;
 }
 
 typedef int (*init_fn)(const struct lamina_host *);
+
+/* A plugin for the file open as fd (st), with room for it in the list; it
+ * is recorded as read (file.h: no output may replace it). NULL when out of
+ * memory (fd is then the caller's). */
+static plugin *new_plugin(const char *path, int fd, const struct stat *st)
+{
+    if (nplugins == cap_plugins) {
+        plugin **np = lam_grow(plugins, &cap_plugins, nplugins + 1, sizeof *np, 8);
+        if (!np) return NULL;
+        plugins = np;
+    }
+    plugin *p = calloc(1, sizeof *p);
+    if (!p || !(p->path = strdup(path)) || lam_file_note_read(st, path)) {
+        if (p) free(p->path);
+        free(p);
+        return NULL;
+    }
+    p->fd = fd;
+    p->dev = st->st_dev;
+    p->ino = st->st_ino;
+    return p;
+}
 
 int lam_plugin_load(const char *path, lam_error *err)
 {
     if (!path || !*path) return lam_error_set(err, LAM_EUSAGE, NULL, 0, 0, "no plugin path given");
     struct stat st;
-    if (stat(path, &st) != 0)
-        return lam_error_set(err, LAM_EIO, NULL, 0, 0, "cannot load plugin %s: %s", path, strerror(errno));
-    int unsafe = safe_plugin(path, err);
+    int fd = -1, unsafe = open_trusted(path, &fd, &st, err);
     if (unsafe) return unsafe;
     for (size_t i = 0; i < nplugins; i++)
-        if (plugins[i]->dev == st.st_dev && plugins[i]->ino == st.st_ino) return LAM_OK;
+        if (plugins[i]->dev == st.st_dev && plugins[i]->ino == st.st_ino) {
+            close(fd);
+            return LAM_OK;
+        }
 
-    if (nplugins == cap_plugins) {
-        plugin **np = lam_grow(plugins, &cap_plugins, nplugins + 1, sizeof *np, 8);
-        if (!np) return lam_error_nomem(err, NULL);
-        plugins = np;
-    }
-    plugin *p = calloc(1, sizeof *p);
-    /* "./x.so", not "x.so": dlopen must not search the library path */
-    size_t len = strlen(path);
-    if (p) p->path = malloc(len + 3);
-    if (!p || !p->path) {
-        free(p);
+    plugin *p = new_plugin(path, fd, &st);
+    if (!p) {
+        close(fd);
         return lam_error_nomem(err, NULL);
     }
-    snprintf(p->path, len + 3, "%s%s", strchr(path, '/') ? "" : "./", path);
-    p->dev = st.st_dev;
-    p->ino = st.st_ino;
-
-    dlerror();
-    p->handle = dlopen(p->path, RTLD_NOW | RTLD_LOCAL);
+    char name[64];
+    p->handle = dlopen_fd(&p->fd, name, sizeof name);
     if (!p->handle) {
-        const char *why = dlerror();
-        int code = S_ISREG(st.st_mode) ? LAM_EFORMAT : LAM_EIO;
-        lam_error_set(err, code, NULL, 0, 0, "cannot load plugin %s: %s", path,
-                      why ? why : "unknown dlopen error");
+        lam_error_set(err, LAM_EFORMAT, NULL, 0, 0, "cannot load plugin %s: %s", path, load_error(name));
         free_plugin(p);
-        return code;
+        return LAM_EFORMAT;
     }
 
     const uint32_t *abi = dlsym(p->handle, "lamina_plugin_abi");

@@ -21,10 +21,19 @@
  * library path), check its ABI and run its lamina_plugin_init, which
  * registers its writers. Loading a file that is already loaded (the same
  * file, by device and inode, under any path) does nothing and succeeds.
- * A file, or a directory holding it, that others than its owner may write
- * (group or world write permission) is refused before it is opened.
+ * The file is opened first and what was opened is checked, before any of
+ * its code runs: a regular file owned by root or the user and not writable
+ * by group or others, and so is every directory from where it really is
+ * (realpath) and from the directory it was named in, up to / (OpenSSH's
+ * StrictModes; except that a sticky directory owned by root or the user
+ * passes: in it only an entry's owner may replace the entry). Then that
+ * descriptor is loaded (dlopen of /proc/self/fd/N: Linux, /proc mounted),
+ * so no other file can be put in its place between the check and the load;
+ * it stays open while the plugin is loaded. A file read this way counts as
+ * read for the outputs' check (file.h, writer.h).
  * A plugin that fails is unloaded again and leaves nothing registered.
- * Errors: LAM_EIO (no such file / unreadable, with the loader's message),
+ * Errors: LAM_EIO (no such file / unreadable, or refused by the rule above,
+ * naming the file, or directory, and why),
  * LAM_EFORMAT (not a loadable shared object, no lamina_plugin_abi or
  * lamina_plugin_init symbol, built for another ABI: refused before init
  * runs), LAM_EINVAL (init failed, with the plugin's set_error message, or

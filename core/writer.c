@@ -15,6 +15,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "file.h"
 #include "grow.h"
 
 enum kind { W_FILE, W_DEVICE, W_STREAM, W_MEMORY };
@@ -112,6 +113,32 @@ static void remove_stale(const char *target)
     free(full);
 }
 
+/* ---- outputs that would replace inputs ---------------------------------------- */
+
+/* LAM_EUSAGE when st (a regular file) is one the command read (file.h):
+ * writing it would destroy an input. `shown` is the output as its caller
+ * named it. */
+static int refuse_input(const struct stat *st, const char *shown, lam_error *err)
+{
+    char as[512];
+    if (!S_ISREG(st->st_mode) || !lam_file_was_read(st, as, sizeof as)) return LAM_OK;
+    return lam_error_set(err, LAM_EUSAGE, NULL, 0, 0, "%s is an input of this command (read as %s): refusing to overwrite it",
+                         shown, as);
+}
+
+int lam_writer_check(const char *path, lam_error *err)
+{
+    struct stat st;
+    return stat(path, &st) == 0 ? refuse_input(&st, path, err) : LAM_OK;
+}
+
+int lam_writer_check_stream(FILE *f, const char *shown, lam_error *err)
+{
+    struct stat st;
+    int fd = f ? fileno(f) : -1;
+    return fd >= 0 && fstat(fd, &st) == 0 ? refuse_input(&st, shown, err) : LAM_OK;
+}
+
 /* An existing target that is not a regular file (a terminal, /dev/null, a
  * pipe): written to directly, since renaming over it would replace the
  * device or pipe with a plain file. */
@@ -140,6 +167,8 @@ int lam_writer_file(const char *path, lam_writer **out, lam_error *err)
     if (stat(path, &st) == 0) {
         if (S_ISDIR(st.st_mode)) return lam_error_set(err, LAM_EIO, path, 0, 0, "cannot write output: is a directory");
         if (!S_ISREG(st.st_mode)) return open_device(path, out, err);
+        int rc = refuse_input(&st, path, err);
+        if (rc) return rc;
     }
     /* through a symbolic link to the file it names, so the link stays a
      * link (a dangling link is replaced); messages name the path given */
@@ -225,6 +254,8 @@ int lam_writer_file(const char *path, lam_writer **out, lam_error *err)
 int lam_writer_stream(FILE *f, const char *name, lam_writer **out, lam_error *err)
 {
     *out = NULL;
+    int rc = lam_writer_check_stream(f, name ? name : "(stream)", err);
+    if (rc) return rc;
     lam_writer *w = calloc(1, sizeof *w);
     if (!w || !(w->path = strdup(name ? name : "(stream)"))) {
         free(w);
@@ -334,6 +365,15 @@ static void release(lam_writer *w)
 
 int lam_writer_commit(lam_writer *w, lam_error *err)
 {
+    /* again: a file read after the output was opened (a plugin loaded for
+     * it) may be the target; the original stays as it was */
+    int refused = w->kind == W_FILE     ? lam_writer_check(w->path, err)
+                  : w->kind == W_STREAM ? lam_writer_check_stream(w->f, w->path, err)
+                                        : LAM_OK;
+    if (refused) {
+        lam_writer_abort(w);
+        return refused;
+    }
     int bad = w->failed;
     FILE *stream = w->kind == W_STREAM ? w->f : NULL;
     if (w->kind != W_MEMORY) {

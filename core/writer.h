@@ -33,11 +33,29 @@ typedef struct lam_writer lam_writer;
  * Stale temporaries of the target are removed first (see above). An existing
  * target that is not a regular file (/dev/null, a terminal, a pipe) is
  * written to directly, as it comes: renaming over it would replace the
- * device with a plain file. A directory is an error (LAM_EIO). */
+ * device with a plain file. A directory is an error (LAM_EIO); a file the
+ * command read is refused (LAM_EUSAGE, lam_writer_check). */
 int lam_writer_file(const char *path, lam_writer **out, lam_error *err);
 
-/* Output to an open stream the caller owns (e.g. stdout); commit flushes. */
+/* Output to an open stream the caller owns (e.g. stdout); commit flushes.
+ * A stream on a file the command read (standard output sent to an input
+ * with >>) is refused as lam_writer_check says. */
 int lam_writer_stream(FILE *f, const char *name, lam_writer **out, lam_error *err);
+
+/* Whether `path` may be an output: LAM_EUSAGE, with the message "PATH is an
+ * input of this command (read as READ): refusing to overwrite it", when it
+ * names (by device and inode: any spelling, link or hard link) a file
+ * recorded as read (lam_file_track, file.h); LAM_OK otherwise, also when
+ * nothing is recorded. lam_writer_file and lam_writer_stream ask it when
+ * they open, and lam_writer_commit again before the rename (a file read
+ * after the output was opened: the temporary is removed, the target left
+ * as it was). A caller that opens an output only at its end (a picture
+ * made in memory) asks it up front, before the work. */
+int lam_writer_check(const char *path, lam_error *err);
+
+/* The same for the file an open stream writes to (standard output sent to
+ * an input with > or >>), named `name` in the message. */
+int lam_writer_check_stream(FILE *f, const char *name, lam_error *err);
 
 /* Output to a growing memory buffer; take it with lam_writer_take. */
 int lam_writer_memory(lam_writer **out, lam_error *err);
@@ -70,7 +88,8 @@ int lam_writer_write(lam_writer *w, const void *data, size_t len);
 int lam_writer_printf(lam_writer *w, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 
 /* Finish: rename the temporary file into place / flush. Frees w. On error
- * (an earlier write failed, or the rename) nothing is left behind. */
+ * (an earlier write failed, the rename, or the target is now a file the
+ * command read: LAM_EUSAGE, lam_writer_check) nothing is left behind. */
 int lam_writer_commit(lam_writer *w, lam_error *err);
 
 /* Give up: remove the temporary file. Frees w (NULL is fine). */

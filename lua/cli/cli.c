@@ -70,15 +70,43 @@ int cli_load_model(const char *path, unsigned threads, lam_model **m, lam_error 
     return strcmp(path, "-") ? lam_model_load_opts(path, &o, m, err) : lam_model_load_stdin_opts(&o, m, err);
 }
 
-int cli_writer(const char *path, lam_writer **w, lam_error *err)
+int cli_fail_cmd(const char *cmd, const lam_error *err)
 {
-    return strcmp(path, "-") ? lam_writer_file(path, w, err) : lam_writer_stream(stdout, "stdout", w, err);
+    return err->code == LAM_EUSAGE ? cli_usage(cmd, "%s", err->msg) : cli_fail(err);
+}
+
+/* "-o FILE is an input of this command ...": an output refused as an
+ * input (writer.h) is named with its option. */
+static int name_option(const char *opt, const char *path, int rc, lam_error *err)
+{
+    /* lam_error_set may take err's own message */
+    if (rc == LAM_EUSAGE && err && strcmp(path, "-")) lam_error_set(err, rc, NULL, 0, 0, "%s %s", opt, err->msg);
+    return rc;
+}
+
+int cli_writer(const char *opt, const char *path, lam_writer **w, lam_error *err)
+{
+    if (!strcmp(path, "-")) {
+        int rc = cli_stdout_check(err);
+        return rc ? rc : lam_writer_stream(stdout, "stdout", w, err);
+    }
+    return name_option(opt, path, lam_writer_file(path, w, err), err);
+}
+
+int cli_stdout_check(lam_error *err)
+{
+    return lam_writer_check_stream(stdout, "standard output", err);
+}
+
+int cli_output_check(const char *opt, const char *path, lam_error *err)
+{
+    return path && strcmp(path, "-") ? name_option(opt, path, lam_writer_check(path, err), err) : LAM_OK;
 }
 
 int cli_save_svg(const lam_svg *svg, const char *path, lam_error *err)
 {
     lam_writer *w;
-    int rc = cli_writer(path, &w, err);
+    int rc = cli_writer("--svg", path, &w, err);
     if (rc) return rc;
     lam_svg_write(svg, w);
     return lam_writer_commit(w, err);

@@ -29,10 +29,26 @@ const char *cli_num(char *buf, size_t size, double x);
 struct lam_model;
 int cli_load_model(const char *path, unsigned threads, struct lam_model **m, lam_error *err);
 
-/* The writer of an output option: the file `path` (atomic, lam_writer_file)
- * or standard output for "-". */
+/* A failure of a command: a usage error (LAM_EUSAGE: options that cannot
+ * go together, an output that would replace an input) as cli_usage says
+ * it (exit 2), anything else as cli_fail (exit 1). */
+int cli_fail_cmd(const char *cmd, const lam_error *err);
+
+/* The writer of an output option `opt` ("-o"): the file `path` (atomic,
+ * lam_writer_file) or standard output for "-". A file or standard output
+ * that is a file the command read is refused (LAM_EUSAGE, the message
+ * naming the option: writer.h). */
 struct lam_writer;
-int cli_writer(const char *path, struct lam_writer **w, lam_error *err);
+int cli_writer(const char *opt, const char *path, struct lam_writer **w, lam_error *err);
+
+/* The same refusal up front (lam_writer_check), for an output written at
+ * the end of a run: after the inputs are read, before the work. NULL and
+ * "-" pass. */
+int cli_output_check(const char *opt, const char *path, lam_error *err);
+
+/* The same for standard output, for a command that prints its report
+ * there: LAM_EUSAGE when it was sent (> or >>) to a file the command read. */
+int cli_stdout_check(lam_error *err);
 
 /* Write svg to an output option's path (cli_writer): whole or not at all. */
 struct lam_svg;

@@ -85,6 +85,10 @@ int cmd_check(int argc, char **argv)
         goto done;
     }
     a.path = m->path; /* "<stdin>" for "-" */
+    if (cli_output_check("--svg", a.svg, &err)) { /* written last: told now (cli.h) */
+        rc = cli_fail_cmd("check", &err);
+        goto done;
+    }
     if (lam_rays_new(m, &v, &err)) {
         rc = cli_fail(&err);
         goto done;

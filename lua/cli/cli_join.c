@@ -99,8 +99,8 @@ static int join(const char *out, char **paths, size_t n)
     lam_plan_opts po;
     lam_plan_opts_from_profile(&po, prof);
     int sls = po.kind == LAM_PLAN_SLS;
-    if (out && strcmp(out, "-") ? lam_writer_file(out, &w, &err) : lam_writer_stream(stdout, "stdout", &w, &err)) {
-        rc = cli_fail(&err);
+    if (cli_writer("-o", out ? out : "-", &w, &err)) {
+        rc = cli_fail_cmd("join", &err);
         goto done;
     }
     if (lam_program_sink(prof->writer, &prof->dialect, w, &sink, &err)) {
@@ -125,7 +125,7 @@ static int join(const char *out, char **paths, size_t n)
     if (sls && lam_scan_estimates(&po.scan)) cli_print_estimate(meta->model, &est);
     lam_writer *tmp = w;
     w = NULL;
-    if (lam_writer_commit(tmp, &err)) rc = cli_fail(&err);
+    if (lam_writer_commit(tmp, &err)) rc = cli_fail_cmd("join", &err);
 done:
     if (sink.destroy) sink.destroy(sink.ctx);
     lam_writer_abort(w);

@@ -26,16 +26,6 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
-
-/* Whether output path `out` names the same file as the model (device and
- * inode, so any spelling and any link to it counts). */
-static int same_file(const char *out, const char *model)
-{
-    struct stat a, b;
-    return out && strcmp(out, "-") && strcmp(model, "-") && stat(out, &a) == 0 && stat(model, &b) == 0 &&
-           a.st_dev == b.st_dev && a.st_ino == b.st_ino;
-}
 
 static const char usage_text[] =
     "usage: lamina slice MODEL [-m MACHINE] [-s KEY=VALUE ...] [-a x|y|z|DX,DY,DZ]\n"
@@ -167,14 +157,6 @@ int cmd_slice(int argc, char **argv)
         cli_args_free(&a);
         return rc < 0 ? EXIT_OK : rc;
     }
-    const char *outs[][2] = { { "-o", a.out }, { "--svg", a.svg }, { "--json", a.json_out }, { "--html", a.html } };
-    for (size_t i = 0; i < sizeof outs / sizeof *outs && !rc; i++)
-        if (same_file(outs[i][1], a.path))
-            rc = cli_usage("slice", "%s %s is the model being read: refusing to overwrite it", outs[i][0], outs[i][1]);
-    if (rc) {
-        cli_args_free(&a);
-        return rc;
-    }
     lam_error err;
     lam_error_clear(&err);
     lam_profile *prof = NULL;
@@ -196,6 +178,14 @@ int cmd_slice(int argc, char **argv)
         goto done;
     }
     a.path = rep.path = m->path; /* "<stdin>" for "-" */
+    /* every input is read now (a plugin only later, checked at commit):
+     * no output may replace one, and --svg, written last, is told now */
+    const char *outs[][2] = { { "-o", a.out }, { "--svg", a.svg }, { "--json", a.json_out }, { "--html", a.html } };
+    for (size_t i = 0; i < sizeof outs / sizeof *outs; i++)
+        if (cli_output_check(outs[i][0], outs[i][1], &err)) {
+            rc = cli_fail_cmd("slice", &err);
+            goto done;
+        }
     if (lam_slicer_new(m, &a.so, &s, &err)) {
         rc = err.code == LAM_EUSAGE ? cli_usage("slice", "%s", err.msg) : cli_fail_limit(&err, 0, CLI_RAISE_LAYERS);
         goto done;
@@ -208,8 +198,8 @@ int cmd_slice(int argc, char **argv)
         rep.frame = lam_slicer_frame(s);
         rep.fill_nonzero = a.so.fill_nonzero;
     }
-    if (cli_writer(a.out, &w, &err) || (a.json_out && cli_writer(a.json_out, &jw, &err))) {
-        rc = cli_fail(&err);
+    if (cli_writer("-o", a.out, &w, &err) || (a.json_out && cli_writer("--json", a.json_out, &jw, &err))) {
+        rc = cli_fail_cmd("slice", &err);
         goto done;
     }
     lam_writer_set_limit(w, a.max_output ? a.max_output : LAM_DEFAULT_MAX_OUTPUT);
@@ -222,7 +212,7 @@ int cmd_slice(int argc, char **argv)
         int src = lam_program_sink(prof->writer, &prof->dialect, w, &sink, &err);
         if (!src) src = tee_outputs(&sink, jw, &rep, &a, s, &po, &err);
         if (src) {
-            rc = err.code == LAM_EUSAGE ? cli_usage("slice", "%s", err.msg) : cli_fail(&err);
+            rc = cli_fail_cmd("slice", &err);
             goto done;
         }
     }
@@ -262,20 +252,21 @@ int cmd_slice(int argc, char **argv)
     }
     if (po.kind == LAM_PLAN_SLS && notes && !a.layers && lam_scan_estimates(&po.scan)) cli_print_estimate(a.path, &est);
     if (cli_view_save(&rep.view, &err)) {
-        rc = cli_fail(&err);
+        rc = cli_fail_cmd("slice", &err);
         goto done;
     }
     {
         lam_writer *tmp = w;
         w = NULL;
         int over = lam_writer_over_limit(tmp);
-        if (lam_writer_commit(tmp, &err)) rc = cli_fail_limit(&err, over, CLI_RAISE_OUTPUT);
+        if (lam_writer_commit(tmp, &err))
+            rc = err.code == LAM_EUSAGE ? cli_fail_cmd("slice", &err) : cli_fail_limit(&err, over, CLI_RAISE_OUTPUT);
         cli_progress_stage(&rep.progress, "writing the outputs");
     }
     if (!rc && jw) {
         lam_writer *tmp = jw;
         jw = NULL;
-        if (lam_writer_commit(tmp, &err)) rc = cli_fail(&err);
+        if (lam_writer_commit(tmp, &err)) rc = cli_fail_cmd("slice", &err);
     }
 done:
     if (sink.destroy) sink.destroy(sink.ctx);

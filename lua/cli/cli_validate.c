@@ -268,7 +268,11 @@ static int validate_program(const args *a, const lam_plan_opts *po, lam_rays *v,
 {
     lam_program *p = NULL;
     int rc = lam_program_read(a->program, &p, err);
-    if (rc) return rc;
+    /* the report sent to the program (> or >>) is said first: the
+     * program is read (or found empty) only to be destroyed */
+    int out = cli_stdout_check(err);
+    if (out && p) lam_program_free(p);
+    if (out || rc) return out ? out : rc;
     pjob j;
     memset(&j, 0, sizeof j);
     j.a = a;

@@ -20,7 +20,7 @@ int cli_view_open(cli_view *v, const args *a, lam_slicer *s, const lam_plan_opts
         rc = lam_svg_new(lam_slicer_count(s), box, title, &v->svg, err);
         if (!rc && !(rc = lam_svg_sink(v->svg, lam_slicer_frame(s), po->frame_machine, &sinks[*n], err))) (*n)++;
     }
-    if (!rc && a->html && !(rc = cli_writer(a->html, &v->hw, err)) && !(rc = lam_html_sink(v->hw, &sinks[*n], err)))
+    if (!rc && a->html && !(rc = cli_writer("--html", a->html, &v->hw, err)) && !(rc = lam_html_sink(v->hw, &sinks[*n], err)))
         (*n)++;
     return rc;
 }

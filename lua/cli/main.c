@@ -1,6 +1,7 @@
 /* The `lamina` executable: dispatch to one command per file (cli_*.c). */
 #include "cli.h"
 #include "cli_lua.h"
+#include "file.h"
 #include "hugemem.h"
 #include "repl.h"
 #include "version.h"
@@ -114,7 +115,9 @@ int main(int argc, char **argv)
 {
     atexit(close_stdout);
     signals_setup();
-    exit(dispatch(argc, argv));
+    int rc = dispatch(argc, argv);
+    lam_file_track(0);
+    exit(rc);
 }
 
 static int dispatch(int argc, char **argv)
@@ -122,6 +125,10 @@ static int dispatch(int argc, char **argv)
     if (argc < 2) return lua_main_default();
     const char *cmd = argv[1];
     if (strcmp(cmd, "repl") != 0) heap_setup();
+    /* a command's outputs may not replace what it read (writer.h); Lua
+     * (run, repl, -e) keeps the library's default: no record */
+    int lua = !strcmp(cmd, "run") || !strcmp(cmd, "repl") || !strcmp(cmd, "-e");
+    if (!lua) lam_file_track(1);
     if (strcmp(cmd, "--help") == 0 || strcmp(cmd, "-h") == 0 || strcmp(cmd, "help") == 0) return help();
     if (strcmp(cmd, "--version") == 0) {
         printf("lamina " LAMINA_VERSION "\n");

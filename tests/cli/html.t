@@ -36,7 +36,7 @@ deposits=$(awk '/pendown/ {d = 1; next} /penup/ {d = 0; next} d && /uline/ {n++}
 is "$(V json "$TMP/l.html" | tail -1)" "deposits $deposits" "LADRP: as many deposit vectors as the program has deposits"
 
 run "$LAMINA" slice "$PART" -w 0.5 --html "$PART" -o "$TMP/x.sls"
-like "$RC $ERR" "^2 lamina slice: --html .* is the model being read" "--html onto the model: refused"
+like "$RC $ERR" "^2 lamina slice: --html .* is an input of this command" "--html onto the model: refused"
 run "$LAMINA" slice "$PART" -w 0.5 --html -
 like "$RC $ERR" "^2 lamina slice: the program \\(without -o\\) and --html - both write to standard output" "--html - with the program on standard output: refused"
 run "$LAMINA" slice "$PART" -w 0.5 --html "$TMP/nodir/v.html" -o "$TMP/y.sls"

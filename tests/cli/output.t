@@ -57,14 +57,14 @@ is "$(stat -c %a new.sls)" 640 "a new file gets 0666 less the umask"
 sum=$(cksum <model.ug)
 for target in model.ug ./model.ug "$TMP/model.ug" ../"$(basename "$TMP")"/model.ug; do
     run "$LAMINA" slice model.ug -o "$target"
-    like "$RC $ERR" "^2 lamina slice: -o .*model\.ug is the model being read: refusing to overwrite it" "-o $target: refused"
+    like "$RC $ERR" "^2 lamina slice: -o .*model\.ug is an input of this command \(read as model\.ug\): refusing to overwrite it$" "-o $target: refused"
 done
 ln -s model.ug link.ug
 ln model.ug hard.ug
 run "$LAMINA" slice link.ug -o hard.ug
-like "$RC $ERR" "^2 lamina slice: -o hard\.ug is the model being read" "a link and a hard link to the model: the same file, refused"
+like "$RC $ERR" "^2 lamina slice: -o hard\.ug is an input of this command \(read as link\.ug\)" "a link and a hard link to the model: the same file, refused"
 run "$LAMINA" slice model.ug --svg link.ug
-like "$RC $ERR" "^2 lamina slice: --svg link\.ug is the model being read" "--svg onto the model: refused"
+like "$RC $ERR" "^2 lamina slice: --svg link\.ug is an input of this command \(read as model\.ug\)" "--svg onto the model: refused"
 is "$(cksum <model.ug)" "$sum" "the model is untouched"
 
 # ---- signals during a slice ------------------------------------------------------------------

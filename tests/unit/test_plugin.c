@@ -7,6 +7,7 @@
  * when that exists (SAN=1 builds) else plugins/cli-binary.so (the test runs from
  * the repository root). This program lives in $BUILD/tests, so the
  * exe-relative plugin directory <exe dir>/plugins is $BUILD/tests/plugins. */
+#include <dlfcn.h>
 #include <fcntl.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -596,6 +597,32 @@ static void test_unload(void)
     lam_plugins_unload();
 }
 
+/* A plugin is loaded through /proc/self/fd/N of the descriptor checked;
+ * glibc hands back an object already loaded under that name. An object
+ * left loaded (RTLD_NODELETE, as C++ unique symbols make one) under the
+ * name of a descriptor since closed must not be taken for the next plugin,
+ * whose descriptor gets that same number. */
+static void test_stale_name(void)
+{
+    int fd = open(test_plugin("no_init"), O_RDONLY | O_CLOEXEC);
+    char name[64];
+    snprintf(name, sizeof name, "/proc/self/fd/%d", fd);
+    void *stale = fd >= 0 ? dlopen(name, RTLD_NOW | RTLD_LOCAL | RTLD_NODELETE) : NULL;
+    ok(stale != NULL, "no_init.so held loaded as %s", name);
+    if (fd >= 0) close(fd);
+    /* the next open gets the lowest free number: fd's */
+    int probe = open(cli_path, O_RDONLY | O_CLOEXEC);
+    is_int(probe, fd, "(the next descriptor has that number again)");
+    if (probe >= 0) close(probe);
+    lam_error err;
+    lam_error_clear(&err);
+    int rc = lam_plugin_load(cli_path, &err);
+    ok(rc == LAM_OK && writer_listed("cli-binary"), "cli-binary.so loads as itself, not as the stale object (%s)",
+       err.msg);
+    if (stale) dlclose(stale);
+    lam_plugins_unload();
+}
+
 int main(void)
 {
     const char *b = getenv("BUILD");
@@ -615,5 +642,6 @@ int main(void)
     test_sink_rules();
     test_permissions();
     test_unload();
+    test_stale_name();
     return done_testing();
 }
