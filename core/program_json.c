@@ -304,7 +304,7 @@ static int job_member(jr *r, void *ctx, const char *key, size_t at, int depth)
         int rc = string(r, f, sizeof f);
         if (rc) return rc;
         if (strcmp(f, "model") && strcmp(f, "machine"))
-            return fail(r, LAM_EINVAL, at, "job.frame must be \"model\" or \"machine\", got \"%s\"", f);
+            return fail(r, LAM_EINVAL, at, "job.frame must be \"model\" or \"machine\"");
         r->p->frame_machine = !strcmp(f, "machine");
         return LAM_OK;
     }
@@ -465,7 +465,8 @@ static int top_member(jr *r, void *ctx, const char *key, size_t at, int depth)
         char f[32];
         int rc = string(r, f, sizeof f);
         if (rc) return rc;
-        if (strcmp(f, "lamina-run")) return fail(r, LAM_EFORMAT, at, "\"format\" is \"%s\", not \"lamina-run\"", f);
+        /* another JSON document: nothing of it is quoted */
+        if (strcmp(f, "lamina-run")) return fail(r, LAM_EFORMAT, at, "\"format\" is not \"lamina-run\": not a lamina run");
         t->format = 1;
         return LAM_OK;
     }
