@@ -94,6 +94,10 @@ static int add_contour(rd *r, double z, int dir, long id, long lineno, long col,
         L->z = z;
         L->first = p->ncontours;
         L->n = 0;
+        L->line = lineno;
+        L->column = col;
+        L->offset = offset;
+        L->floor = L->ceiling = NAN;
     }
     if (grow((void **)&p->contours, &r->cap_contours, p->ncontours + 1, sizeof *p->contours)) return nomem(r);
     lam_program_contour *c = &p->contours[p->ncontours++];
@@ -390,6 +394,9 @@ static int cli_read_header(rd *r, size_t end, cli_header *h)
             if (rc) return rc;
             if (!(u > 0)) return fail_at(r, LAM_EINVAL, l.no, t.col, "$$UNITS must be greater than 0, got %s",
                                            LAM_NUM_EXACT(u));
+            r->p->units_mm = u;
+            r->p->units_line = l.no;
+            r->p->units_column = t.col;
         }
         /* $$ASCII, $$VERSION, $$DATE, $$DIMENSION, $$LABEL, $$USERDATA, ...: read over */
     }
@@ -508,7 +515,7 @@ static int read_cli_ascii(rd *r)
             /* a layer with no polyline is still a layer */
             lam_program *p = r->p;
             if (grow((void **)&p->layers, &r->cap_layers, p->nlayers + 1, sizeof *p->layers)) return nomem(r);
-            p->layers[p->nlayers++] = (lam_program_layer){ z, p->ncontours, 0 };
+            p->layers[p->nlayers++] = (lam_program_layer){ z, p->ncontours, 0, l.no, name.col, -1, NAN, NAN };
         } else if (tok_is(&name, "$$POLYLINE")) {
             if ((rc = cli_polyline(r, &l, &name, args, have_layer, z))) return rc;
         } else if (!tok_is(&name, "$$HATCHES")) {
@@ -572,7 +579,7 @@ static int read_cli_binary(rd *r, size_t data)
             if (fabs(z) > maxz) maxz = fabs(z);
             have_layer = 1;
             if (grow((void **)&p->layers, &r->cap_layers, p->nlayers + 1, sizeof *p->layers)) return nomem(r);
-            p->layers[p->nlayers++] = (lam_program_layer){ z, p->ncontours, 0 };
+            p->layers[p->nlayers++] = (lam_program_layer){ z, p->ncontours, 0, 0, 0, (long long)cmd_at, NAN, NAN };
         } else if (cmd == 129 || cmd == 130 || cmd == 131 || cmd == 132) {
             int hatches = cmd >= 131;
             size_t nhead = hatches ? 2 : 3;
@@ -688,6 +695,14 @@ int lam_program_read(const char *path, lam_program **out, lam_error *err)
     rc = lam_program_read_buf(path, (const unsigned char *)data, len, out, err);
     free(data);
     return rc;
+}
+
+void lam_program_scale(lam_program *p, double k)
+{
+    for (size_t i = 0; i < 3 * p->npoints; i++) p->xyz[i] *= k;
+    for (size_t i = 0; i < p->nlayers; i++) p->layers[i].z *= k;
+    p->quantum_xy *= k;
+    p->quantum_z *= k;
 }
 
 void lam_program_free(lam_program *p)
