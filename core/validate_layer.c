@@ -411,27 +411,30 @@ static double pass_inset(const lam_validate_opts *o, int k) { return o->inset + 
 /* The void side of an edge of a contour read back as one of several
  * passes (validate.h): from m along the unit normal nv (toward the side
  * its label calls void), the section's boundary must lie at the pass's
- * inset e: material at e - s, void at e + s, s the smallest test inset
- * (the written precision and float32's error are below it). With e = 0
- * (the first pass, no offset) the usual point at d (winding w0) is the
- * test. *k: the pass (-1: not known yet, then the nearest pass that fits
- * is looked for). Returns 1 when it fits, 0 when no pass does, -1 when a
- * point could not be decided, LAM_ENOMEM as a negative below -1. The point
- * tested last is put in uv, xyz and *w. */
-static int void_side_pass(layer_ctx *X, const double m[2], const double nv[2], double d, int w0, int *k,
-                          double uv[2], double xyz[3], int *w)
+ * inset e: material at e - s, void at e + s, s four times the smallest
+ * test inset (the written precision and float32's error are well below
+ * it; a smaller inset is tested at e + d only). With e = 0 (the first
+ * pass, no offset) the usual point at d is the test. *k: the pass (-1: not
+ * known yet, then the nearest pass that fits is looked for). Returns 1
+ * when it fits, 0 when no pass does, -1 when a point could not be
+ * decided, -2 when out of memory. The point tested last is put in uv, xyz
+ * and *w. */
+static int void_side_pass(layer_ctx *X, const double m[2], const double nv[2], double d, int *k, double uv[2],
+                          double xyz[3], int *w)
 {
     const lam_validate_opts *o = X->o;
     int n = o->passes > 1 ? o->passes : 1;
-    double s = X->dmin;
+    double s = 4 * X->dmin;
     for (int j = *k >= 0 ? *k : 0; j < n; j++) {
         double e = pass_inset(o, j);
         if (e == 0) {
-            *w = w0;
+            /* the first pass is the section: the usual point at d */
             uv[0] = m[0] + d * nv[0];
             uv[1] = m[1] + d * nv[1];
-            /* (xyz: the caller's, from the same point) */
-            if (w0 == 0) return *k = j, 1;
+            int rc = layer_point(X->v, X->f, X->L->cut, X->below, uv, xyz, w);
+            if (rc == LAM_ENOMEM) return -2;
+            if (rc) return -1;
+            if (*w == 0) return *k = j, 1;
             if (*k >= 0) return 0;
             continue;
         }
@@ -507,8 +510,14 @@ static int check_material(layer_ctx *X, size_t ci, lam_contour_check *it)
             }
         }
         double side_xyz[2][3];
-        int wind[2], r0 = LAM_OK;
+        int wind[2] = { 0, 0 }, r0 = LAM_OK;
+        /* read back as passes, the label's void side is tested where the
+         * pass lies (void_side_pass), not at d: a point d off an inset
+         * contour may sit on the model's face */
+        int passes = X->passes && c->depth < 0;
+        int vs = (interior_left ? interior_material : !interior_material) ? 1 : 0; /* the label's void side */
         for (int sd = 0; sd < 2 && r0 == LAM_OK; sd++) {
+            if (passes && sd == vs) continue;
             r0 = layer_point(X->v, X->f, L->cut, X->below, side_uv[sd], side_xyz[sd], &wind[sd]);
             if (r0 == LAM_ENOMEM) return LAM_ENOMEM;
         }
@@ -520,12 +529,10 @@ static int check_material(layer_ctx *X, size_t ci, lam_contour_check *it)
         int pass_fit = 2; /* 2: no passes to look for */
         double pass_uv[2], pass_xyz[3];
         int pass_w = 0;
-        if (X->passes && c->depth < 0) {
-            int vs = (interior_left ? interior_material : !interior_material) ? 1 : 0; /* the label's void side */
+        if (passes) {
             double nv[2] = { vs ? -nl[0] : nl[0], vs ? -nl[1] : nl[1] };
             int k = it->pass;
-            memcpy(pass_xyz, side_xyz[vs], sizeof pass_xyz);
-            pass_fit = void_side_pass(X, m, nv, d, wind[vs], &k, pass_uv, pass_xyz, &pass_w);
+            pass_fit = void_side_pass(X, m, nv, d, &k, pass_uv, pass_xyz, &pass_w);
             if (pass_fit == -2) return LAM_ENOMEM;
             if (pass_fit < 0) {
                 undecided = 1;
