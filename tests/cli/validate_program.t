@@ -33,6 +33,13 @@ for mch in sls-contours cli-ascii cli-binary lpbf-cli; do
     run "$LAMINA" validate "$gear" -m $mch -w 0.25 --program "$TMP/s.$mch"
     is "$RC" 0 "$mch as shipped: the program passes"
 done
+# the first pass half a spot (0.04) inside, the second 0.08 further: every
+# contour of both is checked (a test point d off an inset contour used to
+# land on the model's face and leave it undecided)
+"$LAMINA" slice "$M/frame_island.stl" -m lpbf-cli -w 0.5 -o "$TMP/fi.cli" 2>/dev/null
+run "$LAMINA" validate "$M/frame_island.stl" -m lpbf-cli -w 0.5 --program "$TMP/fi.cli"
+like "$RC $OUT" '^0 (?s:.*): 40 layers, 240 contours checked, 240 confirmed, 0 disagreeing; net' \
+    "lpbf-cli on the frame with an island: 2 passes x 3 contours x 40 layers, each checked and confirmed"
 # ... and the passes must be where the options say
 run "$LAMINA" validate "$gear" -m sls-contours -s contour_count=3 -s contour_distance=0.3 --program "$TMP/bo.sls-contours"
 is "$RC" 3 "a beam-offset program validated without --beam-offset: exit 3"
@@ -98,9 +105,14 @@ PY
 run "$LAMINA" validate "$gear" --program "$TMP/twice.sls"
 like "$RC $ERR" "^3 .*twice\.sls:[0-9]+:1: layer 101 \(h=0\.01\) is not above the layer before it \(h=1\.99\)" \
     "SLS, the whole program twice: exit 3"
-head -c "$(grep -b -m2 '^contour ' "$TMP/a.sls" | tail -1 | cut -d: -f1)" "$TMP/a.sls" >"$TMP/one.sls"
+# each contour block written twice: the layers are right, their contours doubled
+awk 'BEGIN { RS = ""; ORS = "\n\n" } { print; print }' "$TMP/a.sls" >"$TMP/dup.sls"
+is "$(grep -c '^contour ' "$TMP/dup.sls")" "$(( 2 * $(grep -c '^contour ' "$TMP/a.sls") ))" "every SLS contour block twice"
+run "$LAMINA" validate "$gear" --program "$TMP/dup.sls"
+like "$RC $OUT" "^3 (?s:.*) 100 differ" "SLS, every contour twice: exit 3, every layer's area off"
+head -c "$(grep -b -m3 '^contour ' "$TMP/a.sls" | tail -1 | cut -d: -f1)" "$TMP/a.sls" >"$TMP/one.sls"
 run "$LAMINA" validate "$gear" --program "$TMP/one.sls"
-like "$RC $ERR" "^3 .*one\.sls:.* layer 2 of the slicing .* not in the program, which ends before it" "SLS, its first layer only: exit 3"
+like "$RC $ERR" "^3 .*one\.sls:.* layer 2 of the slicing .* not in the program, which ends before it" "SLS, its first layer only (the gear and its bore, 2 blocks): exit 3"
 # units: $$UNITS/1000 says a unit is a metre: the part 1000x too large
 sed 's/^\$\$UNITS\/1$/$$UNITS\/1000/' "$TMP/a.cli" >"$TMP/m.cli"
 ok "$(grep -q '^\$\$UNITS/1000$' "$TMP/m.cli"; echo $?)" "\$\$UNITS/1000 written in"
