@@ -37,7 +37,11 @@
  * is kept, for the checks' tolerances.
  *
  * Errors: LAM_ESYNTAX / LAM_EINVAL at file:line:column (text) or at a byte
- * offset (binary), LAM_EIO when the file cannot be read, LAM_ENOMEM. */
+ * offset (binary), LAM_EIO when the file cannot be read, LAM_ENOMEM. A
+ * file that is none of these (its first statement not the SLS dialect's,
+ * a JSON document whose "format" is not "lamina-run") is refused without
+ * quoting any of it: it may be anything. Every reader stays within len:
+ * no NUL terminator is needed. */
 #ifndef LAM_PROGRAM_READ_H
 #define LAM_PROGRAM_READ_H
 

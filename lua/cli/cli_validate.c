@@ -526,7 +526,8 @@ int cmd_validate(int argc, char **argv)
     lam_plan_opts po;
     lam_plan_opts_init(&po);
     for (size_t i = 0; i < a.nsets && !a.program; i++)
-        if (a.sets[i].key->offset == offsetof(lam_profile, frame_machine)) {
+        if (a.sets[i].key->offset == offsetof(lam_profile, frame_machine) ||
+            a.sets[i].key->offset == offsetof(lam_profile, beam_offset)) {
             rc = cli_usage("validate", "%s applies to --program only", a.sets[i].shown);
             goto done;
         }

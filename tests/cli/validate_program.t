@@ -48,6 +48,8 @@ run "$LAMINA" validate "$gear" -m sls-contours --beam-offset -s contour_count=3 
 is "$RC" 3 "a program without beam offset validated with --beam-offset: exit 3"
 run "$LAMINA" validate "$gear" -m sls-contours -s contour_count=3 -s contour_distance=0.5 --program "$TMP/nobo.sls"
 is "$RC" 3 "passes 0.3 apart validated as 0.5 apart: exit 3"
+run "$LAMINA" validate "$gear" --beam-offset
+like "$RC $ERR" "^2 .*--beam-offset applies to --program only" "--beam-offset without --program: a usage error"
 run "$LAMINA" validate "$gear" -m sls-contours -s contour_count=0 --program "$TMP/nobo.sls"
 like "$RC $ERR" "^2 .*contour_count is 0" "contour_count=0: nothing to check, a usage error"
 
