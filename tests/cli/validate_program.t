@@ -98,6 +98,30 @@ open(sys.argv[2], "w").write(head + "$$GEOMETRYSTART\n" + "".join(l + l for l in
 PY
 run "$LAMINA" validate "$gear" -m cli-ascii --program "$TMP/twice.cli"
 like "$RC $ERR" "^3 .*twice\.cli:[0-9]+:1: layer 2 \(h=0\.01\) is not above the layer before it" "CLI, every layer twice: exit 3"
+# binary CLI: the same two, its commands cut after the first layer or each
+# layer's commands written twice ($$LAYERS made to agree)
+python3 - "$TMP/a.bcli" "$TMP" <<'PY'
+import struct, sys
+d = open(sys.argv[1], "rb").read()
+p = d.index(b"$$HEADEREND") + len(b"$$HEADEREND")
+head, layers = d[:p], []
+while p < len(d):
+    cmd, = struct.unpack_from("<H", d, p)
+    if cmd == 127: n = 6
+    elif cmd == 130: n = 14 + 8 * struct.unpack_from("<i", d, p + 10)[0]
+    elif cmd == 132: n = 10 + 16 * struct.unpack_from("<i", d, p + 6)[0]
+    else: raise SystemExit("command %d" % cmd)
+    if cmd == 127: layers.append(b"")
+    layers[-1] += d[p:p + n]
+    p += n
+assert len(layers) == 100 and head.count(b"$$LAYERS/100\n") == 1
+open(sys.argv[2] + "/one.bcli", "wb").write(head.replace(b"$$LAYERS/100\n", b"$$LAYERS/1\n") + layers[0])
+open(sys.argv[2] + "/twice.bcli", "wb").write(head.replace(b"$$LAYERS/100\n", b"$$LAYERS/200\n") + b"".join(l + l for l in layers))
+PY
+run "$LAMINA" validate "$gear" -m cli-binary --program "$TMP/one.bcli"
+like "$RC $ERR" "^3 .*one\.bcli: byte [0-9]+: layer 2 of the slicing \(h=0\.03\) is not in the program" "binary CLI, the first of 100 layers only: exit 3"
+run "$LAMINA" validate "$gear" -m cli-binary --program "$TMP/twice.bcli"
+like "$RC $ERR" "^3 .*twice\.bcli: byte [0-9]+: layer 2 \(h=0\.0[0-9]*\) is not above the layer before it" "binary CLI, every layer twice: exit 3 (the height as float32 holds it)"
 # every layer twice, the second run after the first (the sequence repeated)
 python3 - "$TMP/a.sls" "$TMP/twice.sls" <<'PY'
 import sys
