@@ -304,7 +304,7 @@ static int job_member(jr *r, void *ctx, const char *key, size_t at, int depth)
         int rc = string(r, f, sizeof f);
         if (rc) return rc;
         if (strcmp(f, "model") && strcmp(f, "machine"))
-            return fail(r, LAM_EINVAL, at, "job.frame must be \"model\" or \"machine\", got \"%s\"", f);
+            return fail(r, LAM_EINVAL, at, "job.frame must be \"model\" or \"machine\"");
         r->p->frame_machine = !strcmp(f, "machine");
         return LAM_OK;
     }
@@ -369,6 +369,7 @@ static int contour_member(jr *r, void *ctx, const char *key, size_t at, int dept
 typedef struct layer_ctx {
     int have_z;
     double z;
+    double floor, ceiling;   /* NAN when not given */
     size_t first;            /* its first contour */
     size_t index;            /* 1-based, for messages */
 } layer_ctx;
@@ -417,6 +418,8 @@ static int layer_member(jr *r, void *ctx, const char *key, size_t at, int depth)
         L->have_z = 1;
         return number(r, &L->z);
     }
+    if (!strcmp(key, "floor")) return number(r, &L->floor);
+    if (!strcmp(key, "ceiling")) return number(r, &L->ceiling);
     if (!strcmp(key, "contours")) {
         if (expect(r, '[')) return fail(r, LAM_EINVAL, at, "\"contours\" must be an array");
         if (empty(r, ']')) return LAM_OK;
@@ -439,12 +442,14 @@ static int layers(jr *r, int depth)
     do {
         ws(r);
         size_t at = r->pos;
+        long line = r->line, col = col_of(r, at);
         if (r->pos >= r->n || r->s[r->pos] != '{') return fail(r, LAM_EINVAL, at, "a layer must be an object");
         r->pos++;
-        layer_ctx L = { 0, 0, p->ncontours, ++index };
+        layer_ctx L = { 0, 0, NAN, NAN, p->ncontours, ++index };
         if ((rc = members(r, &L, layer_member, depth + 1))) return rc;
         if (!L.have_z) return fail(r, LAM_EINVAL, at, "layer %zu has no \"z\"", index);
-        if (p->ncontours == L.first) continue; /* nothing to check in it */
+        /* (a layer of no contour is kept: the caller tells whether the
+         * model has material there) */
         if (p->nlayers >= r->cap_layers) {
             void *a = lam_grow(p->layers, &r->cap_layers, p->nlayers + 1, sizeof *p->layers, 64);
             if (!a) return nomem(r);
@@ -454,6 +459,11 @@ static int layers(jr *r, int depth)
         pl->z = L.z;
         pl->first = L.first;
         pl->n = p->ncontours - L.first;
+        pl->line = line;
+        pl->column = col;
+        pl->offset = -1;
+        pl->floor = L.floor;
+        pl->ceiling = L.ceiling;
     } while (more(r, ']', &rc) == 1);
     return rc;
 }
@@ -465,7 +475,8 @@ static int top_member(jr *r, void *ctx, const char *key, size_t at, int depth)
         char f[32];
         int rc = string(r, f, sizeof f);
         if (rc) return rc;
-        if (strcmp(f, "lamina-run")) return fail(r, LAM_EFORMAT, at, "\"format\" is \"%s\", not \"lamina-run\"", f);
+        /* another JSON document: nothing of it is quoted */
+        if (strcmp(f, "lamina-run")) return fail(r, LAM_EFORMAT, at, "\"format\" is not \"lamina-run\": not a lamina run");
         t->format = 1;
         return LAM_OK;
     }

@@ -94,6 +94,10 @@ static int add_contour(rd *r, double z, int dir, long id, long lineno, long col,
         L->z = z;
         L->first = p->ncontours;
         L->n = 0;
+        L->line = lineno;
+        L->column = col;
+        L->offset = offset;
+        L->floor = L->ceiling = NAN;
     }
     if (grow((void **)&p->contours, &r->cap_contours, p->ncontours + 1, sizeof *p->contours)) return nomem(r);
     lam_program_contour *c = &p->contours[p->ncontours++];
@@ -142,6 +146,19 @@ static int tok_is(const tok *t, const char *w) { return t->n == strlen(w) && !me
 
 static const char *shown(char *buf, size_t size, const tok *t) { return lam_quote_bytes(buf, size, t->s, t->n); }
 
+/* The exponent written after t->s[i] ('e' or 'E'): [+-]digits, read within
+ * the token (a token is not NUL-terminated: it ends where the buffer may),
+ * saturated at +-1000 (a double's range ends well before). */
+static long written_exponent(const tok *t, size_t i)
+{
+    int neg = 0;
+    long e = 0;
+    if (++i < t->n && (t->s[i] == '+' || t->s[i] == '-')) neg = t->s[i++] == '-';
+    for (; i < t->n && t->s[i] >= '0' && t->s[i] <= '9'; i++)
+        if (e < 1000) e = e * 10 + (t->s[i] - '0');
+    return neg ? -e : e;
+}
+
 /* How far the value written as t may be from the one meant: half a unit in
  * its last decimal place. */
 static double written_quantum(const tok *t)
@@ -151,9 +168,9 @@ static double written_quantum(const tok *t)
     while (i < t->n && t->s[i] != '.' && t->s[i] != 'e' && t->s[i] != 'E') i++;
     if (i < t->n && t->s[i] == '.')
         for (i++; i < t->n && t->s[i] >= '0' && t->s[i] <= '9'; i++) decimals++;
-    if (i < t->n && (t->s[i] == 'e' || t->s[i] == 'E')) exp10 = strtol((const char *)t->s + i + 1, NULL, 10);
-    if (exp10 > 300 || exp10 < -300) exp10 = exp10 > 0 ? 300 : -300;
-    return 0.5 * pow(10, (double)(exp10 - decimals));
+    if (i < t->n && (t->s[i] == 'e' || t->s[i] == 'E')) exp10 = written_exponent(t, i);
+    double e = (double)exp10 - (double)decimals;
+    return 0.5 * pow(10, e > 300 ? 300 : e < -300 ? -300 : e);
 }
 
 /* Token t as a finite number; *q (may be NULL) grows to its quantum. */
@@ -264,8 +281,10 @@ static int read_sls(rd *r)
     size_t i;
     long loops = 0;
     char b[64];
+    int recognised = 0; /* a first statement of the dialect was read */
     while (next_statement(r, &l, &t, &i)) {
         if (tok_is(&t, "hatches")) {
+            recognised = 1;
             /* a block of hatch vectors (not contours): read over to endhatches */
             long hline = l.no, hcol = t.col;
             do {
@@ -273,8 +292,15 @@ static int read_sls(rd *r)
             } while (!tok_is(&t, "endhatches"));
             continue;
         }
+        if (!tok_is(&t, "contour") && !recognised)
+            /* not the dialect at all (any other file given as --program):
+             * nothing of it is quoted, it may be anything */
+            return fail_at(r, LAM_ESYNTAX, l.no, t.col,
+                           "not a program lamina reads: expected 'contour' (sls-contours), $$HEADERSTART (CLI) "
+                           "or '{' (a run's JSON)");
         if (!tok_is(&t, "contour"))
             return fail_at(r, LAM_ESYNTAX, l.no, t.col, "expected 'contour', got %s", shown(b, sizeof b, &t));
+        recognised = 1;
         long cline = l.no, ccol = t.col;
         tok zt;
         double z;
@@ -368,6 +394,9 @@ static int cli_read_header(rd *r, size_t end, cli_header *h)
             if (rc) return rc;
             if (!(u > 0)) return fail_at(r, LAM_EINVAL, l.no, t.col, "$$UNITS must be greater than 0, got %s",
                                            LAM_NUM_EXACT(u));
+            r->p->units_mm = u;
+            r->p->units_line = l.no;
+            r->p->units_column = t.col;
         }
         /* $$ASCII, $$VERSION, $$DATE, $$DIMENSION, $$LABEL, $$USERDATA, ...: read over */
     }
@@ -390,7 +419,9 @@ static int close_polyline(rd *r, long lineno, long col, size_t offset)
 {
     lam_program *p = r->p;
     lam_program_contour *c = &p->contours[p->ncontours - 1];
-    const double *a = p->xyz + 3 * c->first, *z = p->xyz + 3 * (c->first + c->n - 1);
+    /* (no point arithmetic before the count is known: with no points at
+     * all, xyz may still be NULL) */
+    const double *a = c->n ? p->xyz + 3 * c->first : NULL, *z = c->n ? a + 3 * (c->n - 1) : NULL;
     if (c->n < 4 || a[0] != z[0] || a[1] != z[1]) {
         const char *why = c->n < 4 ? "a closed polyline needs at least 4 points (3 and the first again)"
                                    : "the polyline is not closed (its last point is not its first)";
@@ -484,7 +515,7 @@ static int read_cli_ascii(rd *r)
             /* a layer with no polyline is still a layer */
             lam_program *p = r->p;
             if (grow((void **)&p->layers, &r->cap_layers, p->nlayers + 1, sizeof *p->layers)) return nomem(r);
-            p->layers[p->nlayers++] = (lam_program_layer){ z, p->ncontours, 0 };
+            p->layers[p->nlayers++] = (lam_program_layer){ z, p->ncontours, 0, l.no, name.col, -1, NAN, NAN };
         } else if (tok_is(&name, "$$POLYLINE")) {
             if ((rc = cli_polyline(r, &l, &name, args, have_layer, z))) return rc;
         } else if (!tok_is(&name, "$$HATCHES")) {
@@ -548,7 +579,7 @@ static int read_cli_binary(rd *r, size_t data)
             if (fabs(z) > maxz) maxz = fabs(z);
             have_layer = 1;
             if (grow((void **)&p->layers, &r->cap_layers, p->nlayers + 1, sizeof *p->layers)) return nomem(r);
-            p->layers[p->nlayers++] = (lam_program_layer){ z, p->ncontours, 0 };
+            p->layers[p->nlayers++] = (lam_program_layer){ z, p->ncontours, 0, 0, 0, (long long)cmd_at, NAN, NAN };
         } else if (cmd == 129 || cmd == 130 || cmd == 131 || cmd == 132) {
             int hatches = cmd >= 131;
             size_t nhead = hatches ? 2 : 3;
@@ -666,6 +697,14 @@ int lam_program_read(const char *path, lam_program **out, lam_error *err)
     return rc;
 }
 
+void lam_program_scale(lam_program *p, double k)
+{
+    for (size_t i = 0; i < 3 * p->npoints; i++) p->xyz[i] *= k;
+    for (size_t i = 0; i < p->nlayers; i++) p->layers[i].z *= k;
+    p->quantum_xy *= k;
+    p->quantum_z *= k;
+}
+
 void lam_program_free(lam_program *p)
 {
     if (!p) return;
@@ -684,7 +723,8 @@ int lam_program_layer_make(const lam_program *p, size_t i, const lam_frame *f, i
 {
     memset(out, 0, sizeof *out);
     const lam_program_layer *pl = &p->layers[i];
-    const lam_program_contour *pc = p->contours + pl->first;
+    /* a layer with no contour may come before any: contours still NULL */
+    const lam_program_contour *pc = pl->n ? p->contours + pl->first : NULL;
     size_t np = 0;
     for (size_t k = 0; k < pl->n; k++) np += pc[k].n;
     out->index = i;

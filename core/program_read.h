@@ -16,8 +16,8 @@
  *   (its last point repeats its first, which is then dropped) and have dir
  *   0 (clockwise, hole) or 1 (counter-clockwise, solid): dir 2 (an open
  *   line) is not a contour. $$LAYERS, when given, must count the layers.
- *   Coordinates are taken as written (lamina writes model units and says
- *   in $$UNITS how many millimetres one is).
+ *   Coordinates are taken as written; $$UNITS (how many millimetres one
+ *   is) is kept in units_mm for the caller to compare with the model's.
  * - A lamina run's JSON (json_sink.h, `lamina slice --json`) when the file
  *   starts with "{": each layer's contours ("solid" their label, "id" their
  *   id, points in the output frame, projected on the job's plane into the
@@ -37,7 +37,11 @@
  * is kept, for the checks' tolerances.
  *
  * Errors: LAM_ESYNTAX / LAM_EINVAL at file:line:column (text) or at a byte
- * offset (binary), LAM_EIO when the file cannot be read, LAM_ENOMEM. */
+ * offset (binary), LAM_EIO when the file cannot be read, LAM_ENOMEM. A
+ * file that is none of these (its first statement not the SLS dialect's,
+ * a JSON document whose "format" is not "lamina-run") is refused without
+ * quoting any of it: it may be anything. Every reader stays within len:
+ * no NUL terminator is needed. */
 #ifndef LAM_PROGRAM_READ_H
 #define LAM_PROGRAM_READ_H
 
@@ -64,6 +68,10 @@ typedef struct lam_program_contour {
 typedef struct lam_program_layer {
     double z;                /* the height as written */
     size_t first, n;         /* its contours */
+    long line, column;       /* where it starts (CLI: its $$LAYER; SLS: its first loop's
+                                contour; JSON: the layer's object); 0 for binary */
+    long long offset;        /* binary: byte offset of its layer command; -1 for text */
+    double floor, ceiling;   /* JSON: the layer's slab as the run says; NAN otherwise */
 } lam_program_layer;
 
 typedef struct lam_program {
@@ -80,6 +88,9 @@ typedef struct lam_program {
     int has_frame;           /* JSON: the file says where its layers lie: */
     lam_frame frame;         /* the layer frame in the model (job.layer_frame) */
     int frame_machine;       /* whether it was written in the machine frame */
+    double units_mm;         /* CLI's $$UNITS: millimetres per coordinate unit; 0 when
+                                the file does not say (SLS, JSON: model units) */
+    long units_line, units_column; /* where $$UNITS stands */
 } lam_program;
 
 /* Read the program at path. On success *out is a new program the caller
@@ -108,6 +119,10 @@ void lam_layer_clear(lam_layer *L);
 /* Read a run's JSON (data[0..len)) into p, which the caller allocated
  * zeroed and frees (lam_program_read_buf calls it). */
 int lam_program_read_json(const char *path, const unsigned char *data, size_t len, lam_program *p, lam_error *err);
+
+/* Multiply every coordinate, height and precision of p by k > 0 (a CLI
+ * program's $$UNITS against the model's units). */
+void lam_program_scale(lam_program *p, double k);
 
 /* "sls-contours", "cli-ascii", "cli-binary" or "lamina-run" (JSON). */
 const char *lam_program_format_name(lam_program_format f);

@@ -85,6 +85,9 @@ typedef struct lam_contour_check {
     double area;             /* signed area of the points as written (> 0 counter-clockwise) */
     int depth_found;         /* contours around it by the plane ray; -1 when not found */
     long parent_found;       /* the smallest of them, -1 for none */
+    int pass;                /* read back with contour passes (lam_validate_opts):
+                                the pass it was found at (0 the outermost), -1 when
+                                no edge told; 0 otherwise */
     const char *why;         /* static text: "confirmed", why not checked, or the first problem */
     const char *whys[4];     /* per LAM_VP_* bit (bit k at k): what is wrong, NULL if nothing */
 } lam_contour_check;
@@ -112,6 +115,19 @@ typedef struct lam_validate_opts {
                                 (half a unit in its last printed place); 0 for layers
                                 straight from the slicer */
     double quantum_h;        /* the same for the written height */
+    /* Contour passes of a layer read back (depth < 0), as the SLS planner
+     * writes them (planner.h): `passes` of them (0 or 1: one), the first
+     * `inset` inside the section (beam_offset: half the spot), each next
+     * `pass_distance` further in. A contour of pass k lies inset + k *
+     * pass_distance inside the section: its label's material side is
+     * tested as usual, its void side just before and just beyond that
+     * distance (material, then void), the pass found from the first edge
+     * decided (the nearest k that fits); its label against the nesting
+     * counts the k passes around it; the net area compared is the first
+     * pass's (at most the section when inset > 0: an inset region is
+     * smaller). */
+    int passes;
+    double inset, pass_distance;
 } lam_validate_opts;
 
 /* Defaults: even-odd, exact coordinates. */

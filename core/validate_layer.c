@@ -277,6 +277,9 @@ static const char *WHY_LABEL_FOUND =
 static const char *AREA_GAPS = "not compared: outlines were closed across gaps or left open";
 static const char *AREA_OPEN = "not compared: the model has boundary edges or cannot be oriented";
 static const char *AREA_BOTH = "net area against the model's section";
+static const char *AREA_INSET =
+    "net area of the first contour pass at most the model's section (the pass lies inside it by the "
+    "beam offset)";
 static const char *AREA_ONE_SIDED =
     "net area at most the model's section (non-zero fill with two bodies in the plane: the section "
     "counts their overlap twice)";
@@ -343,7 +346,11 @@ static void check_nesting(const lam_layer *L, size_t ci, lam_contour_check *it)
     const lam_contour *c = &L->contours[ci];
     if (it->depth_found < 0) return;
     if (c->depth < 0) {
-        if (c->kind != (it->depth_found % 2 ? LAM_HOLE : LAM_SOLID)) problem(it, LAM_VP_NESTING, WHY_LABEL_FOUND);
+        /* each pass further out holds a point just inside this contour:
+         * the passes around it are not its parents (validate.h) */
+        if (it->pass < 0) return;
+        if (c->kind != ((it->depth_found - it->pass) % 2 ? LAM_HOLE : LAM_SOLID))
+            problem(it, LAM_VP_NESTING, WHY_LABEL_FOUND);
     } else if (c->depth != it->depth_found) {
         problem(it, LAM_VP_NESTING, WHY_DEPTH_FOUND);
     } else if (c->parent != it->parent_found) {
@@ -394,7 +401,72 @@ typedef struct layer_ctx {
     egrid G;
     nest_scratch N;
     double *area;            /* per contour, signed, as written */
+    int passes;              /* contour passes to look for (validate.h): 0 when the layer
+                                is checked as the section itself */
 } layer_ctx;
+
+/* How far inside the section pass k lies. */
+static double pass_inset(const lam_validate_opts *o, int k) { return o->inset + k * o->pass_distance; }
+
+/* The void side of an edge of a contour read back as one of several
+ * passes (validate.h): from m along the unit normal nv (toward the side
+ * its label calls void), the section's boundary must lie at the pass's
+ * inset e: material at e - s, void at e + s, s four times the smallest
+ * test inset (the written precision and float32's error are well below
+ * it; a smaller inset is tested at e + d only). With e = 0 (the first
+ * pass, no offset) the usual point at d is the test. *k: the pass (-1: not
+ * known yet, then the nearest pass that fits is looked for). Returns 1
+ * when it fits, 0 when no pass does, -1 when a point could not be
+ * decided, -2 when out of memory. The point tested last is put in uv, xyz
+ * and *w. */
+static int void_side_pass(layer_ctx *X, const double m[2], const double nv[2], double d, int *k, double uv[2],
+                          double xyz[3], int *w)
+{
+    const lam_validate_opts *o = X->o;
+    int n = o->passes > 1 ? o->passes : 1;
+    double s = 4 * X->dmin;
+    for (int j = *k >= 0 ? *k : 0; j < n; j++) {
+        double e = pass_inset(o, j);
+        if (e == 0) {
+            /* the first pass is the section: the usual point at d */
+            uv[0] = m[0] + d * nv[0];
+            uv[1] = m[1] + d * nv[1];
+            int rc = layer_point(X->v, X->f, X->L->cut, X->below, uv, xyz, w);
+            if (rc == LAM_ENOMEM) return -2;
+            if (rc) return -1;
+            if (*w == 0) return *k = j, 1;
+            if (*k >= 0) return 0;
+            continue;
+        }
+        double out = e < 2 * s ? e + d : e + s;
+        double p[2] = { m[0] + out * nv[0], m[1] + out * nv[1] };
+        int rc = layer_point(X->v, X->f, X->L->cut, X->below, p, xyz, w);
+        if (rc == LAM_ENOMEM) return -2;
+        uv[0] = p[0], uv[1] = p[1];
+        if (rc) return -1;
+        if (*w != 0) {
+            if (*k >= 0) return 0; /* material beyond this pass's inset */
+            continue;
+        }
+        if (e >= 2 * s) {
+            double q[2] = { m[0] + (e - s) * nv[0], m[1] + (e - s) * nv[1] }, qxyz[3];
+            int wq;
+            rc = layer_point(X->v, X->f, X->L->cut, X->below, q, qxyz, &wq);
+            if (rc == LAM_ENOMEM) return -2;
+            if (rc) return -1;
+            if (wq == 0) {
+                /* void already before the inset: the contour is further in than any pass */
+                memcpy(uv, q, sizeof q);
+                memcpy(xyz, qxyz, sizeof qxyz);
+                *w = wq;
+                return 0;
+            }
+        }
+        *k = j;
+        return 1;
+    }
+    return 0;
+}
 
 /* Test points beside the contour's longest edges: the material check, and
  * the nesting found at the first point inside it. LAM_OK or LAM_ENOMEM. */
@@ -438,8 +510,14 @@ static int check_material(layer_ctx *X, size_t ci, lam_contour_check *it)
             }
         }
         double side_xyz[2][3];
-        int wind[2], r0 = LAM_OK;
+        int wind[2] = { 0, 0 }, r0 = LAM_OK;
+        /* read back as passes, the label's void side is tested where the
+         * pass lies (void_side_pass), not at d: a point d off an inset
+         * contour may sit on the model's face */
+        int passes = X->passes && c->depth < 0;
+        int vs = (interior_left ? interior_material : !interior_material) ? 1 : 0; /* the label's void side */
         for (int sd = 0; sd < 2 && r0 == LAM_OK; sd++) {
+            if (passes && sd == vs) continue;
             r0 = layer_point(X->v, X->f, L->cut, X->below, side_uv[sd], side_xyz[sd], &wind[sd]);
             if (r0 == LAM_ENOMEM) return LAM_ENOMEM;
         }
@@ -447,11 +525,33 @@ static int check_material(layer_ctx *X, size_t ci, lam_contour_check *it)
             undecided = 1;
             continue;
         }
+        /* read back as passes: the void side where the pass says */
+        int pass_fit = 2; /* 2: no passes to look for */
+        double pass_uv[2], pass_xyz[3];
+        int pass_w = 0;
+        if (passes) {
+            double nv[2] = { vs ? -nl[0] : nl[0], vs ? -nl[1] : nl[1] };
+            int k = it->pass;
+            pass_fit = void_side_pass(X, m, nv, d, &k, pass_uv, pass_xyz, &pass_w);
+            if (pass_fit == -2) return LAM_ENOMEM;
+            if (pass_fit < 0) {
+                undecided = 1;
+                continue;
+            }
+            if (pass_fit == 1) it->pass = k;
+        }
         it->edges++;
         for (int sd = 0; sd < 2; sd++) {
             int interior = sd == 0 ? interior_left : !interior_left;
             int expect = interior ? interior_material : !interior_material;
             int truth = wind[sd] != 0;
+            if (!expect && pass_fit != 2) {
+                /* the void side as the pass found it */
+                memcpy(side_uv[sd], pass_uv, sizeof pass_uv);
+                memcpy(side_xyz[sd], pass_xyz, sizeof pass_xyz);
+                wind[sd] = pass_w;
+                truth = pass_fit != 1;
+            }
             int bad = truth != expect;
             if (!have_first || (bad && !disagree)) {
                 memcpy(it->uv, side_uv[sd], sizeof it->uv);
@@ -481,6 +581,7 @@ static int check_area(layer_ctx *X, int below, lam_layer_check *out, lam_error *
     out->net_area = 0;
     for (size_t ci = 0; ci < L->ncontours; ci++) {
         const lam_contour *c = &L->contours[ci];
+        if (out->items[ci].pass > 0) continue; /* the first pass is the section's (validate.h) */
         double a = fabs(X->area[ci]);
         out->net_area += c->kind == LAM_SOLID ? a : -a;
         sum_abs += a;
@@ -509,7 +610,10 @@ static int check_area(layer_ctx *X, int below, lam_layer_check *out, lam_error *
     out->area_tolerance = 1e-9 * (sum_abs + fabs(sm.area)) + 2 * X->o->quantum_uv * both +
                           X->o->quantum_h * sm.rate + 1e-12 * lam_rays_scale(X->v) * both;
     out->area_checked = 1;
-    if (X->o->fill_nonzero && sm.solid_shells >= 2) {
+    if (X->passes && X->o->inset > 0) {
+        out->area_why = AREA_INSET;
+        out->area_ok = out->net_area <= sm.area + out->area_tolerance;
+    } else if (X->o->fill_nonzero && sm.solid_shells >= 2) {
         out->area_why = AREA_ONE_SIDED;
         out->area_ok = out->net_area <= sm.area + out->area_tolerance;
     } else {
@@ -572,6 +676,7 @@ static int check_contour(layer_ctx *X, size_t ci, lam_layer_check *out)
     it->area = X->area[ci];
     it->depth_found = -1;
     it->parent_found = -1;
+    it->pass = X->passes && c->depth < 0 ? -1 : 0;
     it->why = WHY_NOPOINT;
     check_structure(L, ci, X->area[ci], it);
     int rc = c->n >= 3 ? check_material(X, ci, it) : 0;
@@ -620,8 +725,13 @@ int lam_validate_layer(lam_rays *v, const lam_layer *L, const lam_frame *f, cons
         layer_ctx_free(&X);
         return nomem(err);
     }
+    X.passes = o->passes > 1 || o->inset > 0 ? (o->passes > 1 ? o->passes : 1) : 0;
     int rc = LAM_OK;
     for (size_t ci = 0; ci < L->ncontours && !rc; ci++) rc = check_contour(&X, ci, out);
+    /* a contour whose pass no edge told is taken to be in the pass written
+     * before it (the planner writes the passes one after the other) */
+    for (size_t ci = 0; ci < out->nitems; ci++)
+        if (out->items[ci].pass < 0) out->items[ci].pass = ci ? out->items[ci - 1].pass : 0;
     if (!rc) rc = check_area(&X, below, out, err);
     else rc = nomem(err);
     layer_ctx_free(&X);

@@ -280,6 +280,8 @@ static unsigned key_group(const lam_key *k)
 {
     /* the frame also says how a program read back was written */
     if (k->offset == offsetof(lam_profile, frame_machine)) return OPT_PLAN | OPT_PROGRAM;
+    /* so does the beam offset (validate.h: where the contour passes lie) */
+    if (k->offset == offsetof(lam_profile, beam_offset)) return OPT_PLAN | OPT_PROGRAM;
     return k->flags & LAM_KEY_PLAN ? OPT_PLAN : OPT_SLICE;
 }
 

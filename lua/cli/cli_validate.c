@@ -16,7 +16,9 @@
 #include "validate.h"
 #include "validate_run.h"
 
+#include <float.h>
 #include <math.h>
+#include <stdarg.h>
 #include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
@@ -25,8 +27,9 @@ static const char usage_text[] =
     "usage: lamina validate MODEL [-m MACHINE] [-a AXIS] [-w WIDTH | --widths ... | --planes ...]\n"
     "                             [--cut floor|middle|ceiling] [--gap TOL] [--allow-open]\n"
     "                             [--fill evenodd|nonzero] [--json] [-q | -v] [-j N]\n"
-    "       lamina validate MODEL --program FILE [-m MACHINE] [-a AXIS] [--cut ...]\n"
-    "                             [--frame model|machine] [--fill ...] [--json] [-q | -v] [-j N]\n"
+    "       lamina validate MODEL --program FILE [-m MACHINE] [-a AXIS] [-w WIDTH ...] [--cut ...]\n"
+    "                             [--frame model|machine] [--beam-offset] [--fill ...] [--json]\n"
+    "                             [-q | -v] [-j N]\n"
     "Slices like 'lamina slice' (or reads the program FILE back: sls-contours, cli-ascii,\n"
     "cli-binary or a run's JSON from 'slice --json', told apart by content) and checks every\n"
     "layer against the 3D model: each\n"
@@ -36,7 +39,9 @@ static const char usage_text[] =
     "area against the model's own section. Exit 3 when anything disagrees.\n"
     "With --program: -a, --frame (or the profile's) say how the program was written (a run's\n"
     "JSON says it itself), --cut which side of a flat face a height on it meant (middle and\n"
-    "floor: above, ceiling: below).\n"
+    "floor: above, ceiling: below). Give the options it was sliced with: it must hold each\n"
+    "layer they give once, in the profile's units, its contour passes where -m, -s and\n"
+    "--beam-offset put them (exit 3 otherwise).\n"
     "-q (--quiet): only the layers that disagree and the summary, no progress line;\n"
     "-v (--verbose): also the time each stage takes.\n"
     "  -j, --jobs       threads that slice (or make the layers read back) and check them\n"
@@ -259,12 +264,162 @@ static int program_report(void *ctx, size_t i, const lam_vlayer *l, lam_layer_ch
     (void)err;
     const pjob *j = ctx;
     cli_progress_step(j->r->progress, i + 1);
-    vsource src = { j->a->program, j->p->contours + j->p->layers[i].first };
+    const lam_program_layer *pl = &j->p->layers[i];
+    vsource src = { j->a->program, pl->n ? j->p->contours + pl->first : NULL };
     vreport_check(j->r, l->L, chk, &src);
     return LAM_OK;
 }
 
-static int validate_program(const args *a, const lam_plan_opts *po, lam_rays *v, vreport *r, lam_error *err)
+/* ---- does the program cover the model? ------------------------------------------- */
+
+static int layer_error(lam_error *err, const char *path, const lam_program_layer *pl, const char *fmt, ...)
+    __attribute__((format(printf, 4, 5)));
+static int layer_error(lam_error *err, const char *path, const lam_program_layer *pl, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    int rc = lam_error_vset(err, LAM_EINVAL, path, pl && pl->offset < 0 ? pl->line : 0,
+                            pl && pl->offset < 0 ? pl->column : 0, pl ? pl->offset : -1, fmt, ap);
+    va_end(ap);
+    return rc;
+}
+
+/* Whether a layer of the slicing at h must be in the program: the model
+ * has material there, more than a first pass inset by `inset` can lose
+ * whole (a region within inset of its outline has at most about perimeter
+ * x inset of area; twice that is allowed). */
+static int has_material(lam_section_index *sec, double h, int below, double inset)
+{
+    lam_section_measure sm;
+    lam_section_measure_at(sec, h, below, &sm);
+    if (!sm.segments) return 0;
+    if (!sm.closed) return 1;
+    return sm.area > fmax(2 * inset * sm.perimeter, 1e-9 * sm.perimeter * sm.perimeter);
+}
+
+/* What the program's heights are compared with, for messages. */
+static void units_note(char *buf, size_t size, const lam_program *p, double scale)
+{
+    if (scale == 1) buf[0] = '\0';
+    else snprintf(buf, size, " ($$UNITS/%g: one unit of the program is %g of the model's)", p->units_mm, scale);
+}
+
+/* The layers of a run's JSON against the model's extent: the slabs it
+ * gives (floor, ceiling) follow each other from the model's bottom to its
+ * top, each once. */
+static int covers_slabs(const lam_model *m, const lam_frame *f, const char *path, const lam_program *p,
+                        lam_error *err)
+{
+    double lo = INFINITY, hi = -INFINITY;
+    for (size_t i = 0; i < m->mesh.nverts; i++) {
+        const double *q = m->mesh.xyz + 3 * i;
+        double h = q[0] * f->w[0] + q[1] * f->w[1] + q[2] * f->w[2];
+        lo = fmin(lo, h);
+        hi = fmax(hi, h);
+    }
+    double tol = 1e-9 * fmax(hi - lo, fmax(fabs(lo), fabs(hi)));
+    if (!p->nlayers) return layer_error(err, path, NULL, "the run has no layers: the model spans %s to %s", LAM_NUM(lo), LAM_NUM(hi));
+    for (size_t i = 0; i < p->nlayers; i++) {
+        const lam_program_layer *pl = &p->layers[i];
+        double below = i ? p->layers[i - 1].ceiling : lo;
+        if (fabs(pl->floor - below) > tol)
+            return layer_error(err, path, pl,
+                               "layer %zu starts at %s, not where %s ends (%s): layers missing, repeated or out of order",
+                               i + 1, LAM_NUM(pl->floor), i ? "the layer before it" : "the model", LAM_NUM(below));
+        if (!(pl->ceiling > pl->floor) || pl->z < pl->floor - tol || pl->z > pl->ceiling + tol)
+            return layer_error(err, path, pl, "layer %zu: its height %s is not in its slab %s to %s", i + 1,
+                               LAM_NUM(pl->z), LAM_NUM(pl->floor), LAM_NUM(pl->ceiling));
+    }
+    if (p->layers[p->nlayers - 1].ceiling < hi - tol)
+        return layer_error(err, path, &p->layers[p->nlayers - 1], "the last layer ends at %s, below the model's top (%s)",
+                           LAM_NUM(p->layers[p->nlayers - 1].ceiling), LAM_NUM(hi));
+    return LAM_OK;
+}
+
+/* The program's layers against the slicing the options give (-w,
+ * --widths, --planes, --cut, -a and the profile's layer_width): each at the
+ * height of one of its layers, once, in order; a layer of the slicing may
+ * be missing only where the model has no material (has_material). */
+static int covers_slicing(const args *a, const lam_model *m, const lam_frame *f, lam_section_index *sec, int below,
+                          double inset, double scale, const lam_program *p, lam_error *err)
+{
+    lam_slice_opts so = a->so;
+    so.frame = *f;
+    lam_slicer *s;
+    int rc = lam_slicer_new(m, &so, &s, err);
+    if (rc) return rc;
+    size_t S = lam_slicer_count(s), j = 0;
+    char note[160];
+    units_note(note, sizeof note, p, scale);
+    const char *path = a->program;
+    for (size_t i = 0; i < p->nlayers && !rc; i++) {
+        const lam_program_layer *pl = &p->layers[i];
+        double z = pl->z;
+        for (; !rc && j < S && lam_slicer_cut(s, j) < z - p->quantum_z * (1 + 1e-6) - 4 * DBL_EPSILON * fabs(z); j++)
+            if (has_material(sec, lam_slicer_cut(s, j), below, inset))
+                rc = layer_error(err, path, pl,
+                                 "layer %zu of the slicing (h=%s) is not in the program, which goes on at h=%s%s: "
+                                 "the model has material there",
+                                 j + 1, LAM_NUM(lam_slicer_cut(s, j)), LAM_NUM(z), note);
+        if (rc) break;
+        double c = j < S ? lam_slicer_cut(s, j) : NAN;
+        if (j < S && fabs(c - z) <= p->quantum_z * (1 + 1e-6) + 4 * DBL_EPSILON * fabs(z)) {
+            j++;
+            continue;
+        }
+        if (i && z <= p->layers[i - 1].z)
+            rc = layer_error(err, path, pl, "layer %zu (h=%s) is not above the layer before it (h=%s): every layer "
+                                            "of the model must be written once, in order", i + 1, LAM_NUM(z),
+                             LAM_NUM(p->layers[i - 1].z));
+        else
+            rc = layer_error(err, path, pl, "layer %zu (h=%s) is not at a height of the slicing the options give "
+                                            "(%zu layers from h=%s to %s)%s: give validate the options the program "
+                                            "was sliced with", i + 1, LAM_NUM(z), S,
+                             LAM_NUM(S ? lam_slicer_cut(s, 0) : 0), LAM_NUM(S ? lam_slicer_cut(s, S - 1) : 0), note);
+    }
+    for (; !rc && j < S; j++)
+        if (has_material(sec, lam_slicer_cut(s, j), below, inset))
+            rc = layer_error(err, path, p->nlayers ? &p->layers[p->nlayers - 1] : NULL,
+                             "layer %zu of the slicing (h=%s) is not in the program, which %s%s: the model has material "
+                             "there", j + 1, LAM_NUM(lam_slicer_cut(s, j)), p->nlayers ? "ends before it" : "has no layers",
+                             note);
+    lam_slicer_free(s);
+    return rc;
+}
+
+/* The program's coordinates in the model's units: a CLI program says in
+ * $$UNITS how many millimetres one of its units is, the profile's `units`
+ * what one model unit is. */
+static int program_units(const lam_profile *prof, const char *path, lam_program *p, double *scale, lam_error *err)
+{
+    *scale = 1;
+    if (!(p->units_mm > 0)) return LAM_OK;
+    double mm = lam_profile_unit_mm(prof);
+    if (!(mm > 0))
+        return lam_error_set(err, LAM_EINVAL, path, p->units_line, p->units_column,
+                             "$$UNITS gives millimetres, but the profile's units are not a length lamina knows "
+                             "(mm, cm, m, um, in, inch, ft)");
+    *scale = p->units_mm / mm;
+    if (*scale != 1) lam_program_scale(p, *scale);
+    return LAM_OK;
+}
+
+/* The contour passes the options say the program holds (validate.h); a
+ * run's JSON holds the layers' contours themselves. */
+static int program_passes(const lam_plan_opts *po, const lam_program *p, lam_validate_opts *vo, lam_error *err)
+{
+    if (po->kind != LAM_PLAN_SLS || p->format == LAM_PROGRAM_JSON) return LAM_OK;
+    if (po->scan.contour_count == 0)
+        return lam_error_set(err, LAM_EUSAGE, NULL, 0, 0,
+                             "contour_count is 0: a program of no contour passes has no contours to check");
+    vo->passes = po->scan.contour_count;
+    vo->inset = po->beam_offset ? po->bead / 2 : 0;
+    vo->pass_distance = po->scan.contour_distance;
+    return LAM_OK;
+}
+
+static int validate_program(const args *a, const lam_profile *prof, const lam_plan_opts *po, const lam_model *m,
+                            lam_rays *v, vreport *r, int *uncovered, lam_error *err)
 {
     lam_program *p = NULL;
     int rc = lam_program_read(a->program, &p, err);
@@ -273,6 +428,11 @@ static int validate_program(const args *a, const lam_plan_opts *po, lam_rays *v,
     int out = cli_stdout_check(err);
     if (out && p) lam_program_free(p);
     if (out || rc) return out ? out : rc;
+    double scale = 1;
+    if ((rc = program_units(prof, a->program, p, &scale, err))) {
+        lam_program_free(p);
+        return rc;
+    }
     pjob j;
     memset(&j, 0, sizeof j);
     j.a = a;
@@ -295,6 +455,19 @@ static int validate_program(const args *a, const lam_plan_opts *po, lam_rays *v,
     j.vo.fill_nonzero = a->so.fill_nonzero;
     j.vo.quantum_uv = p->quantum_xy;
     j.vo.quantum_h = p->quantum_z;
+    if ((rc = program_passes(po, p, &j.vo, err))) {
+        lam_program_free(p);
+        return rc;
+    }
+    /* every layer of the model, once (a run's JSON gives its own slabs) */
+    int slabs = p->format == LAM_PROGRAM_JSON && p->nlayers && isfinite(p->layers[0].floor);
+    rc = slabs ? covers_slabs(m, j.f, a->program, p, err)
+               : covers_slicing(a, m, j.f, sec, j.below, j.vo.passes ? j.vo.inset : 0, scale, p, err);
+    if (rc) {
+        *uncovered = rc == LAM_EINVAL;
+        lam_program_free(p);
+        return rc;
+    }
     if (r->json) {
         fputs("{\"model\":", r->out);
         cli_json_string(r->out, a->path);
@@ -357,7 +530,8 @@ int cmd_validate(int argc, char **argv)
     lam_plan_opts po;
     lam_plan_opts_init(&po);
     for (size_t i = 0; i < a.nsets && !a.program; i++)
-        if (a.sets[i].key->offset == offsetof(lam_profile, frame_machine)) {
+        if (a.sets[i].key->offset == offsetof(lam_profile, frame_machine) ||
+            a.sets[i].key->offset == offsetof(lam_profile, beam_offset)) {
             rc = cli_usage("validate", "%s applies to --program only", a.sets[i].shown);
             goto done;
         }
@@ -373,10 +547,13 @@ int cmd_validate(int argc, char **argv)
     }
     cli_progress_stage(&progress, "reading the model and preparing the rays");
     if (a.program) {
-        int vrc = validate_program(&a, &po, v, &r, &err);
+        int uncovered = 0;
+        int vrc = validate_program(&a, prof, &po, m, v, &r, &uncovered, &err);
         cli_progress_end(&progress);
         if (vrc) {
             rc = err.code == LAM_EUSAGE ? cli_usage("validate", "%s", err.msg) : cli_fail(&err);
+            /* a program that is not the whole part disagrees with it */
+            if (uncovered) rc = EXIT_CHECK;
             goto done;
         }
         rc = vreport_finish(&r, a.program);

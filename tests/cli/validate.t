@@ -81,9 +81,9 @@ for model in thesis_cube_hole.ug frame_island.ug validate/counterbores.ug; do
 done
 # the machine frame: (u, v, w) written; -a and --frame say how to read it
 "$LAMINA" slice "$M/frame_island.ug" -a x -w 2 --frame machine -o "$TMP/fm.sls"
-run "$LAMINA" validate "$M/frame_island.ug" -a x --frame machine --program "$TMP/fm.sls"
+run "$LAMINA" validate "$M/frame_island.ug" -a x -w 2 --frame machine --program "$TMP/fm.sls"
 is "$RC" 0 "an SLS program in the machine frame passes read as such"
-run "$LAMINA" validate "$M/frame_island.ug" -a x --program "$TMP/fm.sls"
+run "$LAMINA" validate "$M/frame_island.ug" -a x -w 2 --program "$TMP/fm.sls"
 is "$RC" 1 "... read in the model frame: an input error"
 like "$ERR" "fm\.sls:2:1: point 1 of this loop is .* from its plane .*machine frame" \
     "... at the loop's file:line:column, suggesting the frame"
@@ -94,7 +94,7 @@ like "$ERR" "fm\.sls:2:1: point 1 of this loop is .* from its plane .*machine fr
 awk 'NR >= 3 && NR <= 6 { b[NR] = $0; if (NR == 6) for (i = 6; i >= 3; i--) print b[i]; next } { print }' \
     "$TMP/ok.sls" >"$TMP/flip.sls"
 ok "$(cmp -s "$TMP/ok.sls" "$TMP/flip.sls"; [ $? = 1 ]; echo $?)" "the first loop's vertices reversed"
-run "$LAMINA" validate "$M/thesis_cube_hole.ug" --program "$TMP/flip.sls"
+run "$LAMINA" validate "$M/thesis_cube_hole.ug" -w 0.5 --program "$TMP/flip.sls"
 is "$RC" 3 "a solid written clockwise in an SLS program: exit 3"
 like "$OUT" '^layer 1 \(h=0\.25\): 2 contours, 1 confirmed, 1 disagreeing$' "... the layer named"
 like "$OUT" '^  contour 1 \(hole, \S*flip\.sls:2:1\) disagrees at \(' "... the contour named with its line (a hole to the machine)"
@@ -104,13 +104,13 @@ like "$OUT" '^  net area -5 \(solids minus holes\) but the model.s section has 3
 "$LAMINA" slice "$M/thesis_cube_hole.ug" -w 0.5 -m cli-ascii -o "$TMP/ok.cli"
 perl -pe 'if (!$done && s{^\$\$POLYLINE/(\d+),1,(\d+),(.*)$}{my @p = split /,/, $3; my @q; while (@p) { unshift @q, splice(@p, 0, 2) } "\$\$POLYLINE/$1,1,$2," . join(",", @q)}e) { $done = 1 }' \
     "$TMP/ok.cli" >"$TMP/flip.cli"
-run "$LAMINA" validate "$M/thesis_cube_hole.ug" --program "$TMP/flip.cli"
+run "$LAMINA" validate "$M/thesis_cube_hole.ug" -w 0.5 --program "$TMP/flip.cli"
 is "$RC" 3 "a CLI polyline labelled solid (dir 1) but written clockwise: exit 3"
 like "$OUT" '^  contour 1 \(solid, \S*flip\.cli:11:1\) direction: written clockwise but labelled solid' \
     "... named as written clockwise but labelled solid, at its line"
 # and its direction field flipped instead (points right, label wrong)
 sed '0,/^\$\$POLYLINE\/1,1,/s//$$POLYLINE\/1,0,/' "$TMP/ok.cli" >"$TMP/dir.cli"
-run "$LAMINA" validate "$M/thesis_cube_hole.ug" --program "$TMP/dir.cli" --json
+run "$LAMINA" validate "$M/thesis_cube_hole.ug" -w 0.5 --program "$TMP/dir.cli" --json
 is "$RC" 3 "a CLI polyline with its direction field flipped: exit 3"
 is "$(jq -c '[.layers[0].disagreements[0] | .contour, .line, (.problems | map(.check) | join(","))]' <<<"$OUT")" \
     '[0,11,"material,direction,nesting"]' "... JSON names the contour, its line and each check that fails"
@@ -128,7 +128,7 @@ while True:
     break
 open(sys.argv[2], "wb").write(d)
 PY
-run "$LAMINA" validate "$M/thesis_cube_hole.ug" --program "$TMP/flip.bcli"
+run "$LAMINA" validate "$M/thesis_cube_hole.ug" -w 0.5 --program "$TMP/flip.bcli"
 is "$RC" 3 "binary CLI, a solid's direction set to hole: exit 3"
 like "$OUT" '^  contour 1 \(hole, \S*flip\.bcli: byte \d+\) direction: written counter-clockwise but labelled hole' \
     "... named with its byte offset"

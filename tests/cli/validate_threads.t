@@ -71,32 +71,33 @@ like "$(cat "$TMP/overlap.1")" 'contour 2 \(hole\) disagrees at \(' "the overlap
 same_v "frame-island" "$M/frame_island.ug" -w 0.5
 same_v "overlap" "$M/validate/overlap_cubes.ug" -w 0.25 --fill nonzero
 
-# programs read back, each contour dialect and a run's JSON
+# programs read back, each contour dialect and a run's JSON (validate
+# given the options they were sliced with: their layers must be those)
 for mch in sls-contours cli-ascii cli-binary; do
     "$LAMINA" slice "$M/frame_island.ug" -m $mch -w 0.4 -o "$TMP/p.$mch" 2>/dev/null
-    same "program-$mch-json" "$M/frame_island.ug" -m $mch --program "$TMP/p.$mch" --json
+    same "program-$mch-json" "$M/frame_island.ug" -m $mch -w 0.4 --program "$TMP/p.$mch" --json
 done
-same_v "program-cli-binary" "$M/frame_island.ug" -m cli-binary --program "$TMP/p.cli-binary"
+same_v "program-cli-binary" "$M/frame_island.ug" -m cli-binary -w 0.4 --program "$TMP/p.cli-binary"
 "$LAMINA" slice "$TMP/torus.stl" -a 1,1,2 -w 0.1 --json "$TMP/torus.json" -o "$TMP/torus.sls" 2>/dev/null
 same "program-run-json" "$TMP/torus.stl" --program "$TMP/torus.json" --json
-same "program-oblique-sls" "$TMP/torus.stl" -a 1,1,2 --program "$TMP/torus.sls" --json
+same "program-oblique-sls" "$TMP/torus.stl" -a 1,1,2 -w 0.1 --program "$TMP/torus.sls" --json
 # a solid written clockwise (its loop's vertices reversed): exit 3, the
 # contour named with its line, for every N
 "$LAMINA" slice "$M/thesis_cube_hole.ug" -w 0.5 -o "$TMP/ok.sls"
 awk 'NR >= 21 && NR <= 24 { b[NR] = $0; if (NR == 24) for (i = 24; i >= 21; i--) print b[i]; next } { print }' \
     "$TMP/ok.sls" >"$TMP/flip.sls"
-same "program-flipped" "$M/thesis_cube_hole.ug" --program "$TMP/flip.sls"
+same "program-flipped" "$M/thesis_cube_hole.ug" -w 0.5 --program "$TMP/flip.sls"
 is "$RC1" 3 "a solid written clockwise in layer 2: exit 3"
 like "$(cat "$TMP/program-flipped.1")" '^layer 2 \(h=0\.75\): 2 contours, 1 confirmed, 1 disagreeing$' \
     "... layer 2 named"
 # one point of layers 3 and 4 off their planes: the error is layer 3's,
 # after layers 1 and 2 were reported, for every N
 awk 'NR == 39 || NR == 57 { $3 = "1.500000" } { print }' "$TMP/ok.sls" >"$TMP/bad.sls"
-same_v "program-bad" "$M/thesis_cube_hole.ug" --program "$TMP/bad.sls"
+same_v "program-bad" "$M/thesis_cube_hole.ug" -w 0.5 --program "$TMP/bad.sls"
 is "$(cat "$TMP/program-bad.8")" "layer 1 (h=0.25): 2 contours, 2 confirmed, 0 disagreeing
 layer 2 (h=0.75): 2 contours, 2 confirmed, 0 disagreeing" "... layers 1 and 2 reported, nothing after"
 for j in 1 2 3 8; do
-    run "$LAMINA" validate "$M/thesis_cube_hole.ug" --program "$TMP/bad.sls" -j $j
+    run "$LAMINA" validate "$M/thesis_cube_hole.ug" -w 0.5 --program "$TMP/bad.sls" -j $j
     like "$RC $ERR" "^1 lamina: \S*bad\.sls:38:1: point 1 of this loop is 0\.25 from its plane" \
         "-j $j: the first error is layer 3's, at its loop (exit 1)"
 done

@@ -97,7 +97,20 @@ static void malformed(void)
     BAD("contour 1\nloop 3\n0 0 1\n1 0\n", LAM_ESYNTAX, 4, 4, "3 coordinates", "SLS: a vertex with 2 coordinates");
     BAD("contour 1\nloop 3\n0 0 1\n1 0 1 7\n", LAM_ESYNTAX, 4, 7, "unexpected '7'", "SLS: a vertex with 4 numbers");
     BAD("contour 1\nloop 3\n0 0 1\n1 nan 1\n", LAM_EINVAL, 4, 3, "not a finite number", "SLS: nan");
-    BAD("\n\nsolid x\n", LAM_ESYNTAX, 3, 1, "expected 'contour'", "SLS: another file");
+    BAD("\n\nsolid x\n", LAM_ESYNTAX, 3, 1, "not a program lamina reads", "SLS: another file");
+    {
+        /* nothing of a file not recognised is quoted */
+        static const char secret[] = "hunter2 is the password\n";
+        lam_program *p = NULL;
+        lam_error err;
+        lam_error_clear(&err);
+        int rc = lam_program_read_buf("secret.txt", (const unsigned char *)secret, sizeof secret - 1, &p, &err);
+        ok(rc == LAM_ESYNTAX && !strstr(err.msg, "hunter") && !strstr(err.msg, "password"),
+           "another file: its content is not quoted ('%s')", err.msg);
+        static const char js[] = "{\"format\": \"hunter2\"}";
+        rc = lam_program_read_buf("secret.json", (const unsigned char *)js, sizeof js - 1, &p, &err);
+        ok(rc == LAM_EFORMAT && !strstr(err.msg, "hunter"), "another JSON: its format is not quoted ('%s')", err.msg);
+    }
     BAD("$$HEADERSTART\n$$ASCII\n$$LAYERS/2\n$$HEADEREND\n$$GEOMETRYSTART\n$$LAYER/1\n$$GEOMETRYEND\n",
         LAM_EINVAL, 3, 10, "says 2 layers but the file has 1", "CLI: $$LAYERS against the layers");
     BAD("$$HEADERSTART\n$$HEADEREND\n$$GEOMETRYSTART\n$$LAYER/1\n$$POLYLINE/1,2,4,0,0,1,0,1,1,0,0\n$$GEOMETRYEND\n",
@@ -150,6 +163,107 @@ static void frames(void)
     lam_program_free(p);
 }
 
+
+/* Read text[0..n) from a heap buffer of exactly n bytes, no NUL after it:
+ * under AddressSanitizer (make SAN=1) any read past the end aborts the
+ * test. Returns the reader's code; *p_out (may be NULL) gets the program. */
+static int read_exact(const char *text, size_t n, lam_program **p_out, lam_error *err)
+{
+    unsigned char *buf = malloc(n ? n : 1);
+    if (!buf) return LAM_ENOMEM;
+    memcpy(buf, text, n);
+    lam_program *p = NULL;
+    lam_error_clear(err);
+    int rc = lam_program_read_buf("exact.prog", n ? buf : buf + 1, n, &p, err);
+    /* the layers made from it read only the program, not the buffer */
+    lam_frame f;
+    lam_frame_axis('z', &f, NULL);
+    for (size_t i = 0; p && i < p->nlayers; i++) {
+        lam_layer L;
+        lam_error e2;
+        if (lam_program_layer_make(p, i, &f, 0, "exact.prog", &L, &e2) == LAM_OK) lam_layer_clear(&L);
+    }
+    free(buf);
+    if (p_out) *p_out = p;
+    else lam_program_free(p);
+    return rc;
+}
+
+/* Every prefix of a program, each in a buffer of its exact length: each
+ * one is read or refused with a message naming the file, none reads past
+ * its end, and the whole is read. */
+static void prefixes(const char *text, size_t n, const char *what)
+{
+    size_t refused = 0, silent = 0;
+    for (size_t k = 0; k < n; k++) {
+        lam_error err;
+        int rc = read_exact(text, k, NULL, &err);
+        if (rc) {
+            refused++;
+            if (!err.msg[0] || strcmp(err.file, "exact.prog")) silent++;
+        }
+    }
+    lam_error err;
+    ok(read_exact(text, n, NULL, &err) == LAM_OK, "%s: read whole from an exact-length buffer", what);
+    ok(silent == 0 && refused > 0, "%s: its %zu prefixes read within their length, %zu refused, each with a "
+                                   "message (%zu without)", what, n, refused, silent);
+}
+
+static void bounded(void)
+{
+    /* found by the fuzzer: the exponent's digits run to the buffer's end
+     * (the quantum read them with strtol, past it) */
+    char num[64];
+    int k = snprintf(num, sizeof num, "contour 0.E4111");
+    for (int i = 0; i < 27; i++) num[k++] = '4';
+    lam_error err;
+    int rc = read_exact(num, (size_t)k, NULL, &err);
+    ok(rc == LAM_ESYNTAX && err.line == 1 && strstr(err.msg, "'loop' or 'endcontour'"),
+       "'contour 0.E4111' and 27 more 4s, no newline: a height (0, its exponent saturated), then the "
+       "file ends where a loop was expected (%d '%s')", rc, err.msg);
+    static const char *const ends[] = { "contour 1e", "contour 1e+", "contour 1.5E-", "contour -.", "contour 1e-99999999999999999999" };
+    for (size_t i = 0; i < sizeof ends / sizeof *ends; i++) {
+        rc = read_exact(ends[i], strlen(ends[i]), NULL, &err);
+        ok(rc != LAM_OK && err.line == 1, "'%s' at the buffer's end: refused at line 1 (%d '%s')", ends[i], rc, err.msg);
+    }
+    /* a polyline of no points, cut by the end of the buffer: refused, no
+     * pointer arithmetic on the points not yet allocated */
+    static const char poly0[] = "$$HEADERSTART\n$$HEADEREND\n$$GEOMETRYSTART\n$$LAYER/1\n$$POLYLINE/1,1,0";
+    rc = read_exact(poly0, sizeof poly0 - 1, NULL, &err);
+    ok(rc == LAM_EINVAL && err.line == 5 && strstr(err.msg, "at least 4 points"),
+       "$$POLYLINE/1,1,0 (no points) at the end: at least 4 points needed, at 5:1 (%d '%s')", rc, err.msg);
+    /* a layer with no polyline before any contour: made into a layer with
+     * none (the program's contour list still empty) */
+    static const char empty[] = "$$HEADERSTART\n$$HEADEREND\n$$GEOMETRYSTART\n$$LAYER/1\n$$GEOMETRYEND";
+    lam_program *p = NULL;
+    rc = read_exact(empty, sizeof empty - 1, &p, &err);
+    ok(rc == LAM_OK && p && p->nlayers == 1 && p->ncontours == 0 && p->layers[0].n == 0,
+       "a CLI layer with no polyline: one layer of no contour");
+    lam_program_free(p);
+    static const char sls[] = "contour 0.25\nloop 4\n-1 -1 0.25\n1 -1 0.25\n1 1 0.25\n-1 1 0.25\nendloop\n"
+                              "endcontour\n\nhatches core 1 0.25\n0 0 0.25 1 0 0.25\nendhatches\n"
+                              "contour 0.75\nloop 3\n0 0 0.75\n1 0 0.75\n0 1.5e-0 0.75\nendloop\nendcontour";
+    prefixes(sls, sizeof sls - 1, "SLS");
+    static const char cli[] = "$$HEADERSTART\n$$ASCII\n$$UNITS/1\n$$LAYERS/2\n$$HEADEREND\n$$GEOMETRYSTART\n"
+                              "$$LAYER/0.25\n$$POLYLINE/1,1,5,-1,-1,1,-1,1,1,-1,1,-1,-1\n$$HATCHES/1,1,0,0,1,0\n"
+                              "$$LAYER/0.75\n$$POLYLINE/1,0,4,0,0,0,1.5E0,1,0,0,0\n$$GEOMETRYEND";
+    prefixes(cli, sizeof cli - 1, "CLI ASCII");
+    static const char json[] =
+        "{\"format\": \"lamina-run\", \"version\": 1, \"job\": {\"frame\": \"model\", \"plane\": "
+        "{\"origin\": [0, 0, 0], \"u\": [1, 0, 0], \"v\": [0, 1, 0], \"w\": [0, 0, 1]}},\n"
+        "\"layers\": [{\"z\": 0.25, \"contours\": [{\"solid\": true, \"id\": 1, \"points\": "
+        "[[-1, -1, 0.25], [1, -1, 0.25], [1, 1, 0.25e0], [-1, 1, 2.5E-1]]}]}], \"x\": \"\\u00e9\\n\"}";
+    prefixes(json, sizeof json - 1, "JSON");
+    static const unsigned char bin[] = "$$HEADERSTART\n$$BINARY\n$$LAYERS/1\n$$HEADEREND"
+                                       "\x7f\x00\x00\x00\x80\x3e"
+                                       "\x82\x00\x01\x00\x00\x00\x01\x00\x00\x00\x04\x00\x00\x00"
+                                       "\x00\x00\x00\x00\x00\x00\x00\x00"
+                                       "\x00\x00\x80\x3f\x00\x00\x00\x00"
+                                       "\x00\x00\x00\x00\x00\x00\x80\x3f"
+                                       "\x00\x00\x00\x00\x00\x00\x00\x00";
+    prefixes((const char *)bin, sizeof bin - 1, "CLI binary");
+}
+
 int main(void)
 {
     cube_hole("cube_hole.sls", LAM_PROGRAM_SLS, 5e-7);
@@ -158,5 +272,6 @@ int main(void)
     cube_hole("cube_hole_binary.cli", LAM_PROGRAM_CLI_BINARY, 5.9604644775390625e-08);
     malformed();
     frames();
+    bounded();
     return done_testing();
 }

@@ -10,7 +10,10 @@
  * - What is written: a solid written clockwise, a contour that is its own
  *   ancestor, depths and parents against the contours around, a layer with
  *   a contour missing (its net area against the section), a layer read
- *   back without nesting (depth -1) whose label contradicts its nesting. */
+ *   back without nesting (depth -1) whose label contradicts its nesting.
+ * - Contour passes read back (validate.h): each found at its inset, the
+ *   passes around it not taken for parents, the first pass's area; read
+ *   with another inset or distance, they disagree. */
 #include "meshes.h"
 #include "section.h"
 #include "slice.h"
@@ -470,10 +473,119 @@ static void test_section_area(void)
     lam_model_free(m);
 }
 
+
+/* ---- contour passes read back ------------------------------------------------------------ */
+
+/* thesis_cube_hole.ug at z = 1 as an SLS planner writes it with two passes,
+ * the first `c` inside the section (beam offset), the next `d` further in:
+ * squares 1 - c and 1 - c - d (solids, counter-clockwise), holes 0.5 + c
+ * and 0.5 + c + d (clockwise), pass 0 first; read back (depth -1). */
+typedef struct passes_layer {
+    lam_layer L;
+    double uv[32];
+    lam_contour c[4];
+} passes_layer;
+
+static void passes_make(passes_layer *h, double c, double d)
+{
+    memset(h, 0, sizeof *h);
+    for (int k = 0; k < 2; k++) {
+        double e = c + k * d;
+        square(h->uv + 16 * k, 1 - e, 1);
+        square(h->uv + 16 * k + 8, 0.5 + e, 0);
+        h->c[2 * k] = (lam_contour){ .first = 8 * (size_t)k, .n = 4, .depth = -1, .parent = -1, .kind = LAM_SOLID };
+        h->c[2 * k + 1] = (lam_contour){ .first = 8 * (size_t)k + 4, .n = 4, .depth = -1, .parent = -1, .kind = LAM_HOLE };
+    }
+    h->L.index = 3;
+    h->L.floor = 0.75;
+    h->L.ceiling = 1.25;
+    h->L.cut = 1;
+    h->L.uv = h->uv;
+    h->L.npoints = 16;
+    h->L.contours = h->c;
+    h->L.ncontours = 4;
+}
+
+static int passes_check(lam_rays *v, passes_layer *h, int n, double inset, double dist, lam_layer_check *c)
+{
+    lam_frame f;
+    lam_error err;
+    lam_frame_axis('z', &f, &err);
+    lam_validate_opts o;
+    lam_validate_opts_init(&o);
+    o.passes = n;
+    o.inset = inset;
+    o.pass_distance = dist;
+    int rc = lam_validate_layer(v, &h->L, &f, &o, c, &err);
+    if (rc) diag("validate: %s", err.msg);
+    return rc;
+}
+
+static void test_passes(void)
+{
+    lam_model *m = load_model("thesis_cube_hole.ug");
+    lam_rays *v = NULL;
+    lam_error err;
+    if (!m || lam_rays_new(m, &v, &err)) {
+        ok(0, "validator for thesis_cube_hole.ug");
+        lam_model_free(m);
+        return;
+    }
+    passes_layer h;
+    lam_layer_check c;
+    /* beam offset 0.05, passes 0.1 apart: right */
+    passes_make(&h, 0.05, 0.1);
+    if (!passes_check(v, &h, 2, 0.05, 0.1, &c)) {
+        ok(c.confirmed == 4 && c.disagreeing == 0, "two passes, the first 0.05 in, read as such: 4 confirmed");
+        ok(c.items[0].pass == 0 && c.items[1].pass == 0 && c.items[2].pass == 1 && c.items[3].pass == 1,
+           "... the square and hole at 0.05 found as pass 0, those at 0.15 as pass 1");
+        /* pass 0's net area: 1.9^2 - 1.1^2 = 2.4, at most the section's 3 */
+        ok(c.area_checked && c.area_ok && fabs(c.net_area - 2.4) < 1e-9 && strstr(c.area_why, "at most"),
+           "... the first pass's net area (%g = 1.9^2 - 1.1^2) at most the section's (%g)", c.net_area, c.section_area);
+        lam_layer_check_free(&c);
+    }
+    /* the same program checked as if the passes had no beam offset, or
+     * were 0.2 apart: the contours are not where the passes would be */
+    if (!passes_check(v, &h, 2, 0, 0.1, &c)) {
+        ok(c.disagreeing == 4, "read without the beam offset: all 4 disagree (%zu)", c.disagreeing);
+        lam_layer_check_free(&c);
+    }
+    if (!passes_check(v, &h, 2, 0.05, 0.2, &c)) {
+        ok(c.confirmed == 2 && c.items[2].ok == 0 && c.items[3].ok == 0,
+           "read as 0.2 apart: pass 0 confirmed, the inner pass disagrees");
+        lam_layer_check_free(&c);
+    }
+    /* no beam offset, two passes: the first is the section itself */
+    passes_make(&h, 0, 0.1);
+    if (!passes_check(v, &h, 2, 0, 0.1, &c)) {
+        ok(c.confirmed == 4 && c.area_ok && fabs(c.net_area - 3) < 1e-9 && strstr(c.area_why, "against"),
+           "two passes, the first the section: 4 confirmed, its net area 3 = the section");
+        lam_layer_check_free(&c);
+    }
+    /* ... and read as one pass (the old reading): the inner pass's labels
+     * contradict the nesting */
+    if (!passes_check(v, &h, 1, 0, 0, &c)) {
+        ok(c.disagreeing >= 2 && !c.area_ok, "the same read as one pass: the inner pass disagrees (%zu), the area too",
+           c.disagreeing);
+        lam_layer_check_free(&c);
+    }
+    /* a hole labelled solid in the inner pass (written counter-clockwise) */
+    passes_make(&h, 0.05, 0.1);
+    h.c[3].kind = LAM_SOLID;
+    square(h.uv + 24, 0.65, 1);
+    if (!passes_check(v, &h, 2, 0.05, 0.1, &c)) {
+        ok(c.items[3].ok == 0 && c.confirmed == 3, "an inner-pass hole written as a solid: it disagrees, the rest confirmed");
+        lam_layer_check_free(&c);
+    }
+    lam_rays_free(v);
+    lam_model_free(m);
+}
+
 int main(void)
 {
     test_faces_near_the_cut();
     test_what_is_written();
     test_section_area();
+    test_passes();
     return done_testing();
 }
