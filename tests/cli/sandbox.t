@@ -152,7 +152,7 @@ true	true	true	0" "collectgarbage: collect, count, step and isrunning only"
 # ---- limits ---------------------------------------------------------------------------
 printf 'local t = {} for i = 1, 1e9 do t[i] = ("x"):rep(100) .. i end\n' >"$TMP/r.lua"
 run "$LAMINA" run --safe --memory 16M "$TMP/r.lua"
-like "$RC $ERR" "^1 lamina: memory limit exceeded \(16777216 bytes of Lua memory; raise it with --memory" \
+like "$RC $ERR" "^1 lamina: memory limit exceeded \(16777216 bytes for Lua and lamina.s models, slicings and plans together; raise it with --memory" \
     "--memory: Lua's memory is bounded"
 printf 'local ok = pcall(function() local t = {} for i = 1, 1e9 do t[i] = i end end)\nlocal s = {} for i = 1, 100 do s[i] = i end print(ok, #s)\n' >"$TMP/r.lua"
 run "$LAMINA" run --safe --memory 16M "$TMP/r.lua"
