@@ -122,6 +122,11 @@ const char *lam_lua_sandbox_memory_error(lua_State *L, char *buf, size_t size);
 /* Bytes left under the limit now (SIZE_MAX without one). Never collects. */
 size_t lam_lua_mem_room(lua_State *L);
 
+/* The same, after a full collection when fewer than want bytes are left
+ * (objects that are garbage give theirs back in their finalizers). Runs
+ * the collector: the rule of lam_lua_charge holds. */
+size_t lam_lua_mem_reclaim(lua_State *L, size_t want);
+
 /* Charge bytes to the object whose charge is *slot (added to it): 1 when
  * they fit, 0 when they do not even after a full collection (nothing
  * charged). Runs the collector (finalizers included): call it only where

@@ -190,17 +190,17 @@ int lam_lua_slice(lua_State *L)
         o.max_layers = (size_t)x;
     }
 
-    const lam_model *m = mu->m;
-
     const int run = 3;
     lam_error err;
     lam_error_clear(&err);
     /* in a sandbox, no more layers than the room left holds at their least
      * (the slicer's schedule, the layer and its userdata): refused before
      * the schedule is allocated */
-    size_t asked = o.max_layers ? o.max_layers : LAM_DEFAULT_MAX_LAYERS, room = lam_lua_mem_room(L);
+    size_t asked = o.max_layers ? o.max_layers : LAM_DEFAULT_MAX_LAYERS;
+    size_t room = lam_lua_mem_reclaim(L, asked < SIZE_MAX / LAYER_LEAST ? asked * LAYER_LEAST : SIZE_MAX);
     int clamped = room / LAYER_LEAST < asked;
     if (clamped) o.max_layers = room / LAYER_LEAST ? room / LAYER_LEAST : 1;
+    const lam_model *m = mu->m; /* pinned: no finalizer frees it */
     if (lam_slicer_new(m, &o, &r->s, &err)) {
         if (err.code == LAM_EUSAGE) lam_lua_opterror(L, 2, "%s", err.msg);
         if (err.code == LAM_ELIMIT && clamped)

@@ -106,6 +106,12 @@ size_t lam_lua_mem_room(lua_State *L)
 
 static int fits(lua_State *L, size_t bytes) { return bytes <= lam_lua_mem_room(L); }
 
+size_t lam_lua_mem_reclaim(lua_State *L, size_t want)
+{
+    if (!fits(L, want)) lua_gc(L, LUA_GCCOLLECT);
+    return lam_lua_mem_room(L);
+}
+
 int lam_lua_charge(lua_State *L, size_t *slot, size_t bytes)
 {
     lam_sandbox *sb = lam_lua_sandbox_of(L);
