@@ -273,7 +273,8 @@ again:;
             return lam_lua_memory_raise(L, "machine:plan: the program is estimated at %.0f bytes, %zu are left",
                                         est.bytes, room);
         /* garbage objects may hold the room: collect (no pointer is kept
-         * across it: everything is taken again) and try once more */
+         * across it: everything is taken again) and try once more; so does
+         * a plan stopped for memory below, once */
         lua_settop(L, 4);
         lua_gc(L, LUA_GCCOLLECT);
         collected = 1;
@@ -284,7 +285,8 @@ again:;
     if (!(pl->layer_time = calloc(n, sizeof *pl->layer_time))) return luaL_error(L, "out of memory");
     if (lam_writer_memory(&j->w, &j->err)) return lam_lua_fail(L, &j->err);
     unsigned long long limit = o.max_output ? o.max_output : LAM_DEFAULT_MAX_OUTPUT;
-    lam_writer_set_limit(j->w, room / 2 < limit ? room / 2 : limit); /* the sandbox's room (see stop), if less */
+    /* the sandbox's room (see stop), if less; at least 1 (0 is no limit) */
+    lam_writer_set_limit(j->w, room / 2 < limit ? (room / 2 ? room / 2 : 1) : limit);
     int text = !p.writer || strcmp(p.writer, "text") == 0;
     int rc = text ? lam_dialect_sink(&p.dialect, j->w, &j->sink, &j->err)
                   : lam_plugin_writer_sink(p.writer, j->w, &j->sink, &j->err);
@@ -332,9 +334,17 @@ again:;
         lam_lua_check_interrupt(L); /* raises: the job's __gc cleans up */
         return luaL_error(L, "interrupted");
     }
-    if (pc.over || (room / 2 < limit && lam_writer_over_limit(j->w)))
-        return lam_lua_memory_raise(L, "machine:plan: the plan, which takes twice its size while it is made, "
-                                       "passed the %zu bytes left", room);
+    if (pc.over || (room / 2 < limit && lam_writer_over_limit(j->w))) {
+        if (collected)
+            return lam_lua_memory_raise(L, "machine:plan: the plan, which takes twice its size while it is made, "
+                                           "passed the %zu bytes left", room);
+        /* garbage objects may hold the room: drop this attempt (the job's
+         * and the plan's finalizers free it), collect, plan once more */
+        lua_settop(L, 4);
+        lua_gc(L, LUA_GCCOLLECT);
+        collected = 1;
+        goto again;
+    }
     if (!rc && s->end) rc = s->end(s->ctx);
     if (j->sink.destroy) j->sink.destroy(j->sink.ctx);
     j->have_sink = 0;
