@@ -67,4 +67,18 @@ local ok6, len = lamina.sandbox{code = [[
 T.is(ok6 and len, 3 * 2^20, "the memory of collected objects goes back to Lua (a 3 MB string after 16 MB of slicings)",
      len)
 
+-- a plan's per-layer options from the recipe's `layer` function are held
+-- in C for every layer (a couple of kB each) while the plan is made
+local function layered(memory)
+  return lamina.sandbox{code = [[
+    local ls = lamina.load(...):slice{width = 0.001}
+    return lamina.machine("sls-contours"):plan(ls, {layer = function() return {} end}).layers]],
+    args = {cube}, allow = M, memory = memory}
+end
+local ok7, err7 = layered(4 * 2^20)
+T.ok(ok7 == nil, "per-layer options of 2000 layers do not fit in 4 MB")
+T.like(err7, "memory limit exceeded: machine:plan: the layers' hatching options needs %d+ bytes", "and say so", err7)
+local ok8, n8 = layered(0)
+T.is(ok8 and n8, 2000, "(with memory = 0 they are planned)")
+
 T.done()
