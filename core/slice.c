@@ -502,6 +502,18 @@ void lam_slicer_free(lam_slicer *s)
     free(s);
 }
 
+size_t lam_slicer_bytes(const lam_slicer *s)
+{
+    size_t b = sizeof *s, S = s->nlayers;
+    if (!s->borrowed)
+        b += (S + 1) * sizeof *s->planes + (s->wuv ? 3 * s->m->mesh.nverts * sizeof *s->wuv : 0) +
+             s->norder * sizeof *s->order + S * sizeof *s->cuts + (S + 2) * sizeof *s->layer_first;
+    /* active, in_first, indeg, pts; seg_in, seg_out, in_seg, used; the slots */
+    b += s->cap_active * (3 * sizeof *s->active + 2 * sizeof *s->pts) + s->cap_seg * (3 * sizeof *s->seg_in + 1) +
+         s->slot_cap * (sizeof *s->slot_edge + sizeof *s->slot_at);
+    return b;
+}
+
 static int reserve_active(lam_slicer *s, size_t n, lam_error *err);
 
 int lam_slicer_fork(const lam_slicer *s, lam_slicer **out, lam_error *err)

@@ -167,6 +167,10 @@ const lam_frame *lam_slicer_frame(const lam_slicer *s);
 int lam_slicer_next(lam_slicer *s, lam_layer **out, lam_error *err);
 
 void lam_slicer_free(lam_slicer *s);
+
+/* The bytes slicer s holds now: its schedule and its scratch (as grown so
+ * far), not the model's nor the layers'. For a budget (the Lua sandbox). */
+size_t lam_slicer_bytes(const lam_slicer *s);
 void lam_layer_free(lam_layer *layer);
 
 /* A second sweep over the same run: it shares s's model, layers and

@@ -79,7 +79,7 @@ typedef struct lam_sandbox_opts {
     size_t nallow;
     const char *const *out;     /* directories to read and write (created if missing) */
     size_t nout;
-    double memory;              /* bytes of Lua memory, 0: no limit */
+    double memory;              /* bytes of Lua memory and lamina's objects, 0: no limit */
     double time;                /* seconds from lam_lua_sandbox_start, 0: no limit */
 } lam_sandbox_opts;
 
@@ -114,6 +114,38 @@ int lam_lua_sandbox_exit(lua_State *L, int *code);
  * buf), NULL otherwise. */
 const char *lam_lua_sandbox_memory_error(lua_State *L, char *buf, size_t size);
 
+/* lamina's own memory against a sandbox's memory limit: the C memory of
+ * the models, slicings and plans a sandboxed recipe makes shares the one
+ * limit with Lua's memory. Outside a sandbox, or with no limit, nothing is
+ * counted and everything fits. */
+
+/* Bytes left under the limit now (SIZE_MAX without one). Never collects. */
+size_t lam_lua_mem_room(lua_State *L);
+
+/* The same, after a full collection when fewer than want bytes are left
+ * (objects that are garbage give theirs back in their finalizers). Runs
+ * the collector: the rule of lam_lua_charge holds. */
+size_t lam_lua_mem_reclaim(lua_State *L, size_t want);
+
+/* Charge bytes to the object whose charge is *slot (added to it): 1 when
+ * they fit, 0 when they do not even after a full collection (nothing
+ * charged). Runs the collector (finalizers included): call it only where
+ * no raw pointer into an object's C data is kept across it. */
+int lam_lua_charge(lua_State *L, size_t *slot, size_t bytes);
+
+/* Give back all of *slot (set to 0): in the object's finalizer, or when
+ * its memory is freed. Never raises or allocates. */
+void lam_lua_discharge(lua_State *L, size_t *slot);
+
+/* Raise "memory limit exceeded: WHAT (the limit, what is in use; how to
+ * raise it)", WHAT formatted from fmt. A Lua error like any other: pcall
+ * catches it, and the recipe may go on once it has let objects go. */
+int lam_lua_memory_raise(lua_State *L, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+
+/* lam_lua_charge, raising "memory limit exceeded: WHAT needs N bytes"
+ * when they do not fit. */
+void lam_lua_charge_or_raise(lua_State *L, size_t *slot, size_t bytes, const char *what);
+
 /* mkdir -p: 0 or an errno. No sandbox check. */
 int lam_lua_mkdirs(const char *path);
 
@@ -139,6 +171,7 @@ typedef struct lmodel {
     lam_model *m;            /* NULL once finalized */
     int busy;                /* slicing runs reading m right now */
     int doomed;              /* finalized while busy: freed when the last run ends */
+    size_t charged;          /* bytes charged to a sandbox (lam_lua_charge) */
 } lmodel;
 
 typedef struct lrun {
@@ -152,11 +185,13 @@ typedef struct lrun {
     double wmin, wmax;       /* first and last plane */
     double bbox[6];          /* the model's bounding box (model frame) */
     char label[128];         /* the part's name for programs (lam_job_label) */
+    size_t charged;          /* the slicer's bytes charged to a sandbox (while slicing) */
 } lrun;
 
 typedef struct llayer {
     unsigned tag;
     lam_layer *L;            /* NULL once finalized */
+    size_t charged;          /* bytes charged to a sandbox */
 } llayer;
 
 typedef struct lcontour {
@@ -182,11 +217,15 @@ typedef struct lplan {
     lam_scan_time time;      /* SLS: the build-time estimate (hatch.h) */
     double *layer_time;      /* SLS: each layer's estimate, seconds (owned) */
     struct lam_plan_data *rec;  /* what was planned, per layer (plan_data.h; owned) */
+    size_t charged;          /* bytes charged to a sandbox */
 } lplan;
 
 /* Checked accessors: raise the usual "bad argument" error for a wrong type
  * and "attempt to use a collected ..." for a finalized object. */
 lmodel *lam_lua_checkmodel(lua_State *L, int idx);
+/* Free u's model and give back its charge (its finalizer, or the run that
+ * pinned it). */
+void lam_lua_model_free(lua_State *L, lmodel *u);
 lam_layer *lam_lua_checklayer(lua_State *L, int idx);
 lrun *lam_lua_layerrun(lua_State *L, int idx);   /* run of the layer at idx */
 /* Item i (0-based) of the list at index `list` as a live layer: pushed and

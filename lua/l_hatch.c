@@ -18,6 +18,7 @@ struct lhatchctl {
     lam_hatches *given;      /* per layer */
     unsigned char *has;      /* per layer: given[i] is the layer's vectors */
     lam_error err;           /* hatching a layer for `order` failed */
+    size_t charged;          /* bytes charged to a sandbox (lam_lua_charge) */
 };
 
 static const char *const fn_names[] = { "layer", "hatcher", "order" };
@@ -36,7 +37,9 @@ static void ctl_free(lhatchctl *c)
 
 static int ctl_gc(lua_State *L)
 {
-    ctl_free(luaL_checkudata(L, 1, LAM_HATCHCTL));
+    lhatchctl *c = luaL_checkudata(L, 1, LAM_HATCHCTL);
+    ctl_free(c);
+    lam_lua_discharge(L, &c->charged);
     return 0;
 }
 
@@ -88,6 +91,14 @@ lhatchctl *lam_lua_hatch_split(lua_State *L, int opts)
     lua_insert(L, -2);         /* ... ctl copy */
     lua_replace(L, opts);      /* the copy takes the options' place */
     return c;
+}
+
+/* Charge layer i's vectors, kept until the plan is made. */
+static void charge_given(lua_State *L, lhatchctl *c, size_t i)
+{
+    const lam_hatches *h = &c->given[i];
+    lam_lua_charge_or_raise(L, &c->charged, h->cap_v * 4 * sizeof *h->v + h->cap_blocks * sizeof *h->blocks,
+                            "machine:plan: the vectors of a layer's hatcher or order");
 }
 
 /* The table of layer i's parameters, as a hatcher or order function sees
@@ -194,6 +205,9 @@ const lam_error *lam_lua_hatch_prepare(lua_State *L, lhatchctl *c, int layers, c
     lua_getfield(L, fns, "layers");
     int copy = lua_gettop(L);
     c->n = n;
+    /* a sandbox counts what the plan holds for the recipe's functions */
+    lam_lua_charge_or_raise(L, &c->charged, (n ? n : 1) * (sizeof *c->given + 1 + sizeof *c->ovr),
+                            "machine:plan: the layers' hatching options");
     c->given = calloc(n ? n : 1, sizeof *c->given);
     c->has = calloc(n ? n : 1, 1);
     c->ovr = calloc(n ? n : 1, sizeof *c->ovr);
@@ -228,6 +242,7 @@ const lam_error *lam_lua_hatch_prepare(lua_State *L, lhatchctl *c, int layers, c
             read_vectors(L, "plan: hatcher", i, &c->given[i]);
             lua_pop(L, 1);
             c->has[i] = 1;
+            charge_given(L, c, i);
         } else if (has_order) {
             /* lamina's vectors for the layer, then the recipe's order */
             lam_plan_opts oi;
@@ -257,6 +272,7 @@ const lam_error *lam_lua_hatch_prepare(lua_State *L, lhatchctl *c, int layers, c
             read_vectors(L, "plan: order", i, &c->given[i]);
             lua_pop(L, 1);
             c->has[i] = 1;
+            charge_given(L, c, i);
         }
     }
     lua_settop(L, fns - 1);

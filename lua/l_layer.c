@@ -23,13 +23,13 @@ static int run_close(lua_State *L)
     lrun *r = LAM_CHECKUD(L, 1, lrun, LAM_RUN, LAM_TAG_RUN);
     lam_slicer_free(r->s);
     r->s = NULL;
+    lam_lua_discharge(L, &r->charged);
     if (r->pinned) {
         r->pinned = 0;
         lua_getiuservalue(L, 1, 1);
         lmodel *mu = LAM_TESTUD(L, -1, lmodel, LAM_MODEL, LAM_TAG_MODEL);
         if (mu && mu->busy > 0 && --mu->busy == 0 && mu->doomed) {
-            lam_model_free(mu->m);
-            mu->m = NULL;
+            lam_lua_model_free(L, mu);
             mu->doomed = 0;
         }
     }
@@ -37,6 +37,24 @@ static int run_close(lua_State *L)
 }
 
 /* ---- slicing -------------------------------------------------------------- */
+
+/* The least a layer takes: its lam_layer, its userdata, its slot in the
+ * list and its three numbers in the slicer's schedule. */
+#define LAYER_LEAST (sizeof(lam_layer) + sizeof(llayer) + 64 + 3 * sizeof(double))
+
+static size_t layer_bytes(const lam_layer *ly)
+{
+    return sizeof *ly + 2 * ly->npoints * sizeof *ly->uv + ly->ncontours * sizeof *ly->contours +
+           ly->nopen * sizeof *ly->open;
+}
+
+/* Bring the run's charge up to what its slicer holds now. */
+static void charge_slicer(lua_State *L, lrun *r, const char *path)
+{
+    size_t now = lam_slicer_bytes(r->s);
+    if (now > r->charged && !lam_lua_charge(L, &r->charged, now - r->charged))
+        lam_lua_memory_raise(L, "model:slice of %s: the slicer needs %zu bytes", path, now);
+}
 
 static const char *const slice_keys[] = { "axis", "width", "widths", "planes", "cut", "gap", "fill",
                                           "allow_open", "machine", "max_layers", NULL };
@@ -172,16 +190,26 @@ int lam_lua_slice(lua_State *L)
         o.max_layers = (size_t)x;
     }
 
-    const lam_model *m = mu->m;
-
     const int run = 3;
     lam_error err;
     lam_error_clear(&err);
+    /* in a sandbox, no more layers than the room left holds at their least
+     * (the slicer's schedule, the layer and its userdata): refused before
+     * the schedule is allocated */
+    size_t asked = o.max_layers ? o.max_layers : LAM_DEFAULT_MAX_LAYERS;
+    size_t room = lam_lua_mem_reclaim(L, asked < SIZE_MAX / LAYER_LEAST ? asked * LAYER_LEAST : SIZE_MAX);
+    int clamped = room / LAYER_LEAST < asked;
+    if (clamped) o.max_layers = room / LAYER_LEAST ? room / LAYER_LEAST : 1;
+    const lam_model *m = mu->m; /* pinned: no finalizer frees it */
     if (lam_slicer_new(m, &o, &r->s, &err)) {
         if (err.code == LAM_EUSAGE) lam_lua_opterror(L, 2, "%s", err.msg);
+        if (err.code == LAM_ELIMIT && clamped)
+            lam_lua_memory_raise(L, "model:slice of %s would make more than the %zu layers that fit", m->path,
+                                 o.max_layers);
         if (err.code == LAM_ELIMIT) lam_lua_opterror(L, 2, "%s (raise the limit with max_layers)", err.msg);
         return lam_lua_fail(L, &err);
     }
+    charge_slicer(L, r, m->path);
     r->frame = *lam_slicer_frame(r->s);
     r->cut = o.cut;
     r->nlayers = lam_slicer_count(r->s);
@@ -198,11 +226,18 @@ int lam_lua_slice(lua_State *L)
         llayer *lu = lua_newuserdatauv(L, sizeof *lu, 2);
         lu->tag = LAM_TAG_LAYER;
         lu->L = NULL;
+        lu->charged = 0;
         luaL_setmetatable(L, LAM_LAYER);
         lua_pushvalue(L, run);
         lua_setiuservalue(L, -2, 1);
         if (lam_slicer_next(r->s, &lu->L, &err)) return lam_lua_fail(L, &err);
         if (!lu->L) break;
+        /* made already (its size is known only now): at most one layer
+         * past the limit, freed by its finalizer when this raises */
+        if (!lam_lua_charge(L, &lu->charged, layer_bytes(lu->L)))
+            lam_lua_memory_raise(L, "model:slice of %s: layer %lld of %zu does not fit", m->path,
+                                 (long long)k, r->nlayers);
+        charge_slicer(L, r, m->path); /* its scratch grows with the busiest layer */
         if (lu->L->nopen && !allow_open) {
             const lam_open_end *e = &lu->L->open[0];
             lua_pushnil(L);
@@ -283,6 +318,7 @@ static int l_gc(lua_State *L)
     llayer *u = LAM_CHECKUD(L, 1, llayer, LAM_LAYER, LAM_TAG_LAYER);
     lam_layer_free(u->L);
     u->L = NULL;
+    lam_lua_discharge(L, &u->charged);
     return 0;
 }
 

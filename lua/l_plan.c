@@ -109,6 +109,9 @@ typedef struct planctx {
     const lhatchctl *ctl;
     const lam_profile *p;
     int stopped;             /* an interrupt or the sandbox's time stopped the run */
+    size_t n;                /* layers planned */
+    size_t room;             /* the sandbox's memory left when planning began */
+    int over;                /* the plan so far passed room */
 } planctx;
 
 /* The i-th layer's options: the recipe's `layer` function's keys (copied
@@ -130,14 +133,39 @@ static const lam_hatches *given(void *ctx, size_t i)
     return lam_lua_hatch_given(((const planctx *)ctx)->ctl, i);
 }
 
+/* The C memory of a plan: its program, per-layer times and record. */
+static size_t plan_bytes(size_t program, size_t layers, const lam_plan_data *r)
+{
+    return program + 1 + layers * sizeof(double) + sizeof *r + r->cap_layers * sizeof *r->layers +
+           r->cap_contours * sizeof *r->contours + r->cap_vectors * sizeof *r->vectors + r->cap_pts * 2 * sizeof(double);
+}
+
 /* Between layers, on the calling thread: Ctrl-C or the sandbox's time
- * stop the run, which raises the error once every worker has stopped. */
+ * stop the run, which raises the error once every worker has stopped; so
+ * does a plan grown past the sandbox's memory: what the layers so far
+ * wrote and recorded, twice (the program and the record grow by doubling,
+ * and the blocks they leave stay on the heap: measured, a plan peaks at
+ * twice its size while it is made), checked before each layer. */
 static int stop(void *ctx, size_t i)
 {
     (void)i;
     planctx *c = ctx;
     c->stopped = lam_lua_stopping(c->L);
-    return c->stopped ? LAM_EUSAGE : LAM_OK;
+    c->over = c->room != SIZE_MAX &&
+              plan_bytes((size_t)lam_writer_bytes(c->j->w), c->n, &c->j->rec) > c->room / 2;
+    return c->stopped || c->over ? LAM_EUSAGE : LAM_OK;
+}
+
+/* In a sandbox with a memory limit: refuse a plan estimated past the room
+ * left, and plan on the calling thread. Worker threads plan layers ahead
+ * (up to 16 each, as recordings) before they are written, where the
+ * memory cannot be looked at between layers, and the estimate cannot
+ * bound them: it can be 40 times short (issue 22, item 9). */
+static int sandbox_fit(const lam_job_estimate *e, size_t room, unsigned *threads)
+{
+    if (room == SIZE_MAX) return 1;
+    *threads = 1;
+    return e->bytes <= (double)room;
 }
 
 /* After a layer's operations, on the calling thread in layer order: the
@@ -201,6 +229,8 @@ int lam_lua_plan(lua_State *L)
         if (e) return lam_lua_fail(L, e);
     }
     lua_settop(L, 4);
+    int collected = 0;
+again:;
     lua_Unsigned nl = lua_rawlen(L, 2);
     if (nl == 0) luaL_argerror(L, 2, "no layers to plan (an empty table)");
     if (nl > SIZE_MAX / sizeof(void *)) luaL_argerror(L, 2, "too many layers");
@@ -237,11 +267,26 @@ int lam_lua_plan(lua_State *L)
      * estimated beyond LAM_THREAD_LAYER_MAX are planned on this thread, as
      * lam_plan_run does */
     o.threads = est.layers && est.bytes / (double)est.layers > LAM_THREAD_LAYER_MAX ? 1 : threads;
+    size_t room = lam_lua_mem_room(L);
+    if (!sandbox_fit(&est, room, &o.threads)) {
+        if (collected)
+            return lam_lua_memory_raise(L, "machine:plan: the program is estimated at %.0f bytes, %zu are left",
+                                        est.bytes, room);
+        /* garbage objects may hold the room: collect (no pointer is kept
+         * across it: everything is taken again) and try once more; so does
+         * a plan stopped for memory below, once */
+        lua_settop(L, 4);
+        lua_gc(L, LUA_GCCOLLECT);
+        collected = 1;
+        goto again;
+    }
 
     lam_error_clear(&j->err);
     if (!(pl->layer_time = calloc(n, sizeof *pl->layer_time))) return luaL_error(L, "out of memory");
     if (lam_writer_memory(&j->w, &j->err)) return lam_lua_fail(L, &j->err);
-    lam_writer_set_limit(j->w, o.max_output ? o.max_output : LAM_DEFAULT_MAX_OUTPUT);
+    unsigned long long limit = o.max_output ? o.max_output : LAM_DEFAULT_MAX_OUTPUT;
+    /* the sandbox's room (see stop), if less; at least 1 (0 is no limit) */
+    lam_writer_set_limit(j->w, room / 2 < limit ? (room / 2 ? room / 2 : 1) : limit);
     int text = !p.writer || strcmp(p.writer, "text") == 0;
     int rc = text ? lam_dialect_sink(&p.dialect, j->w, &j->sink, &j->err)
                   : lam_plugin_writer_sink(p.writer, j->w, &j->sink, &j->err);
@@ -276,7 +321,7 @@ int lam_lua_plan(lua_State *L)
     lj.frame = &run->frame;
     lj.o = &o;
     memcpy(lj.origin, job.origin, sizeof lj.origin);
-    planctx pc = { L, pl, j, ctl, &p, 0 };
+    planctx pc = { L, pl, j, ctl, &p, 0, n, room, 0 };
     if (ctl) {
         lj.layer_opts = layer_opts;
         lj.given = given;
@@ -289,6 +334,17 @@ int lam_lua_plan(lua_State *L)
         lam_lua_check_interrupt(L); /* raises: the job's __gc cleans up */
         return luaL_error(L, "interrupted");
     }
+    if (pc.over || (room / 2 < limit && lam_writer_over_limit(j->w))) {
+        if (collected)
+            return lam_lua_memory_raise(L, "machine:plan: the plan, which takes twice its size while it is made, "
+                                           "passed the %zu bytes left", room);
+        /* garbage objects may hold the room: drop this attempt (the job's
+         * and the plan's finalizers free it), collect, plan once more */
+        lua_settop(L, 4);
+        lua_gc(L, LUA_GCCOLLECT);
+        collected = 1;
+        goto again;
+    }
     if (!rc && s->end) rc = s->end(s->ctx);
     if (j->sink.destroy) j->sink.destroy(j->sink.ctx);
     j->have_sink = 0;
@@ -299,6 +355,8 @@ int lam_lua_plan(lua_State *L)
     rc = lam_writer_take(j->w, &pl->data, &pl->len, &j->err);
     j->w = NULL;
     if (rc) return lam_lua_fail(L, &j->err);
+    char *fit = realloc(pl->data, pl->len + 1); /* the buffer grew by doubling: give back its slack */
+    if (fit) pl->data = fit;
     pl->lines = count_lines(pl->data, pl->len);
     pl->layers = n;
     pl->binary = !text;
@@ -309,6 +367,9 @@ int lam_lua_plan(lua_State *L)
     *pl->rec = j->rec; /* the plan owns the record now */
     memset(&j->rec, 0, sizeof j->rec);
     lua_settop(L, plan);
+    size_t bytes = plan_bytes(pl->len, n, pl->rec);
+    if (!lam_lua_charge(L, &pl->charged, bytes))
+        return lam_lua_memory_raise(L, "machine:plan: the plan takes %zu bytes", bytes); /* p_gc frees it */
     return 1;
 }
 
@@ -331,6 +392,7 @@ static int p_gc(lua_State *L)
     lam_plan_data_free(pl->rec);
     free(pl->rec);
     pl->rec = NULL;
+    lam_lua_discharge(L, &pl->charged);
     return 0;
 }
 

@@ -22,8 +22,12 @@
  *     are compared after realpath, so `..` and symbolic links that lead
  *     outside are outside; a link that leads nowhere is refused. No
  *     lamina.plugin (it loads machine code), no nested lamina.sandbox;
- *   - memory: the state's allocator (lua_setallocf's kind) refuses to grow
- *     Lua's memory past the limit ("not enough memory" in the recipe);
+ *   - memory: one limit for Lua's memory and lamina's own objects made for
+ *     the recipe (models, slicings, plans: lam_lua_charge). The state's
+ *     allocator (lua_setallocf's kind) refuses to grow Lua's memory past
+ *     what the objects leave ("not enough memory" in the recipe), and an
+ *     object that would not fit is refused with "memory limit exceeded",
+ *     before its big allocation where its size can be told in advance;
  *   - time: a count hook, and lamina's long C loops between layers, raise
  *     "time limit exceeded" once the limit has passed; from then on pcall,
  *     xpcall and coroutine.resume pass it on instead of catching it.
@@ -36,6 +40,9 @@
 #include <errno.h>
 #include <limits.h>
 #include <math.h>
+#include <stdarg.h>
+#include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -57,6 +64,7 @@ struct lam_sandbox {
                                 file may inherit from, besides --allow */
     size_t nmachines;
     size_t mem_limit, mem_used;
+    size_t obj_used;         /* lamina's C objects charged (lam_lua_charge) */
     double time_limit, deadline;
     int timed_out;           /* the limit was reached: pcall cannot catch it */
     lam_file_gate old_gate;  /* the file gate before this sandbox's (file.h) */
@@ -74,7 +82,7 @@ static void *sb_alloc(void *ud, void *ptr, size_t osize, size_t nsize)
         sb->mem_used -= old;
         return NULL;
     }
-    if (sb->mem_limit && nsize > old && sb->mem_used - old + nsize > sb->mem_limit) return NULL;
+    if (sb->mem_limit && nsize > old && sb->mem_used - old + nsize > sb->mem_limit - sb->obj_used) return NULL;
     void *p = realloc(ptr, nsize);
     if (p) sb->mem_used = sb->mem_used - old + nsize;
     return p;
@@ -84,6 +92,66 @@ lam_sandbox *lam_lua_sandbox_of(lua_State *L)
 {
     void *ud;
     return lua_getallocf(L, &ud) == sb_alloc ? ud : NULL;
+}
+
+/* ---- lamina's own objects against the same limit ------------------------- */
+
+size_t lam_lua_mem_room(lua_State *L)
+{
+    lam_sandbox *sb = lam_lua_sandbox_of(L);
+    if (!sb || !sb->mem_limit) return SIZE_MAX;
+    size_t used = sb->mem_used + sb->obj_used;
+    return used < sb->mem_limit ? sb->mem_limit - used : 0;
+}
+
+static int fits(lua_State *L, size_t bytes) { return bytes <= lam_lua_mem_room(L); }
+
+size_t lam_lua_mem_reclaim(lua_State *L, size_t want)
+{
+    if (!fits(L, want)) lua_gc(L, LUA_GCCOLLECT);
+    return lam_lua_mem_room(L);
+}
+
+int lam_lua_charge(lua_State *L, size_t *slot, size_t bytes)
+{
+    lam_sandbox *sb = lam_lua_sandbox_of(L);
+    if (!sb || !sb->mem_limit || !bytes) return 1;
+    /* objects that are garbage hold memory until their finalizers run,
+     * which Lua's emergency collection does not do: a full collection
+     * first, as Lua's allocator collects before it gives up */
+    if (!fits(L, bytes)) lua_gc(L, LUA_GCCOLLECT);
+    if (!fits(L, bytes)) return 0;
+    sb->obj_used += bytes;
+    *slot += bytes;
+    return 1;
+}
+
+void lam_lua_discharge(lua_State *L, size_t *slot)
+{
+    lam_sandbox *sb = lam_lua_sandbox_of(L);
+    if (sb) sb->obj_used -= *slot < sb->obj_used ? *slot : sb->obj_used;
+    *slot = 0;
+}
+
+int lam_lua_memory_raise(lua_State *L, const char *fmt, ...)
+{
+    lam_sandbox *sb = lam_lua_sandbox_of(L);
+    char what[300];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(what, sizeof what, fmt, ap);
+    va_end(ap);
+    char msg[600];
+    snprintf(msg, sizeof msg,
+             "memory limit exceeded: %s (the recipe's limit is %zu bytes for Lua and lamina's models, slicings and "
+             "plans together, %zu in use; raise it with --memory or the option memory)",
+             what, sb ? sb->mem_limit : 0, sb ? sb->mem_used + sb->obj_used : 0);
+    return luaL_error(L, "%s", msg);
+}
+
+void lam_lua_charge_or_raise(lua_State *L, size_t *slot, size_t bytes, const char *what)
+{
+    if (!lam_lua_charge(L, slot, bytes)) lam_lua_memory_raise(L, "%s needs %zu bytes", what, bytes);
 }
 
 static double now(void)
@@ -624,7 +692,9 @@ const char *lam_lua_sandbox_memory_error(lua_State *L, char *buf, size_t size)
 {
     lam_sandbox *sb = lam_lua_sandbox_of(L);
     if (!sb || !sb->mem_limit) return NULL;
-    snprintf(buf, size, "memory limit exceeded (%zu bytes of Lua memory; raise it with --memory or the option memory)",
+    snprintf(buf, size,
+             "memory limit exceeded (%zu bytes for Lua and lamina's models, slicings and plans together; raise it "
+             "with --memory or the option memory)",
              sb->mem_limit);
     return buf;
 }

@@ -204,7 +204,8 @@ static const char run_usage[] =
     "              library or bytecode; files only in these directories:\n"
     "  --allow DIR    may be read (any number of them)\n"
     "  --out DIR      may be read and written (created if missing)\n"
-    "  --memory SIZE  Lua memory limit (default 256M; 0: none)\n"
+    "  --memory SIZE  memory limit of Lua and lamina's models, slicings and\n"
+    "                 plans together (default 256M; 0: none)\n"
     "  --time SECONDS run time limit (default 60; 0: none)\n";
 
 typedef struct runargs {

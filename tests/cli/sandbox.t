@@ -152,11 +152,102 @@ true	true	true	0" "collectgarbage: collect, count, step and isrunning only"
 # ---- limits ---------------------------------------------------------------------------
 printf 'local t = {} for i = 1, 1e9 do t[i] = ("x"):rep(100) .. i end\n' >"$TMP/r.lua"
 run "$LAMINA" run --safe --memory 16M "$TMP/r.lua"
-like "$RC $ERR" "^1 lamina: memory limit exceeded \(16777216 bytes of Lua memory; raise it with --memory" \
+like "$RC $ERR" "^1 lamina: memory limit exceeded \(16777216 bytes for Lua and lamina.s models, slicings and plans together; raise it with --memory" \
     "--memory: Lua's memory is bounded"
 printf 'local ok = pcall(function() local t = {} for i = 1, 1e9 do t[i] = i end end)\nlocal s = {} for i = 1, 100 do s[i] = i end print(ok, #s)\n' >"$TMP/r.lua"
 run "$LAMINA" run --safe --memory 16M "$TMP/r.lua"
 is "$RC $OUT" "0 false	100" "a memory error can be caught and the recipe goes on within the limit"
+# lamina's own objects (models, slicings, plans) count against --memory too.
+# boxes.lua N K W [MACHINE]: N boxes 1 x 1 x 10 (12 triangles, one shell each)
+# written as an ASCII STL into out/, loaded, sliced K times at width W and
+# every slicing kept (planned on MACHINE when given); it prints the model's
+# triangles and shells, the slicings kept, the layers and contours of the
+# last one and the layers of its plan.
+cat >"$TMP/boxes.lua" <<'EOF'
+local n, k, w, machine = tonumber(arg[1]), tonumber(arg[2]), tonumber(arg[3]), arg[4]
+local f = assert(io.open("out/boxes.stl", "w"))
+f:write("solid boxes\n")
+local faces = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}}
+for i = 0, n - 1 do
+  local x, y, v = (i % 50) * 2, (i // 50) * 2, {}
+  for j = 0, 7 do v[j] = ("%d %d %d"):format(x + (j & 1), y + (j >> 1 & 1), (j >> 2 & 1) * 10) end
+  for _, q in ipairs(faces) do
+    for _, t in ipairs{{q[1], q[2], q[3]}, {q[1], q[3], q[4]}} do
+      f:write("facet normal 0 0 0\nouter loop\nvertex ", v[t[1]], "\nvertex ", v[t[2]], "\nvertex ", v[t[3]],
+              "\nendloop\nendfacet\n")
+    end
+  end
+end
+f:write("endsolid boxes\n")
+f:close()
+local m = assert(lamina.load("out/boxes.stl"))
+local keep, plans = {}, {}
+for i = 1, k do
+  keep[i] = assert(m:slice{width = w})
+  if machine then plans[i] = assert(lamina.machine(machine):plan(keep[i])) end
+end
+print(#m, m.shells, #keep, #keep[k], #keep[k][1], plans[k] and plans[k].layers)
+EOF
+boxes() { # boxes MEMORY ARGS...: run boxes.lua under --safe --memory MEMORY
+    local mem=$1
+    shift
+    rm -f out/boxes.stl
+    run "$LAMINA" run --safe --out out --memory "$mem" --time 60 "$TMP/boxes.lua" "$@"
+}
+# 300 boxes: 3600 triangles, 300 shells; 10 / 0.05 = 200 layers of 300 squares each
+boxes 16M 300 5 0.05
+like "$RC $ERR" "^1 lamina: .*boxes\.lua:[0-9]+: memory limit exceeded: model:slice of out/boxes\.stl: layer [0-9]+ of 200 does not fit \(the recipe's limit is 16777216 bytes for Lua and lamina's models, slicings and plans together, [0-9]+ in use; raise it with --memory" \
+    "--memory 16M: five slicings kept of a 300-box model pass the limit, refused with a clear error"
+boxes 0 300 5 0.05
+is "$RC $OUT" "0 3600	300	5	200	300	nil" "(with --memory 0 the same recipe keeps its five slicings)"
+boxes 256M 300 5 0.05
+is "$RC $OUT" "0 3600	300	5	200	300	nil" "(and with the default 256M)"
+boxes 16M 300 1 0.05 creol-ladrp
+like "$RC $ERR" "^1 lamina: .*boxes\.lua:[0-9]+: memory limit exceeded: machine:plan: the plan, which takes twice its size while it is made, passed the [0-9]+ bytes left" \
+    "--memory 16M: a plan of one slicing that fits is refused as it grows past what is left"
+boxes 0 300 1 0.05 creol-ladrp
+is "$RC $OUT" "0 3600	300	1	200	300	200" "(with --memory 0 it is planned: 200 layers)"
+# a model file larger than what is left is refused before it is read
+boxes 2M 3000 1 1
+size=$(wc -c <out/boxes.stl | tr -d ' ')
+like "$RC $ERR" "^1 lamina: .*boxes\.lua:[0-9]+: memory limit exceeded: out/boxes\.stl: a model file of $size bytes \(" \
+    "--memory 2M: a model file of 3000 boxes is refused by its size"
+boxes 0 3000 1 1
+is "$RC $OUT" "0 36000	3000	1	10	3000	nil" "(with --memory 0 it loads)"
+# the error can be caught; the objects let go give their memory back
+boxes 0 300 1 1 # out/boxes.stl: 300 boxes again
+cat >"$TMP/r.lua" <<'EOF'
+local m = assert(lamina.load("out/boxes.stl"))
+local keep, ok, err = {}, true, nil
+while ok do ok, err = pcall(function() keep[#keep + 1] = m:slice{width = 0.05} end) end
+print(#keep >= 1, err:match("memory limit exceeded: model:slice") ~= nil)
+keep = nil
+local again = {}
+for i = 1, 3 do again[i] = #m:slice{width = 0.05} end
+print(table.concat(again, " "))
+EOF
+run "$LAMINA" run --safe --out out --memory 16M --time 60 "$TMP/r.lua"
+is "$RC $OUT" "0 true	true
+200 200 200" "the memory error is caught with pcall, and once the slicings are let go slicing goes on within the limit"
+# the peak stays near the limit: measured in the process (not under a
+# sanitizer, whose shadow memory and quarantine are not the program's)
+if ! ldd "$LAMINA" 2>/dev/null | grep -q libasan; then
+    cat >"$TMP/host.lua" <<EOF
+local function hwm()
+  for l in io.lines("/proc/self/status") do
+    local k = l:match("^VmHWM:%s*(%d+)")
+    if k then return tonumber(k) * 1024 end
+  end
+end
+local before = hwm()
+local ok, err = lamina.sandbox{file = "$TMP/boxes.lua", args = {300, 5, 0.02}, out = "out", memory = 8 * 2^20}
+print(ok, err and err:match("memory limit exceeded") ~= nil, (hwm() - before) < 40 * 2^20)
+EOF
+    run "$LAMINA" run "$TMP/host.lua"
+    is "$RC $OUT" "0 nil	true	true" \
+        "lamina.sandbox{memory = 8M}: five slicings of 500 layers (about 110 MB) stay under 8 MB + 32 MB of peak"
+fi
+
 printf 'while true do end\n' >"$TMP/r.lua"
 run "$LAMINA" run --safe --time 0.5 "$TMP/r.lua"
 like "$RC $ERR" "^1 lamina: .*time limit exceeded \(0\.5 s; raise it with --time" "--time stops an endless loop"

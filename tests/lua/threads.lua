@@ -163,13 +163,14 @@ local n4, e4 = cli:plan(sph, {threads = 4, hatch_strategy = "lines", hatch_dista
 T.ok(n1 == nil and n4 == nil and e1 == e4 and e1:find("output exceeds the limit", 1, true),
      "an output limit reached half-way: nil and the same message with 1 and 4 threads", e4)
 
--- a sandbox's time limit stops a threaded plan between layers
+-- a sandbox's time limit stops a threaded plan between layers (memory = 0:
+-- a sandbox with a memory limit plans on one thread)
 local none, terr = lamina.sandbox{code = [[
   local m = lamina.load(...)
   local ladrp = lamina.machine("creol-ladrp")
   local layers = m:slice{machine = ladrp, width = 0.01}
   while true do ladrp:plan(layers, {threads = 4, bead_width = 0.01}) end]],
-  args = {M .. "thesis_cube.ug"}, allow = M, time = 0.3}
+  args = {M .. "thesis_cube.ug"}, allow = M, time = 0.3, memory = 0}
 T.ok(none == nil and terr:find("time limit exceeded", 1, true) and terr:find("in method 'plan'", 1, true),
      "a sandbox's time limit stops a plan on 4 threads", terr)
 

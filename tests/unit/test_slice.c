@@ -1259,6 +1259,38 @@ static void test_snapped_planes(void)
     lam_model_free(m);
 }
 
+/* lam_slicer_bytes: what a slicer holds, for a memory budget (the Lua
+ * sandbox): at least its schedule (S + 1 planes, S cuts, S + 2 offsets for
+ * S layers), the scratch once slicing has grown it, and the vertices'
+ * layer-frame copy of an oblique frame. */
+static void test_bytes(void)
+{
+    lam_model *m = octahedron(); /* z from -1 to 1 */
+    lam_slice_opts o;
+    lam_slice_opts_init(&o);
+    o.width = 0.01;
+    lam_slicer *s = NULL;
+    int rc = lam_slicer_new(m, &o, &s, NULL);
+    size_t S = s ? lam_slicer_count(s) : 0, b0 = s ? lam_slicer_bytes(s) : 0;
+    ok(rc == LAM_OK && S == 200 && b0 >= (3 * S + 3) * sizeof(double), "bytes: 200 layers, at least their schedule");
+    lam_layer *L = NULL;
+    while (s && lam_slicer_next(s, &L, NULL) == LAM_OK && L) lam_layer_free(L);
+    size_t b1 = s ? lam_slicer_bytes(s) : 0;
+    ok(b1 >= b0 + 64 * (3 * sizeof(uint32_t) + 2 * sizeof(double)), "bytes: the scratch slicing grew is counted");
+    lam_slicer_free(s);
+    const double d[3] = { 1, 1, 1 };
+    lam_slice_opts_init(&o);
+    o.width = 0.01;
+    lam_frame_direction(d, &o.frame, NULL);
+    s = NULL;
+    rc = lam_slicer_new(m, &o, &s, NULL);
+    size_t S2 = s ? lam_slicer_count(s) : 0, b2 = s ? lam_slicer_bytes(s) : 0;
+    ok(rc == LAM_OK && b2 >= (3 * S2 + 3) * sizeof(double) + 3 * m->mesh.nverts * sizeof(double),
+       "bytes: an oblique frame's copy of the vertices is counted");
+    lam_slicer_free(s);
+    lam_model_free(m);
+}
+
 int main(void)
 {
     group("cube with hole", group_cube_hole);
@@ -1270,5 +1302,6 @@ int main(void)
     group("layers outside the model", test_outside);
     group("options and frames", group_options);
     group("planes put on faces they miss by rounding", test_snapped_planes);
+    group("bytes held", test_bytes);
     return done_testing();
 }
