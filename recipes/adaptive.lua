@@ -1,7 +1,7 @@
 -- adaptive.lua: adaptive layer widths by cusp height (Dolenc and Makela).
 --
 --   lamina run recipes/adaptive.lua [--cusp H] [--min W] [--max W]
---                                   [--axis A] [--list] [MODEL]
+--                                   [--axis A] [--list] [--allow-open] [MODEL]
 --
 -- A layer of width w leaves a stair step ("cusp") of height w * |n.axis| on
 -- a triangle with unit normal n that it crosses. Each layer is made as wide
@@ -12,15 +12,17 @@
 -- no worse than adaptive's (flat faces that miss the uniform grid count: a
 -- face across the axis inside a layer leaves a cusp of the layer's width).
 -- --axis: x, y, z (default), -z, ... or a direction dx,dy,dz. --list prints
--- every layer: index, floor, ceiling, width.
+-- every layer: index, floor, ceiling, width. --allow-open slices a mesh that
+-- is not closed, dropping the outlines that stay open (counted and said);
+-- without it such a mesh stops the recipe with the slicer's message.
 local args = require "lamina.args"
 local axes = require "lamina.axes"
 local adaptive = require "lamina.adaptive"
 
-local o, fail, die = args.parse(arg, {
+local o, fail, die, need = args.parse(arg, {
   usage = "lamina run recipes/adaptive.lua [--cusp H] [--min W] [--max W] [--axis A]"
-    .. " [--list] [MODEL]",
-  options = { cusp = 0.05, min = 0.02, max = 0.5, axis = "z", list = false,
+    .. " [--list] [--allow-open] [MODEL]",
+  options = { cusp = 0.05, min = 0.02, max = 0.5, axis = "z", list = false, allow_open = false,
               model = args.beside(arg, "parts/sphere.obj") },
   positive = { "cusp", "min", "max" },
   positional = { "model" },
@@ -35,8 +37,13 @@ local facets = axes.facets(model, axis)
 local widths = adaptive.cusp_widths(facets, o)
 local planes = adaptive.planes(facets.lo, widths)
 local worst = adaptive.worst_cusp(facets, planes)
-local layers = assert(model:slice{axis = axis.slice, widths = widths})
+local layers = need(model:slice{axis = axis.slice, widths = widths, allow_open = o.allow_open})
 assert(#layers == #widths)
+local open, open_layers = 0, 0
+for _, l in ipairs(layers) do
+  open = open + (l.open or 0)
+  if (l.open or 0) > 0 then open_layers = open_layers + 1 end
+end
 
 local uniform, why = adaptive.uniform(facets, worst, o.max)
 
@@ -45,6 +52,10 @@ for _, w in ipairs(widths) do wlo, whi = math.min(wlo, w), math.max(whi, w) end
 print(("model: %s (%d triangles), axis %s, span %.6g .. %.6g"):format(
   o.model, #model, axis.name, facets.lo, facets.hi))
 print(("cusp %g, widths in [%g, %g]"):format(o.cusp, o.min, o.max))
+if open > 0 then
+  print(("open mesh: %d outlines stayed open in %d layers and were dropped (--allow-open)"):format(
+    open, open_layers))
+end
 print(("adaptive: %d layers, worst cusp %.6g, widths %.6g .. %.6g"):format(
   #widths, worst, wlo, whi))
 if uniform then

@@ -14,7 +14,7 @@ local args = require "lamina.args"
 local axes = require "lamina.axes"
 local adaptive = require "lamina.adaptive"
 
-local o, fail, die = args.parse(arg, {
+local o, fail, die, need = args.parse(arg, {
   usage = "lamina run recipes/aligned.lua [--min W] [--max W] [--axis A] [MODEL]",
   options = { min = 0.1, max = 0.5, axis = "z",
               model = args.beside(arg, "parts/terrace.ug") },
@@ -30,7 +30,7 @@ if not model then die("%s", err) end
 local facets = axes.facets(model, axis)
 local flats = adaptive.flat_heights(facets)
 local planes, short = adaptive.aligned_planes(facets, o.min, o.max)
-local layers = assert(model:slice{axis = axis.slice, planes = planes})
+local layers = need(model:slice{axis = axis.slice, planes = planes})
 
 local function list(t)
   local s = {}

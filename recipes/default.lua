@@ -12,7 +12,7 @@
 -- and prints the layers, contours, program sizes and paths.
 local args = require "lamina.args"
 
-local o, _, die = args.parse(arg, {
+local o, _, die, need = args.parse(arg, {
   usage = "lamina run recipes/default.lua [--out DIR] [--sls-width W] [MODEL]",
   options = { out = "out", sls_width = 0.25,
               model = args.beside(arg, "parts/thesis_cube_hole.ug") },
@@ -22,17 +22,17 @@ local o, _, die = args.parse(arg, {
 local model, err = lamina.load(o.model)
 if not model then die("%s", err) end
 local name = o.model:match("([^/]+)$"):gsub("%.[^.]*$", "")
-assert(lamina.mkdir(o.out))
+need(lamina.mkdir(o.out))
 
 print(("%s: %d triangles, %d shells, volume %.6g"):format(
   o.model, #model, model.shells, model.volume))
 local function job(profile, slicing, ext)
-  local machine = assert(lamina.machine(profile))
+  local machine = need(lamina.machine(profile))
   slicing.machine = machine
-  local layers = assert(model:slice(slicing))
-  local plan = assert(machine:plan(layers))
+  local layers = need(model:slice(slicing))
+  local plan = need(machine:plan(layers))
   local path = ("%s/%s.%s"):format(o.out, name, ext)
-  assert(plan:write(path))
+  need(plan:write(path))
   local contours = 0
   for _, l in ipairs(layers) do contours = contours + #l end
   print(("%-12s %4d layers  %5d contours  %7d lines  %8d bytes  %s"):format(
@@ -42,5 +42,5 @@ end
 job("creol-ladrp", {}, "ladrp")
 local sls = job("sls-contours", { width = o.sls_width, cut = "floor" }, "sls")
 local sheet = ("%s/%s.svg"):format(o.out, name)
-assert(lamina.preview(sls, sheet, "lamina: " .. o.model))
+need(lamina.preview(sls, sheet, "lamina: " .. o.model))
 print(("%-12s %4d layers  %s"):format("preview", #sls, sheet))

@@ -15,7 +15,7 @@
 -- estimated build time (exposure + jumps + recoating; the machine's speeds).
 local args = require "lamina.args"
 
-local o, fail, die = args.parse(arg, {
+local o, fail, die, need = args.parse(arg, {
   usage = "lamina run recipes/hatching.lua [--machine NAME] [--width W] [--distance H] [--skins N] [MODEL]",
   options = { machine = "lpbf-cli", width = 1, distance = 0, skins = -1,
               model = args.beside(arg, "parts/frame_island.ug") },
@@ -31,7 +31,7 @@ if o.skins < -1 or o.skins ~= math.floor(o.skins) then
 end
 local model, merr = lamina.load(o.model)
 if not model then die("%s", merr) end
-local layers = assert(model:slice{machine = machine, width = o.width > 0 and o.width or nil})
+local layers = need(model:slice{machine = machine, width = o.width > 0 and o.width or nil})
 local h = o.distance > 0 and o.distance or machine.hatch_distance
 local skins = o.skins >= 0 and math.tointeger(o.skins) or machine.skin_layers
 
@@ -56,7 +56,7 @@ print(("%-22s %9s %12s %12s %11s"):format("strategy", "vectors", "length", "jump
 for _, s in ipairs(strategies) do
   local opts = { hatch_distance = h, skin_layers = skins }
   for k, v in pairs(s[2]) do opts[k] = v end
-  local plan = assert(machine:plan(layers, opts))
+  local plan = need(machine:plan(layers, opts))
   local t = plan.time
   print(("%-22s %9d %12.3f %12.3f %11.3f"):format(s[1], t.vectors, t.hatched, t.jumped, t.total))
 end

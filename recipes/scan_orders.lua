@@ -13,7 +13,7 @@
 -- lines).
 local args = require "lamina.args"
 
-local o, fail, die = args.parse(arg, {
+local o, fail, die, need = args.parse(arg, {
   usage = "lamina run recipes/scan_orders.lua [--machine NAME] [--width W] [MODEL]",
   options = { machine = "creol-ladrp", width = 0, model = args.beside(arg, "parts/pillars.ug") },
   positional = { "model" },
@@ -26,7 +26,7 @@ end
 if o.width < 0 then fail("--width must be 0 (the machine's) or more, got %g", o.width) end
 local model, merr = lamina.load(o.model)
 if not model then die("%s", merr) end
-local layers = assert(model:slice{machine = machine, width = o.width > 0 and o.width or nil})
+local layers = need(model:slice{machine = machine, width = o.width > 0 and o.width or nil})
 
 -- raster angles: the first layer's is 0, each next one turns by the step
 local orders = { { "0", 0 }, { "0/90", 90 }, { "+67.5", 67.5 } }
@@ -43,7 +43,7 @@ print(("%-8s %-14s %12s %12s %8s %9s"):format(
 local plain
 for _, order in ipairs(orders) do
   for _, by_island in ipairs{ false, true } do
-    local plan = assert(machine:plan(layers, {
+    local plan = need(machine:plan(layers, {
       angle = 0, angle_step = order[2], alternate = true, islands = by_island }))
     plain = plain or plan.travel
     print(("%-8s %-14s %12.4f %12.4f %8d %8.1f%%"):format(order[1],

@@ -1,7 +1,7 @@
 -- lamina.args: the command-line options of a recipe.
 --
 --   local args = require "lamina.args"
---   local o, fail, die = args.parse(arg, {
+--   local o, fail, die, need = args.parse(arg, {
 --     usage = "lamina run recipes/adaptive.lua [--cusp H] [--axis A] [--list] [MODEL]",
 --     options = { cusp = 0.05, axis = "z", list = false, model = "recipes/parts/x.ug" },
 --     positive = { "cusp" },     -- numbers that must be > 0
@@ -22,8 +22,11 @@
 -- a traceback and exits with 2, as for the command line's own usage
 -- errors. `fail` (the second result) raises one for the recipe's own checks
 -- of its options; `die` (the third) raises "RECIPE: MESSAGE" without the
--- usage and exits with 1, for inputs that do not load. A stock `lua` prints
--- both without a traceback too.
+-- usage and exits with 1, for inputs that do not load. `need` (the fourth)
+-- takes a lamina call's results: the value when there is one, else `die`
+-- with the call's message (`local layers = need(model:slice{...})`), in
+-- place of `assert`, which would print a traceback. A stock `lua` prints
+-- them without a traceback too.
 --
 -- args.beside(arg, "parts/x.ug") is a path beside the running recipe
 -- ("recipes/parts/x.ug" for `lamina run recipes/y.lua`): default models
@@ -54,6 +57,10 @@ function args.parse(argv, spec)
   end
   local function fail(fmt, ...) raise(message(fmt, ...) .. "\nusage: " .. usage, 2) end
   local function die(fmt, ...) raise(message(fmt, ...), 1) end
+  local function need(v, err, ...)
+    if v == nil or v == false then die("%s", tostring(err or "failed")) end
+    return v, err, ...
+  end
   local o = {}
   for k, v in pairs(spec.options or {}) do o[k] = v end
   local function set(key, value, shown)
@@ -113,7 +120,7 @@ function args.parse(argv, spec)
   for _, key in ipairs(spec.positive or {}) do
     if o[key] <= 0 then fail("--%s must be greater than 0, got %g", key:gsub("_", "-"), o[key]) end
   end
-  return o, fail, die
+  return o, fail, die, need
 end
 
 return args

@@ -90,6 +90,13 @@ is "$RC" 0 "ded-gcode: exit 0"
 like "$(head -5 "$TMP/cube.gcode")" 'G21' "preamble sets millimetres"
 is "$(grep -c '^; layer ' "$TMP/cube.gcode")" 4 "four layer comments"
 ok "$(awk '/^M3/ && !on { on = NR } /^G1 / { if (!on || on > NR) bad = 1; exit } END { exit bad + 0 }' "$TMP/cube.gcode"; echo $?)" "laser on before the first deposit"
+# the laser's state along the program: on (M3) only when off, off (M5)
+# only when on or not yet known (the first), every deposit with it on, and
+# off at the end; M9 (powder off) with each M5: each said once
+ok "$(awk '/^M3( |$)/ { if (st == "on") bad = 1; st = "on" } /^M5( |$)/ { if (st == "off") bad = 1; st = "off"; m5++ }
+    /^M9( |$)/ { m9++ } /^G1 / && st != "on" { bad = 1 } END { exit bad || st != "off" || m5 != m9 }' "$TMP/cube.gcode"; echo $?)" \
+    "ded-gcode: laser and powder switched on and off once each time, off at the end"
+like "$(head -1 "$TMP/cube.gcode")" "^; lamina DED program: part thesis_cube on ded-gcode " "ded-gcode: the preamble names the part"
 ok "$(grep '^G1 ' "$TMP/cube.gcode" | awk '{ for (i = 2; i <= NF; i++) if ($i ~ /^[XY]/) { v = substr($i, 2) + 0; if (v < -1.0000001 || v > 1.0000001) bad = 1 } } END { exit bad }'; echo $?)" "every deposit stays inside the part"
 
 # Command-line options override the profile.

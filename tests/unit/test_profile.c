@@ -226,18 +226,22 @@ static void test_dialect_programs(void)
     memcpy(job.bbox, box, sizeof box);
     if (lam_profile_find("ded-gcode", &p, &err) == LAM_OK) {
         job.name = p->name;
+        job.label = "bracket";
         job.bead = 1;
         job.rate = p->feed_rate;
         job.travel_rate = p->travel_rate;
         char *out = program(p, &job, ded_script);
-        ok(has(out, "; lamina DED program for ded-gcode (2 layers, bead 1 mm)\n"), "ded-gcode: preamble comment");
+        ok(has(out, "; lamina DED program: part bracket on ded-gcode (2 layers, bead 1 mm)\n"),
+           "ded-gcode: the preamble names the part and the machine");
         ok(has(out, "; bounding box 0.000 0.000 0.000 to 10.000 5.000 1.000\nG21"), "ded-gcode: bounding box");
         ok(has(out, "; layer 1 z=0.250\nG0 X1.000 Y2.000 Z0.250 F3000\nM3 S1000 ; laser on\nM8 ; powder on\n"
                     "G1 X11.001 Y2.000 Z0.250 F600\nM5 ; laser off\nM9 ; powder off\n"),
            "ded-gcode: layer, travel at 3000, laser and powder on, deposit at 600");
         size_t n = strlen(out);
-        ok(n > 10 && !strcmp(out + n - 10, "M5\nM9\nM30\n"), "ded-gcode: postamble ends the program");
+        ok(n > 52 && !strcmp(out + n - 52, "M5 ; laser off\nM9 ; powder off\nM30 ; end of program\n"),
+           "ded-gcode: the last deposit's laser off, then the postamble ends the program (M5/M9 once)");
         free(out);
+        job.label = NULL;
         lam_profile_free(p);
     }
     if (lam_profile_find("cli-ascii", &p, &err) == LAM_OK) {
