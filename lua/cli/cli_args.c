@@ -497,6 +497,13 @@ int cli_apply_sets(const char *cmd, const args *a, lam_profile *p)
         if (lam_profile_set(p, a->sets[i].key->name, a->sets[i].value, &err))
             return err.code == LAM_ENOMEM ? cli_fail(&err) : cli_usage(cmd, "%s: %s", a->sets[i].shown, err.msg);
     if (a->nsets && lam_profile_check(p, &err)) return cli_usage(cmd, "%s", err.msg);
+    /* a value the profile's planner does not read would do nothing: refused
+     * against the process the values leave (-s process=... comes first) */
+    for (size_t i = 0; i < a->nsets; i++)
+        if (!lam_key_read_by(a->sets[i].key, p->process)) {
+            lam_key_unread(a->sets[i].key, NULL, p->process, p->name, &err);
+            return cli_usage(cmd, "%s: %s", a->sets[i].shown, err.msg);
+        }
     return EXIT_OK;
 }
 
