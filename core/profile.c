@@ -696,9 +696,9 @@ static char *find_shipped(const char *name, char *searched, size_t size)
 
 /* A name is looked up in the machine directories only, never in the current
  * directory (a file there must not stand in for a shipped profile by
- * accident); when `dir` (a prefix ending in '/', or "") holds NAME.yaml,
- * hint[0..size) says how to name it: "; NAME.yaml here is not searched:
- * write ./NAME.yaml". Else hint is "". */
+ * accident). When dir[0..dl) (a prefix ending in '/', or empty) holds
+ * NAME.yaml (or .yml), hint[0..size) says how to name it: "; NAME.yaml HERE
+ * is not searched: write ./NAME.yaml"; else it is "". */
 static void local_hint(const char *dir, size_t dl, const char *name, const char *here, char *hint, size_t size)
 {
     hint[0] = '\0';
@@ -745,7 +745,8 @@ static int resolve_parent(ldr *L, const src *s, const yaml_node_t *v)
         char searched[1024], hint[300];
         parent = find_shipped(name, searched, sizeof searched);
         const char *slash = strrchr(s->path, '/');
-        local_hint(s->path, slash ? (size_t)(slash - s->path) + 1 : 0, name, "beside this profile", hint, sizeof hint);
+        if (!parent)
+            local_hint(s->path, slash ? (size_t)(slash - s->path) + 1 : 0, name, "beside this profile", hint, sizeof hint);
         if (!parent)
             rc = at(s, v->start_mark, LAM_EINVAL, "inherits '%s': no machine profile %s.yaml in %s%s", name, name,
                     searched, hint);
@@ -1046,13 +1047,6 @@ static void put_comment(lam_writer *w, const char *label, const char *text)
     lam_writer_write(w, "\n", 1);
 }
 
-/* Values derived from another key are not written: an sls profile's bead
- * width is its spot width. */
-static int derived(const lam_profile *p, const lam_key *k)
-{
-    return p->process == LAM_PROCESS_SLS && k->offset == offsetof(lam_profile, bead_width);
-}
-
 int lam_profile_dump(const lam_profile *p, lam_writer *w)
 {
     put_comment(w, "lamina machine profile ", p->name ? p->name : "");
@@ -1064,8 +1058,9 @@ int lam_profile_dump(const lam_profile *p, lam_writer *w)
         const char *at = (const char *)p + k->offset;
         const lam_template *t = (const lam_template *)(const void *)at;
         const char *str = k->type == LAM_KEY_STRING ? *(char *const *)(const void *)at : NULL;
-        /* the other planner's keys: the dump loads again (profile.c, check_readers) */
-        if (k->flags & LAM_KEY_LOADER || derived(p, k) || !lam_key_read_by(k, p->process)) continue;
+        /* not the other planner's keys (an sls profile's bead width is its
+         * spot width): the dump loads again (check_readers) */
+        if (k->flags & LAM_KEY_LOADER || !lam_key_read_by(k, p->process)) continue;
         if (k->flags & LAM_KEY_OPTIONAL) {
             if (k->type == LAM_KEY_TEMPLATE ? !t->present
                 : k->type == LAM_KEY_STRING ? !str

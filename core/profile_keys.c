@@ -54,18 +54,18 @@ static const char *const island_order_choices[] = { "sequential", "checker", "ra
     SCAN(sec, T, "exposure_time", exposure.exposure_time, LAM_KEY_NUMBER, 0, 0, HUGE_VAL, NULL, "0",            \
          who ": point exposure: seconds per point")
 #define HATCH_ROWS(sec, T, who)                                                                                \
-    SCAN_AS(sec, T, "hatch_strategy", strategy, LAM_KEY_CHOICE, 0, 0, 0, strategy_choices, "none", "raster.islands",                 \
-         who ": hatching: none (contours only), lines, stripes or islands"),                                  \
-    SCAN_AS(sec, T, "hatch_distance", distance, LAM_KEY_NUMBER, 0, LAM_HATCH_MIN, HUGE_VAL, NULL, "0.1", "bead_width",           \
-         who ": distance between hatch vectors"),                                                             \
-    SCAN_AS(sec, T, "hatch_angle", angle, LAM_KEY_NUMBER, 0, -HUGE_VAL, HUGE_VAL, NULL, "0", "raster.angle",                       \
-         who ": hatch direction of the first layer, degrees counter-clockwise from u"),                       \
-    SCAN_AS(sec, T, "layer_angle_increment", angle_increment, LAM_KEY_NUMBER, 0, -HUGE_VAL, HUGE_VAL, NULL, "67", "raster.angle_step",  \
-         who ": degrees added to the hatch angle per layer"),                                                 \
-    SCAN_AS(sec, T, "hatch_order", order, LAM_KEY_CHOICE, 0, 0, 0, order_choices, "meander", "raster.alternate",                       \
-         who ": meander (alternate), unidirectional or greedy (nearest next end)"),                           \
-    SCAN_AS(sec, T, "min_vector", min_vector, LAM_KEY_NUMBER, 0, 0, HUGE_VAL, NULL, "0", "raster.min_deposit",                           \
-         who ": hatch vectors shorter than this are dropped"),                                                \
+    SCAN_AS(sec, T, "hatch_strategy", strategy, LAM_KEY_CHOICE, 0, 0, 0, strategy_choices, "none",                \
+         "raster.islands", who ": hatching: none (contours only), lines, stripes or islands"),                    \
+    SCAN_AS(sec, T, "hatch_distance", distance, LAM_KEY_NUMBER, 0, LAM_HATCH_MIN, HUGE_VAL, NULL, "0.1",          \
+         "bead_width", who ": distance between hatch vectors"),                                                   \
+    SCAN_AS(sec, T, "hatch_angle", angle, LAM_KEY_NUMBER, 0, -HUGE_VAL, HUGE_VAL, NULL, "0",                      \
+         "raster.angle", who ": hatch direction of the first layer, degrees counter-clockwise from u"),           \
+    SCAN_AS(sec, T, "layer_angle_increment", angle_increment, LAM_KEY_NUMBER, 0, -HUGE_VAL, HUGE_VAL, NULL, "67", \
+         "raster.angle_step", who ": degrees added to the hatch angle per layer"),                                \
+    SCAN_AS(sec, T, "hatch_order", order, LAM_KEY_CHOICE, 0, 0, 0, order_choices, "meander",                      \
+         "raster.alternate", who ": meander (alternate), unidirectional or greedy (nearest next end)"),           \
+    SCAN_AS(sec, T, "min_vector", min_vector, LAM_KEY_NUMBER, 0, 0, HUGE_VAL, NULL, "0",                          \
+         "raster.min_deposit", who ": hatch vectors shorter than this are dropped"),                              \
     SCAN(sec, T, "stripe_width", stripe_width, LAM_KEY_NUMBER, 0, LAM_HATCH_MIN, HUGE_VAL, NULL, "10",          \
          who ": stripes: width of a band"),                                                                   \
     SCAN(sec, T, "stripe_overlap", stripe_overlap, LAM_KEY_NUMBER, 0, 0, HUGE_VAL, NULL, "0",                   \
@@ -101,9 +101,10 @@ const lam_key lam_profile_keys[] = {
       .doc = "ladrp: deposited line width `d`; scan lines are `d` apart" },
     { .name = "spot_width", .type = LAM_KEY_NUMBER,
       .flags = LAM_KEY_ABOVE | LAM_KEY_OPTIONAL | LAM_KEY_NEED_SLS | LAM_KEY_PLAN, .lo = 0, .hi = HUGE_VAL,
-      .offset = AT(spot_width), .planner = LAM_READ_SLS, .instead = "bead_width", .doc = "sls: laser spot; an sls profile's bead width is its spot width" },
-    { .name = "layer_width", .alias = "layer_thickness", .type = LAM_KEY_NUMBER, .flags = LAM_KEY_ABOVE | LAM_KEY_OPTIONAL, .lo = 0,
-      .hi = HUGE_VAL, .option = "width", .letter = 'w', .offset = AT(layer_width),
+      .offset = AT(spot_width), .planner = LAM_READ_SLS, .instead = "bead_width",
+      .doc = "sls: laser spot; an sls profile's bead width is its spot width" },
+    { .name = "layer_width", .alias = "layer_thickness", .type = LAM_KEY_NUMBER,
+      .flags = LAM_KEY_ABOVE | LAM_KEY_OPTIONAL, .lo = 0, .hi = HUGE_VAL, .option = "width", .letter = 'w', .offset = AT(layer_width),
       .doc = "layer thickness when the command line or recipe gives none (absent: the slicer's default)" },
     { .name = "cut", .type = LAM_KEY_CHOICE, .choices = cut_choices, .def = "middle", .option = "cut",
       .offset = AT(cut), .doc = "where in the layer the section is taken" },
@@ -119,10 +120,12 @@ const lam_key lam_profile_keys[] = {
       .option = "frame", .offset = AT(frame_machine),
       .doc = "coordinates written: model x y z, or the layer frame u v w (build axis = machine Z)" },
     { .name = "raster.first_line", .type = LAM_KEY_CHOICE, .flags = LAM_KEY_PLAN | LAM_KEY_FLAT,
-      .choices = first_line_choices, .def = "edge", .option = "first-line", .offset = AT(first_line), .planner = LAM_READ_LADRP,
+      .choices = first_line_choices, .def = "edge", .option = "first-line", .offset = AT(first_line),
+      .planner = LAM_READ_LADRP,
       .doc = "ladrp: first scan line on the layer's top edge (the thesis) or half a bead inside" },
     { .name = "raster.angle", .type = LAM_KEY_NUMBER, .flags = LAM_KEY_PLAN | LAM_KEY_FLAT, .lo = -HUGE_VAL,
-      .hi = HUGE_VAL, .def = "0", .option = "angle", .offset = AT(angle), .planner = LAM_READ_LADRP, .instead = "hatch_angle",
+      .hi = HUGE_VAL, .def = "0", .option = "angle", .offset = AT(angle), .planner = LAM_READ_LADRP,
+      .instead = "hatch_angle",
       .doc = "ladrp: raster direction of the first layer, degrees" },
     { .name = "raster.angle_step", .type = LAM_KEY_NUMBER, .flags = LAM_KEY_PLAN | LAM_KEY_FLAT, .lo = -HUGE_VAL,
       .hi = HUGE_VAL, .def = "0", .option = "angle-step", .offset = AT(angle_step), .planner = LAM_READ_LADRP,
@@ -132,10 +135,12 @@ const lam_key lam_profile_keys[] = {
       .option = "no-alternate", .offset = AT(alternate), .planner = LAM_READ_LADRP, .instead = "hatch_order",
       .doc = "ladrp: boustrophedon, every other line runs backwards" },
     { .name = "raster.min_deposit", .type = LAM_KEY_NUMBER, .flags = LAM_KEY_PLAN | LAM_KEY_FLAT, .lo = 0,
-      .hi = HUGE_VAL, .def = "0", .option = "min-deposit", .offset = AT(min_deposit), .planner = LAM_READ_LADRP, .instead = "min_vector",
+      .hi = HUGE_VAL, .def = "0", .option = "min-deposit", .offset = AT(min_deposit),
+      .planner = LAM_READ_LADRP, .instead = "min_vector",
       .doc = "ladrp: deposits shorter than this are skipped" },
     { .name = "raster.perimeters", .type = LAM_KEY_INTEGER, .flags = LAM_KEY_PLAN | LAM_KEY_FLAT, .lo = 0,
-      .hi = 1000, .def = "0", .option = "perimeters", .offset = AT(perimeters), .planner = LAM_READ_LADRP, .instead = "contour_count",
+      .hi = 1000, .def = "0", .option = "perimeters", .offset = AT(perimeters),
+      .planner = LAM_READ_LADRP, .instead = "contour_count",
       .doc = "ladrp: passes around each contour, the first offset by `d/2`" },
     { .name = "raster.islands", .type = LAM_KEY_BOOLEAN, .flags = LAM_KEY_PLAN | LAM_KEY_FLAT, .def = "false",
       .option = "islands", .offset = AT(islands), .planner = LAM_READ_LADRP,
@@ -143,23 +148,28 @@ const lam_key lam_profile_keys[] = {
       .doc = "ladrp: raster each island (an outer contour and what it holds) on its own, the nearest next, "
              "instead of whole scan lines across the layer: less travel between islands" },
     { .name = "beam_offset", .type = LAM_KEY_BOOLEAN, .flags = LAM_KEY_PLAN, .def = "false",
-      .option = "beam-offset", .offset = AT(beam_offset), .planner = LAM_READ_SLS, .doc = "sls: inset contours by half the spot" },
+      .option = "beam-offset", .offset = AT(beam_offset), .planner = LAM_READ_SLS,
+      .doc = "sls: inset contours by half the spot" },
     HATCH_ROWS("", LAM_VEC_CORE, "sls, core"),
     { .name = "contour_count", .type = LAM_KEY_INTEGER, .flags = LAM_KEY_PLAN, .lo = 0, .hi = 1000, .def = "1",
       .offset = AT(scan.contour_count), .planner = LAM_READ_SLS,
       .instead = "raster.perimeters", .doc = "sls: contour passes round the region (the first offset by the spot "
                                                 "compensation when `beam_offset`)" },
     { .name = "contour_distance", .type = LAM_KEY_NUMBER, .flags = LAM_KEY_PLAN, .lo = 0, .hi = HUGE_VAL,
-      .follows = "spot_width", .offset = AT(scan.contour_distance), .planner = LAM_READ_SLS, .doc = "sls: each next contour pass this much further in" },
+      .follows = "spot_width", .offset = AT(scan.contour_distance), .planner = LAM_READ_SLS,
+      .doc = "sls: each next contour pass this much further in" },
     { .name = "hatch_offset", .type = LAM_KEY_NUMBER, .flags = LAM_KEY_PLAN, .lo = 0, .hi = HUGE_VAL, .def = "0",
-      .offset = AT(scan.hatch_offset), .planner = LAM_READ_SLS, .doc = "sls: distance from the innermost contour pass to the hatched area" },
+      .offset = AT(scan.hatch_offset), .planner = LAM_READ_SLS,
+      .doc = "sls: distance from the innermost contour pass to the hatched area" },
     { .name = "contours_first", .type = LAM_KEY_BOOLEAN, .flags = LAM_KEY_PLAN, .def = "true",
-      .offset = AT(scan.contours_first), .planner = LAM_READ_SLS, .doc = "sls: contour passes before the hatches (false: after)" },
+      .offset = AT(scan.contours_first), .planner = LAM_READ_SLS,
+      .doc = "sls: contour passes before the hatches (false: after)" },
     { .name = "skin_layers", .type = LAM_KEY_INTEGER, .flags = LAM_KEY_PLAN, .lo = 0, .hi = LAM_SKIN_MAX, .def = "0",
       .offset = AT(scan.skin_layers), .planner = LAM_READ_SLS,
       .doc = "sls: how many layers deep up-skin and down-skin reach (0: no skins, all core)" },
     { .name = "jump_speed", .type = LAM_KEY_NUMBER, .flags = LAM_KEY_PLAN, .lo = 0, .hi = HUGE_VAL, .def = "0",
-      .offset = AT(scan.jump_speed), .planner = LAM_READ_SLS, .doc = "sls: scanner speed between vectors, units per second (0: jumps take "
+      .offset = AT(scan.jump_speed), .planner = LAM_READ_SLS,
+      .doc = "sls: scanner speed between vectors, units per second (0: jumps take "
                                              "only their delay)" },
     { .name = "jump_delay", .type = LAM_KEY_NUMBER, .flags = LAM_KEY_PLAN, .lo = 0, .hi = HUGE_VAL, .def = "0",
       .offset = AT(scan.jump_delay), .planner = LAM_READ_SLS, .doc = "sls: seconds added to every jump" },
@@ -223,9 +233,10 @@ const char *lam_key_lua_name(const lam_key *k)
 
 const lam_key *lam_key_find(const char *name)
 {
-    for (size_t i = 0; i < lam_profile_nkeys; i++)
-        if (!strcmp(lam_profile_keys[i].name, name) || (lam_profile_keys[i].alias && !strcmp(lam_profile_keys[i].alias, name)))
-            return &lam_profile_keys[i];
+    for (size_t i = 0; i < lam_profile_nkeys; i++) {
+        const lam_key *k = &lam_profile_keys[i];
+        if (!strcmp(k->name, name) || (k->alias && !strcmp(k->alias, name))) return k;
+    }
     for (size_t i = 0; i < lam_profile_nkeys; i++)
         if (lam_profile_keys[i].flags & LAM_KEY_FLAT && !strcmp(lam_key_short(&lam_profile_keys[i]), name))
             return &lam_profile_keys[i];
