@@ -54,8 +54,8 @@ static const char *const island_order_choices[] = { "sequential", "checker", "ra
     SCAN(sec, T, "exposure_time", exposure.exposure_time, LAM_KEY_NUMBER, 0, 0, HUGE_VAL, NULL, "0",            \
          who ": point exposure: seconds per point")
 #define HATCH_ROWS(sec, T, who)                                                                                \
-    SCAN_AS(sec, T, "hatch_strategy", strategy, LAM_KEY_CHOICE, 0, 0, 0, strategy_choices, "none",                \
-         "raster.islands", who ": hatching: none (contours only), lines, stripes or islands"),                    \
+    SCAN(sec, T, "hatch_strategy", strategy, LAM_KEY_CHOICE, 0, 0, 0, strategy_choices, "none",                   \
+         who ": hatching: none (contours only), lines, stripes or islands"),                                      \
     SCAN_AS(sec, T, "hatch_distance", distance, LAM_KEY_NUMBER, 0, LAM_HATCH_MIN, HUGE_VAL, NULL, "0.1",          \
          "bead_width", who ": distance between hatch vectors"),                                                   \
     SCAN_AS(sec, T, "hatch_angle", angle, LAM_KEY_NUMBER, 0, -HUGE_VAL, HUGE_VAL, NULL, "0",                      \
