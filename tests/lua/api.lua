@@ -267,6 +267,9 @@ T.raises("layers[2] must be a lamina.layer, got a table", "plan: not a layer", s
 T.raises("cut cannot be changed here", "plan: slicing option", sls.plan, sls, layers, {cut = "floor"})
 T.raises("bad argument #2 to 'plan' (angle must be a number, got 'x')", "plan: bad option",
          function() return sls:plan(layers, {angle = "x"}) end)
+T.raises("angle is read by the ladrp planner only, and sls-contours is an sls profile: set hatch_angle instead",
+         "plan: a layer function's raster key on an sls machine",
+         function() return sls:plan(layers, {layer = function() return {angle = 5} end}) end)
 
 local cube = assert(lamina.load(M .. "thesis_cube.ug"))
 local cl = cube:slice{machine = ladrp, width = 2}
