@@ -386,10 +386,14 @@ static void help(const char *usage, unsigned groups)
                                                                                       : " VALUE";
         if (k->letter) snprintf(left, sizeof left, "-%c, --%s%s", k->letter, k->option, arg);
         else snprintf(left, sizeof left, "    --%s%s", k->option, arg);
+        /* a key of one planner says so: the other's profiles refuse it */
+        const char *only = k->planner == LAM_READ_LADRP ? " (ladrp profiles)"
+                           : k->planner == LAM_READ_SLS ? " (sls profiles)"
+                                                        : "";
         if (k->type == LAM_KEY_BOOLEAN)
-            printf("  %-24s --set %s=%s\n", left, k->name, strncmp(k->option, "no-", 3) ? "true" : "false");
+            printf("  %-24s --set %s=%s%s\n", left, k->name, strncmp(k->option, "no-", 3) ? "true" : "false", only);
         else
-            printf("  %-24s --set %s=%s\n", left, k->name, arg + 1);
+            printf("  %-24s --set %s=%s%s\n", left, k->name, arg + 1, only);
     }
 }
 

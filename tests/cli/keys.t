@@ -39,6 +39,12 @@ like "$RC $OUT" $'^0 [\\s\\S]*\nhatch_angle: 30\n' "-s process=sls, then sls key
 "$LAMINA" slice "$CUBE" -m cli-ascii -w 1 -s hatch_strategy=lines -s hatch_angle=45 -o h45.cli 2>/dev/null
 ! cmp -s h0.cli h45.cli; ok $? "hatch_angle=45 on cli-ascii changes the program"
 
+# --help marks the options of one planner
+run "$LAMINA" slice --help
+like "$OUT" '^ +--angle X +--set raster\.angle=X \(ladrp profiles\)$' "--help: --angle is for ladrp profiles"
+like "$OUT" '^ +--beam-offset +--set beam_offset=true \(sls profiles\)$' "--help: --beam-offset for sls profiles"
+like "$OUT" '^ +--gap X +--set gap=X$' "--help: --gap for both"
+
 # ---- every key: the planner the table says, the planner its text says ----------
 # The reference's meaning column starts "ladrp:" or "sls" for a key of one
 # planner (written with the key, not derived from the planner column): each
