@@ -109,9 +109,11 @@ const lam_key lam_profile_keys[] = {
     { .name = "cut", .type = LAM_KEY_CHOICE, .choices = cut_choices, .def = "middle", .option = "cut",
       .offset = AT(cut), .doc = "where in the layer the section is taken" },
     { .name = "feed_rate", .type = LAM_KEY_NUMBER, .flags = LAM_KEY_PLAN, .lo = 0, .hi = HUGE_VAL, .def = "0",
-      .offset = AT(feed_rate), .doc = "deposit feed rate (the thesis's powder feed `R`)" },
+      .offset = AT(feed_rate), .planner = LAM_READ_LADRP, .instead = "speed",
+      .doc = "ladrp: deposit feed rate (the thesis's powder feed `R`)" },
     { .name = "travel_rate", .type = LAM_KEY_NUMBER, .flags = LAM_KEY_PLAN, .lo = 0, .hi = HUGE_VAL,
-      .follows = "feed_rate", .offset = AT(travel_rate), .doc = "rate of moves with the laser off" },
+      .follows = "feed_rate", .offset = AT(travel_rate), .planner = LAM_READ_LADRP, .instead = "jump_speed",
+      .doc = "ladrp: rate of moves with the laser off" },
     { .name = "gap", .type = LAM_KEY_NUMBER, .flags = LAM_KEY_AUTO, .lo = 0, .hi = HUGE_VAL, .def = "auto",
       .option = "gap", .offset = AT(gap),
       .doc = "close open outlines whose ends are this close (0: never; auto: 1/2000 of the model's size, at most "
