@@ -35,12 +35,12 @@
  * some file of the chain gave. */
 static size_t key_index(const lam_key *k) { return (size_t)(k - lam_profile_keys); }
 
-/* The row named exactly `name` (no flat short names here: a YAML key is
- * written where it lives). */
+/* The row named exactly `name` or by its alias (no flat short names here:
+ * a YAML key is written where it lives). */
 static const lam_key *exact_key(const char *name)
 {
     const lam_key *k = lam_key_find(name);
-    return k && !strcmp(k->name, name) ? k : NULL;
+    return k && (!strcmp(k->name, name) || (k->alias && !strcmp(k->alias, name))) ? k : NULL;
 }
 
 /* The loader's own row (inherits). */
@@ -338,6 +338,7 @@ static void keys_in(const char *section, keyset *ks)
             if (kl == sl && !strncmp(k->name, section, sl)) ks->names[ks->n++] = lam_key_short(k);
         } else if (!kl) {
             ks->names[ks->n++] = k->name;
+            if (k->alias) ks->names[ks->n++] = k->alias; /* the table has no alias in a section */
         } else if (!ks->nsec || strncmp(ks->sections[ks->nsec - 1], k->name, kl) != 0 ||
                    ks->sections[ks->nsec - 1][kl] != '\0') {
             if (ks->nsec == 16 || kl >= 32) continue; /* the unit test keeps the table within these */
@@ -372,11 +373,16 @@ static int check_keys(const src *s, const yaml_node_t *m, const char *where, con
             return at(s, k->start_mark, LAM_EINVAL, "unknown key %s%s%s (%sallowed: %s)", describe(k, b, sizeof b),
                       *where ? " in " : "", where, hint, allowed);
         }
+        const lam_key *row = *where ? NULL : exact_key(key);
         for (yaml_node_pair_t *q = m->data.mapping.pairs.start; q < pr; q++) {
             yaml_node_t *k2 = node(s, q->key);
-            if (k2->type == YAML_SCALAR_NODE && !strcmp((const char *)k2->data.scalar.value, key))
+            const char *key2 = (const char *)k2->data.scalar.value;
+            if (!strcmp(key2, key))
                 return at(s, k->start_mark, LAM_EINVAL, "duplicate key '%s%s%s' (first given at line %lu)", where,
                           *where ? "." : "", key, (unsigned long)k2->start_mark.line + 1);
+            if (row && exact_key(key2) == row) /* a key and its alias */
+                return at(s, k->start_mark, LAM_EINVAL, "duplicate key '%s': %s is another name of %s (given at line %lu)",
+                          key, row->alias, row->name, (unsigned long)k2->start_mark.line + 1);
         }
     }
     return LAM_OK;
@@ -571,8 +577,8 @@ static int apply_value(ldr *L, const src *s, const lam_key *k, const yaml_node_t
     } else if (k->type == LAM_KEY_STRING) {
         char **field = (char **)(void *)((char *)p + k->offset);
         if (v->type != YAML_SCALAR_NODE || is_null(v)) return at_key(s, v, k, describe(v, b, sizeof b));
-        if (!(rc = get_text(s, v, k->name, field)) && k->flags & LAM_KEY_NONEMPTY && !**field)
-            rc = at(s, v->start_mark, LAM_EINVAL, "%s must not be empty", k->name);
+        if (!(rc = get_text(s, v, k->name, field)) && lam_key_check_text(k, *field, &e))
+            rc = at(s, v->start_mark, LAM_EINVAL, "%s", e.msg);
     } else {
         if (v->type != YAML_SCALAR_NODE || is_null(v)) return at_key(s, v, k, describe(v, b, sizeof b));
         if (v->data.scalar.style != YAML_PLAIN_SCALAR_STYLE && k->type != LAM_KEY_CHOICE) {
@@ -688,6 +694,25 @@ static char *find_shipped(const char *name, char *searched, size_t size)
     return found;
 }
 
+/* A name is looked up in the machine directories only, never in the current
+ * directory (a file there must not stand in for a shipped profile by
+ * accident). When dir[0..dl) (a prefix ending in '/', or empty) holds
+ * NAME.yaml (or .yml), hint[0..size) says how to name it: "; NAME.yaml HERE
+ * is not searched: write ./NAME.yaml"; else it is "". */
+static void local_hint(const char *dir, size_t dl, const char *name, const char *here, char *hint, size_t size)
+{
+    hint[0] = '\0';
+    static const char *const ext[] = { ".yaml", ".yml" };
+    for (int e = 0; e < 2 && !hint[0]; e++) {
+        size_t need = dl + strlen(name) + 6;
+        char *path = malloc(need);
+        if (!path) return;
+        snprintf(path, need, "%.*s%s%s", (int)dl, dir, name, ext[e]);
+        if (is_file(path)) snprintf(hint, size, "; %s%s %s is not searched: write ./%s%s", name, ext[e], here, name, ext[e]);
+        free(path);
+    }
+}
+
 static int load_file(ldr *L, const char *path, int top);
 
 static int resolve_parent(ldr *L, const src *s, const yaml_node_t *v)
@@ -717,11 +742,14 @@ static int resolve_parent(ldr *L, const src *s, const yaml_node_t *v)
         else if (!S_ISREG(st.st_mode))
             rc = at(s, v->start_mark, LAM_EINVAL, "inherits '%s': %s is not a file", name, parent);
     } else {
-        char searched[1024];
+        char searched[1024], hint[300];
         parent = find_shipped(name, searched, sizeof searched);
+        const char *slash = strrchr(s->path, '/');
         if (!parent)
-            rc = at(s, v->start_mark, LAM_EINVAL, "inherits '%s': no machine profile %s.yaml in %s", name, name,
-                    searched);
+            local_hint(s->path, slash ? (size_t)(slash - s->path) + 1 : 0, name, "beside this profile", hint, sizeof hint);
+        if (!parent)
+            rc = at(s, v->start_mark, LAM_EINVAL, "inherits '%s': no machine profile %s.yaml in %s%s", name, name,
+                    searched, hint);
     }
     if (!rc) {
         struct stat st;
@@ -777,6 +805,37 @@ static int finish(ldr *L, const src *s, const yaml_node_t *root)
     return LAM_OK;
 }
 
+/* A key the file given gives itself that its planner does not read is an
+ * error at the key (it would do nothing); a parent's are not: a base may
+ * serve profiles of both processes (machines/README.md, "Keys"). */
+static int unread_key(const src *s, const yaml_node_t *key, const lam_key *k, int process)
+{
+    lam_error e;
+    if (!k || k->flags & LAM_KEY_LOADER || lam_key_read_by(k, process)) return LAM_OK;
+    lam_key_unread(k, NULL, process, NULL, &e);
+    return at(s, key->start_mark, LAM_EINVAL, "%s", e.msg);
+}
+
+static int check_readers(const ldr *L, const src *s, const yaml_node_t *root)
+{
+    int rc = LAM_OK;
+    for (yaml_node_pair_t *pr = root->data.mapping.pairs.start; !rc && pr < root->data.mapping.pairs.top; pr++) {
+        const yaml_node_t *key = node(s, pr->key), *v = node(s, pr->value);
+        const char *name = (const char *)key->data.scalar.value;
+        const lam_key *k = exact_key(name);
+        if (k || v->type != YAML_MAPPING_NODE) {
+            rc = unread_key(s, key, k, L->p->process);
+            continue;
+        }
+        for (yaml_node_pair_t *q = v->data.mapping.pairs.start; !rc && q < v->data.mapping.pairs.top; q++) {
+            char full[128];
+            snprintf(full, sizeof full, "%s.%s", name, (const char *)node(s, q->key)->data.scalar.value);
+            rc = unread_key(s, node(s, q->key), exact_key(full), L->p->process);
+        }
+    }
+    return rc;
+}
+
 static int load_text(ldr *L, src *s, const char *path, int top);
 
 static int load_file(ldr *L, const char *path, int top)
@@ -828,7 +887,7 @@ static int load_text(ldr *L, src *s, const char *path, int top)
         if (rc) goto out;
     }
     if ((rc = apply(L, s, root))) goto out;
-    if (top) rc = finish(L, s, root);
+    if (top && !(rc = finish(L, s, root))) rc = check_readers(L, s, root);
 out:
     if (s->have_doc) yaml_document_delete(&s->doc);
     free(s->text);
@@ -839,14 +898,7 @@ out:
 
 double lam_profile_unit_mm(const lam_profile *p)
 {
-    static const struct { const char *name; double mm; } units[] = {
-        { "mm", 1 }, { "cm", 10 }, { "m", 1000 }, { "um", 1e-3 }, { "\xc2\xb5m", 1e-3 },
-        { "in", 25.4 }, { "inch", 25.4 }, { "ft", 304.8 },
-    };
-    const char *u = p->units ? p->units : "mm";
-    for (size_t i = 0; i < sizeof units / sizeof units[0]; i++)
-        if (!strcmp(u, units[i].name)) return units[i].mm;
-    return 0;
+    return lam_key_unit_mm(p->units ? p->units : "mm");
 }
 
 double lam_profile_gap_limit(const lam_profile *p)
@@ -953,12 +1005,14 @@ int lam_profile_find(const char *name_or_path, lam_profile **out, lam_error *err
     *out = NULL;
     if (is_path(name_or_path)) return lam_profile_load(name_or_path, out, err);
     if (!*name_or_path) return lam_error_set(err, LAM_EINVAL, NULL, 0, 0, "empty machine profile name");
-    char searched[1024];
+    char searched[1024], hint[300];
     char *path = find_shipped(name_or_path, searched, sizeof searched);
-    if (!path)
+    if (!path) {
+        local_hint("", 0, name_or_path, "in the current directory", hint, sizeof hint);
         return lam_error_set(err, LAM_EINVAL, NULL, 0, 0,
-                             "unknown machine '%s': no %s.yaml in %s ('lamina machines' lists them)", name_or_path,
-                             name_or_path, searched);
+                             "unknown machine '%s': no %s.yaml in %s ('lamina machines' lists them)%s", name_or_path,
+                             name_or_path, searched, hint);
+    }
     int rc = lam_profile_load(path, out, err);
     free(path);
     return rc;
@@ -993,13 +1047,6 @@ static void put_comment(lam_writer *w, const char *label, const char *text)
     lam_writer_write(w, "\n", 1);
 }
 
-/* Values derived from another key are not written: an sls profile's bead
- * width is its spot width. */
-static int derived(const lam_profile *p, const lam_key *k)
-{
-    return p->process == LAM_PROCESS_SLS && k->offset == offsetof(lam_profile, bead_width);
-}
-
 int lam_profile_dump(const lam_profile *p, lam_writer *w)
 {
     put_comment(w, "lamina machine profile ", p->name ? p->name : "");
@@ -1011,7 +1058,9 @@ int lam_profile_dump(const lam_profile *p, lam_writer *w)
         const char *at = (const char *)p + k->offset;
         const lam_template *t = (const lam_template *)(const void *)at;
         const char *str = k->type == LAM_KEY_STRING ? *(char *const *)(const void *)at : NULL;
-        if (k->flags & LAM_KEY_LOADER || derived(p, k)) continue;
+        /* not the other planner's keys (an sls profile's bead width is its
+         * spot width): the dump loads again (check_readers) */
+        if (k->flags & LAM_KEY_LOADER || !lam_key_read_by(k, p->process)) continue;
         if (k->flags & LAM_KEY_OPTIONAL) {
             if (k->type == LAM_KEY_TEMPLATE ? !t->present
                 : k->type == LAM_KEY_STRING ? !str

@@ -97,7 +97,8 @@ double lam_profile_unit_mm(const lam_profile *p);
  * ft); 0 (no limit) for other units. */
 double lam_profile_gap_limit(const lam_profile *p);
 
-/* Write the resolved profile as YAML (what `lamina machines --show` prints). */
+/* Write the resolved profile as YAML (what `lamina machines --show` prints):
+ * the keys its planner reads (lam_key_read_by), so that the text loads again. */
 int lam_profile_dump(const lam_profile *p, lam_writer *w);
 
 #endif

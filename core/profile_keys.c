@@ -20,6 +20,9 @@ _Static_assert(sizeof(lam_process) == sizeof(int) && sizeof(lam_first_line) == s
 
 #define AT(field) offsetof(lam_profile, field)
 
+/* `units`: the names lam_key_unit_mm knows (in the same order as mm_per) */
+static const char *const unit_choices[] = { "mm", "cm", "m", "um", "\xc2\xb5m", "in", "inch", "ft", NULL };
+static const double mm_per[] = { 1, 10, 1000, 1e-3, 1e-3, 25.4, 25.4, 304.8 };
 static const char *const process_choices[] = { "ladrp", "sls", NULL };         /* lam_process */
 static const char *const cut_choices[] = { "floor", "middle", "ceiling", NULL }; /* lam_cut */
 static const char *const frame_choices[] = { "model", "machine", NULL };
@@ -28,12 +31,20 @@ static const char *const strategy_choices[] = { "none", "lines", "stripes", "isl
 static const char *const order_choices[] = { "meander", "unidirectional", "greedy", NULL };    /* lam_hatch_order */
 static const char *const island_order_choices[] = { "sequential", "checker", "random", NULL }; /* lam_island_order */
 
+/* The least hatch distance, stripe width and island size: a millionth of
+ * a unit (1 nm in mm), below any scanner's step in any unit lamina knows.
+ * Without it `hatch_distance: 1e-9` loads and fails at the first layer
+ * with no line of the profile to point at. */
+#define LAM_HATCH_MIN 1e-6
+
 /* The hatch and exposure keys of one vector type: at the top level for the
  * core (with defaults), in a section (`upskin.hatch_distance`) for the
  * others, each following the top-level key when not given. */
-#define SCAN(sec, T, key, f, ty, fl, l, h, ch, dflt, text)                                                   \
+#define SCAN_AS(sec, T, key, f, ty, fl, l, h, ch, dflt, inst, text)                                          \
     { .name = sec key, .type = ty, .flags = LAM_KEY_PLAN | (fl), .lo = l, .hi = h, .choices = ch,              \
-      .def = sec[0] ? NULL : dflt, .follows = sec[0] ? key : NULL, .offset = AT(scan.type[T].f), .doc = text }
+      .def = sec[0] ? NULL : dflt, .follows = sec[0] ? key : NULL, .offset = AT(scan.type[T].f),               \
+      .planner = LAM_READ_SLS, .instead = sec[0] ? NULL : inst, .doc = text }
+#define SCAN(sec, T, key, f, ty, fl, l, h, ch, dflt, text) SCAN_AS(sec, T, key, f, ty, fl, l, h, ch, dflt, NULL, text)
 #define EXPOSURE_ROWS(sec, T, who)                                                                             \
     SCAN(sec, T, "power", exposure.power, LAM_KEY_NUMBER, 0, 0, HUGE_VAL, NULL, "0", who ": laser power"),      \
     SCAN(sec, T, "speed", exposure.speed, LAM_KEY_NUMBER, 0, 0, HUGE_VAL, NULL, "0",                            \
@@ -43,23 +54,23 @@ static const char *const island_order_choices[] = { "sequential", "checker", "ra
     SCAN(sec, T, "exposure_time", exposure.exposure_time, LAM_KEY_NUMBER, 0, 0, HUGE_VAL, NULL, "0",            \
          who ": point exposure: seconds per point")
 #define HATCH_ROWS(sec, T, who)                                                                                \
-    SCAN(sec, T, "hatch_strategy", strategy, LAM_KEY_CHOICE, 0, 0, 0, strategy_choices, "none",                 \
-         who ": hatching: none (contours only), lines, stripes or islands"),                                  \
-    SCAN(sec, T, "hatch_distance", distance, LAM_KEY_NUMBER, LAM_KEY_ABOVE, 0, HUGE_VAL, NULL, "0.1",           \
-         who ": distance between hatch vectors"),                                                             \
-    SCAN(sec, T, "hatch_angle", angle, LAM_KEY_NUMBER, 0, -HUGE_VAL, HUGE_VAL, NULL, "0",                       \
-         who ": hatch direction of the first layer, degrees counter-clockwise from u"),                       \
-    SCAN(sec, T, "layer_angle_increment", angle_increment, LAM_KEY_NUMBER, 0, -HUGE_VAL, HUGE_VAL, NULL, "67",  \
-         who ": degrees added to the hatch angle per layer"),                                                 \
-    SCAN(sec, T, "hatch_order", order, LAM_KEY_CHOICE, 0, 0, 0, order_choices, "meander",                       \
-         who ": meander (alternate), unidirectional or greedy (nearest next end)"),                           \
-    SCAN(sec, T, "min_vector", min_vector, LAM_KEY_NUMBER, 0, 0, HUGE_VAL, NULL, "0",                           \
-         who ": hatch vectors shorter than this are dropped"),                                                \
-    SCAN(sec, T, "stripe_width", stripe_width, LAM_KEY_NUMBER, LAM_KEY_ABOVE, 0, HUGE_VAL, NULL, "10",          \
+    SCAN(sec, T, "hatch_strategy", strategy, LAM_KEY_CHOICE, 0, 0, 0, strategy_choices, "none",                   \
+         who ": hatching: none (contours only), lines, stripes or islands"),                                      \
+    SCAN_AS(sec, T, "hatch_distance", distance, LAM_KEY_NUMBER, 0, LAM_HATCH_MIN, HUGE_VAL, NULL, "0.1",          \
+         "bead_width", who ": distance between hatch vectors"),                                                   \
+    SCAN_AS(sec, T, "hatch_angle", angle, LAM_KEY_NUMBER, 0, -HUGE_VAL, HUGE_VAL, NULL, "0",                      \
+         "raster.angle", who ": hatch direction of the first layer, degrees counter-clockwise from u"),           \
+    SCAN_AS(sec, T, "layer_angle_increment", angle_increment, LAM_KEY_NUMBER, 0, -HUGE_VAL, HUGE_VAL, NULL, "67", \
+         "raster.angle_step", who ": degrees added to the hatch angle per layer"),                                \
+    SCAN_AS(sec, T, "hatch_order", order, LAM_KEY_CHOICE, 0, 0, 0, order_choices, "meander",                      \
+         "raster.alternate", who ": meander (alternate), unidirectional or greedy (nearest next end)"),           \
+    SCAN_AS(sec, T, "min_vector", min_vector, LAM_KEY_NUMBER, 0, 0, HUGE_VAL, NULL, "0",                          \
+         "raster.min_deposit", who ": hatch vectors shorter than this are dropped"),                              \
+    SCAN(sec, T, "stripe_width", stripe_width, LAM_KEY_NUMBER, 0, LAM_HATCH_MIN, HUGE_VAL, NULL, "10",          \
          who ": stripes: width of a band"),                                                                   \
     SCAN(sec, T, "stripe_overlap", stripe_overlap, LAM_KEY_NUMBER, 0, 0, HUGE_VAL, NULL, "0",                   \
          who ": stripes: how far neighbouring bands overlap"),                                                \
-    SCAN(sec, T, "island_size", island_size, LAM_KEY_NUMBER, LAM_KEY_ABOVE, 0, HUGE_VAL, NULL, "5",             \
+    SCAN(sec, T, "island_size", island_size, LAM_KEY_NUMBER, 0, LAM_HATCH_MIN, HUGE_VAL, NULL, "5",             \
          who ": islands: side of a square"),                                                                  \
     SCAN(sec, T, "island_overlap", island_overlap, LAM_KEY_NUMBER, 0, 0, HUGE_VAL, NULL, "0",                   \
          who ": islands: how far neighbouring squares overlap"),                                              \
@@ -81,22 +92,28 @@ const lam_key lam_profile_keys[] = {
     { .name = "process", .type = LAM_KEY_CHOICE, .flags = LAM_KEY_NEED | LAM_KEY_FIXED, .choices = process_choices,
       .offset = AT(process), .doc = "raster deposition (LADRP/DED) or contour sintering (SLS/powder bed)" },
     { .name = "units", .type = LAM_KEY_STRING, .flags = LAM_KEY_NONEMPTY | LAM_KEY_FIXED, .def = "mm",
-      .offset = AT(units), .doc = "what one model unit is on this machine (for preambles; nothing is scaled)" },
+      .choices = unit_choices, .offset = AT(units),
+      .doc = "what one model unit is on this machine (for preambles, the scale bar and the gap limit; nothing is "
+             "scaled)" },
     { .name = "bead_width", .type = LAM_KEY_NUMBER,
       .flags = LAM_KEY_ABOVE | LAM_KEY_OPTIONAL | LAM_KEY_NEED_LADRP | LAM_KEY_PLAN, .lo = 0, .hi = HUGE_VAL,
-      .offset = AT(bead_width), .doc = "ladrp: deposited line width `d`; scan lines are `d` apart" },
+      .offset = AT(bead_width), .planner = LAM_READ_LADRP, .instead = "spot_width",
+      .doc = "ladrp: deposited line width `d`; scan lines are `d` apart" },
     { .name = "spot_width", .type = LAM_KEY_NUMBER,
       .flags = LAM_KEY_ABOVE | LAM_KEY_OPTIONAL | LAM_KEY_NEED_SLS | LAM_KEY_PLAN, .lo = 0, .hi = HUGE_VAL,
-      .offset = AT(spot_width), .doc = "sls: laser spot; an sls profile's bead width is its spot width" },
-    { .name = "layer_width", .type = LAM_KEY_NUMBER, .flags = LAM_KEY_ABOVE | LAM_KEY_OPTIONAL, .lo = 0,
-      .hi = HUGE_VAL, .option = "width", .letter = 'w', .offset = AT(layer_width),
+      .offset = AT(spot_width), .planner = LAM_READ_SLS, .instead = "bead_width",
+      .doc = "sls: laser spot; an sls profile's bead width is its spot width" },
+    { .name = "layer_width", .alias = "layer_thickness", .type = LAM_KEY_NUMBER,
+      .flags = LAM_KEY_ABOVE | LAM_KEY_OPTIONAL, .lo = 0, .hi = HUGE_VAL, .option = "width", .letter = 'w', .offset = AT(layer_width),
       .doc = "layer thickness when the command line or recipe gives none (absent: the slicer's default)" },
     { .name = "cut", .type = LAM_KEY_CHOICE, .choices = cut_choices, .def = "middle", .option = "cut",
       .offset = AT(cut), .doc = "where in the layer the section is taken" },
     { .name = "feed_rate", .type = LAM_KEY_NUMBER, .flags = LAM_KEY_PLAN, .lo = 0, .hi = HUGE_VAL, .def = "0",
-      .offset = AT(feed_rate), .doc = "deposit feed rate (the thesis's powder feed `R`)" },
+      .offset = AT(feed_rate), .planner = LAM_READ_LADRP, .instead = "speed",
+      .doc = "ladrp: deposit feed rate (the thesis's powder feed `R`)" },
     { .name = "travel_rate", .type = LAM_KEY_NUMBER, .flags = LAM_KEY_PLAN, .lo = 0, .hi = HUGE_VAL,
-      .follows = "feed_rate", .offset = AT(travel_rate), .doc = "rate of moves with the laser off" },
+      .follows = "feed_rate", .offset = AT(travel_rate), .planner = LAM_READ_LADRP, .instead = "jump_speed",
+      .doc = "ladrp: rate of moves with the laser off" },
     { .name = "gap", .type = LAM_KEY_NUMBER, .flags = LAM_KEY_AUTO, .lo = 0, .hi = HUGE_VAL, .def = "auto",
       .option = "gap", .offset = AT(gap),
       .doc = "close open outlines whose ends are this close (0: never; auto: 1/2000 of the model's size, at most "
@@ -106,48 +123,60 @@ const lam_key lam_profile_keys[] = {
       .doc = "coordinates written: model x y z, or the layer frame u v w (build axis = machine Z)" },
     { .name = "raster.first_line", .type = LAM_KEY_CHOICE, .flags = LAM_KEY_PLAN | LAM_KEY_FLAT,
       .choices = first_line_choices, .def = "edge", .option = "first-line", .offset = AT(first_line),
+      .planner = LAM_READ_LADRP,
       .doc = "ladrp: first scan line on the layer's top edge (the thesis) or half a bead inside" },
     { .name = "raster.angle", .type = LAM_KEY_NUMBER, .flags = LAM_KEY_PLAN | LAM_KEY_FLAT, .lo = -HUGE_VAL,
-      .hi = HUGE_VAL, .def = "0", .option = "angle", .offset = AT(angle),
+      .hi = HUGE_VAL, .def = "0", .option = "angle", .offset = AT(angle), .planner = LAM_READ_LADRP,
+      .instead = "hatch_angle",
       .doc = "ladrp: raster direction of the first layer, degrees" },
     { .name = "raster.angle_step", .type = LAM_KEY_NUMBER, .flags = LAM_KEY_PLAN | LAM_KEY_FLAT, .lo = -HUGE_VAL,
-      .hi = HUGE_VAL, .def = "0", .option = "angle-step", .offset = AT(angle_step),
+      .hi = HUGE_VAL, .def = "0", .option = "angle-step", .offset = AT(angle_step), .planner = LAM_READ_LADRP,
+      .instead = "layer_angle_increment",
       .doc = "ladrp: degrees added per layer (90: cross-hatch, 67.5: rotating)" },
     { .name = "raster.alternate", .type = LAM_KEY_BOOLEAN, .flags = LAM_KEY_PLAN | LAM_KEY_FLAT, .def = "true",
-      .option = "no-alternate", .offset = AT(alternate),
+      .option = "no-alternate", .offset = AT(alternate), .planner = LAM_READ_LADRP, .instead = "hatch_order",
       .doc = "ladrp: boustrophedon, every other line runs backwards" },
     { .name = "raster.min_deposit", .type = LAM_KEY_NUMBER, .flags = LAM_KEY_PLAN | LAM_KEY_FLAT, .lo = 0,
       .hi = HUGE_VAL, .def = "0", .option = "min-deposit", .offset = AT(min_deposit),
+      .planner = LAM_READ_LADRP, .instead = "min_vector",
       .doc = "ladrp: deposits shorter than this are skipped" },
     { .name = "raster.perimeters", .type = LAM_KEY_INTEGER, .flags = LAM_KEY_PLAN | LAM_KEY_FLAT, .lo = 0,
       .hi = 1000, .def = "0", .option = "perimeters", .offset = AT(perimeters),
+      .planner = LAM_READ_LADRP, .instead = "contour_count",
       .doc = "ladrp: passes around each contour, the first offset by `d/2`" },
     { .name = "raster.islands", .type = LAM_KEY_BOOLEAN, .flags = LAM_KEY_PLAN | LAM_KEY_FLAT, .def = "false",
-      .option = "islands", .offset = AT(islands),
+      .option = "islands", .offset = AT(islands), .planner = LAM_READ_LADRP,
+      .instead = "hatch_strategy=islands",
       .doc = "ladrp: raster each island (an outer contour and what it holds) on its own, the nearest next, "
              "instead of whole scan lines across the layer: less travel between islands" },
     { .name = "beam_offset", .type = LAM_KEY_BOOLEAN, .flags = LAM_KEY_PLAN, .def = "false",
-      .option = "beam-offset", .offset = AT(beam_offset), .doc = "sls: inset contours by half the spot" },
+      .option = "beam-offset", .offset = AT(beam_offset), .planner = LAM_READ_SLS,
+      .doc = "sls: inset contours by half the spot" },
     HATCH_ROWS("", LAM_VEC_CORE, "sls, core"),
     { .name = "contour_count", .type = LAM_KEY_INTEGER, .flags = LAM_KEY_PLAN, .lo = 0, .hi = 1000, .def = "1",
-      .offset = AT(scan.contour_count), .doc = "sls: contour passes round the region (the first offset by the spot "
+      .offset = AT(scan.contour_count), .planner = LAM_READ_SLS,
+      .instead = "raster.perimeters", .doc = "sls: contour passes round the region (the first offset by the spot "
                                                 "compensation when `beam_offset`)" },
     { .name = "contour_distance", .type = LAM_KEY_NUMBER, .flags = LAM_KEY_PLAN, .lo = 0, .hi = HUGE_VAL,
-      .follows = "spot_width", .offset = AT(scan.contour_distance), .doc = "sls: each next contour pass this much further in" },
+      .follows = "spot_width", .offset = AT(scan.contour_distance), .planner = LAM_READ_SLS,
+      .doc = "sls: each next contour pass this much further in" },
     { .name = "hatch_offset", .type = LAM_KEY_NUMBER, .flags = LAM_KEY_PLAN, .lo = 0, .hi = HUGE_VAL, .def = "0",
-      .offset = AT(scan.hatch_offset), .doc = "sls: distance from the innermost contour pass to the hatched area" },
+      .offset = AT(scan.hatch_offset), .planner = LAM_READ_SLS,
+      .doc = "sls: distance from the innermost contour pass to the hatched area" },
     { .name = "contours_first", .type = LAM_KEY_BOOLEAN, .flags = LAM_KEY_PLAN, .def = "true",
-      .offset = AT(scan.contours_first), .doc = "sls: contour passes before the hatches (false: after)" },
+      .offset = AT(scan.contours_first), .planner = LAM_READ_SLS,
+      .doc = "sls: contour passes before the hatches (false: after)" },
     { .name = "skin_layers", .type = LAM_KEY_INTEGER, .flags = LAM_KEY_PLAN, .lo = 0, .hi = LAM_SKIN_MAX, .def = "0",
-      .offset = AT(scan.skin_layers),
+      .offset = AT(scan.skin_layers), .planner = LAM_READ_SLS,
       .doc = "sls: how many layers deep up-skin and down-skin reach (0: no skins, all core)" },
     { .name = "jump_speed", .type = LAM_KEY_NUMBER, .flags = LAM_KEY_PLAN, .lo = 0, .hi = HUGE_VAL, .def = "0",
-      .offset = AT(scan.jump_speed), .doc = "sls: scanner speed between vectors, units per second (0: jumps take "
+      .offset = AT(scan.jump_speed), .planner = LAM_READ_SLS,
+      .doc = "sls: scanner speed between vectors, units per second (0: jumps take "
                                              "only their delay)" },
     { .name = "jump_delay", .type = LAM_KEY_NUMBER, .flags = LAM_KEY_PLAN, .lo = 0, .hi = HUGE_VAL, .def = "0",
-      .offset = AT(scan.jump_delay), .doc = "sls: seconds added to every jump" },
+      .offset = AT(scan.jump_delay), .planner = LAM_READ_SLS, .doc = "sls: seconds added to every jump" },
     { .name = "recoat_time", .type = LAM_KEY_NUMBER, .flags = LAM_KEY_PLAN, .lo = 0, .hi = HUGE_VAL, .def = "0",
-      .offset = AT(scan.recoat_time), .doc = "sls: seconds to spread each layer's powder" },
+      .offset = AT(scan.recoat_time), .planner = LAM_READ_SLS, .doc = "sls: seconds to spread each layer's powder" },
     EXPOSURE_ROWS("contour.", LAM_VEC_CONTOUR, "sls, contour passes"),
     HATCH_ROWS("upskin.", LAM_VEC_UPSKIN, "sls, up-skin"),
     HATCH_ROWS("downskin.", LAM_VEC_DOWNSKIN, "sls, down-skin"),
@@ -206,8 +235,10 @@ const char *lam_key_lua_name(const lam_key *k)
 
 const lam_key *lam_key_find(const char *name)
 {
-    for (size_t i = 0; i < lam_profile_nkeys; i++)
-        if (!strcmp(lam_profile_keys[i].name, name)) return &lam_profile_keys[i];
+    for (size_t i = 0; i < lam_profile_nkeys; i++) {
+        const lam_key *k = &lam_profile_keys[i];
+        if (!strcmp(k->name, name) || (k->alias && !strcmp(k->alias, name))) return k;
+    }
     for (size_t i = 0; i < lam_profile_nkeys; i++)
         if (lam_profile_keys[i].flags & LAM_KEY_FLAT && !strcmp(lam_key_short(&lam_profile_keys[i]), name))
             return &lam_profile_keys[i];
@@ -221,6 +252,53 @@ const lam_key *lam_key_at(size_t offset)
             return &lam_profile_keys[i];
     return NULL;
 }
+
+/* ---- who reads a key -------------------------------------------------------- */
+
+static const char *process_name(int process)
+{
+    return process_choices[process == LAM_PROCESS_SLS];
+}
+
+int lam_key_read_by(const lam_key *k, int process)
+{
+    if (k->planner == LAM_READ_LADRP) return process == LAM_PROCESS_LADRP;
+    if (k->planner == LAM_READ_SLS) return process == LAM_PROCESS_SLS;
+    return 1;
+}
+
+int lam_key_unread(const lam_key *k, const char *as, int process, const char *profile, lam_error *err)
+{
+    const char *name = as ? as : k->name;
+    const char *reader = process_name(process == LAM_PROCESS_SLS ? LAM_PROCESS_LADRP : LAM_PROCESS_SLS);
+    char other[160] = "no key does the same";
+    if (k->instead) {
+        /* the other key's own option, when it has one (raster.angle: --angle) */
+        char key[64];
+        snprintf(key, sizeof key, "%.*s", (int)strcspn(k->instead, "="), k->instead);
+        const lam_key *o = lam_key_find(key);
+        char opt[48] = "";
+        if (o && o->option) snprintf(opt, sizeof opt, " (--%s)", o->option);
+        snprintf(other, sizeof other, "set %s instead%s", k->instead, opt);
+    }
+    return lam_error_set(err, LAM_EINVAL, NULL, 0, 0, "%s is read by the %s planner only, and %s is %s %s profile: %s",
+                         name, reader, profile ? profile : "this", process == LAM_PROCESS_SLS ? "an" : "a",
+                         process_name(process), other);
+}
+
+/* ---- units ------------------------------------------------------------------- */
+
+_Static_assert(sizeof unit_choices / sizeof unit_choices[0] == sizeof mm_per / sizeof mm_per[0] + 1,
+               "a factor for every unit name");
+
+double lam_key_unit_mm(const char *units)
+{
+    for (size_t i = 0; units && unit_choices[i]; i++)
+        if (!strcmp(units, unit_choices[i])) return mm_per[i];
+    return 0;
+}
+
+/* ---- names, continued ---------------------------------------------------------- */
 
 static size_t distance(const char *a, const char *b)
 {
@@ -289,6 +367,10 @@ int lam_key_check(const lam_key *k, const char *as, double x, const char *shown,
 /* "a, b or c" */
 static void choice_list(const lam_key *k, char *out, size_t size)
 {
+    if (!k->choices) {
+        snprintf(out, size, "text");
+        return;
+    }
     size_t n = 0;
     out[0] = '\0';
     for (int i = 0; k->choices[i] && n + 1 < size; i++) {
@@ -312,7 +394,7 @@ int lam_key_expected(const lam_key *k, const char *as, const char *got, lam_erro
     case LAM_KEY_INTEGER: what = k->flags & LAM_KEY_AUTO ? "a number or auto" : "a number"; break;
     case LAM_KEY_BOOLEAN: what = "true or false"; break;
     case LAM_KEY_CHOICE: choice_list(k, list, sizeof list); break;
-    case LAM_KEY_STRING: what = "text"; break;
+    case LAM_KEY_STRING: choice_list(k, list, sizeof list); break;
     case LAM_KEY_TEMPLATE: what = "a template (text) or null"; break;
     }
     return lam_error_set(err, LAM_EINVAL, NULL, 0, 0, "%s must be %s, got %s", as ? as : k->name, what, got);
@@ -352,6 +434,18 @@ int lam_key_scan(const lam_key *k, const char *as, const char *text, size_t len,
     default:
         return lam_key_expected(k, as, shown, err);
     }
+}
+
+int lam_key_check_text(const lam_key *k, const char *text, lam_error *err)
+{
+    if (k->flags & LAM_KEY_NONEMPTY && !*text)
+        return lam_error_set(err, LAM_EINVAL, NULL, 0, 0, "%s must not be empty", k->name);
+    if (!k->choices) return LAM_OK;
+    for (size_t i = 0; k->choices[i]; i++)
+        if (!strcmp(text, k->choices[i])) return LAM_OK;
+    char shown[64];
+    lam_quote_bytes(shown, sizeof shown, (const unsigned char *)text, strlen(text));
+    return lam_key_expected(k, NULL, shown, err);
 }
 
 double lam_key_get(const lam_profile *p, const lam_key *k)
@@ -415,8 +509,8 @@ int lam_profile_set(lam_profile *p, const char *name, const char *text, lam_erro
     if (k->flags & LAM_KEY_LOADER)
         return lam_error_set(err, LAM_EINVAL, NULL, 0, 0, "%s is only read while a profile loads", k->name);
     if (k->type == LAM_KEY_STRING) {
-        if (k->flags & LAM_KEY_NONEMPTY && !*text)
-            return lam_error_set(err, LAM_EINVAL, NULL, 0, 0, "%s must not be empty", k->name);
+        int rc = lam_key_check_text(k, text, err);
+        if (rc) return rc;
         char *copy = strdup(text);
         if (!copy) return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory");
         char **at = (char **)(void *)((char *)p + k->offset);

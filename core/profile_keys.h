@@ -27,7 +27,7 @@ typedef enum lam_key_type {
     LAM_KEY_INTEGER,  /* int, a whole number in [lo, hi] */
     LAM_KEY_BOOLEAN,  /* int 0 or 1: true/false/yes/no */
     LAM_KEY_CHOICE,   /* int: index into choices */
-    LAM_KEY_STRING,   /* char *, malloc'd, owned by the profile */
+    LAM_KEY_STRING,   /* char *, malloc'd, owned by the profile; with choices, one of them */
     LAM_KEY_TEMPLATE  /* lam_template of a dialect command (dialect.h) */
 } lam_key_type;
 
@@ -52,12 +52,25 @@ enum lam_key_flag {
                                     model's size) */
 };
 
+/* Which planner reads a key (lam_key.planner). A key read by one planner
+ * only is refused where a user gives it to a profile of the other process
+ * (lam_key_unread): it would do nothing. */
+enum lam_key_planner {
+    LAM_READ_BOTH,  /* the same meaning for every profile */
+    LAM_READ_LADRP, /* the raster planner only (raster.*) */
+    LAM_READ_SLS    /* the powder-bed planner only (hatching, exposure) */
+};
+
 typedef struct lam_key {
     const char *name;            /* "bead_width", "raster.angle" */
+    const char *alias;           /* another name for the same row, or NULL:
+                                    layer_thickness, the powder-bed word for
+                                    layer_width (YAML, --set, messages use
+                                    the name) */
     lam_key_type type;
     unsigned flags;              /* lam_key_flag */
     double lo, hi;               /* number, integer: the range */
-    const char *const *choices;  /* choice: the names, NULL-ended */
+    const char *const *choices;  /* choice, string: the names, NULL-ended */
     const char *def;             /* the default as YAML text; NULL: none */
     const char *follows;         /* no default of its own: when not given,
                                     the value of this key (travel_rate:
@@ -70,6 +83,11 @@ typedef struct lam_key {
     char letter;                 /* its one-letter form ('w' for -w), or 0 */
     int cmd;                     /* template: the lam_cmd */
     size_t offset;               /* where it lives in lam_profile */
+    int planner;                 /* lam_key_planner: who reads it */
+    const char *instead;         /* a one-planner key: what the other planner
+                                    reads for the same purpose, as KEY or
+                                    KEY=VALUE ("hatch_angle" for
+                                    raster.angle), or NULL: nothing */
     const char *doc;             /* one line for the reference */
 } lam_key;
 
@@ -84,8 +102,9 @@ extern const size_t lam_profile_nkeys;
 /* Most rows the table may have (loader and Lua bookkeeping arrays). */
 #define LAM_KEYS_MAX 256
 
-/* The row named `name` ("raster.angle"), or a flat row by its own name
- * ("angle"); NULL when there is none. */
+/* The row named `name` ("raster.angle"), a row by its alias
+ * ("layer_thickness"), or a flat row by its own name ("angle"); NULL when
+ * there is none. */
 const lam_key *lam_key_find(const char *name);
 
 /* The row's section length: "raster.angle" -> 6, "gap" -> 0. */
@@ -97,6 +116,25 @@ const char *lam_key_short(const lam_key *k);
 /* Its name in Lua and in Lua messages: the short name for flat rows, else
  * the whole name. */
 const char *lam_key_lua_name(const lam_key *k);
+
+/* Whether a profile of process `process` (lam_process) reads key k. */
+int lam_key_read_by(const lam_key *k, int process);
+
+/* Record why key k does nothing for a profile of `process` (call when
+ * !lam_key_read_by): "raster.angle is read by the ladrp planner only, and
+ * cli-ascii is an sls profile: set hatch_angle instead". `as` names the key
+ * as the user wrote it (NULL: its name), `profile` the profile (NULL:
+ * "this"). Returns LAM_EINVAL (no position). */
+int lam_key_unread(const lam_key *k, const char *as, int process, const char *profile, lam_error *err);
+
+/* Millimetres per unit of a `units` name (the row's choices: mm 1, cm 10,
+ * m 1000, um and µm 0.001, in and inch 25.4, ft 304.8); 0 for any other. */
+double lam_key_unit_mm(const char *units);
+
+/* Check a text value of a string row: not empty when LAM_KEY_NONEMPTY, one
+ * of the row's choices when it has some (units). Errors: LAM_EINVAL "units
+ * must be mm, cm, ..., got '<script>'", "name must not be empty". */
+int lam_key_check_text(const lam_key *k, const char *text, lam_error *err);
 
 /* The name among names[0..n) nearest to word by edit distance, if it is at
  * most 2 edits away (for "did you mean"); NULL otherwise. */

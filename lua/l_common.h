@@ -289,6 +289,10 @@ void lam_lua_read_overrides(lua_State *L, int t, int arg, unsigned need, const c
                             lam_lua_overrides *o);
 void lam_lua_apply_overrides(const lam_lua_overrides *o, lam_profile *p);
 
+/* Refuse (argument error at arg) a value in o that machine p's planner does
+ * not read, as the command line and the YAML loader do (lam_key_unread). */
+void lam_lua_check_readers(lua_State *L, int arg, const lam_lua_overrides *o, const lam_profile *p);
+
 /* Push the value of row k in p, as Lua sees it: nil for an optional value
  * not given. */
 void lam_lua_push_key(lua_State *L, const lam_profile *p, const lam_key *k);

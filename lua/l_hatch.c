@@ -224,7 +224,10 @@ const lam_error *lam_lua_hatch_prepare(lua_State *L, lhatchctl *c, int layers, c
             lua_rawgeti(L, copy, (lua_Integer)i + 1);
             lua_pushinteger(L, (lua_Integer)i + 1);
             lua_call(L, 2, 1);
-            if (lua_istable(L, -1)) lam_lua_read_overrides(L, -1, 3, LAM_KEY_PLAN, NULL, &c->ovr[i]);
+            if (lua_istable(L, -1)) {
+                lam_lua_read_overrides(L, -1, 3, LAM_KEY_PLAN, NULL, &c->ovr[i]);
+                lam_lua_check_readers(L, 3, &c->ovr[i], p); /* as machine:plan's own options */
+            }
             else if (!lua_isnil(L, -1))
                 luaL_error(L, "plan: layer (layer %I) must return a table of keys or nil, got %s", (lua_Integer)i + 1,
                            luaL_typename(L, -1));

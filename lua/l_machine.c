@@ -320,6 +320,17 @@ void lam_lua_apply_overrides(const lam_lua_overrides *o, lam_profile *p)
         if (o->set[i]) lam_key_put(p, &lam_profile_keys[i], o->v[i]);
 }
 
+void lam_lua_check_readers(lua_State *L, int arg, const lam_lua_overrides *o, const lam_profile *p)
+{
+    for (size_t i = 0; i < lam_profile_nkeys; i++) {
+        const lam_key *k = &lam_profile_keys[i];
+        lam_error err;
+        if (!o->set[i] || lam_key_read_by(k, p->process)) continue;
+        lam_key_unread(k, lam_key_lua_name(k), p->process, p->name, &err);
+        lam_lua_opterror(L, arg, "%s", err.msg);
+    }
+}
+
 /* machine:override{key = value, ...} -> a new machine */
 static int mc_override(lua_State *L)
 {
@@ -327,6 +338,7 @@ static int mc_override(lua_State *L)
     luaL_checktype(L, 2, LUA_TTABLE);
     lam_lua_overrides ovr;
     lam_lua_read_overrides(L, 2, 2, 0, NULL, &ovr); /* may run metamethods: no pointers held yet */
+    lam_lua_check_readers(L, 2, &ovr, &lam_lua_checkmachine(L, 1)->p);
     lmachine *u = lua_newuserdatauv(L, sizeof *u, 1);
     memset(u, 0, sizeof *u);
     u->tag = LAM_TAG_MACHINE;

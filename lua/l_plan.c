@@ -210,6 +210,7 @@ int lam_lua_plan(lua_State *L)
         ctl = lam_lua_hatch_split(L, 3); /* at 4 (or nil) */
         static const char *const own[] = { "max_output", "threads", NULL }; /* read here, not profile keys */
         lam_lua_read_overrides(L, 3, 3, LAM_KEY_PLAN, own, &ovr); /* may run metamethods: before any pointer */
+        lam_lua_check_readers(L, 3, &ovr, &lam_lua_checkmachine(L, 1)->p);
         if (lam_lua_numfield(L, 3, 3, "max_output", &max_output) && !(max_output >= 1 && max_output < 1.8e19))
             lam_lua_opterror(L, 3, "max_output must be a number of bytes >= 1, got %.14g", max_output);
         if (lam_lua_numfield(L, 3, 3, "threads", &nthreads)) {

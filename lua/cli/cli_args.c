@@ -388,10 +388,14 @@ static void help(const char *usage, unsigned groups)
                                                                                       : " VALUE";
         if (k->letter) snprintf(left, sizeof left, "-%c, --%s%s", k->letter, k->option, arg);
         else snprintf(left, sizeof left, "    --%s%s", k->option, arg);
+        /* a key of one planner says so: the other's profiles refuse it */
+        const char *only = k->planner == LAM_READ_LADRP ? " (ladrp profiles)"
+                           : k->planner == LAM_READ_SLS ? " (sls profiles)"
+                                                        : "";
         if (k->type == LAM_KEY_BOOLEAN)
-            printf("  %-24s --set %s=%s\n", left, k->name, strncmp(k->option, "no-", 3) ? "true" : "false");
+            printf("  %-24s --set %s=%s%s\n", left, k->name, strncmp(k->option, "no-", 3) ? "true" : "false", only);
         else
-            printf("  %-24s --set %s=%s\n", left, k->name, arg + 1);
+            printf("  %-24s --set %s=%s%s\n", left, k->name, arg + 1, only);
     }
 }
 
@@ -501,6 +505,13 @@ int cli_apply_sets(const char *cmd, const args *a, lam_profile *p)
         if (lam_profile_set(p, a->sets[i].key->name, a->sets[i].value, &err))
             return err.code == LAM_ENOMEM ? cli_fail(&err) : cli_usage(cmd, "%s: %s", a->sets[i].shown, err.msg);
     if (a->nsets && lam_profile_check(p, &err)) return cli_usage(cmd, "%s", err.msg);
+    /* a value the profile's planner does not read would do nothing: refused
+     * against the process the values leave (-s process=... comes first) */
+    for (size_t i = 0; i < a->nsets; i++)
+        if (!lam_key_read_by(a->sets[i].key, p->process)) {
+            lam_key_unread(a->sets[i].key, NULL, p->process, p->name, &err);
+            return cli_usage(cmd, "%s: %s", a->sets[i].shown, err.msg);
+        }
     return EXIT_OK;
 }
 

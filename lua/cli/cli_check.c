@@ -70,7 +70,7 @@ int cmd_check(int argc, char **argv)
     }
     if (!a.machine) {
         cli_args_free(&a);
-        return cli_usage("check", "a machine is needed (-m NAME or PATH): its bead width and overhang limit are the rules");
+        return cli_usage("check", "a machine is needed (-m NAME or PATH): its bead (or spot) width and overhang limit are the rules");
     }
     lam_error err;
     lam_error_clear(&err);
@@ -131,9 +131,10 @@ int cmd_check(int argc, char **argv)
             cli_json_string(stdout, where);
             fputc('}', stdout);
         } else if (x->rule == LAM_RULE_WALL) {
-            printf("%s: wall %.6g thick at (%g, %g, %g), thinner than the bead %s (%s; region of %zu triangles, area %g)\n",
-                   lam_rule_name(x->rule), x->value, x->pos[0], x->pos[1], x->pos[2], LAM_NUM(x->limit), where, x->triangles,
-                   x->area);
+            /* the powder bed's word for the width is the spot (profile_keys.c) */
+            printf("%s: wall %.6g thick at (%g, %g, %g), thinner than the %s %s (%s; region of %zu triangles, area %g)\n",
+                   lam_rule_name(x->rule), x->value, x->pos[0], x->pos[1], x->pos[2],
+                   prof->process == LAM_PROCESS_SLS ? "spot" : "bead", LAM_NUM(x->limit), where, x->triangles, x->area);
         } else {
             printf("%s: overhang %.4g degrees from vertical at (%g, %g, %g), limit %s (%s; region of %zu triangles, area %g)\n",
                    lam_rule_name(x->rule), x->value, x->pos[0], x->pos[1], x->pos[2], LAM_NUM(x->limit), where, x->triangles,

@@ -155,6 +155,18 @@ static int show(const args *a)
     return rc ? cli_fail(&err) : EXIT_OK;
 }
 
+/* "`a` \\| `b`": a row's choices, for the reference */
+static void choice_names(const lam_key *k, char *out, size_t size)
+{
+    size_t n = 0;
+    out[0] = '\0';
+    for (int i = 0; k->choices[i] && n + 1 < size; i++) {
+        int w = snprintf(out + n, size - n, "%s`%s`", i ? " \\| " : "", k->choices[i]);
+        if (w < 0) break;
+        n += (size_t)w;
+    }
+}
+
 /* What a row takes, for the reference: "number > 0", "`a` \\| `b`", ... */
 static void key_type(const lam_key *k, char *out, size_t size)
 {
@@ -170,18 +182,12 @@ static void key_type(const lam_key *k, char *out, size_t size)
         break;
     case LAM_KEY_INTEGER: snprintf(out, size, "whole number %s..%s", lo, hi); break;
     case LAM_KEY_BOOLEAN: snprintf(out, size, "boolean"); break;
-    case LAM_KEY_STRING: snprintf(out, size, "text"); break;
-    case LAM_KEY_TEMPLATE: snprintf(out, size, "template"); break;
-    case LAM_KEY_CHOICE: {
-        size_t n = 0;
-        out[0] = '\0';
-        for (int i = 0; k->choices[i] && n + 1 < size; i++) {
-            int w = snprintf(out + n, size - n, "%s`%s`", i ? " \\| " : "", k->choices[i]);
-            if (w < 0) break;
-            n += (size_t)w;
-        }
+    case LAM_KEY_STRING:
+        if (!k->choices) snprintf(out, size, "text");
+        else choice_names(k, out, size); /* text that is one of the names */
         break;
-    }
+    case LAM_KEY_TEMPLATE: snprintf(out, size, "template"); break;
+    case LAM_KEY_CHOICE: choice_names(k, out, size); break;
     }
 }
 
@@ -201,10 +207,14 @@ static int keys(void)
         else snprintf(def, sizeof def, "%s", k->flags & (LAM_KEY_NEED | LAM_KEY_NEED_LADRP | LAM_KEY_NEED_SLS) ? "required" : "none");
         if (k->flags & LAM_KEY_NEED_LADRP) snprintf(def, sizeof def, "required (ladrp)");
         if (k->flags & LAM_KEY_NEED_SLS) snprintf(def, sizeof def, "required (sls)");
-        char opt[80] = "";
+        char opt[80] = "", alias[80] = "", other[120] = "";
         if (k->option && k->letter) snprintf(opt, sizeof opt, " Option: `-%c`, `--%s`.", k->letter, k->option);
         else if (k->option) snprintf(opt, sizeof opt, " Option: `--%s`.", k->option);
-        printf("| `%s` | %s | %s | %s.%s |\n", k->name, type, def, k->doc, opt);
+        if (k->alias) snprintf(alias, sizeof alias, " Also `%s`.", k->alias);
+        if (k->instead)
+            snprintf(other, sizeof other, " The %s planner's: `%s`.", k->planner == LAM_READ_SLS ? "ladrp" : "sls",
+                     k->instead);
+        printf("| `%s` | %s | %s | %s.%s%s%s |\n", k->name, type, def, k->doc, alias, opt, other);
     }
     printf("\n| command | when | fields |\n|---------|------|--------|\n");
     for (size_t i = 0; i < lam_profile_nkeys; i++) {

@@ -32,10 +32,13 @@ same() {
 machines=$(cd "$ROOT/machines" && ls *.yaml | sed 's/\.yaml$//')
 is "$(echo $machines | wc -w)" 6 "six shipped machines"
 for m in $machines; do
+    # the raster options are the ladrp planner's (an sls profile refuses them)
+    step=() islands=()
+    if "$LAMINA" machines | grep -q "^$m  *ladrp "; then step=(--angle-step 30) islands=(--islands --perimeters 1); fi
     same "$m-cube-hole" "$M/thesis_cube_hole.ug" -m "$m" -w 0.25
-    same "$m-sphere" "$TMP/sphere.stl" -m "$m" -w 0.2 --angle-step 30
+    same "$m-sphere" "$TMP/sphere.stl" -m "$m" -w 0.2 "${step[@]}"
     same "$m-torus-oblique" "$TMP/torus.stl" -m "$m" -a 1,1,2 -w 0.25
-    same "$m-frame-islands" "$M/frame_island.stl" -m "$m" -w 0.5 --islands --perimeters 1
+    same "$m-frame-islands" "$M/frame_island.stl" -m "$m" -w 0.5 "${islands[@]}"
 done
 # hatching with islands and skins: each layer's plan looks at the layers
 # around it, which a worker slices again at the start of its run of layers

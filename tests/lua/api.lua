@@ -213,7 +213,12 @@ T.ok(o.bead_width == 0.1 and o.feed_rate == 0.3 and o.travel_rate == 0.3 and o.a
 T.ok(ladrp.bead_width == 0.08 and ladrp.angle == 0, "override leaves the original alone")
 T.like(tostring(o), "overridden", "tostring of a derived machine")
 T.is(o:override{angle = 0}.bead_width, 0.1, "override of an override")
-T.is(sls:override{bead_width = 0.2}.spot_width, 0.2, "SLS: bead_width is the spot width")
+T.raises("bead_width is read by the ladrp planner only, and sls-contours is an sls profile: set spot_width instead",
+         "SLS: bead_width is refused, naming spot_width", sls.override, sls, {bead_width = 0.2})
+T.raises("angle is read by the ladrp planner only, and sls-contours is an sls profile: set hatch_angle instead",
+         "override: a raster key on an sls machine", sls.override, sls, {angle = 45})
+T.raises("hatch_angle is read by the sls planner only, and creol-ladrp is a ladrp profile: set raster.angle instead",
+         "plan: an sls key on a ladrp machine", ladrp.plan, ladrp, {}, {hatch_angle = 45})
 T.raises("bead_width must be greater than 0, got -1", "override: bead_width", ladrp.override, ladrp, {bead_width = -1})
 T.raises("feed_rate must be 0 or more", "override: feed_rate", ladrp.override, ladrp, {feed_rate = -1})
 T.raises("first_line must be edge or center", "override: first_line", ladrp.override, ladrp, {first_line = "top"})
@@ -262,6 +267,9 @@ T.raises("layers[2] must be a lamina.layer, got a table", "plan: not a layer", s
 T.raises("cut cannot be changed here", "plan: slicing option", sls.plan, sls, layers, {cut = "floor"})
 T.raises("bad argument #2 to 'plan' (angle must be a number, got 'x')", "plan: bad option",
          function() return sls:plan(layers, {angle = "x"}) end)
+T.raises("angle is read by the ladrp planner only, and sls-contours is an sls profile: set hatch_angle instead",
+         "plan: a layer function's raster key on an sls machine",
+         function() return sls:plan(layers, {layer = function() return {angle = 5} end}) end)
 
 local cube = assert(lamina.load(M .. "thesis_cube.ug"))
 local cl = cube:slice{machine = ladrp, width = 2}

@@ -40,7 +40,7 @@ local function sample(k)
     return math.tointeger(k.min + 7)
   elseif k.type == "boolean" then
     return k.default ~= "true"
-  elseif k.type == "choice" then
+  elseif k.type == "choice" or k.choices then -- a choice, or text that is one of some names (units)
     return k.choices[#k.choices] ~= k.default and k.choices[#k.choices] or k.choices[1]
   else
     return (k.type == "template" and "T-" or "s-") .. k.lua:gsub("^.*%.", "")
@@ -55,13 +55,21 @@ local function yaml_line(k, text)
   return ("%s: %s\n"):format(k.name, text)
 end
 
-local BASE = "inherits: creol-ladrp\n"
-local function base_with(k, line)
-  -- the base gives a spot width too, so that process: sls loads
-  return BASE .. (k.name == "spot_width" and "" or "spot_width: 0.2\n") .. line
+-- A key of one planner (its text starts "ladrp:" or "sls") is given to a
+-- profile of that planner's process: the other's refuses it (keys.t).
+local function planner(k)
+  return k.doc and (k.doc:match("^ladrp:") and "ladrp" or k.doc:match("^sls[:,]") and "sls") or "ladrp"
 end
-write("base.yaml", BASE .. "spot_width: 0.2\n")
-local base = assert(lamina.machine("base.yaml"))
+local BASES = { ladrp = "inherits: creol-ladrp\n", sls = "inherits: cli-ascii\n" }
+local function base_with(k, line)
+  -- process: sls on the ladrp base needs a spot width
+  return BASES[planner(k)] .. (k.name == "process" and "spot_width: 0.2\n" or "") .. line
+end
+-- what --set needs besides the key (after it: the values are checked together)
+local function set_extra(k) return k.name == "process" and " --set spot_width=0.2" or "" end
+write("base-ladrp.yaml", BASES.ladrp)
+write("base-sls.yaml", BASES.sls)
+local bases = { ladrp = assert(lamina.machine("base-ladrp.yaml")), sls = assert(lamina.machine("base-sls.yaml")) }
 
 local keys = lamina.machine_keys()
 T.ok(#keys >= 20, "machine_keys lists the table", #keys)
@@ -70,6 +78,7 @@ for _, k in ipairs(keys) do
   if not k.loader then
     walked = walked + 1
     local v = sample(k)
+    local base, bfile = bases[planner(k)], "base-" .. planner(k) .. ".yaml"
     local text = fmt(v)
     local file = k.name .. ".yaml"
     write(file, base_with(k, yaml_line(k, text)))
@@ -81,7 +90,7 @@ for _, k in ipairs(keys) do
     local again = lamina.machine("dump-" .. file)
     T.ok(again and again[k.lua] == v and strip(again:yaml()) == strip(dump),
          k.name .. ": the dump (machines --show) loads again as the same profile")
-    local shown = sh(("%s machines --show base.yaml --set '%s=%s'"):format(LAMINA_SH, k.name, text))
+    local shown = sh(("%s machines --show %s --set '%s=%s'%s"):format(LAMINA_SH, bfile, k.name, text, set_extra(k)))
     T.is(strip(shown), strip(dump), k.name .. ": --set gives the same profile as YAML")
     if k.fixed then
       T.raises("cannot be changed here", k.name .. ": override refuses it", base.override, base, {[k.lua] = v})
@@ -99,7 +108,7 @@ for _, k in ipairs(keys) do
       write("bad-" .. file, base_with(k, yaml_line(k, bad)))
       local _, yerr = lamina.machine("bad-" .. file)
       local ymsg = yerr and yerr:match("%.yaml:%d+:%d+: (.*)$")
-      local out, ok = sh(("%s machines --show base.yaml --set '%s=%s'"):format(LAMINA_SH, k.name, bad))
+      local out, ok = sh(("%s machines --show %s --set '%s=%s'"):format(LAMINA_SH, bfile, k.name, bad))
       local smsg = out:match(": %-%-set [^\n]-=[^\n]-: ([^\n]*)")
       T.ok(not ok and ymsg and smsg and smsg:sub(1, #ymsg) == ymsg,
            k.name .. ": a bad value, the same message from YAML and --set", ("%s | %s"):format(yerr, out))
@@ -108,6 +117,6 @@ for _, k in ipairs(keys) do
   end
 end
 T.ok(walked == #keys - 1, "every key but inherits walked", walked)
-local out, ok = sh(LAMINA_SH .. " machines --show base.yaml --set inherits=x")
+local out, ok = sh(LAMINA_SH .. " machines --show base-ladrp.yaml --set inherits=x")
 T.ok(not ok and out:find("inherits is only read while a profile loads", 1, true), "--set inherits is refused", out)
 T.done()

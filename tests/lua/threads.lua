@@ -120,9 +120,12 @@ local function recipe_plan(threads, fail_at, how)
     layer = function(layer, i)
       calls[#calls + 1] = "layer " .. i
       if how == "layer" and i == fail_at then error("no parameters for layer " .. i) end
-      -- a hatch distance so small that hatching the layer is refused:
-      -- by a worker (plan), or before planning, for `order` (order-hatch)
-      if (how == "plan" or how == "order-hatch") and i == fail_at then return { hatch_distance = 1e-9 } end
+      -- islands so small (the least island_size) that hatching the layer
+      -- is refused: by a worker (plan), or before planning, for `order`
+      -- (order-hatch)
+      if (how == "plan" or how == "order-hatch") and i == fail_at then
+        return { hatch_strategy = "islands", island_size = 1e-6 }
+      end
       return { hatch_angle = 17 * i }
     end,
     order = how ~= "plan" and function(vectors, layer, params)

@@ -477,7 +477,22 @@ static void test_errors(void)
     CASE("gap: 1.5mm\ndialect: {}\n", LAM_EINVAL, 4, 6, "gap must be a number or auto, got '1.5mm'", "trailing text");
     CASE("gap: .inf\ndialect: {}\n", LAM_EINVAL, 4, 6, "gap must be a number", "YAML .inf");
     CASE("name: again\ndialect: {}\n", LAM_EINVAL, 4, 1, "duplicate key 'name'", "duplicate name");
-    CASE("units:\ndialect: {}\n", LAM_EINVAL, 4, 7, "units must be text, got null", "null units");
+    CASE("units:\ndialect: {}\n", LAM_EINVAL, 4, 7, "units must be mm, cm, m, um, \xc2\xb5m, in, inch or ft, got null",
+         "null units");
+    CASE("units: \"<script>console.log(7)</script>\"\ndialect: {}\n", LAM_EINVAL, 4, 8,
+         "units must be mm, cm, m, um, \xc2\xb5m, in, inch or ft, got '<script>", "units: a unit name, not markup");
+    CASE("units: furlong\ndialect: {}\n", LAM_EINVAL, 4, 8, "units must be mm", "units: an unknown unit");
+    CASE("hatch_distance: 0.5\ndialect: {}\n", LAM_EINVAL, 4, 1, "hatch_distance is read by the sls planner only",
+         "an sls key in a ladrp profile: at the key");
+    CASE("hatch_distance: 1e-9\ndialect: {}\n", LAM_EINVAL, 4, 17, "hatch_distance must be 1e-06 or more, got '1e-9'",
+         "a hatch distance below the least: at the value");
+    load_fails(tmpfile_with("case.yaml", "name: t\nprocess: sls\nspot_width: 1\nraster: {angle: 5}\ndialect: {}\n"),
+               LAM_EINVAL, 4, 10,
+               "raster.angle is read by the ladrp planner only, and this is an sls profile: set hatch_angle instead",
+               "a raster key in an sls profile: at the key in its section");
+    CASE("layer_thickness: 0.5\nlayer_width: 0.5\ndialect: {}\n", LAM_EINVAL, 5, 1,
+         "duplicate key 'layer_width': layer_thickness is another name of layer_width (given at line 4)",
+         "a key and its alias: a duplicate");
     CASE("layer_width: 0\ndialect: {}\n", LAM_EINVAL, 4, 14, "layer_width must be greater than 0", "layer_width 0");
     CASE("travel_rate: -0.5\ndialect: {}\n", LAM_EINVAL, 4, 14, "travel_rate must be 0 or more", "travel_rate < 0");
     CASE("frame: world\ndialect: {}\n", LAM_EINVAL, 4, 8, "frame must be model or machine", "bad frame");

@@ -13,7 +13,8 @@
 #include <math.h>
 #include <stdlib.h>
 
-static const char base_yaml[] = "name: t\nprocess: ladrp\nbead_width: 0.5\nspot_width: 0.25\ndialect: {}\n";
+static const char base_yaml[] = "name: t\nprocess: ladrp\nbead_width: 0.5\ndialect: {}\n";
+static const char sls_yaml[] = "name: t\nprocess: sls\nspot_width: 0.25\ndialect: {}\n";
 
 static char *dump(const lam_profile *p)
 {
@@ -116,12 +117,17 @@ static void test_set_round_trip(void)
         const lam_key *k = &lam_profile_keys[i];
         lam_profile *p, *q;
         lam_error err;
-        if (lam_profile_load_buf("base.yaml", base_yaml, strlen(base_yaml), &p, &err)) abort();
+        /* a key of one planner on a profile of its process (the other refuses it) */
+        const char *base = k->planner == LAM_READ_SLS ? sls_yaml : base_yaml;
+        if (lam_profile_load_buf("base.yaml", base, strlen(base), &p, &err)) abort();
         char text[64];
         switch (k->type) {
         case LAM_KEY_NUMBER:
             snprintf(text, sizeof text, "%.17g",
-                     k->lo == -HUGE_VAL ? 12.5 : k->hi == HUGE_VAL ? k->lo + 0.375 : (k->lo + k->hi) / 2 + 0.25);
+                     k->lo == -HUGE_VAL                    ? 12.5
+                     : k->hi == HUGE_VAL && k->lo < 0.375 ? 0.375 /* in range, and exact in decimal */
+                     : k->hi == HUGE_VAL                  ? k->lo + 0.375
+                                                          : (k->lo + k->hi) / 2 + 0.25);
             break;
         case LAM_KEY_INTEGER: snprintf(text, sizeof text, "%d", (int)k->lo + 7); break;
         case LAM_KEY_BOOLEAN: snprintf(text, sizeof text, "%s", k->def && !strcmp(k->def, "true") ? "false" : "true"); break;
@@ -131,9 +137,14 @@ static void test_set_round_trip(void)
             snprintf(text, sizeof text, "%s", k->choices[n]); /* the last: never the base's (first) value here */
             break;
         }
-        default: snprintf(text, sizeof text, "v-%s", lam_key_short(k)); break;
+        default:
+            if (k->choices) snprintf(text, sizeof text, "%s", k->choices[1]); /* units: not the default */
+            else snprintf(text, sizeof text, "v-%s", lam_key_short(k));
+            break;
         }
         int rc = lam_profile_set(p, k->name, text, &err);
+        /* process: sls needs its width given too */
+        if (!rc && k->offset == offsetof(lam_profile, process)) rc = lam_profile_set(p, "spot_width", "0.25", &err);
         if (k->flags & LAM_KEY_LOADER) {
             ok(rc == LAM_EINVAL && strstr(err.msg, "only read while a profile loads"), "%s: refused by set", k->name);
             lam_profile_free(p);
@@ -158,6 +169,47 @@ static void test_set_round_trip(void)
         free(d);
         lam_profile_free(p);
     }
+}
+
+/* Who reads a key: the planner column agrees with the key's text (the
+ * reference says "ladrp:" or "sls" first), every `instead` is a key of the
+ * other planner and its value reads, and the message names it. */
+static void test_planners(void)
+{
+    int agree = 1, instead = 1;
+    for (size_t i = 0; i < lam_profile_nkeys; i++) {
+        const lam_key *k = &lam_profile_keys[i];
+        int want = !strncmp(k->doc, "ladrp:", 6) ? LAM_READ_LADRP
+                   : !strncmp(k->doc, "sls:", 4) || !strncmp(k->doc, "sls,", 4) ? LAM_READ_SLS
+                                                                                : LAM_READ_BOTH;
+        if (k->planner != want) FAIL(agree, "%s: planner %d, its text says %d", k->name, k->planner, want);
+        if (!k->instead) continue;
+        char key[64];
+        snprintf(key, sizeof key, "%.*s", (int)strcspn(k->instead, "="), k->instead);
+        const lam_key *o = lam_key_find(key);
+        const char *eq = strchr(k->instead, '=');
+        double x;
+        if (!o || k->planner == LAM_READ_BOTH || o->planner == LAM_READ_BOTH || o->planner == k->planner ||
+            (eq && lam_key_scan(o, NULL, eq + 1, strlen(eq + 1), &x, NULL)))
+            FAIL(instead, "%s: instead '%s'", k->name, k->instead);
+    }
+    ok(agree, "every key's planner is the one its text names");
+    ok(instead, "every 'instead' is a key of the other planner, with a value it reads");
+    const lam_key *angle = lam_key_find("raster.angle");
+    ok(angle && !lam_key_read_by(angle, LAM_PROCESS_SLS) && lam_key_read_by(angle, LAM_PROCESS_LADRP),
+       "raster.angle: ladrp reads it, sls does not");
+    lam_error err;
+    is_int(lam_key_unread(angle, "--angle", LAM_PROCESS_SLS, "cli-ascii", &err), LAM_EINVAL, "unread: LAM_EINVAL");
+    is_str(err.msg, "--angle is read by the ladrp planner only, and cli-ascii is an sls profile: set hatch_angle instead",
+           "unread: names the key the sls planner reads");
+    lam_key_unread(lam_key_find("hatch_angle"), NULL, LAM_PROCESS_LADRP, NULL, &err);
+    is_str(err.msg, "hatch_angle is read by the sls planner only, and this is a ladrp profile: set raster.angle instead (--angle)",
+           "unread: names the ladrp key and its option");
+    is_num(lam_key_unit_mm("inch"), 25.4, 0, "unit_mm: inch");
+    is_num(lam_key_unit_mm("\xc2\xb5m"), 1e-3, 0, "unit_mm: \xc2\xb5m");
+    is_num(lam_key_unit_mm("furlong"), 0, 0, "unit_mm: an unknown name is 0");
+    ok(lam_key_find("layer_thickness") == lam_key_find("layer_width") && lam_key_find("layer_width"),
+       "layer_thickness: the layer_width row");
 }
 
 static void test_messages(void)
@@ -186,8 +238,8 @@ static void test_messages(void)
         is_str(err.msg, bad[i].msg, "set %s=%s: message", bad[i].key, bad[i].value);
     }
     is_num(p->bead_width, 0.5, 0, "a failed set leaves the value");
-    ok(lam_profile_set(p, "process", "sls", &err) == LAM_OK && lam_profile_check(p, &err) == LAM_OK &&
-           lam_profile_set(p, "spot_width", "0.3", &err) == LAM_OK && p->bead_width == 0.3,
+    ok(lam_profile_set(p, "process", "sls", &err) == LAM_OK && lam_profile_set(p, "spot_width", "0.3", &err) == LAM_OK &&
+           lam_profile_check(p, &err) == LAM_OK && p->bead_width == 0.3,
        "sls: setting the spot sets the bead width");
     lam_profile_free(p);
     const char *no_spot = "name: t\nprocess: ladrp\nbead_width: 0.5\ndialect: {}\n";
@@ -203,6 +255,7 @@ int main(void)
     test_rows();
     test_defaults();
     test_set_round_trip();
+    test_planners();
     test_messages();
     return done_testing();
 }
