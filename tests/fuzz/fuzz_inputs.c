@@ -455,7 +455,11 @@ int main(int argc, char **argv)
         fclose(f);
         size_t cap = n + 4096;
         uint8_t *b = malloc(cap);
-        int bad = one(seed, n) != 0;
+        /* the seed itself from an exact-size copy too */
+        uint8_t *whole = malloc(n ? n : 1);
+        memcpy(whole, seed, n);
+        int bad = one(whole, n) != 0;
+        free(whole);
         for (int k = 0; k < mutants && !bad; k++) {
             memcpy(b, seed, n);
             size_t m = mutate(b, n, cap);
