@@ -69,7 +69,10 @@ for t in "$@"; do
         "$([ "$starts" -eq 1 ] || echo s)" "$nfound" "$([ "$nfound" -eq 1 ] || echo s)" "$note")
     [ "$slow" -eq 0 ] || line="$line, $slow slow unit$([ "$slow" -eq 1 ] || echo s)"
     summary+=("$line")
-    while IFS= read -r f; do [ -n "$f" ] && summary+=("            $f"); done <<<"$found"
+    # what the sanitizers said, once each with its count; the first inputs
+    while IFS= read -r f; do [ -n "$f" ] && summary+=("    $f"); done < <(grep -h '^SUMMARY: ' "$log" | sort | uniq -c)
+    while IFS= read -r f; do [ -n "$f" ] && summary+=("    $f"); done < <(printf '%s\n' "$found" | head -n 5)
+    [ "$nfound" -le 5 ] || summary+=("    ... and $((nfound - 5)) more in $art")
     echo "fuzz: $line (log: $log)"
 done
 {
