@@ -270,8 +270,9 @@ static int run_part(const uint8_t *buf, size_t len)
     if (rc == LAM_OK) {
         const lam_part_meta *meta = lam_part_get_meta(p);
         lam_error perr;
-        if (lam_profile_load_buf("fuzz.part (profile)", meta->profile, meta->profile_len, &prof, &perr) == LAM_OK &&
-            prof->writer && strcmp(prof->writer, "text") != 0) {
+        if (lam_profile_load_buf("fuzz.part (profile)", meta->profile, meta->profile_len, &prof, &perr) != LAM_OK) {
+            prof = NULL;
+        } else if (prof->writer && strcmp(prof->writer, "text") != 0) {
             lam_profile_free(prof); /* plugins are not fuzzed here */
             prof = NULL;
         }
