@@ -179,10 +179,14 @@ run: deps
 # scripts that drive the executable. prove runs both and prints the summary.
 # The fuzz target (with the Lua binding, for recipes), as a mutation driver
 # for the test suite over the corpus in tests/fuzz/corpus; `make fuzz`
-# builds it for libFuzzer with clang instead and runs it on each part of
-# the corpus (FUZZ_TIME seconds each, in a copy under build-fuzz/corpus so
-# the kept corpus only changes by hand), from a copy of tests/models (what
-# a recipe writes lands there).
+# builds it for libFuzzer with clang instead and runs every target of
+# FUZZ_TARGETS (a folder of the corpus each) for FUZZ_TIME seconds, each
+# its full time whatever another finds (tests/fuzz/run.sh: restarted after
+# a finding; working corpus in build-fuzz/corpus, so the kept corpus only
+# changes by hand; from a copy of tests/models, where a recipe writes);
+# it prints each target's executions and findings (build-fuzz/artifacts/
+# TARGET/, logs in build-fuzz/TARGET.log, summary in build-fuzz/summary.txt)
+# and fails when any target found something.
 FUZZ_BIN := $(BUILD)/tests/fuzz_inputs
 FUZZ_FLAGS = $(CPPFLAGS) $(LUA_CFLAGS) -DLAMINA_FUZZ_LUA
 $(FUZZ_BIN): tests/fuzz/fuzz_inputs.c $(BIND_OBJ) $(LIB)
@@ -190,7 +194,7 @@ $(FUZZ_BIN): tests/fuzz/fuzz_inputs.c $(BIND_OBJ) $(LIB)
 	$(CC) $(FUZZ_FLAGS) $(CFLAGS) -o $@ $< $(BIND_OBJ) $(LIB) $(LDFLAGS) $(LUA_LIBS) $(LDLIBS)
 
 FUZZ_TIME ?= 600
-FUZZ_TARGETS := models profiles recipes programs
+FUZZ_TARGETS ?= models profiles recipes programs parts
 fuzz:
 	@$(MAKE) --no-print-directory BUILD=build-fuzz CC=clang OPT="-O1 -g" \
 	  SANFLAGS="-fsanitize=address,undefined,fuzzer-no-link" build-fuzz/liblamina.a \
@@ -199,12 +203,7 @@ fuzz:
 	  -o build-fuzz/fuzz_inputs tests/fuzz/fuzz_inputs.c $(BIND_SRC:%.c=build-fuzz/%.o) build-fuzz/liblamina.a \
 	  $(LUA_LIBS) $(LDLIBS)
 	@rm -rf build-fuzz/models && cp -r tests/models build-fuzz/models
-	@for t in $(FUZZ_TARGETS); do \
-	  mkdir -p build-fuzz/corpus/$$t && cp tests/fuzz/corpus/$$t/* build-fuzz/corpus/$$t/ && \
-	  (cd build-fuzz/models && $(abspath build-fuzz/fuzz_inputs) -max_total_time=$(FUZZ_TIME) -timeout=20 \
-	    -rss_limit_mb=2048 -max_len=65536 -artifact_prefix=$(abspath build-fuzz)/$$t- \
-	    $(abspath build-fuzz/corpus/$$t)) || exit 1; \
-	done
+	@bash tests/fuzz/run.sh "$(CURDIR)/build-fuzz/fuzz_inputs" "$(CURDIR)/build-fuzz" $(FUZZ_TIME) $(FUZZ_TARGETS)
 
 $(BUILD)/tests/plugins/%.so: tests/plugins/%.c core/lamina_plugin.h tests/plugins/noop_writer.h
 	@mkdir -p $(dir $@)

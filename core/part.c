@@ -2,6 +2,9 @@
 #include "part.h"
 
 #include <errno.h>
+#include <limits.h>
+#include <math.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -348,6 +351,10 @@ struct lam_part {
     uint64_t body_hash;       /* the hash of the bytes before them */
     double *d;                /* a record's reals */
     size_t dcap;
+    /* what the records' values may be (check_job): points in lo..hi,
+     * layer-frame points and heights within reach of the origin */
+    double lo[3], hi[3], tol, reach;
+    lam_layer_info layer;     /* the layer being replayed */
 };
 
 /* LAM_EFORMAT at the current offset */
@@ -426,6 +433,7 @@ static int get_str(lam_part *p, char **s, size_t *len, lam_error *err)
 static int reals(lam_part *p, size_t n, lam_error *err)
 {
     if (n > (size_t)(p->size - p->off) / 8) return corrupt(p, err, "more points than the file holds");
+    if (n < 1) n = 1; /* a record of no points still gives the sink a pointer */
     if (n <= p->dcap) return LAM_OK;
     double *d = lam_realloc_n(p->d, n, sizeof *d);
     if (!d) return lam_error_nomem(err, "reading a part file");
@@ -447,6 +455,169 @@ void lam_part_close(lam_part *p)
     free((char *)p->job.label);
     free(p->d);
     free(p);
+}
+
+/* ---- what the values may be ----------------------------------------------------
+ * A part whose hashes match may still hold numbers no slicing run gives
+ * (a hand-made or buggy part: the hashes only say the bytes are the ones
+ * written): every value is checked as the model and program readers check
+ * theirs before a sink sees it, so a join writes no `nan` and no point
+ * outside the job. What the planners give: points on the layers' sections
+ * (inside the job's box), LADRP's approach one bead beside them, heights
+ * within the layers' planes; the tolerance is two beads and the rounding
+ * of a point's frame change. */
+
+/* the smallest layer: its 'L' and 'E' records */
+#define LAYER_BYTES (2 * (1 + 5 * 8) + 10 * 8)
+
+static int finite_all(const double *x, size_t n)
+{
+    for (size_t i = 0; i < n; i++)
+        if (!isfinite(x[i])) return 0;
+    return 1;
+}
+
+/* LAM_EFORMAT at byte `at`: "corrupt part file: layer N: ..." (no layer
+ * when none is being read) */
+static int bad_value(lam_part *p, long long at, lam_error *err, const char *fmt, ...)
+    __attribute__((format(printf, 4, 5)));
+static int bad_value(lam_part *p, long long at, lam_error *err, const char *fmt, ...)
+{
+    char what[512], where[64] = "";
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(what, sizeof what, fmt, ap);
+    va_end(ap);
+    if (p->layer.index != (size_t)-1) snprintf(where, sizeof where, "layer %zu: ", p->layer.index + 1);
+    return lam_error_at_offset(err, LAM_EFORMAT, p->path, at, "corrupt part file: %s%s", where, what);
+}
+
+/* n points of 3 reals each (stride apart): finite and inside the job's box */
+static int check_points(lam_part *p, long long at, const char *what, const double *x, size_t n, size_t stride,
+                        lam_error *err)
+{
+    for (size_t i = 0; i < n; i++) {
+        const double *q = x + stride * i;
+        char which[80];
+        if (n > 1) snprintf(which, sizeof which, "%s %zu", what, i + 1);
+        else snprintf(which, sizeof which, "%s", what);
+        if (!finite_all(q, 3))
+            return bad_value(p, at, err, "%s is not finite (%g, %g, %g)", which, q[0], q[1], q[2]);
+        for (int k = 0; k < 3; k++)
+            if (q[k] < p->lo[k] || q[k] > p->hi[k])
+                return bad_value(p, at, err, "%s (%g, %g, %g) is outside the job's box [%g, %g] x [%g, %g] x [%g, %g]",
+                                 which, q[0], q[1], q[2], p->lo[0], p->hi[0], p->lo[1], p->hi[1], p->lo[2], p->hi[2]);
+    }
+    return LAM_OK;
+}
+
+/* n layer-frame points (u, v): finite and no farther from the frame's
+ * origin than the job's box */
+static int check_uv(lam_part *p, long long at, const char *what, const double *uv, size_t n, lam_error *err)
+{
+    for (size_t i = 0; i < n; i++) {
+        const double *q = uv + 2 * i;
+        if (!finite_all(q, 2) || hypot(q[0], q[1]) > p->reach)
+            return bad_value(p, at, err, "%s %zu in the layer frame (%g, %g) is outside the job's box", what, i + 1,
+                             q[0], q[1]);
+    }
+    return LAM_OK;
+}
+
+/* a contour's or hatch block's height: in its layer */
+static int check_height(lam_part *p, long long at, const char *what, double z, lam_error *err)
+{
+    const lam_layer_info *L = &p->layer;
+    double lo = fmin(L->floor, L->z) - p->tol, hi = fmax(L->ceiling, L->z) + p->tol;
+    if (!(z >= lo && z <= hi))
+        return bad_value(p, at, err, "%s at height %g, outside its layer (%g..%g)", what, z, L->floor, L->ceiling);
+    return LAM_OK;
+}
+
+/* power, speed, point distance, exposure time: what a profile may set */
+static int check_exposure(lam_part *p, long long at, const char *what, const double e[4], lam_error *err)
+{
+    for (int i = 0; i < 4; i++)
+        if (!(isfinite(e[i]) && e[i] >= 0))
+            return bad_value(p, at, err, "%s with a %s of %g", what,
+                             (const char *[]){ "power", "speed", "point distance", "exposure time" }[i], e[i]);
+    return LAM_OK;
+}
+
+/* a flag byte (lamina writes 0 or 1) */
+static int check_flag(lam_part *p, long long at, const char *what, int v, lam_error *err)
+{
+    return v == 0 || v == 1 ? LAM_OK : bad_value(p, at, err, "%s flag %d (not 0 or 1)", what, v);
+}
+
+/* a layer record's fields: finite, a positive width, heights within
+ * reach of the box (the last plane may lie a layer above it) */
+static int check_layer(lam_part *p, long long at, const lam_layer_info *L, lam_error *err)
+{
+    double h[4] = { L->z, L->width, L->floor, L->ceiling };
+    if (!finite_all(h, 4) || !(L->width > 0) || !(L->floor <= L->ceiling))
+        return bad_value(p, at, err, "height %g, width %g, from %g to %g: not a layer", L->z, L->width, L->floor,
+                         L->ceiling);
+    double r = p->reach + L->width;
+    if (fabs(L->z) > r || fabs(L->floor) > r || fabs(L->ceiling) > r)
+        return bad_value(p, at, err, "height %g (from %g to %g) is outside the job's box", L->z, L->floor, L->ceiling);
+    /* the stage starts at the run's first cut along the slicing axis: no
+     * farther out than the box or this layer's cut, which lies above it */
+    const double *o = p->job.origin;
+    if (hypot(hypot(o[0], o[1]), o[2]) > fmax(p->reach, fabs(L->z)) + p->tol)
+        return bad_value(p, at, err, "the stage's start (%g, %g, %g) is outside the job's box", o[0], o[1], o[2]);
+    return LAM_OK;
+}
+
+static int plain_text(const char *s, int label)
+{
+    for (; *s; s++) {
+        unsigned char c = (unsigned char)*s;
+        int word = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' ||
+                   c == '-' || c == '.'; /* lam_job_label's characters */
+        if (label ? !word : c < 0x20 || c == 0x7f) return 0;
+    }
+    return 1;
+}
+
+/* The header's job (the box every record is checked against) and counts,
+ * once its hash matched. */
+static int check_job(lam_part *p, long long at_reals, lam_error *err)
+{
+    lam_job_info *j = &p->job;
+    if (strcmp(j->process, "ladrp") != 0 && strcmp(j->process, "sls") != 0)
+        return bad_value(p, 0, err, "process '%.32s' (not ladrp or sls)", j->process);
+    if (!plain_text(j->name, 0) || !plain_text(j->units, 0) || !j->label[0] || strlen(j->label) > 127 ||
+        !plain_text(j->label, 1))
+        return bad_value(p, 0, err, "the job's name, units or label holds characters lamina does not write");
+    if (!finite_all(j->bbox, 6) || !(j->bbox[0] <= j->bbox[3] && j->bbox[1] <= j->bbox[4] && j->bbox[2] <= j->bbox[5]))
+        return bad_value(p, at_reals, err, "the job's box [%g, %g] x [%g, %g] x [%g, %g] is not finite or empty",
+                         j->bbox[0], j->bbox[3], j->bbox[1], j->bbox[4], j->bbox[2], j->bbox[5]);
+    double e[3] = { j->bead, j->rate, j->travel_rate };
+    if (!finite_all(e, 3) || !(j->bead >= 0 && j->rate >= 0 && j->travel_rate >= 0))
+        return bad_value(p, at_reals + 48, err, "bead %g, feed rate %g, travel rate %g", j->bead, j->rate,
+                         j->travel_rate);
+    double r2 = 0, big = 0;
+    for (int k = 0; k < 3; k++) {
+        double m = fmax(fabs(j->bbox[k]), fabs(j->bbox[k + 3]));
+        r2 += m * m;
+        big = fmax(big, m);
+    }
+    p->tol = 2 * j->bead + 1e-9 * big;
+    p->reach = sqrt(r2) * (1 + 1e-12) + p->tol;
+    for (int k = 0; k < 3; k++) {
+        p->lo[k] = j->bbox[k] - p->tol;
+        p->hi[k] = j->bbox[k + 3] + p->tol;
+    }
+    /* (how far it may be is known at the first layer: check_layer) */
+    if (!finite_all(j->origin, 3))
+        return bad_value(p, at_reals + 72, err, "the stage's start (%g, %g, %g) is not finite", j->origin[0],
+                         j->origin[1], j->origin[2]);
+    /* every layer takes two records: the count is bounded by the bytes */
+    size_t n = p->meta.last - p->meta.first + 1;
+    if (n > (size_t)(p->size - p->off) / LAYER_BYTES)
+        return bad_value(p, 24, err, "%zu layers in %lld bytes", n, p->size);
+    return LAM_OK;
 }
 
 static int read_header(lam_part *p, lam_error *err)
@@ -481,6 +652,7 @@ static int read_header(lam_part *p, lam_error *err)
     p->job.process = s[1];
     p->job.units = s[2];
     p->job.label = s[3];
+    long long at_reals = p->off;
     if (!rc) rc = get_f64s(p, p->job.bbox, 6, err);
     if (!rc) rc = get_f64s(p, &p->job.bead, 1, err);
     if (!rc) rc = get_f64s(p, &p->job.rate, 1, err);
@@ -494,20 +666,44 @@ static int read_header(lam_part *p, lam_error *err)
     if (!rc) rc = get_u64(p, &got, err);
     if (!rc && got != want)
         return lam_error_set(err, LAM_EFORMAT, p->path, 0, 0, "corrupt part file: its header does not match its checksum");
-    return rc;
+    return rc ? rc : check_job(p, at_reals, err);
+}
+
+/* A part named path, nothing read yet. */
+static lam_part *part_new(const char *path, lam_error *err)
+{
+    lam_part *p = calloc(1, sizeof *p);
+    if (!p || !(p->path = strdup(path))) {
+        free(p);
+        lam_error_nomem(err, NULL);
+        return NULL;
+    }
+    p->hash = FNV_BASIS;
+    p->layer.index = (size_t)-1;
+    return p;
+}
+
+/* Read p's header (p->f and p->size set); *out is p, or NULL and p closed. */
+static int part_start(lam_part *p, lam_part **out, lam_error *err)
+{
+    int rc = read_header(p, err);
+    p->body = p->off;
+    p->body_hash = p->hash;
+    if (rc) {
+        lam_part_close(p);
+        return rc;
+    }
+    *out = p;
+    return LAM_OK;
 }
 
 int lam_part_open(const char *path, lam_part **out, lam_error *err)
 {
     *out = NULL;
-    lam_part *p = calloc(1, sizeof *p);
-    if (!p || !(p->path = strdup(path))) {
-        free(p);
-        return lam_error_nomem(err, NULL);
-    }
-    p->hash = FNV_BASIS;
+    lam_part *p = part_new(path, err);
+    if (!p) return LAM_ENOMEM;
     /* the one opening of a file to read (file.h): a FIFO or device is
-     * refused at once, not waited on */
+     * refused at once, not waited on, and the file is recorded as an input */
     struct stat st;
     int fd = -1, orc = lam_file_open(path, &fd, &st, err);
     if (!orc && !(p->f = fdopen(fd, "rb"))) {
@@ -519,15 +715,23 @@ int lam_part_open(const char *path, lam_part **out, lam_error *err)
         return orc;
     }
     p->size = (long long)st.st_size;
-    int rc = read_header(p, err);
-    p->body = p->off;
-    p->body_hash = p->hash;
-    if (rc) {
+    return part_start(p, out, err);
+}
+
+int lam_part_open_buf(const char *name, const void *data, size_t len, lam_part **out, lam_error *err)
+{
+    *out = NULL;
+    lam_part *p = part_new(name, err);
+    if (!p) return LAM_ENOMEM;
+    /* read-only: fmemopen does not write to a buffer opened "rb" (and
+     * needs a non-empty one; fewer than 16 bytes are refused unread) */
+    if (len >= 16 && !(p->f = fmemopen((void *)data, len, "rb"))) {
+        int e = errno;
         lam_part_close(p);
-        return rc;
+        return lam_error_set(err, LAM_ENOMEM, name, 0, 0, "cannot read from memory: %s", strerror(e));
     }
-    *out = p;
-    return LAM_OK;
+    p->size = (long long)len;
+    return part_start(p, out, err);
 }
 
 const lam_part_meta *lam_part_get_meta(const lam_part *p) { return &p->meta; }
@@ -570,16 +774,155 @@ int lam_part_order(lam_part **parts, size_t n, lam_error *err)
     return LAM_OK;
 }
 
-/* The layer record's fields; checks that it is the layer expected next. */
+/* The layer record's fields; checks that it is the layer expected next
+ * and that its values could be a layer of the job. */
 static int get_layer(lam_part *p, lam_layer_info *L, size_t want, lam_error *err)
 {
+    long long at = p->off - 1;
     uint64_t index;
     int rc;
+    memset(L, 0, sizeof *L);
     if ((rc = get_u64(p, &index, err)) || (rc = get_f64s(p, &L->z, 1, err)) || (rc = get_f64s(p, &L->width, 1, err)) ||
         (rc = get_f64s(p, &L->floor, 1, err)) || (rc = get_f64s(p, &L->ceiling, 1, err)))
         return rc;
     if (index != want) return corrupt(p, err, "a layer out of order");
     L->index = (size_t)index;
+    p->layer.index = L->index;
+    return check_layer(p, at, L, err);
+}
+
+/* 'E': the layer's end (the same fields as its start) and its estimate */
+static int read_layer_end(lam_part *p, lam_layer_info *L, size_t want, lam_scan_time *t, lam_error *err)
+{
+    long long at = p->off - 1;
+    int rc = get_layer(p, L, want, err);
+    if (rc) return rc;
+    if (L->z != p->layer.z || L->width != p->layer.width || L->floor != p->layer.floor ||
+        L->ceiling != p->layer.ceiling)
+        return bad_value(p, at, err, "its end does not match its start");
+    uint64_t c[4];
+    for (int i = 0; i < 4 && !rc; i++) rc = get_u64(p, &c[i], err);
+    if (!rc) rc = get_f64s(p, &t->exposure_length, 1, err);
+    if (!rc) rc = get_f64s(p, &t->jump_length, 1, err);
+    if (!rc) rc = get_f64s(p, &t->hatch_length, 1, err);
+    if (!rc) rc = get_f64s(p, &t->exposure, 1, err);
+    if (!rc) rc = get_f64s(p, &t->jump, 1, err);
+    if (!rc) rc = get_f64s(p, &t->recoat, 1, err);
+    if (rc) return rc;
+    /* a layer's counts are of what its records hold */
+    for (int i = 0; i < 4; i++)
+        if (c[i] > (uint64_t)p->size)
+            return bad_value(p, at, err, "an estimate counting %llu", (unsigned long long)c[i]);
+    double r[6] = { t->exposure_length, t->jump_length, t->hatch_length, t->exposure, t->jump, t->recoat };
+    for (int i = 0; i < 6; i++)
+        if (!(isfinite(r[i]) && r[i] >= 0)) return bad_value(p, at, err, "an estimate of %g", r[i]);
+    t->layers = (size_t)c[0];
+    t->contours = (size_t)c[1];
+    t->vectors = (size_t)c[2];
+    t->jumps = (size_t)c[3];
+    return LAM_OK;
+}
+
+/* 'C': a contour, checked */
+static int read_contour(lam_part *p, lam_contour_info *c, lam_error *err)
+{
+    long long at = p->off - 1;
+    uint64_t id, depth;
+    int solid, has_uv, rc;
+    double e[4];
+    if ((rc = get_u64(p, &id, err)) || (rc = get_u8(p, &solid, err)) || (rc = get_u64(p, &depth, err)) ||
+        (rc = get_f64s(p, &c->z, 1, err)) || (rc = get_size(p, &c->n, err)) || (rc = get_f64s(p, e, 4, err)) ||
+        (rc = get_u8(p, &has_uv, err)) || (rc = reals(p, (has_uv ? 5 : 3) * c->n, err)) ||
+        (rc = get_f64s(p, p->d, (has_uv ? 5 : 3) * c->n, err)))
+        return rc;
+    c->id = (size_t)id;
+    c->solid = solid;
+    c->depth = (int)(int64_t)depth;
+    c->power = e[0], c->speed = e[1], c->point_distance = e[2], c->exposure_time = e[3];
+    c->xyz = p->d;
+    c->uv = p->d + 3 * c->n;
+    if ((int64_t)depth < -1 || (int64_t)depth > INT_MAX)
+        return bad_value(p, at, err, "a contour of depth %lld", (long long)(int64_t)depth);
+    /* the planner gives every contour its layer-frame points (writers
+     * read them) */
+    if (has_uv != 1) return bad_value(p, at, err, "a contour without its layer-frame points");
+    if ((rc = check_flag(p, at, "a contour's solid", solid, err)) ||
+        (rc = check_exposure(p, at, "a contour", e, err)) ||
+        (rc = check_height(p, at, "a contour", c->z, err)) ||
+        (rc = check_points(p, at, "contour point", c->xyz, c->n, 3, err)))
+        return rc;
+    return check_uv(p, at, "contour point", c->uv, c->n, err);
+}
+
+/* 'H': a block of hatch vectors, checked; h->kind is owned */
+static int read_hatches(lam_part *p, lam_hatch_info *h, lam_error *err)
+{
+    long long at = p->off - 1;
+    uint64_t id, type;
+    int has_uv, rc;
+    char *kind = NULL;
+    double e[4];
+    if ((rc = get_u64(p, &id, err)) || (rc = get_u64(p, &type, err)) || (rc = get_str(p, &kind, NULL, err)) ||
+        (rc = get_f64s(p, &h->z, 1, err)) || (rc = get_size(p, &h->n, err)) || (rc = get_f64s(p, &h->angle, 1, err)) ||
+        (rc = get_f64s(p, e, 4, err)) || (rc = get_u8(p, &has_uv, err)) ||
+        (rc = reals(p, (has_uv ? 10 : 6) * h->n, err)) || (rc = get_f64s(p, p->d, (has_uv ? 10 : 6) * h->n, err))) {
+        free(kind);
+        return rc;
+    }
+    h->id = (size_t)id;
+    h->type = type < LAM_VEC_TYPES ? (int)type : -1;
+    h->kind = kind;
+    h->power = e[0], h->speed = e[1], h->point_distance = e[2], h->exposure_time = e[3];
+    h->xyz = p->d;
+    h->uv = p->d + 6 * h->n;
+    /* the kind is written into programs: only the planner's names */
+    if (h->type < LAM_VEC_CORE || strcmp(kind, lam_vec_type_name(h->type)) != 0)
+        rc = bad_value(p, at, err, "hatches of type %llu, kind '%.32s'", (unsigned long long)type, kind);
+    else if (has_uv != 1)
+        rc = bad_value(p, at, err, "hatches without their layer-frame points");
+    else if (!(rc = check_exposure(p, at, "hatches", e, err)) && !(rc = check_height(p, at, "hatches", h->z, err))) {
+        if (!isfinite(h->angle)) rc = bad_value(p, at, err, "hatches at an angle of %g", h->angle);
+        else if (!(rc = check_points(p, at, "hatch end", h->xyz, 2 * h->n, 3, err)))
+            rc = check_uv(p, at, "hatch end", h->uv, 2 * h->n, err);
+    }
+    if (rc) {
+        free(kind);
+        h->kind = NULL;
+    }
+    return rc;
+}
+
+/* 'F', 'A', 'M': the LADRP stage's records, checked */
+static int read_stage(lam_part *p, int tag, const lam_sink *sink, lam_error *err)
+{
+    long long at = p->off - 1;
+    int rc, flag;
+    double x[3];
+    if (tag == 'F') {
+        if ((rc = get_f64s(p, x, 1, err))) return rc;
+        if (!(isfinite(x[0]) && x[0] >= 0)) return bad_value(p, at, err, "a feed rate of %g", x[0]);
+        return sink->feed ? sink->feed(sink->ctx, x[0]) : LAM_OK;
+    }
+    if ((rc = get_u8(p, &flag, err))) return rc;
+    if ((rc = check_flag(p, at, tag == 'A' ? "a laser" : "a move's deposit", flag, err))) return rc;
+    if (tag == 'A') return sink->laser ? sink->laser(sink->ctx, flag) : LAM_OK;
+    if ((rc = get_f64s(p, x, 3, err)) || (rc = check_points(p, at, "a move to", x, 1, 3, err))) return rc;
+    return sink->move ? sink->move(sink->ctx, flag, x) : LAM_OK;
+}
+
+/* The part's end: its hash, its last layer, nothing after it. */
+static int read_end(lam_part *p, long long at, int in_layer, size_t next, lam_error *err)
+{
+    uint64_t want = p->hash, got;
+    int rc = get_u64(p, &got, err);
+    if (rc) return rc;
+    p->off = at;
+    if (got != want) return corrupt(p, err, "its contents do not match its checksum");
+    if (in_layer || next != p->meta.last) return corrupt(p, err, "it ends before its last layer");
+    if (p->size != at + 9) {
+        p->off = at + 9;
+        return corrupt(p, err, "bytes after its end");
+    }
     return LAM_OK;
 }
 
@@ -593,47 +936,30 @@ static int replay(lam_part *p, const lam_sink *sink, lam_scan_time *time, double
         return lam_error_set(err, LAM_EIO, p->path, 0, 0, "cannot read: %s", strerror(errno));
     p->off = p->body;
     p->hash = p->body_hash;
+    p->layer.index = (size_t)-1;
     for (;;) {
         long long at = p->off;
         int tag;
         if ((rc = get_u8(p, &tag, err))) return rc;
-        if (tag == 'Z') {
-            uint64_t want = p->hash, got;
-            if ((rc = get_u64(p, &got, err))) return rc;
+        if (tag == 'Z') return read_end(p, at, in_layer, next, err);
+        /* the planners give operations inside layers only */
+        if (!in_layer && tag && strchr("FAMCH", tag)) {
             p->off = at;
-            if (got != want) return corrupt(p, err, "its contents do not match its checksum");
-            if (in_layer || next != p->meta.last) return corrupt(p, err, "it ends before its last layer");
-            if (p->size != at + 9) {
-                p->off = at + 9;
-                return corrupt(p, err, "bytes after its end");
-            }
-            return LAM_OK;
+            return corrupt(p, err, "an operation outside a layer");
         }
         lam_layer_info L;
         switch (tag) {
         case 'L':
             if (in_layer || next >= p->meta.last) return corrupt(p, err, "a layer outside its range");
             if ((rc = get_layer(p, &L, next, err))) return rc;
+            p->layer = L;
             in_layer = 1;
             rc = sink->layer ? sink->layer(sink->ctx, &L) : LAM_OK;
             break;
         case 'E': {
             if (!in_layer) return corrupt(p, err, "a layer's end without its start");
-            if ((rc = get_layer(p, &L, next, err))) return rc;
-            uint64_t c[4];
             lam_scan_time t;
-            for (int i = 0; i < 4 && !rc; i++) rc = get_u64(p, &c[i], err);
-            if (!rc) rc = get_f64s(p, &t.exposure_length, 1, err);
-            if (!rc) rc = get_f64s(p, &t.jump_length, 1, err);
-            if (!rc) rc = get_f64s(p, &t.hatch_length, 1, err);
-            if (!rc) rc = get_f64s(p, &t.exposure, 1, err);
-            if (!rc) rc = get_f64s(p, &t.jump, 1, err);
-            if (!rc) rc = get_f64s(p, &t.recoat, 1, err);
-            if (rc) return rc;
-            t.layers = (size_t)c[0];
-            t.contours = (size_t)c[1];
-            t.vectors = (size_t)c[2];
-            t.jumps = (size_t)c[3];
+            if ((rc = read_layer_end(p, &L, next, &t, err))) return rc;
             if (time) lam_scan_time_add(time, &t);
             if (layer_time) layer_time[next] = lam_scan_time_total(&t);
             in_layer = 0;
@@ -641,66 +967,20 @@ static int replay(lam_part *p, const lam_sink *sink, lam_scan_time *time, double
             rc = sink->layer_end ? sink->layer_end(sink->ctx, &L) : LAM_OK;
             break;
         }
-        case 'F': {
-            double rate;
-            if ((rc = get_f64s(p, &rate, 1, err))) return rc;
-            rc = sink->feed ? sink->feed(sink->ctx, rate) : LAM_OK;
-            break;
-        }
-        case 'A': {
-            int on;
-            if ((rc = get_u8(p, &on, err))) return rc;
-            rc = sink->laser ? sink->laser(sink->ctx, on) : LAM_OK;
-            break;
-        }
-        case 'M': {
-            int dep;
-            double xyz[3];
-            if ((rc = get_u8(p, &dep, err)) || (rc = get_f64s(p, xyz, 3, err))) return rc;
-            rc = sink->move ? sink->move(sink->ctx, dep, xyz) : LAM_OK;
-            break;
-        }
+        case 'F':
+        case 'A':
+        case 'M': rc = read_stage(p, tag, sink, err); break;
         case 'C': {
             lam_contour_info c;
-            uint64_t id, depth;
-            int solid, has_uv;
-            if ((rc = get_u64(p, &id, err)) || (rc = get_u8(p, &solid, err)) || (rc = get_u64(p, &depth, err)) ||
-                (rc = get_f64s(p, &c.z, 1, err)) || (rc = get_size(p, &c.n, err)) ||
-                (rc = get_f64s(p, &c.power, 1, err)) || (rc = get_f64s(p, &c.speed, 1, err)) ||
-                (rc = get_f64s(p, &c.point_distance, 1, err)) || (rc = get_f64s(p, &c.exposure_time, 1, err)) ||
-                (rc = get_u8(p, &has_uv, err)) || (rc = reals(p, (has_uv ? 5 : 3) * c.n, err)) ||
-                (rc = get_f64s(p, p->d, (has_uv ? 5 : 3) * c.n, err)))
-                return rc;
-            c.id = (size_t)id;
-            c.solid = solid;
-            c.depth = (int)(int64_t)depth;
-            c.xyz = p->d;
-            c.uv = has_uv ? p->d + 3 * c.n : NULL;
+            if ((rc = read_contour(p, &c, err))) return rc;
             rc = sink->contour ? sink->contour(sink->ctx, &c) : LAM_OK;
             break;
         }
         case 'H': {
             lam_hatch_info h;
-            uint64_t id, type;
-            int has_uv;
-            char *kind = NULL;
-            if ((rc = get_u64(p, &id, err)) || (rc = get_u64(p, &type, err)) || (rc = get_str(p, &kind, NULL, err)) ||
-                (rc = get_f64s(p, &h.z, 1, err)) || (rc = get_size(p, &h.n, err)) ||
-                (rc = get_f64s(p, &h.angle, 1, err)) || (rc = get_f64s(p, &h.power, 1, err)) ||
-                (rc = get_f64s(p, &h.speed, 1, err)) || (rc = get_f64s(p, &h.point_distance, 1, err)) ||
-                (rc = get_f64s(p, &h.exposure_time, 1, err)) || (rc = get_u8(p, &has_uv, err)) ||
-                (rc = reals(p, (has_uv ? 10 : 6) * h.n, err)) ||
-                (rc = get_f64s(p, p->d, (has_uv ? 10 : 6) * h.n, err))) {
-                free(kind);
-                return rc;
-            }
-            h.id = (size_t)id;
-            h.type = (int)(int64_t)type;
-            h.kind = kind;
-            h.xyz = p->d;
-            h.uv = has_uv ? p->d + 6 * h.n : NULL;
+            if ((rc = read_hatches(p, &h, err))) return rc;
             rc = sink->hatches ? sink->hatches(sink->ctx, &h) : LAM_OK;
-            free(kind);
+            free((char *)h.kind);
             break;
         }
         default:

@@ -46,7 +46,13 @@
  *   and nothing after it.
  *
  * A part with a wrong magic, version, hash, truncated or with bytes after
- * its end is refused with the byte offset where it went wrong. */
+ * its end is refused with the byte offset where it went wrong; so is one
+ * whose hashes match but whose values no slicing run writes (numbers that
+ * are not finite; points outside the job's box, by more than two beads;
+ * heights outside their layer; negative rates or exposures; flags other
+ * than 0 and 1; hatch kinds other than the planner's; operations outside a
+ * layer; counts larger than the file), naming the layer. Contours and
+ * hatches carry their layer-frame points (has_uv 1). */
 #ifndef LAM_PART_H
 #define LAM_PART_H
 
@@ -90,6 +96,10 @@ typedef struct lam_part lam_part;
  * lam_part_join). Errors: LAM_EIO, LAM_EFORMAT (not a part file, another
  * version, a corrupt header), LAM_ENOMEM. */
 int lam_part_open(const char *path, lam_part **out, lam_error *err);
+
+/* The same from len bytes at data (name for messages), which must stay
+ * unchanged while the part is open; read within len. */
+int lam_part_open_buf(const char *name, const void *data, size_t len, lam_part **out, lam_error *err);
 
 /* The part's header; valid while the part is open. */
 const lam_part_meta *lam_part_get_meta(const lam_part *p);

@@ -14,14 +14,23 @@
  * corpus (tests/fuzz/corpus) start with that byte, as libFuzzer's do. Paths
  * in inputs (includes, recipes' models) are relative to tests/models, where
  * both runs start.
- * A first byte of 5 is a program read back (SLS or CLI, programs/ in the
- * corpus), its layers made along z and x.
+ * A first byte of 5 is a program read back (SLS, ASCII or binary CLI, or a
+ * run's JSON; programs/ in the corpus) from a heap buffer of exactly its
+ * length (no NUL after it: a read past the end is caught), its layers made
+ * along z and x (and in its own frame when it gives one).
+ * A first byte of 6 is a part file of a split run (`lamina slice --layers`,
+ * parts/ in the corpus; core/part.h), checked whole and joined into a
+ * program through the machine profile it holds (the built-in one of its
+ * process when that does not load or is a plugin's). Most mutants would
+ * only meet the checksums, so three in four get both hashes made right
+ * first (fix_hashes): the records' values and the writers are fuzzed.
  * Every input must either work or fail with a message; nothing may crash,
  * leak or read out of bounds. TAP output: one test per seed. */
 #include "dialect.h"
 #include "error.h"
 #include "import.h"
 #include "model.h"
+#include "part.h"
 #include "planner.h"
 #include "profile.h"
 #include "program_read.h"
@@ -41,7 +50,7 @@
 int luaopen_lamina(lua_State *L);
 #endif
 
-enum { K_UG, K_STL, K_OBJ, K_PROFILE, K_LUA, K_PROGRAM, K_COUNT };
+enum { K_UG, K_STL, K_OBJ, K_PROFILE, K_LUA, K_PROGRAM, K_PART, K_COUNT };
 
 /* The thesis's cube with a through hole: the part every fuzzed profile plans. */
 static const char cube_hole[] =
@@ -179,6 +188,111 @@ static int run_lua(const char *text, size_t len)
 }
 #endif
 
+/* A program read back, and its layers made in the axis frames and its own. */
+static int run_program(const unsigned char *buf, size_t len)
+{
+    lam_error err;
+    lam_error_clear(&err);
+    lam_program *p = NULL;
+    int rc = lam_program_read_buf("fuzz.sls", buf, len, &p, &err);
+    for (size_t i = 0; p && i < p->nlayers; i++)
+        for (int ax = 0; ax < 3; ax++) {
+            lam_frame f;
+            if (ax < 2) lam_frame_axis(ax ? 'x' : 'z', &f, NULL);
+            else if (p->has_frame) f = p->frame;
+            else break;
+            lam_layer L;
+            lam_error lerr;
+            lam_error_clear(&lerr);
+            if (lam_program_layer_make(p, i, &f, ax == 2 && p->frame_machine, "fuzz.sls", &L, &lerr) == LAM_OK)
+                lam_layer_clear(&L);
+            else if (lerr.msg[0] == '\0') rc = -1;
+        }
+    lam_program_free(p);
+    return rc != LAM_OK && err.msg[0] == '\0' ? -1 : 0;
+}
+
+/* ---- part files ---- */
+static uint64_t fnv(const uint8_t *b, size_t n)
+{
+    uint64_t h = 0xcbf29ce484222325ull;
+    for (size_t i = 0; i < n; i++) h = (h ^ b[i]) * 0x100000001b3ull;
+    return h;
+}
+
+static uint64_t le64(const uint8_t *b)
+{
+    uint64_t v = 0;
+    for (int i = 7; i >= 0; i--) v = v << 8 | b[i];
+    return v;
+}
+
+static void put64(uint8_t *b, uint64_t v)
+{
+    for (int i = 0; i < 8; i++) b[i] = (uint8_t)(v >> (8 * i));
+}
+
+/* Both FNV-1a hashes of a part (part.h) made to match its bytes, where
+ * its header's strings leave room for them. */
+static void fix_hashes(uint8_t *b, size_t n)
+{
+    size_t o = 48; /* magic, version, flags, identity, first, last, layers */
+    for (int k = 0; k < 7; k++) {
+        if (o > n || n - o < 8 || le64(b + o) > n - o - 8) return;
+        o += 8 + (size_t)le64(b + o);
+        if (k == 3) o += 96; /* after the 4 strings: the job's 12 reals */
+    }
+    if (o > n || n - o < 8) return;
+    put64(b + o, fnv(b, o));
+    if (n - o >= 8 + 9 && b[n - 9] == 'Z') put64(b + n - 8, fnv(b, n - 8));
+}
+
+/* A part checked whole, then joined into a program. */
+static int run_part(const uint8_t *buf, size_t len)
+{
+    lam_error err;
+    lam_error_clear(&err);
+    lam_part *p = NULL;
+    int rc = lam_part_open_buf("fuzz.part", buf, len, &p, &err);
+    lam_profile *prof = NULL;
+    lam_writer *w = NULL;
+    lam_sink sink, none;
+    memset(&sink, 0, sizeof sink);
+    memset(&none, 0, sizeof none);
+    double *layer_time = NULL;
+    if (rc == LAM_OK) {
+        /* a part of some layers only is joined all the same: replay starts at its first */
+        lam_error oerr;
+        lam_error_clear(&oerr);
+        if (lam_part_order(&p, 1, &oerr) != LAM_OK && oerr.msg[0] == '\0') rc = -1;
+        rc = rc ? rc : lam_part_join(&p, 1, &none, NULL, NULL, &err);
+    }
+    if (rc == LAM_OK) {
+        const lam_part_meta *meta = lam_part_get_meta(p);
+        lam_error perr;
+        if (lam_profile_load_buf("fuzz.part (profile)", meta->profile, meta->profile_len, &prof, &perr) != LAM_OK) {
+            prof = NULL;
+        } else if (prof->writer && strcmp(prof->writer, "text") != 0) {
+            lam_profile_free(prof); /* plugins are not fuzzed here */
+            prof = NULL;
+        }
+        const lam_profile *use = prof ? prof : strcmp(lam_part_job(p)->process, "ladrp") ? builtin_sls : builtin_ladrp;
+        lam_scan_time est;
+        memset(&est, 0, sizeof est);
+        layer_time = calloc(meta->layers, sizeof *layer_time);
+        if (!use || !layer_time) rc = lam_error_nomem(&err, NULL);
+        if (!rc) rc = lam_writer_memory(&w, &err);
+        if (!rc) rc = lam_dialect_sink(&use->dialect, w, &sink, &err);
+        if (!rc) rc = lam_part_join(&p, 1, &sink, &est, layer_time, &err);
+    }
+    if (sink.destroy) sink.destroy(sink.ctx);
+    if (w) lam_writer_abort(w);
+    free(layer_time);
+    lam_profile_free(prof);
+    lam_part_close(p);
+    return rc != LAM_OK && err.msg[0] == '\0' ? -1 : 0;
+}
+
 /* The first byte picks the reader, the rest is the input. */
 static int one(const uint8_t *data, size_t size)
 {
@@ -214,21 +328,16 @@ static int one(const uint8_t *data, size_t size)
         lam_profile_free(p);
         return rc != LAM_OK && err.msg[0] == '\0' ? -1 : 0;
     }
-    case K_PROGRAM: {
-        lam_program *p = NULL;
-        rc = lam_program_read_buf("fuzz.sls", (const unsigned char *)buf, len, &p, &err);
-        for (size_t i = 0; p && i < p->nlayers; i++)
-            for (int ax = 0; ax < 2; ax++) {
-                lam_frame f;
-                lam_frame_axis(ax ? 'x' : 'z', &f, NULL);
-                lam_layer L;
-                lam_error lerr;
-                lam_error_clear(&lerr);
-                if (lam_program_layer_make(p, i, &f, 0, "fuzz.sls", &L, &lerr) == LAM_OK) lam_layer_clear(&L);
-                else if (lerr.msg[0] == '\0') rc = -1;
-            }
-        lam_program_free(p);
-        return rc != LAM_OK && err.msg[0] == '\0' ? -1 : 0;
+    case K_PROGRAM:
+    case K_PART: {
+        /* a heap copy of exactly the input: a read past it is caught */
+        uint8_t *copy = malloc(len ? len : 1);
+        if (!copy) return 0;
+        memcpy(copy, buf, len);
+        if (kind == K_PART && size % 4 != 0) fix_hashes(copy, len);
+        rc = kind == K_PART ? run_part(copy, len) : run_program(copy, len);
+        free(copy);
+        return rc;
     }
     default:
 #ifdef LAMINA_FUZZ_LUA
@@ -347,7 +456,13 @@ int main(int argc, char **argv)
         fclose(f);
         size_t cap = n + 4096;
         uint8_t *b = malloc(cap);
-        int bad = one(seed, n) != 0;
+        /* a seed's mutants depend on it alone (not on the seeds before it) */
+        rng = fnv(seed, n) | 1;
+        /* the seed itself from an exact-size copy too */
+        uint8_t *whole = malloc(n ? n : 1);
+        memcpy(whole, seed, n);
+        int bad = one(whole, n) != 0;
+        free(whole);
         for (int k = 0; k < mutants && !bad; k++) {
             memcpy(b, seed, n);
             size_t m = mutate(b, n, cap);
@@ -359,6 +474,7 @@ int main(int argc, char **argv)
         }
         printf("%s %d - %s and %d mutants: loaded or refused with a message\n", bad ? "not ok" : "ok", ++t, argv[i],
                mutants);
+        fflush(stdout); /* what passed shows even if a sanitizer stops the next */
         failed += bad;
         free(seed);
         free(b);
