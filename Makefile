@@ -209,9 +209,11 @@ $(BUILD)/tests/plugins/%.so: tests/plugins/%.c core/lamina_plugin.h tests/plugin
 	@mkdir -p $(dir $@)
 	$(CC) $(CPPFLAGS) $(CFLAGS) -fPIC -shared -o $@ $< $(LDFLAGS)
 
+# CHECK_TESTS: the test programs prove runs (all of them unless given)
+CHECK_TESTS ?= $(UNIT_BIN) $(sort $(wildcard tests/cli/*.t)) tests/fuzz/fuzz.t
 check: all $(UNIT_BIN) $(TEST_PLUGIN_SO) $(FUZZ_BIN) man
 	LAMINA="$(CURDIR)/$(LAMINA)" TESTS="$(CURDIR)/tests" BUILD="$(CURDIR)/$(BUILD)" LAZY=$(LAZY) \
-	  prove --exec '' $(UNIT_BIN) $(sort $(wildcard tests/cli/*.t)) tests/fuzz/fuzz.t
+	  prove --exec '' $(CHECK_TESTS)
 
 test: deps
 	@$(MAKE) --no-print-directory check

@@ -27,6 +27,17 @@ case "${BUILD:-}" in
     *) B=${BUILD:-} ;;
 esac
 
+# make check itself from there (one unit test: the rest run below)
+B0=${BUILD:-build}
+case "$B0" in "$ROOT"/*) B0=${B0#"$ROOT"/} ;; esac
+san=0
+[ "$(basename "$B0")" = build-san ] && san=1
+(unset MAKEFLAGS MFLAGS MAKELEVEL; cd "$R" && make -s --no-print-directory check BUILD="$B0" SAN=$san \
+    CHECK_TESTS="$B0/tests/test_fmt.t") >"$TMP/make.out" 2>&1
+rc=$?
+is "$rc $(grep -c '^Result: PASS' "$TMP/make.out")" "0 1" "make check runs from the path with spaces"
+[ $rc -eq 0 ] || sed 's/^/#   /' "$TMP/make.out" | tail -10
+
 self=$(basename "$0")
 for t in "$R"/tests/cli/*.t; do
     name=$(basename "$t")
