@@ -294,7 +294,8 @@ def main():
     ap.add_argument('--in', dest='indir', required=True)
     ap.add_argument('--out', required=True)
     ap.add_argument('--version', required=True)
-    ap.add_argument('--binaries', default='')
+    ap.add_argument('--binaries', default='', help='binaries, separated by spaces (relative paths)')
+    ap.add_argument('--binary', action='append', default=[], help='one binary (a path that may hold spaces)')
     ap.add_argument('--expect', default=None, help='the commands the Makefile installs pages for')
     ap.add_argument('--completion-in', default=None, help='bash completion template (completion/lamina.bash.in)')
     ap.add_argument('--completion-out', default=None)
@@ -319,7 +320,7 @@ def main():
         sys.exit('genman: `lamina --help` lists the commands %s, the Makefile (lua/cli/main.c) %s'
                  % (' '.join(names), a.expect))
     exits = exit_codes(prose)
-    common = common_sections(os.path.join(a.indir, 'common.in'), a.binaries.split())
+    common = common_sections(os.path.join(a.indir, 'common.in'), a.binaries.split() + a.binary)
     os.makedirs(a.out, exist_ok=True)
 
     helps = {c: parse_command_help(run_help(a.lamina, [c, '--help'])) for c in names}

@@ -79,7 +79,7 @@ done
 # the generator itself: no option without a text, no stale text in man/*.in
 version=$("$LAMINA" --version | sed 's/^lamina //')
 run python3 "$ROOT/man/genman.py" --lamina "$LAMINA" --in "$ROOT/man" --out "$TMP/man" \
-    --version "$version" --binaries "$LAMINA $BUILD/lamina.so"
+    --version "$version" --binary "$LAMINA" --binary "$BUILD/lamina.so"
 is "$RC" 0 "genman.py runs"
 is "$ERR" "" "genman.py: every option has a text, every hand-written option text an option"
 # the pages do not depend on where or when they were built: same input, same bytes

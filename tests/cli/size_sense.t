@@ -27,23 +27,23 @@ is "$RC.$ERR" "0." "a 2 mm cube in 4 layers: no warning"
 # 3000 units in a mm profile: 3 m
 run "$LAMINA" slice "$TMP/big.ug" -m sls-contours -w 500 -o "$TMP/big.sls"
 is "$RC" 0 "a 3000 mm part: the run goes on"
-like "$ERR" "^lamina: warning: \S*big\.ug: the model is 3000 across \(x 3000, y 3000, z 3000\) and sls-contours's units are mm: 3000 mm, larger than 2000 mm; was it drawn in another unit\?$" \
+like "$ERR" "^lamina: warning: .*big\.ug: the model is 3000 across \(x 3000, y 3000, z 3000\) and sls-contours's units are mm: 3000 mm, larger than 2000 mm; was it drawn in another unit\?$" \
     "... with a warning that gives the extent, the unit and the bound"
 is "$(grep -c '^contour' "$TMP/big.sls")" 6 "... and writes its program: 3000 / 500 = 6 layers"
 run "$LAMINA" slice "$TMP/big.ug" -m creol-ladrp -w 500 -o "$TMP/big.nc"
 like "$ERR" "and creol-ladrp's units are cm: 30000 mm, larger than 2000 mm" "in a cm profile it is 30 m"
 run "$LAMINA" slice "$TMP/big.ug" -m sls-contours -w 500 -o "$TMP/big.sls" -q
-like "$ERR" "^lamina: warning: \S*big\.ug: the model is 3000 across" "-q keeps warnings"
+like "$ERR" "^lamina: warning: .*big\.ug: the model is 3000 across" "-q keeps warnings"
 run "$LAMINA" slice "$TMP/big.ug" -w 500 -o "$TMP/big.sls"
 is "$RC.$ERR" "0." "the built-in profile is no machine: no unit to check, no warning"
 run "$LAMINA" validate "$TMP/big.ug" -m sls-contours -w 500
 is "$RC" 0 "validate: the big cube checks out"
-like "$ERR" "^lamina: warning: \S*big\.ug: the model is 3000 across" "... and validate warns too"
+like "$ERR" "^lamina: warning: .*big\.ug: the model is 3000 across" "... and validate warns too"
 
 # 0.2 units: 0.2 mm in a mm profile, 2 mm in a cm one
 run "$LAMINA" slice "$TMP/tiny.ug" -m sls-contours -w 0.05 -o "$TMP/tiny.sls"
 is "$RC" 0 "a 0.2 mm part: the run goes on"
-like "$ERR" "^lamina: warning: \S*tiny\.ug: the model is 0\.2 across \(x 0\.2, y 0\.2, z 0\.2\) and sls-contours's units are mm: 0\.2 mm, smaller than 0\.5 mm; was it drawn in another unit\?$" \
+like "$ERR" "^lamina: warning: .*tiny\.ug: the model is 0\.2 across \(x 0\.2, y 0\.2, z 0\.2\) and sls-contours's units are mm: 0\.2 mm, smaller than 0\.5 mm; was it drawn in another unit\?$" \
     "... with a warning: smaller than 0.5 mm"
 run "$LAMINA" slice "$TMP/tiny.ug" -m creol-ladrp -w 0.05 -o "$TMP/tiny.nc"
 ok "$(grep -q warning <<<"$ERR"; [ $? = 1 ]; echo $?)" "0.2 cm is 2 mm: no warning"
@@ -51,7 +51,7 @@ ok "$(grep -q warning <<<"$ERR"; [ $? = 1 ]; echo $?)" "0.2 cm is 2 mm: no warni
 # more than 100,000 layers: 2 units in layers of 1e-5 make 200,000
 run "$LAMINA" slice "$M/thesis_cube.ug" -w 0.00001 -o "$TMP/thin.sls"
 is "$RC" 0 "200000 layers: the run goes on"
-like "$ERR" "^lamina: warning: \S*thesis_cube\.ug: 200000 layers \(2 along the axis in layers of 1e-05 on average\), more than 100000: is the layer width in the model's units\? \(--max-layers N refuses runs of more than N layers\)$" \
+like "$ERR" "^lamina: warning: .*thesis_cube\.ug: 200000 layers \(2 along the axis in layers of 1e-05 on average\), more than 100000: is the layer width in the model's units\? \(--max-layers N refuses runs of more than N layers\)$" \
     "... with a warning that gives the count, the extent and the width"
 is "$(grep -c '^contour' "$TMP/thin.sls")" 200000 "... and writes all 200000 layers"
 rm -f "$TMP/thin.sls"
