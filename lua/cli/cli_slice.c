@@ -227,6 +227,14 @@ int cmd_slice(int argc, char **argv)
         }
     }
     size_t nl = lam_slicer_count(s);
+    /* the estimate in the program's own bytes (the defaults if the
+     * writer cannot be sampled: it then fails the run itself) */
+    if (!a.layers) {
+        lam_job_info cj;
+        char label[128];
+        lam_plan_job(s, m, &po, &cj, label);
+        lam_program_costs(prof, &cj, &po.costs, NULL);
+    }
     cli_progress_stage(&rep.progress, "reading the model and preparing the layers");
     cli_size_sense(a.path, a.machine ? prof : NULL, m, s, &po);
     cli_progress_begin(&rep.progress, "slicing", a.path, nl);

@@ -193,7 +193,8 @@ like "$RC $ERR" "^1 .*open\.sls:3:1: the file ends where 'endhatches' was expect
 # errors: a hatch distance that would make an endless program
 run "$LAMINA" slice "$M/frame_island.ug" -s hatch_strategy=lines -s hatch_distance=1e-7 -o "$TMP/x.cli"
 ok $((RC == 0)) "a hatch distance of 1e-7: an error, not an endless program"
-like "$ERR" 'too small' "... saying the hatch distance is too small"
+like "$ERR" 'would write about [0-9.]+ TB \(100 layers, [0-9]+ contour points, [0-9.]+e\+11 hatch vectors\), more than the limit' \
+    "... refused before planning: about 10^11 vectors (40 / 1e-7 lines a layer), terabytes"
 [ ! -e "$TMP/x.cli" ]; ok $? "... and no output file"
 run "$LAMINA" slice "$cube" -s hatch_strategy=zigzag
 like "$ERR" "hatch_strategy must be none, lines, stripes or islands, got 'zigzag'" "an unknown strategy is named"
