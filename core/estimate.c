@@ -263,29 +263,33 @@ static int sample_layer(const lam_sink *sk, const lam_job_info *job, const sampl
 {
     const double *b = job->bbox;
     double z = (b[2] + b[5]) / 2;
-    lam_layer_info li = { 0, z, b[5] - b[2], b[2], b[5], NULL, NULL };
+    /* contour points go round the box's corners: vertices of a mesh print
+     * as they were drawn; the layer's section is that contour (sinks that
+     * write the section, as JSON does, count its points once more) */
+    double *xyz = buf, *uv = buf + 3 * q->points;
+    for (size_t i = 0; i < q->points; i++) {
+        int c = (int)(i % 4);
+        uv[2 * i] = xyz[3 * i] = c == 1 || c == 2 ? b[3] : b[0];
+        uv[2 * i + 1] = xyz[3 * i + 1] = c >= 2 ? b[4] : b[1];
+        xyz[3 * i + 2] = z;
+    }
+    lam_contour ct = { 0, q->points, 0, -1, LAM_SOLID, (b[3] - b[0]) * (b[4] - b[1]), 0, { b[0], b[1], b[3], b[4] } };
+    lam_layer sec = { .cut = z, .floor = b[2], .ceiling = b[5], .width = b[5] - b[2], .uv = uv,
+                      .npoints = q->points, .contours = &ct, .ncontours = q->points ? 1 : 0 };
+    lam_layer_info li = { 0, z, b[5] - b[2], b[2], b[5], &sec, NULL };
     int rc = sk->layer ? sk->layer(sk->ctx, &li) : LAM_OK;
     if (!rc && q->points && sk->contour) {
-        /* contour points go round the box's corners: vertices of a mesh
-         * print as they were drawn */
-        double *xyz = buf, *uv = buf + 3 * q->points;
-        for (size_t i = 0; i < q->points; i++) {
-            int c = (int)(i % 4);
-            uv[2 * i] = xyz[3 * i] = c == 1 || c == 2 ? b[3] : b[0];
-            uv[2 * i + 1] = xyz[3 * i + 1] = c >= 2 ? b[4] : b[1];
-            xyz[3 * i + 2] = z;
-        }
         lam_contour_info ci = { 1, 1, 0, z, xyz, uv, q->points, 0, 0, 0, 0 };
         rc = sk->contour(sk->ctx, &ci);
     }
     if (!rc && q->vectors && sk->hatches) {
-        double *xyz = buf, *uv = buf + 6 * q->vectors;
+        double *hx = buf, *hu = buf + 6 * q->vectors;
         for (size_t i = 0; i < 2 * q->vectors; i++) {
-            uv[2 * i] = xyz[3 * i] = inside(b[0], b[3], i);
-            uv[2 * i + 1] = xyz[3 * i + 1] = inside(b[1], b[4], i + 7);
-            xyz[3 * i + 2] = z;
+            hu[2 * i] = hx[3 * i] = inside(b[0], b[3], i);
+            hu[2 * i + 1] = hx[3 * i + 1] = inside(b[1], b[4], i + 7);
+            hx[3 * i + 2] = z;
         }
-        lam_hatch_info hi = { 1, LAM_VEC_CORE, "core", z, xyz, uv, q->vectors, 0, 0, 0, 0, 0 };
+        lam_hatch_info hi = { 1, LAM_VEC_CORE, "core", z, hx, hu, q->vectors, 0, 0, 0, 0, 0 };
         rc = sk->hatches(sk->ctx, &hi);
     }
     for (size_t t = 0; t < q->travels && !rc && sk->move; t++) {

@@ -212,7 +212,9 @@ int cmd_slice(int argc, char **argv)
         rc = cli_fail(&err);
         goto done;
     }
+    /* every output file is held to the limit as it is written */
     lam_writer_set_limit(w, a.max_output ? a.max_output : LAM_DEFAULT_MAX_OUTPUT);
+    if (jw) lam_writer_set_limit(jw, a.max_output ? a.max_output : LAM_DEFAULT_MAX_OUTPUT);
     lam_scan_time est;
     memset(&est, 0, sizeof est);
     po.time = &est;
@@ -237,12 +239,17 @@ int cmd_slice(int argc, char **argv)
     }
     cli_progress_stage(&rep.progress, "reading the model and preparing the layers");
     cli_size_sense(a.path, a.machine ? prof : NULL, m, s, &po);
+    if (!a.layers && cli_check_outputs(a.json_out, a.html, s, m, &po, &err)) {
+        rc = cli_fail_limit(&err, 0, CLI_RAISE_OUTPUT);
+        goto done;
+    }
     cli_progress_begin(&rep.progress, "slicing", a.path, nl);
     rc = lam_plan_run(s, m, &po, &sink, on_layer, &rep, &err);
     cli_progress_end(&rep.progress);
     if (rc) {
-        rc = err.code == LAM_EUSAGE ? cli_usage("slice", "%s", err.msg)
-                                    : cli_fail_limit(&err, lam_writer_over_limit(w), CLI_RAISE_OUTPUT);
+        int full = lam_writer_over_limit(w) || (jw && lam_writer_over_limit(jw)) ||
+                   (rep.view.hw && lam_writer_over_limit(rep.view.hw));
+        rc = err.code == LAM_EUSAGE ? cli_usage("slice", "%s", err.msg) : cli_fail_limit(&err, full, CLI_RAISE_OUTPUT);
         goto done;
     }
     size_t notes = cli_progress_notes(&rep.progress);
@@ -270,7 +277,7 @@ int cmd_slice(int argc, char **argv)
     }
     if (po.kind == LAM_PLAN_SLS && notes && !a.layers && lam_scan_estimates(&po.scan)) cli_print_estimate(a.path, &est);
     if (cli_view_save(&rep.view, &err)) {
-        rc = cli_fail(&err);
+        rc = cli_fail_limit(&err, strstr(err.msg, "exceeds the limit") != NULL, CLI_RAISE_OUTPUT);
         goto done;
     }
     {
@@ -283,7 +290,8 @@ int cmd_slice(int argc, char **argv)
     if (!rc && jw) {
         lam_writer *tmp = jw;
         jw = NULL;
-        if (lam_writer_commit(tmp, &err)) rc = cli_fail(&err);
+        int jover = lam_writer_over_limit(tmp);
+        if (lam_writer_commit(tmp, &err)) rc = cli_fail_limit(&err, jover, CLI_RAISE_OUTPUT);
     }
 done:
     if (sink.destroy) sink.destroy(sink.ctx);

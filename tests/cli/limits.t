@@ -91,4 +91,66 @@ done
 run "$LAMINA" validate cube100.ug --max-output 1M
 like "$RC $ERR" "^2 lamina validate: option --max-output does not apply to 'validate'" "validate writes no program: no --max-output"
 
+# ---- the estimate counts what the planners write --------------------------------
+# Every shipped profile on parts of different kinds (boxes, a frame with an
+# island, a hole, a sphere of facets): the estimate `info` gives (the one
+# `slice` checks) within a factor of 2 of the program written.
+python3 "$TESTS/cli/meshgen.py" sphere sphere.stl
+for prof in "$ROOT"/machines/*.yaml; do
+    pn=$(basename "$prof" .yaml)
+    for part in "$M/frame_island.stl" "$M/cube_hole.stl" "$M/thesis_cube.ug" sphere.stl; do
+        est=$("$LAMINA" info "$part" -m "$pn" --json 2>/dev/null | sed -n 's/.*"run":{[^}]*"bytes":\([0-9]*\)}.*/\1/p')
+        "$LAMINA" slice "$part" -m "$pn" -q -o est.out 2>/dev/null
+        act=$(wc -c <est.out 2>/dev/null || echo 0)
+        rm -f est.out
+        ok "$(awk -v e="${est:-0}" -v a="$act" 'BEGIN { print (a > 0 && e >= a / 2 && e <= 2 * a) ? 0 : 1 }')" \
+            "$pn, $(basename "$part"): estimate $est bytes, program $act bytes: within 2x"
+    done
+done
+
+# A stripe width of 1e-4 on the 40 x 40 frame: 400,000 stripes a layer cut
+# every hatch line (400 of them) into 400,000 pieces: over 10^11 vectors in
+# 667 layers, terabytes. Refused before planning with the estimate; and
+# with no memory to speak of: under a 1 GB address space (not under the
+# sanitizers, whose shadow memory needs terabytes of it).
+for sw in 1e-4 1e-6; do
+    printf 'inherits: lpbf-cli\nstripe_width: %s\n' "$sw" >fine.yaml
+    if ldd "$LAMINA" 2>/dev/null | grep -q libasan; then
+        run "$LAMINA" slice "$M/frame_island.stl" -m ./fine.yaml -j 4 -o fine.cli
+    else
+        run bash -c 'ulimit -v 1048576 && exec "$@"' - "$LAMINA" slice "$M/frame_island.stl" -m ./fine.yaml -j 4 -o fine.cli
+    fi
+    like "$RC $ERR" "^1 lamina: the job would write about [0-9.]+ [TP]B \(667 layers, [0-9.e+]+ contour points, [0-9.]+e\+1[0-9] hatch vectors\), more than the limit of 4 GB
+lamina: raise the limit with --max-output SIZE" "stripe_width $sw: refused before planning, within 1 GB of memory"
+    ok $(ls | grep -q 'fine\.cli' && echo 1 || echo 0) "stripe_width $sw: no output file, not even a temporary"
+done
+printf 'inherits: lpbf-cli\nhatch_distance: 2e-5\n' >fine.yaml
+run "$LAMINA" slice "$M/frame_island.stl" -m ./fine.yaml -j 4 -o fine.cli
+like "$RC $ERR" "^1 lamina: the job would write about [0-9.]+ [GT]B .*hatch vectors\), more than the limit of 4 GB" \
+    "hatch_distance 2e-5: 5000 times the lines, refused before planning"
+
+# ---- the other outputs ---------------------------------------------------------
+# --json and --html write every vector as an object with its kind and ends:
+# several times the CLI program's bytes. Each is estimated by its own
+# writer and held to --max-output as the program is.
+"$LAMINA" slice "$M/frame_island.stl" -m lpbf-cli -w 0.5 -q -o fr.cli --json fr.json --html fr.html --svg fr.svg
+prog=$(wc -c <fr.cli) json=$(wc -c <fr.json) html=$(wc -c <fr.html) svg=$(wc -c <fr.svg)
+ok $((json > 2 * prog && html > 2 * prog ? 0 : 1)) "the JSON ($json) and the viewer ($html) are over twice the program ($prog)"
+rm -f fr.*
+for o in json html; do
+    run "$LAMINA" slice "$M/frame_island.stl" -m lpbf-cli -w 0.5 --max-output $((2 * prog)) -o fr.cli --$o fr.$o
+    like "$RC $ERR" "^1 lamina: --$o fr\.$o would write about [0-9.]+ [kM]B \(40 layers, .*\), more than the limit of [0-9.]+ [kM]B
+lamina: raise the limit with --max-output SIZE" "--$o: refused before planning when its estimate passes --max-output"
+    ok $(ls | grep -q '^fr\.' && echo 1 || echo 0) "--$o: no file written"
+done
+# the SVG sheet draws every layer of a 40-layer run: over the program here
+"$LAMINA" slice "$M/thesis_cube.ug" -m sls-contours -q -o tc.sls --svg tc.svg
+prog=$(wc -c <tc.sls) svg=$(wc -c <tc.svg)
+ok $((svg > prog + 1000 ? 0 : 1)) "the thesis cube's sheet ($svg bytes) is larger than its program ($prog)"
+rm -f tc.*
+run "$LAMINA" slice "$M/thesis_cube.ug" -m sls-contours --max-output $((prog + 1000)) -o tc.sls --svg tc.svg
+like "$RC $ERR" "^1 lamina: tc\.svg: cannot write output: output exceeds the limit of $((prog + 1000)) bytes
+lamina: raise the limit with --max-output" "--svg: held to --max-output as it is written"
+ok $(ls | grep -q '^tc\.' && echo 1 || echo 0) "--svg: no file written, the program neither"
+
 done_testing
