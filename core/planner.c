@@ -20,6 +20,7 @@ void lam_plan_opts_init(lam_plan_opts *o)
     o->alternate = 1;
     o->scan.contour_count = 1;
     o->scan.contours_first = 1;
+    lam_out_costs_default(&o->costs);
     for (int t = 0; t < LAM_VEC_TYPES; t++) {
         o->scan.type[t].distance = 0.1;
         o->scan.type[t].stripe_width = 10;
@@ -66,65 +67,9 @@ void lam_job_label(const char *path, char *buf, size_t size)
     if (!n) snprintf(buf, size, "part");
 }
 
-/* ---- estimates ------------------------------------------------------------ */
-
-enum { BYTES_LINE = 64, BYTES_POINT = 24, BYTES_LAYER = 16 };
-
-void lam_job_estimate_layer(lam_job_estimate *e, const lam_plan_opts *o, size_t index, const double *box,
-                            double points)
-{
-    e->layers++;
-    if (o->kind == LAM_PLAN_LADRP) {
-        if (box) e->lines += lam_ladrp_lines(box, o->angle + (double)index * o->angle_step, o->bead);
-        e->points += points * o->perimeters;
-    } else {
-        e->points += points;
-    }
-    e->bytes = BYTES_LINE * e->lines + BYTES_POINT * e->points + BYTES_LAYER * (double)e->layers;
-}
-
-void lam_plan_estimate(const lam_slicer *s, const lam_plan_opts *o, lam_job_estimate *e)
-{
-    memset(e, 0, sizeof *e);
-    double box[4];
-    lam_slicer_uv_bounds(s, box);
-    size_t n = lam_slicer_count(s);
-    if (!n) return;
-    /* the points spread evenly: only their sum counts; one angle: one layer
-     * times n */
-    double per = lam_slicer_crossings(s) / (double)n;
-    if (o->kind == LAM_PLAN_LADRP && o->angle_step != 0) {
-        for (size_t i = 0; i < n; i++) lam_job_estimate_layer(e, o, i, box, per);
-        return;
-    }
-    lam_job_estimate_layer(e, o, 0, box, per);
-    e->layers = n;
-    e->lines *= (double)n;
-    e->points *= (double)n;
-    e->bytes *= (double)n;
-}
-
-int lam_plan_check_estimate(const lam_job_estimate *e, const lam_plan_opts *o, unsigned long long max_bytes,
-                            lam_error *err)
-{
-    if (!max_bytes) max_bytes = LAM_DEFAULT_MAX_OUTPUT;
-    if (!(e->bytes > (double)max_bytes)) return LAM_OK;
-    char a[32], b[32];
-    if (o->kind == LAM_PLAN_LADRP)
-        return lam_error_set(err, LAM_ELIMIT, NULL, 0, 0,
-                             "the job would write about %s (%zu layers, %.4g scan lines of bead %g), more than the "
-                             "limit of %s",
-                             lam_fmt_bytes(a, sizeof a, e->bytes), e->layers, e->lines, o->bead,
-                             lam_fmt_bytes(b, sizeof b, (double)max_bytes));
-    return lam_error_set(err, LAM_ELIMIT, NULL, 0, 0,
-                         "the job would write about %s (%zu layers, %.4g contour points), more than the limit of %s",
-                         lam_fmt_bytes(a, sizeof a, e->bytes), e->layers, e->points,
-                         lam_fmt_bytes(b, sizeof b, (double)max_bytes));
-}
-
 static void job_bbox(const lam_slicer *s, const lam_model *m, const lam_plan_opts *o, double bb[6])
 {
-    if (!o->frame_machine) {
+    if (!o->frame_machine && m) {
         memcpy(bb, m->stats.bbox, 6 * sizeof *bb);
         return;
     }
@@ -137,6 +82,34 @@ static void job_bbox(const lam_slicer *s, const lam_model *m, const lam_plan_opt
     bb[4] = box[3];
     bb[2] = planes[0];
     bb[5] = planes[lam_slicer_count(s)];
+}
+
+void lam_plan_job(const lam_slicer *s, const lam_model *m, const lam_plan_opts *o, lam_job_info *job,
+                  char label[128])
+{
+    const lam_frame *f = lam_slicer_frame(s);
+    memset(job, 0, sizeof *job);
+    job->name = o->name;
+    job->process = o->kind == LAM_PLAN_LADRP ? "ladrp" : "sls";
+    job->units = o->units;
+    job->layers = lam_slicer_count(s);
+    job->bead = o->bead;
+    job->rate = o->rate;
+    job->travel_rate = o->travel_rate;
+    job_bbox(s, m, o, job->bbox);
+    lam_job_label(m ? m->path : NULL, label, 128);
+    job->label = label;
+    job->model = m ? m->path : NULL;
+    job->frame = f;
+    job->frame_machine = o->frame_machine;
+    /* the stage starts at the model origin of the first layer's plane */
+    double cut0 = job->layers ? lam_slicer_cut(s, 0) : 0;
+    if (o->frame_machine) {
+        job->origin[0] = job->origin[1] = 0;
+        job->origin[2] = cut0;
+    } else {
+        lam_frame_to_model(f, 0, 0, cut0, job->origin);
+    }
 }
 
 /* The run's layers on the calling thread: each layer as soon as it and the
@@ -217,31 +190,9 @@ int lam_plan_run(lam_slicer *s, const lam_model *m, const lam_plan_opts *o, cons
     lam_job_estimate est;
     lam_plan_estimate(s, o, &est);
     if (lam_plan_check_estimate(&est, o, o->max_output, err)) return LAM_ELIMIT;
-    const lam_frame *f = lam_slicer_frame(s);
     lam_job_info job;
-    memset(&job, 0, sizeof job);
-    job.name = o->name;
-    job.process = o->kind == LAM_PLAN_LADRP ? "ladrp" : "sls";
-    job.units = o->units;
-    job.layers = lam_slicer_count(s);
-    job.bead = o->bead;
-    job.rate = o->rate;
-    job.travel_rate = o->travel_rate;
-    job_bbox(s, m, o, job.bbox);
     char label[128];
-    lam_job_label(m->path, label, sizeof label);
-    job.label = label;
-    job.model = m->path;
-    job.frame = f;
-    job.frame_machine = o->frame_machine;
-    /* the stage starts at the model origin of the first layer's plane */
-    double cut0 = job.layers ? lam_slicer_cut(s, 0) : 0;
-    if (o->frame_machine) {
-        job.origin[0] = job.origin[1] = 0;
-        job.origin[2] = cut0;
-    } else {
-        lam_frame_to_model(f, 0, 0, cut0, job.origin);
-    }
+    lam_plan_job(s, m, o, &job, label);
     int rc = sink->begin ? sink->begin(sink->ctx, &job) : LAM_OK;
     /* a worker holds a whole layer's operations until it is written: layers
      * estimated beyond LAM_THREAD_LAYER_MAX are streamed on one thread */

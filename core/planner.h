@@ -26,6 +26,7 @@
 #include "hatch.h"
 #include "plan.h"
 #include "slice.h"
+#include "writer.h"
 
 typedef enum lam_plan_kind { LAM_PLAN_LADRP, LAM_PLAN_SLS } lam_plan_kind;
 
@@ -35,6 +36,23 @@ typedef struct lam_ladrp_stats {
     double deposit_length, travel_length;
 } lam_ladrp_stats;
 typedef lam_ladrp_stats lam_ladrp_stats_out;
+
+/* Bytes of output per item of a job (core/estimate.c): measured on the
+ * job's own writer (lam_out_costs_measure, lam_program_costs) or, from
+ * lam_plan_opts_init, the defaults (a text program with numbers of about
+ * ten characters: 16 a layer, a contour block or a hatch block, 24 a
+ * contour point, 48 a hatch vector, 20 a LADRP deposit, 44 a travel with
+ * the laser's commands around it: 64 a scan line). */
+typedef struct lam_out_costs {
+    double job;              /* begin and end (preamble, postamble) */
+    double layer;            /* an empty layer */
+    double contour, point;   /* a contour block, and each of its points */
+    double block, vector;    /* a hatch block, and each of its vectors */
+    double travel;           /* a LADRP travel with the laser off and on again around it */
+    double deposit;          /* a LADRP deposit move */
+} lam_out_costs;
+
+void lam_out_costs_default(lam_out_costs *c);
 
 typedef struct lam_plan_opts {
     lam_plan_kind kind;
@@ -60,6 +78,9 @@ typedef struct lam_plan_opts {
                                     outward), so the beam's edge traces the part */
     unsigned long long max_output; /* lam_plan_run refuses a job estimated to write
                                       more (lam_plan_check_estimate); 0: the default */
+    lam_out_costs costs;         /* bytes per item of the program, for the estimate;
+                                    lam_plan_opts_init sets the defaults,
+                                    lam_program_costs measures them */
     lam_scan_cfg scan;           /* SLS: contour passes, hatching, skins, exposure
                                     and time (hatch.h); the planner sets
                                     scan.compensation: half the spot with
@@ -100,38 +121,75 @@ void lam_plan_opts_from_profile(lam_plan_opts *o, const struct lam_profile *p);
  * (-w 1e-6 on a 100 mm cube writes about 16 GB). */
 #define LAM_DEFAULT_MAX_OUTPUT (4ULL << 30)
 
-/* What a job will do, estimated from the model's extent before any layer
- * is made. */
+
+/* What a job will do, estimated before it is planned. */
 typedef struct lam_job_estimate {
     size_t layers;
+    size_t sampled;          /* the layers the counts were measured on (0: the model's extent) */
     double lines;            /* LADRP scan lines: per layer, the extent across the scan
-                                direction of the box of the sections / bead, + 1 */
-    double points;           /* contour points (SLS; LADRP perimeters) */
-    double bytes;            /* estimated output: 64 bytes a scan line (a travel, the
-                                laser on and off, a deposit: 60 in G-code, 90 in the
-                                thesis's dialect), 24 a contour point, 16 a layer */
+                                direction of the sections / bead, + 1 */
+    double points;           /* contour points: every SLS contour pass; LADRP perimeters */
+    double contours;         /* contour blocks (SLS), contour passes (LADRP perimeters) */
+    double vectors, blocks;  /* SLS hatch vectors and blocks */
+    double travels, deposits;/* LADRP moves */
+    double bytes;            /* the output, by o->costs */
 } lam_job_estimate;
 
 /* Scan lines a layer whose sections lie in box (umin vmin umax vmax) gets
  * at raster angle `deg` with bead d (0 for an empty box). */
 double lam_ladrp_lines(const double box[4], double deg, double bead);
 
-/* Add one layer to e: sections within box (NULL: the layer is empty), with
- * `points` contour points, index the layer's index in its run (for the
- * raster angle); e->bytes is brought up to date. */
-void lam_job_estimate_layer(lam_job_estimate *e, const lam_plan_opts *o, size_t index, const double *box,
-                            double points);
+/* Add layer L of a run of nlayers (0: unknown) to e, its counts times
+ * `weight`, as planning it with o would make them: every contour pass;
+ * hatch vectors from the region's area (area / hatch_distance of line),
+ * its boundary (where lines start and end: its extent across the lines /
+ * hatch_distance) and the strategy (a cut at every stripe_width or
+ * island_size along a line, a block per stripe or island); skins by
+ * position (the skin_layers at each end of the run); LADRP deposits from
+ * the boundary across the scan lines. e->bytes is brought up to date. */
+void lam_job_estimate_add(lam_job_estimate *e, const lam_plan_opts *o, const lam_layer *L, size_t nlayers,
+                          double weight);
 
-/* The estimate of planning slicer s's whole run with o: every layer within
- * the model's extent, points from lam_slicer_crossings. */
+/* e->bytes from e's counts and costs c. */
+void lam_job_estimate_bytes(lam_job_estimate *e, const lam_out_costs *c);
+
+/* The estimate of planning slicer s's whole run with o: up to
+ * LAM_ESTIMATE_SAMPLES layers evenly spread over the run are sliced (on a
+ * fork of s: s is not moved) and counted (lam_job_estimate_add), each
+ * standing for its share of the run. When slicing them fails, from the
+ * model's extent and lam_slicer_crossings (contour points only). */
+#define LAM_ESTIMATE_SAMPLES 32
 void lam_plan_estimate(const lam_slicer *s, const lam_plan_opts *o, lam_job_estimate *e);
+
+/* The bytes per item of the output a sink writes: sample jobs (an empty
+ * one, a layer, contours, hatch blocks and LADRP moves of two sizes, with
+ * coordinates inside job->bbox) are written through fresh sinks from
+ * open(arg, ...) into memory and their sizes compared. A sample the sink
+ * refuses (a writer without hatches) costs 0. Returns LAM_OK, or the error
+ * of open or out of memory. */
+typedef int (*lam_sink_open)(void *arg, lam_writer *w, lam_sink *out, lam_error *err);
+int lam_out_costs_measure(lam_sink_open open, void *arg, const lam_job_info *job, lam_out_costs *c,
+                          lam_error *err);
+
+/* The costs of profile p's program (its writer: lam_program_sink) for a
+ * job like `job` (lam_plan_job); on error c is left as it was. */
+int lam_program_costs(const struct lam_profile *p, const lam_job_info *job, lam_out_costs *c, lam_error *err);
+
+/* The job lam_plan_run describes to its sink's begin for slicer s and
+ * model m (NULL: the job's box from the slicer; label: room for 128
+ * bytes, the job's label). */
+void lam_plan_job(const lam_slicer *s, const lam_model *m, const lam_plan_opts *o, lam_job_info *job,
+                  char label[128]);
 
 /* LAM_ELIMIT when e->bytes passes max_bytes (0: LAM_DEFAULT_MAX_OUTPUT),
  * with a message that gives the estimate and what it comes from:
  * "the job would write about 16 GB (100000000 layers, 400000000 contour
- * points), more than the limit of 4 GB". */
+ * points, 0 hatch vectors), more than the limit of 4 GB". what: the output
+ * ("the job" when NULL: the program). */
 int lam_plan_check_estimate(const lam_job_estimate *e, const lam_plan_opts *o, unsigned long long max_bytes,
                             lam_error *err);
+int lam_check_output_estimate(const lam_job_estimate *e, const lam_plan_opts *o, const char *what,
+                              unsigned long long max_bytes, lam_error *err);
 
 /* Output per layer above which lam_plan_run does not use threads: 16 MB,
  * a hundred times a layer of the bench's hatching job. */

@@ -74,23 +74,13 @@ static const lrun *check_layers(lua_State *L, const lam_layer **ls, size_t n)
     return run;
 }
 
-/* The estimate of planning these layers (core/planner.h): each layer's
- * box from its contours, its points as they are. */
+/* The estimate of planning these layers (core/planner.h): each layer
+ * counted as it is (lam_job_estimate_add), skins by position in the run. */
 static void estimate(const lam_layer **ls, size_t n, const lam_plan_opts *o, lam_job_estimate *e)
 {
     memset(e, 0, sizeof *e);
-    for (size_t i = 0; i < n; i++) {
-        const lam_layer *ly = ls[i];
-        double b[4] = { INFINITY, INFINITY, -INFINITY, -INFINITY };
-        for (size_t k = 0; k < ly->ncontours; k++) {
-            const double *c = ly->contours[k].bbox;
-            if (c[0] < b[0]) b[0] = c[0];
-            if (c[1] < b[1]) b[1] = c[1];
-            if (c[2] > b[2]) b[2] = c[2];
-            if (c[3] > b[3]) b[3] = c[3];
-        }
-        lam_job_estimate_layer(e, o, ly->index, ly->ncontours ? b : NULL, (double)ly->npoints);
-    }
+    size_t run = n ? ls[n - 1]->index + 1 : 0;
+    for (size_t i = 0; i < n; i++) lam_job_estimate_add(e, o, ls[i], run, 1);
 }
 
 static size_t count_lines(const char *s, size_t len)
@@ -260,6 +250,12 @@ again:;
     lam_plan_opts o;
     lam_lua_plan_opts(&p, &o);
     o.max_output = (unsigned long long)max_output;
+    /* the estimate in the writer's own bytes (planner.h) */
+    lam_job_info cj = { .name = o.name, .process = o.kind == LAM_PLAN_LADRP ? "ladrp" : "sls", .units = o.units,
+                        .layers = n, .bead = o.bead, .rate = o.rate, .travel_rate = o.travel_rate, .label = run->label,
+                        .frame = &run->frame };
+    memcpy(cj.bbox, run->bbox, sizeof cj.bbox);
+    lam_program_costs(&p, &cj, &o.costs, NULL);
     lam_job_estimate est;
     estimate(ls, n, &o, &est);
     if (lam_plan_check_estimate(&est, &o, o.max_output, &j->err))

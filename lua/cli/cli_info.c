@@ -38,6 +38,10 @@ static int measure(const char *cmd, args *a, const lam_model *m, sizes *z)
     } else if (lam_slicer_new(m, &a->so, &s, &err)) {
         snprintf(z->why, sizeof z->why, "%s", err.msg);
     } else {
+        lam_job_info cj;
+        char label[128];
+        lam_plan_job(s, m, &po, &cj, label);
+        lam_program_costs(prof, &cj, &po.costs, NULL);
         lam_plan_estimate(s, &po, &z->est);
         z->sliced = 1;
         snprintf(z->machine, sizeof z->machine, "%s", prof->name ? prof->name : "lamina");

@@ -202,7 +202,9 @@ int cmd_slice(int argc, char **argv)
         rc = cli_fail_cmd("slice", &err);
         goto done;
     }
+    /* every output file is held to the limit as it is written */
     lam_writer_set_limit(w, a.max_output ? a.max_output : LAM_DEFAULT_MAX_OUTPUT);
+    if (jw) lam_writer_set_limit(jw, a.max_output ? a.max_output : LAM_DEFAULT_MAX_OUTPUT);
     lam_scan_time est;
     memset(&est, 0, sizeof est);
     po.time = &est;
@@ -217,14 +219,27 @@ int cmd_slice(int argc, char **argv)
         }
     }
     size_t nl = lam_slicer_count(s);
+    /* the estimate in the program's own bytes (the defaults if the
+     * writer cannot be sampled: it then fails the run itself) */
+    if (!a.layers) {
+        lam_job_info cj;
+        char label[128];
+        lam_plan_job(s, m, &po, &cj, label);
+        lam_program_costs(prof, &cj, &po.costs, NULL);
+    }
     cli_progress_stage(&rep.progress, "reading the model and preparing the layers");
     cli_size_sense(a.path, a.machine ? prof : NULL, m, s, &po);
+    if (!a.layers && cli_check_outputs(a.json_out, a.html, s, m, &po, &err)) {
+        rc = cli_fail_limit(&err, 0, CLI_RAISE_OUTPUT);
+        goto done;
+    }
     cli_progress_begin(&rep.progress, "slicing", a.path, nl);
     rc = lam_plan_run(s, m, &po, &sink, on_layer, &rep, &err);
     cli_progress_end(&rep.progress);
     if (rc) {
-        rc = err.code == LAM_EUSAGE ? cli_usage("slice", "%s", err.msg)
-                                    : cli_fail_limit(&err, lam_writer_over_limit(w), CLI_RAISE_OUTPUT);
+        int full = lam_writer_over_limit(w) || (jw && lam_writer_over_limit(jw)) ||
+                   (rep.view.hw && lam_writer_over_limit(rep.view.hw));
+        rc = err.code == LAM_EUSAGE ? cli_usage("slice", "%s", err.msg) : cli_fail_limit(&err, full, CLI_RAISE_OUTPUT);
         goto done;
     }
     size_t notes = cli_progress_notes(&rep.progress);
@@ -252,7 +267,7 @@ int cmd_slice(int argc, char **argv)
     }
     if (po.kind == LAM_PLAN_SLS && notes && !a.layers && lam_scan_estimates(&po.scan)) cli_print_estimate(a.path, &est);
     if (cli_view_save(&rep.view, &err)) {
-        rc = cli_fail_cmd("slice", &err);
+        rc = strstr(err.msg, "exceeds the limit") ? cli_fail_limit(&err, 1, CLI_RAISE_OUTPUT) : cli_fail_cmd("slice", &err);
         goto done;
     }
     {
@@ -266,7 +281,8 @@ int cmd_slice(int argc, char **argv)
     if (!rc && jw) {
         lam_writer *tmp = jw;
         jw = NULL;
-        if (lam_writer_commit(tmp, &err)) rc = cli_fail_cmd("slice", &err);
+        int jover = lam_writer_over_limit(tmp);
+        if (lam_writer_commit(tmp, &err)) rc = jover ? cli_fail_limit(&err, jover, CLI_RAISE_OUTPUT) : cli_fail_cmd("slice", &err);
     }
 done:
     if (sink.destroy) sink.destroy(sink.ctx);

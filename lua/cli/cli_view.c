@@ -10,6 +10,7 @@ int cli_view_open(cli_view *v, const args *a, lam_slicer *s, const lam_plan_opts
                   size_t *n, lam_error *err)
 {
     memset(v, 0, sizeof *v);
+    v->limit = a->max_output ? a->max_output : LAM_DEFAULT_MAX_OUTPUT;
     int rc = LAM_OK;
     if (a->svg) {
         double box[4];
@@ -20,8 +21,8 @@ int cli_view_open(cli_view *v, const args *a, lam_slicer *s, const lam_plan_opts
         rc = lam_svg_new(lam_slicer_count(s), box, title, &v->svg, err);
         if (!rc && !(rc = lam_svg_sink(v->svg, lam_slicer_frame(s), po->frame_machine, &sinks[*n], err))) (*n)++;
     }
-    if (!rc && a->html && !(rc = cli_writer("--html", a->html, &v->hw, err)) && !(rc = lam_html_sink(v->hw, &sinks[*n], err)))
-        (*n)++;
+    if (!rc && a->html && !(rc = cli_writer("--html", a->html, &v->hw, err))) lam_writer_set_limit(v->hw, v->limit);
+    if (!rc && a->html && !(rc = lam_html_sink(v->hw, &sinks[*n], err))) (*n)++;
     return rc;
 }
 
@@ -32,7 +33,13 @@ int cli_view_layer(cli_view *v, const lam_layer *L, lam_error *err)
 
 int cli_view_save(cli_view *v, lam_error *err)
 {
-    if (v->svg && cli_save_svg(v->svg, v->svg_path, err)) return err->code;
+    if (v->svg) {
+        lam_writer *w;
+        if (cli_writer("--svg", v->svg_path, &w, err)) return err->code;
+        lam_writer_set_limit(w, v->limit);
+        lam_svg_write(v->svg, w);
+        if (lam_writer_commit(w, err)) return err->code;
+    }
     if (v->hw) {
         lam_writer *w = v->hw;
         v->hw = NULL;

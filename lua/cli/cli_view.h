@@ -12,6 +12,7 @@ typedef struct cli_view {
     lam_svg *svg;
     const char *svg_path;
     lam_writer *hw;          /* the viewer's output */
+    unsigned long long limit;/* each file's most bytes (--max-output, or the default) */
 } cli_view;
 
 /* Start the pictures a asks for of slicer s's run planned with po, and add

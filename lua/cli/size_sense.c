@@ -3,6 +3,8 @@
 #include <stdio.h>
 
 #include "fmt.h"
+#include "html.h"
+#include "json_sink.h"
 
 int cli_size_sense(const char *path, const lam_profile *machine, const lam_model *m, const lam_slicer *s,
                    const lam_plan_opts *po)
@@ -48,4 +50,40 @@ int cli_size_sense(const char *path, const lam_profile *machine, const lam_model
         }
     }
     return n;
+}
+
+static int open_json(void *arg, lam_writer *w, lam_sink *out, lam_error *err)
+{
+    (void)arg;
+    return lam_json_sink(w, 0, out, err);
+}
+
+static int open_html(void *arg, lam_writer *w, lam_sink *out, lam_error *err)
+{
+    (void)arg;
+    return lam_html_sink(w, out, err);
+}
+
+int cli_check_outputs(const char *json, const char *html, const lam_slicer *s, const lam_model *m,
+                      const lam_plan_opts *po, lam_error *err)
+{
+    if (!json && !html) return LAM_OK;
+    lam_job_estimate e;
+    lam_plan_estimate(s, po, &e);
+    lam_job_info job;
+    char label[128];
+    lam_plan_job(s, m, po, &job, label);
+    const char *path[2] = { json, html }, *opt[2] = { "--json", "--html" };
+    lam_sink_open open[2] = { open_json, open_html };
+    for (int k = 0; k < 2; k++) {
+        if (!path[k]) continue;
+        lam_out_costs c;
+        int rc = lam_out_costs_measure(open[k], NULL, &job, &c, err);
+        if (rc) return rc;
+        lam_job_estimate_bytes(&e, &c);
+        char what[1100];
+        snprintf(what, sizeof what, "%s %s", opt[k], path[k]);
+        if ((rc = lam_check_output_estimate(&e, po, what, po->max_output, err))) return rc;
+    }
+    return LAM_OK;
 }

@@ -33,4 +33,14 @@
 int cli_size_sense(const char *path, const lam_profile *machine, const lam_model *m, const lam_slicer *s,
                    const lam_plan_opts *po);
 
+/* The run's other outputs held to the program's limit (--max-output, in
+ * po->max_output) before planning: --json FILE and --html FILE (either
+ * NULL: not asked for) estimated like the program, by their own sinks'
+ * costs (lam_out_costs_measure), each refused past the limit with LAM_ELIMIT
+ * and the estimate in err ("--json run.json would write about ..."). The
+ * SVG sheet draws at most LAM_SVG_MAX_PANELS layers and is held to the
+ * limit as it is written. */
+int cli_check_outputs(const char *json, const char *html, const lam_slicer *s, const lam_model *m,
+                      const lam_plan_opts *po, lam_error *err);
+
 #endif

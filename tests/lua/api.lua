@@ -292,14 +292,24 @@ T.ok(rot:text():find("0.00000 2.00000 0.00000 uline", 1, true) or rot:text():fin
 T.ok(ladrp:plan(cl, {bead_width = 0.5}).lines < lp.lines, "plan opts: wider bead, fewer lines")
 T.raises("2e+300 scan lines of bead 1e-300), more than the limit of 4 GB (raise the limit with the option max_output)",
          "plan: bead too small", ladrp.plan, ladrp, cl, {bead_width = 1e-300})
--- one layer of the 2 x 2 cube, bead 0.08: 2 / 0.08 + 1 = 26 scan lines, 64 bytes each, 16 for the layer
-T.raises("about 1.64 kB (1 layers, 26 scan lines of bead 0.08), more than the limit of 1 kB",
+-- one layer of the 2 x 2 cube, bead 0.08: 2 / 0.08 + 1 = 26 scan lines, the
+-- first of them on the top edge, so 25 deposits, each after a travel, and
+-- the travel down onto the first line; in the dialect's bytes: per travel
+-- "0 penup", "X Y Z uline" (31 bytes), "0 pendown", "0.15 feedrate", per
+-- deposit a uline (30): over 1.6 kB
+T.raises("kB (1 layers, 26 scan lines of bead 0.08), more than the limit of 1 kB",
          "plan: max_output lowers the limit", ladrp.plan, ladrp, {cl[1]}, {max_output = 1024})
--- the estimate passes 2000 bytes; the program itself (2417 bytes: 25 lines of
--- penup, travel, pendown, feedrate, deposit) does not: the limit holds as it is written
-local none, over = ladrp:plan({cl[1]}, {max_output = 2000})
-T.ok(none == nil and over:match("output exceeds the limit of 2000 bytes"), "plan: the written program is held to the limit too")
-T.is(ladrp:plan({cl[1]}, {max_output = 2417}).bytes, 2417, "plan: a program of exactly the limit is planned")
+-- the estimate takes the plan's bead (0.08: about 2.4 kB, the program's 25
+-- lines of penup, travel, pendown, feedrate, deposit); a recipe's layer
+-- function that halves it as the layer is planned doubles the lines: the
+-- program passes 3000 bytes, the estimate does not, and the limit holds as
+-- the program is written
+local halve = function() return { bead_width = 0.04 } end
+local none, over = ladrp:plan({cl[1]}, {max_output = 3000, layer = halve})
+T.ok(none == nil and over:match("output exceeds the limit of 3000 bytes"), "plan: the written program is held to the limit too")
+local whole = ladrp:plan({cl[1]}, {layer = halve}).bytes
+T.ok(whole > 3000, "plan: the halved bead's program is over 3000 bytes", whole)
+T.is(ladrp:plan({cl[1]}, {max_output = whole, layer = halve}).bytes, whole, "plan: a program of exactly the limit is planned")
 
 local out = os.tmpname()
 T.ok(plan:write(out), "plan:write")

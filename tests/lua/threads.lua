@@ -158,11 +158,16 @@ for _, how in ipairs{"layer", "order", "plan", "order-hatch"} do
          how .. ": nil and the planner's message for that layer", m1)
   end
 end
--- an output limit passed half-way while writing
--- (hatches are not in the estimate: this one passes it)
-local full = #assert(cli:plan(sph, {threads = 1, hatch_strategy = "lines", hatch_distance = 0.2})):text()
-local n1, e1 = cli:plan(sph, {threads = 1, hatch_strategy = "lines", hatch_distance = 0.2, max_output = full // 2})
-local n4, e4 = cli:plan(sph, {threads = 4, hatch_strategy = "lines", hatch_distance = 0.2, max_output = full // 2})
+-- an output limit passed half-way while writing: the estimate takes the
+-- plan's hatch distance, 0.4; the recipe's layer function makes it 0.05
+-- as the layers are planned (8 times the vectors), so it passes the estimate
+local fine = function() return { hatch_distance = 0.05 } end
+local function lim(threads, max)
+  return cli:plan(sph, {threads = threads, hatch_strategy = "lines", hatch_distance = 0.4, layer = fine, max_output = max})
+end
+local full = #assert(lim(1)):text()
+local n1, e1 = lim(1, full // 2)
+local n4, e4 = lim(4, full // 2)
 T.ok(n1 == nil and n4 == nil and e1 == e4 and e1:find("output exceeds the limit", 1, true),
      "an output limit reached half-way: nil and the same message with 1 and 4 threads", e4)
 
