@@ -2,6 +2,7 @@
 
 #include "geos.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -33,6 +34,9 @@ int lam_fill_nonzero(lam_loops *loops, lam_error *err)
     int rc = lam_geos_init(&c, err);
     if (rc) return rc;
     size_t nl = loops->nloops;
+    double mag = 0;
+    for (size_t i = 0; i < 2 * loops->npoints; i++) mag = fmax(mag, fabs(loops->uv[i]));
+    c.grid = lam_geos_grid(mag);
     GEOSGeometry **lines = calloc(nl, sizeof *lines), *mls = NULL, *noded = NULL, *faces = NULL, *uni = NULL;
     GEOSGeometry **kept = NULL;
     lam_loops_builder out = { 0 };
@@ -63,8 +67,10 @@ int lam_fill_nonzero(lam_loops *loops, lam_error *err)
     }
     free(lines); /* owned by mls now */
     lines = NULL;
-    /* union of linework nodes it at every crossing */
-    if (!(noded = GEOSUnaryUnion_r(c.h, mls))) {
+    /* union of linework nodes it at every crossing, by snap-rounding on
+     * the grid (geos.h): near-coincident edges of overlapping shells are
+     * noded where a floating-point noder finds "non-noded intersections" */
+    if (!(noded = GEOSUnaryUnionPrec_r(c.h, mls, c.grid))) {
         rc = LAM_EGEOM;
         goto done;
     }
@@ -100,7 +106,7 @@ int lam_fill_nonzero(lam_loops *loops, lam_error *err)
         }
         free(kept);
         kept = NULL;
-        uni = GEOSUnaryUnion_r(c.h, coll);
+        uni = GEOSUnaryUnionPrec_r(c.h, coll, c.grid); /* faces of one noding: valid, edge to edge */
         GEOSGeom_destroy_r(c.h, coll);
         if (!uni) {
             rc = LAM_EGEOM;

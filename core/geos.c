@@ -2,6 +2,7 @@
 
 #include "slice.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -18,6 +19,7 @@ int lam_geos_init(lam_geos *g, lam_error *err)
 {
     g->msg[0] = '\0';
     g->h = NULL;
+    g->grid = lam_geos_grid(1);
     int rc = lam_geos_load(err);
     if (rc) return rc;
     g->h = GEOS_init_r();
@@ -96,6 +98,21 @@ static GEOSGeometry *ring_of(lam_geos *c, const lam_layer *L, const lam_contour 
     return GEOSGeom_createLinearRing_r(c->h, cs);
 }
 
+double lam_geos_grid(double magnitude)
+{
+    int e = 1; /* 1 = 2^0 < 2^1 */
+    if (magnitude > 0 && isfinite(magnitude)) (void)frexp(magnitude, &e); /* magnitude < 2^e */
+    return ldexp(1.0, e - LAM_GEOS_GRID_BITS);
+}
+
+double lam_geos_layer_magnitude(const lam_layer *L)
+{
+    double m = 0;
+    for (size_t i = 0; i < L->ncontours; i++)
+        for (int k = 0; k < 4; k++) m = fmax(m, fabs(L->contours[i].bbox[k]));
+    return m;
+}
+
 /* A section is valid by construction up to rounding: where the plane meets
  * the model at a point of two boundaries (a hole touching the outline, as
  * an oblique cut through a cube with a hole makes), the hole's vertex may
@@ -103,18 +120,64 @@ static GEOSGeometry *ring_of(lam_geos *c, const lam_layer *L, const lam_contour 
  * region ("TopologyException: ... Self-intersection"). Such a region is
  * repaired by GEOS's own MakeValid (the structure method: areas stay areas,
  * collapsed slivers go), so hatching and offsets see the material the
- * section means. Takes mp; NULL when GEOS fails. */
-static GEOSGeometry *valid_region(lam_geos *c, GEOSGeometry *mp)
+ * section means. */
+GEOSGeometry *lam_geos_valid(lam_geos *c, GEOSGeometry *x)
 {
-    if (GEOSisValid_r(c->h, mp) == 1) return mp;
+    if (!x) return NULL;
+    if (GEOSisValid_r(c->h, x) == 1) return x;
     GEOSMakeValidParams *p = GEOSMakeValidParams_create_r(c->h);
     GEOSGeometry *fixed = NULL;
     if (p && GEOSMakeValidParams_setMethod_r(c->h, p, GEOS_MAKE_VALID_STRUCTURE) &&
         GEOSMakeValidParams_setKeepCollapsed_r(c->h, p, 0))
-        fixed = GEOSMakeValidWithParams_r(c->h, mp, p);
+        fixed = GEOSMakeValidWithParams_r(c->h, x, p);
     if (p) GEOSMakeValidParams_destroy_r(c->h, p);
-    GEOSGeom_destroy_r(c->h, mp);
+    GEOSGeom_destroy_r(c->h, x);
     return fixed;
+}
+
+/* Snap-rounding overlays may add lower-dimension pieces (an intersection
+ * of regions that touch along an edge or at a point, a sliver collapsed
+ * on the grid): they hold no material, and a next overlay refuses mixed
+ * dimensions, so only the polygons are kept. Takes x. */
+static GEOSGeometry *polygons_of(lam_geos *c, GEOSGeometry *x)
+{
+    if (!x || GEOSGeomTypeId_r(c->h, x) != GEOS_GEOMETRYCOLLECTION) return x;
+    int n = GEOSGetNumGeometries_r(c->h, x);
+    GEOSGeometry **keep = calloc(n > 0 ? (size_t)n : 1, sizeof *keep), *out = NULL;
+    unsigned k = 0;
+    int bad = !keep;
+    for (int i = 0; i < n && !bad; i++) {
+        const GEOSGeometry *p = GEOSGetGeometryN_r(c->h, x, i);
+        int t = p ? GEOSGeomTypeId_r(c->h, p) : -1;
+        if (t == GEOS_POLYGON) bad = !(keep[k++] = GEOSGeom_clone_r(c->h, p));
+        else if (t == GEOS_MULTIPOLYGON || t == GEOS_GEOMETRYCOLLECTION)
+            bad = 1; /* overlays return flat collections */
+    }
+    if (!bad) out = GEOSGeom_createCollection_r(c->h, GEOS_MULTIPOLYGON, keep, k);
+    if (!out)
+        for (unsigned i = 0; keep && i < k; i++)
+            if (keep[i]) GEOSGeom_destroy_r(c->h, keep[i]);
+    free(keep);
+    GEOSGeom_destroy_r(c->h, x);
+    return out;
+}
+
+GEOSGeometry *lam_geos_intersection(lam_geos *c, const GEOSGeometry *a, const GEOSGeometry *b)
+{
+    return polygons_of(c, GEOSIntersectionPrec_r(c->h, a, b, c->grid));
+}
+
+GEOSGeometry *lam_geos_difference(lam_geos *c, const GEOSGeometry *a, const GEOSGeometry *b)
+{
+    return polygons_of(c, GEOSDifferencePrec_r(c->h, a, b, c->grid));
+}
+
+/* Buffer output is valid in principle, but it is built in floating point
+ * from a region's near-coincident edges: it is checked like any input of a
+ * boolean. */
+GEOSGeometry *lam_geos_offset(lam_geos *c, const GEOSGeometry *a, double d)
+{
+    return lam_geos_valid(c, GEOSBufferWithStyle_r(c->h, a, d, 8, GEOSBUF_CAP_FLAT, GEOSBUF_JOIN_MITRE, 2.0));
 }
 
 GEOSGeometry *lam_geos_layer_region(lam_geos *c, const lam_layer *L)
@@ -152,5 +215,5 @@ GEOSGeometry *lam_geos_layer_region(lam_geos *c, const lam_layer *L)
     if (!mp)
         for (unsigned k = 0; k < np; k++) GEOSGeom_destroy_r(c->h, polys[k]);
     free(polys);
-    return mp ? valid_region(c, mp) : NULL;
+    return lam_geos_valid(c, mp);
 }

@@ -28,6 +28,7 @@ int lam_geos_load(lam_error *err);
     X(GEOSCoordSeq_getXY_r)                   \
     X(GEOSCoordSeq_setXY_r)                   \
     X(GEOSDifference_r)                       \
+    X(GEOSDifferencePrec_r)                   \
     X(GEOSGeomGetX_r)                         \
     X(GEOSGeomGetY_r)                         \
     X(GEOSGeomTypeId_r)                       \
@@ -48,6 +49,7 @@ int lam_geos_load(lam_error *err);
     X(GEOSGetNumGeometries_r)                 \
     X(GEOSGetNumInteriorRings_r)              \
     X(GEOSIntersection_r)                     \
+    X(GEOSIntersectionPrec_r)                 \
     X(GEOSMakeValidParams_create_r)           \
     X(GEOSMakeValidParams_destroy_r)          \
     X(GEOSMakeValidParams_setKeepCollapsed_r) \
@@ -56,6 +58,7 @@ int lam_geos_load(lam_error *err);
     X(GEOSPointOnSurface_r)                   \
     X(GEOSPolygonize_r)                       \
     X(GEOSUnaryUnion_r)                       \
+    X(GEOSUnaryUnionPrec_r)                   \
     X(GEOS_finish_r)                          \
     X(GEOS_init_r)                            \
     X(GEOSisEmpty_r)                          \
@@ -74,6 +77,7 @@ LAM_GEOS_FUNCS(LAM_LAZYLIB_EXTERN)
 #define GEOSCoordSeq_getXY_r lam_dl_GEOSCoordSeq_getXY_r
 #define GEOSCoordSeq_setXY_r lam_dl_GEOSCoordSeq_setXY_r
 #define GEOSDifference_r lam_dl_GEOSDifference_r
+#define GEOSDifferencePrec_r lam_dl_GEOSDifferencePrec_r
 #define GEOSGeomGetX_r lam_dl_GEOSGeomGetX_r
 #define GEOSGeomGetY_r lam_dl_GEOSGeomGetY_r
 #define GEOSGeomTypeId_r lam_dl_GEOSGeomTypeId_r
@@ -94,6 +98,7 @@ LAM_GEOS_FUNCS(LAM_LAZYLIB_EXTERN)
 #define GEOSGetNumGeometries_r lam_dl_GEOSGetNumGeometries_r
 #define GEOSGetNumInteriorRings_r lam_dl_GEOSGetNumInteriorRings_r
 #define GEOSIntersection_r lam_dl_GEOSIntersection_r
+#define GEOSIntersectionPrec_r lam_dl_GEOSIntersectionPrec_r
 #define GEOSMakeValidParams_create_r lam_dl_GEOSMakeValidParams_create_r
 #define GEOSMakeValidParams_destroy_r lam_dl_GEOSMakeValidParams_destroy_r
 #define GEOSMakeValidParams_setKeepCollapsed_r lam_dl_GEOSMakeValidParams_setKeepCollapsed_r
@@ -102,6 +107,7 @@ LAM_GEOS_FUNCS(LAM_LAZYLIB_EXTERN)
 #define GEOSPointOnSurface_r lam_dl_GEOSPointOnSurface_r
 #define GEOSPolygonize_r lam_dl_GEOSPolygonize_r
 #define GEOSUnaryUnion_r lam_dl_GEOSUnaryUnion_r
+#define GEOSUnaryUnionPrec_r lam_dl_GEOSUnaryUnionPrec_r
 #define GEOS_finish_r lam_dl_GEOS_finish_r
 #define GEOS_init_r lam_dl_GEOS_init_r
 #define GEOSisEmpty_r lam_dl_GEOSisEmpty_r

@@ -524,7 +524,7 @@ static int covered(lam_geos *g, const lam_layer *const *layers, size_t have, siz
             acc = r;
             continue;
         }
-        GEOSGeometry *x = GEOSIntersection_r(g->h, acc, r);
+        GEOSGeometry *x = lam_geos_intersection(g, acc, r);
         GEOSGeom_destroy_r(g->h, acc);
         GEOSGeom_destroy_r(g->h, r);
         if (!x) return LAM_EGEOM;
@@ -537,13 +537,59 @@ static int covered(lam_geos *g, const lam_layer *const *layers, size_t have, siz
 /* a - b; b NULL: nothing covers, a copy of a */
 static GEOSGeometry *minus(lam_geos *g, const GEOSGeometry *a, const GEOSGeometry *b)
 {
-    return b ? GEOSDifference_r(g->h, a, b) : GEOSGeom_clone_r(g->h, a);
+    return b ? lam_geos_difference(g, a, b) : GEOSGeom_clone_r(g->h, a);
 }
 
 static double area_of(lam_geos *g, const GEOSGeometry *x)
 {
     double a = 0;
     return x && GEOSArea_r(g->h, x, &a) ? a : 0;
+}
+
+/* The grid of a layer's booleans: from the largest coordinate of the layer
+ * and the skin layers it is compared with (geos.h), so that it depends on
+ * the layers only. */
+static double skin_grid(const lam_layer *L, const lam_layer *const *below, size_t nbelow,
+                        const lam_layer *const *above, size_t nabove, size_t n)
+{
+    double m = lam_geos_layer_magnitude(L);
+    for (size_t i = 0; i < n && i < nbelow; i++)
+        if (below[i]) m = fmax(m, lam_geos_layer_magnitude(below[i]));
+    for (size_t i = 0; i < n && i < nabove; i++)
+        if (above[i]) m = fmax(m, lam_geos_layer_magnitude(above[i]));
+    return lam_geos_grid(m);
+}
+
+/* Core, up-skin and down-skin of region into part[] (see hatch.h). */
+static int split_skins(lam_geos *g, const GEOSGeometry *region, const lam_layer *const *below, size_t nbelow,
+                       const lam_layer *const *above, size_t nabove, size_t n, GEOSGeometry **part)
+{
+    GEOSGeometry *down_cov = NULL, *up_cov = NULL, *rest = NULL;
+    int rc = covered(g, below, nbelow, n, &down_cov);
+    if (!rc) rc = covered(g, above, nabove, n, &up_cov);
+    if (!rc) {
+        /* down-skin first: a region open both below and above is down-skin */
+        part[LAM_VEC_DOWNSKIN] = minus(g, region, down_cov);
+        rest = part[LAM_VEC_DOWNSKIN] ? lam_geos_difference(g, region, part[LAM_VEC_DOWNSKIN]) : NULL;
+        part[LAM_VEC_UPSKIN] = rest ? minus(g, rest, up_cov) : NULL;
+        part[LAM_VEC_CORE] = rest && part[LAM_VEC_UPSKIN] ? lam_geos_difference(g, rest, part[LAM_VEC_UPSKIN]) : NULL;
+        if (!part[LAM_VEC_DOWNSKIN] || !part[LAM_VEC_UPSKIN] || !part[LAM_VEC_CORE]) rc = LAM_EGEOM;
+    }
+    if (rest) GEOSGeom_destroy_r(g->h, rest);
+    if (down_cov) GEOSGeom_destroy_r(g->h, down_cov);
+    if (up_cov) GEOSGeom_destroy_r(g->h, up_cov);
+    return rc;
+}
+
+static void hatch_error(lam_error *err, int rc, const lam_layer *L, const char *stage, const lam_geos *g)
+{
+    if (rc == LAM_ENOMEM) lam_error_set(err, rc, NULL, 0, 0, "out of memory hatching layer %zu", L->index + 1);
+    else if (rc == LAM_EUSAGE)
+        lam_error_set(err, rc, NULL, 0, 0, "layer %zu: the hatch distance, stripe width or island size is too small "
+                                           "for the layer (more than %.0f vectors)", L->index + 1, MAX_VECTORS);
+    else
+        lam_error_set(err, rc, NULL, 0, 0, "layer %zu: %s: GEOS: %s", L->index + 1, stage,
+                      g->msg[0] ? g->msg : "failed");
 }
 
 int lam_hatch_layer(const lam_layer *L, const lam_layer *const *below, size_t nbelow, const lam_layer *const *above,
@@ -558,20 +604,15 @@ int lam_hatch_layer(const lam_layer *L, const lam_layer *const *below, size_t nb
     memset(&h, 0, sizeof h);
     h.g = &g;
     h.budget = (size_t)MAX_VECTORS;
-    GEOSGeometry *region = NULL, *hatch = NULL, *down_cov = NULL, *up_cov = NULL;
-    GEOSGeometry *part[LAM_VEC_TYPES] = { NULL };
-    if (!(region = lam_geos_layer_region(&g, L))) rc = LAM_EGEOM;
     size_t n = cfg->skin_layers > 0 ? (size_t)cfg->skin_layers : 0;
-    if (!rc && n) rc = covered(&g, below, nbelow, n, &down_cov);
-    if (!rc && n) rc = covered(&g, above, nabove, n, &up_cov);
+    g.grid = skin_grid(L, below, nbelow, above, nabove, n);
+    GEOSGeometry *region = NULL, *hatch = NULL;
+    GEOSGeometry *part[LAM_VEC_TYPES] = { NULL };
+    const char *stage = "region";
+    if (!(region = lam_geos_layer_region(&g, L))) rc = LAM_EGEOM;
     if (!rc && n) {
-        /* down-skin first: a region open both below and above is down-skin */
-        part[LAM_VEC_DOWNSKIN] = minus(&g, region, down_cov);
-        GEOSGeometry *rest = part[LAM_VEC_DOWNSKIN] ? GEOSDifference_r(g.h, region, part[LAM_VEC_DOWNSKIN]) : NULL;
-        part[LAM_VEC_UPSKIN] = rest ? minus(&g, rest, up_cov) : NULL;
-        part[LAM_VEC_CORE] = rest && part[LAM_VEC_UPSKIN] ? minus(&g, rest, part[LAM_VEC_UPSKIN]) : NULL;
-        if (rest) GEOSGeom_destroy_r(g.h, rest);
-        if (!part[LAM_VEC_DOWNSKIN] || !part[LAM_VEC_UPSKIN] || !part[LAM_VEC_CORE]) rc = LAM_EGEOM;
+        stage = "skins";
+        rc = split_skins(&g, region, below, nbelow, above, nabove, n, part);
     } else if (!rc) {
         if (!(part[LAM_VEC_CORE] = GEOSGeom_clone_r(g.h, region))) rc = LAM_EGEOM;
     }
@@ -579,13 +620,14 @@ int lam_hatch_layer(const lam_layer *L, const lam_layer *const *below, size_t nb
     double inset = cfg->compensation + (cfg->contour_count > 1 ? (cfg->contour_count - 1) * cfg->contour_distance : 0) +
                    cfg->hatch_offset;
     if (!rc && lam_scan_hatches(cfg)) {
-        hatch = inset > 0 ? GEOSBufferWithStyle_r(g.h, region, -inset, 8, GEOSBUF_CAP_FLAT, GEOSBUF_JOIN_MITRE, 2.0)
-                          : GEOSGeom_clone_r(g.h, region);
+        stage = "hatch inset";
+        hatch = inset > 0 ? lam_geos_offset(&g, region, -inset) : GEOSGeom_clone_r(g.h, region);
         if (!hatch) rc = LAM_EGEOM;
     }
     for (int t = LAM_VEC_CORE; t < LAM_VEC_TYPES && !rc && hatch; t++) {
         if (!part[t] || GEOSisEmpty_r(g.h, part[t]) || cfg->type[t].strategy == LAM_HATCH_NONE) continue;
-        GEOSGeometry *a = n ? GEOSIntersection_r(g.h, hatch, part[t]) : GEOSGeom_clone_r(g.h, hatch);
+        stage = lam_vec_type_name(t);
+        GEOSGeometry *a = n ? lam_geos_intersection(&g, hatch, part[t]) : GEOSGeom_clone_r(g.h, hatch);
         if (!a) {
             rc = LAM_EGEOM;
             break;
@@ -596,18 +638,11 @@ int lam_hatch_layer(const lam_layer *L, const lam_layer *const *below, size_t nb
     for (int t = 0; t < LAM_VEC_TYPES; t++)
         if (part[t]) GEOSGeom_destroy_r(g.h, part[t]);
     if (hatch) GEOSGeom_destroy_r(g.h, hatch);
-    if (down_cov) GEOSGeom_destroy_r(g.h, down_cov);
-    if (up_cov) GEOSGeom_destroy_r(g.h, up_cov);
     if (region) GEOSGeom_destroy_r(g.h, region);
     free(h.cr);
     free(h.segs);
     free(h.ring);
-    if (rc == LAM_ENOMEM) lam_error_set(err, rc, NULL, 0, 0, "out of memory hatching layer %zu", L->index + 1);
-    else if (rc == LAM_EUSAGE)
-        lam_error_set(err, rc, NULL, 0, 0, "layer %zu: the hatch distance, stripe width or island size is too small "
-                                           "for the layer (more than %.0f vectors)", L->index + 1, MAX_VECTORS);
-    else if (rc)
-        lam_error_set(err, rc, NULL, 0, 0, "hatching layer %zu failed%s%s", L->index + 1, g.msg[0] ? ": " : "", g.msg);
+    if (rc) hatch_error(err, rc, L, stage, &g);
     lam_geos_finish(&g);
     return rc;
 }
