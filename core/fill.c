@@ -138,6 +138,7 @@ done:
     lam_loops_builder_free(&out);
     lam_geos_finish(&c);
     if (rc == LAM_ENOMEM) return lam_error_set(err, rc, NULL, 0, 0, "out of memory merging overlapping outlines");
-    if (rc) return lam_error_set(err, rc, NULL, 0, 0, "merging overlapping outlines failed%s%s", c.msg[0] ? ": " : "", c.msg);
+    if (rc) return lam_error_set(err, rc, NULL, 0, 0, "non-zero fill (merging overlapping outlines): GEOS: %s",
+                                  c.msg[0] ? c.msg : "failed");
     return LAM_OK;
 }

@@ -204,5 +204,8 @@ int lam_plan_run(lam_slicer *s, const lam_model *m, const lam_plan_opts *o, cons
                            : plan_serial(s, o, sink, cb, cbctx, job.origin, err);
     if (!rc && sink->end) rc = sink->end(sink->ctx);
     if (rc && err && err->code == LAM_OK) lam_error_set(err, rc, NULL, 0, 0, "planning failed");
+    /* geometry that fails says which model (its message: the layer and the stage) */
+    if (rc && err && err->code == LAM_EGEOM && !err->file[0] && m->path)
+        lam_error_set(err, err->code, m->path, 0, 0, "%s", err->msg);
     return rc;
 }

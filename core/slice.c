@@ -1092,6 +1092,7 @@ int lam_slicer_next(lam_slicer *s, lam_layer **out, lam_error *err)
     if (!rc) rc = lam_loops_tidy(&loops, s->min_area, !s->o.fill_nonzero, &L->slivers, &L->twins, err);
     if (!rc && s->o.fill_nonzero) {
         rc = lam_fill_nonzero(&loops, err);
+        if (rc == LAM_EGEOM && err) lam_error_set(err, rc, NULL, 0, 0, "layer %zu: %s", i + 1, err->msg);
         if (!rc) rc = lam_loops_tidy(&loops, s->min_area, 0, &L->slivers, &L->twins, err);
     }
     if (!rc) rc = lam_contours_assign(L, &loops, err);
