@@ -71,7 +71,7 @@ is "$(cksum <model.ug)" "$sum" "the model is untouched"
 # A slice that runs until it is stopped, writing from the start: LADRP
 # with a bead of 1e-7, 2 * 10^7 scan lines in each of the 2 layers.
 printf 'inherits: creol-ladrp\nbead_width: 1e-7\n' >fine.yaml
-LONG=(slice model.ug -m ./fine.yaml -w 1)
+LONG=(slice model.ug -m ./fine.yaml -w 1 --max-output 16G) # about 5 GB, stopped long before
 # wait_for COND-COMMAND: poll until it holds, at most about 60 s
 wait_for() {
     for _ in $(seq 1 6000); do eval "$1" && return 0; sleep 0.01; done
