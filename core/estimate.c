@@ -189,6 +189,15 @@ void lam_plan_estimate(const lam_slicer *s, const lam_plan_opts *o, lam_job_esti
         lam_job_estimate_bytes(e, &o->costs);
         return;
     }
+    /* A mesh that is not closed is estimated from its extent: its layers
+     * are open outlines, and closing their gaps is the slicer's slowest
+     * work (2^18 open one-triangle shells took minutes and gigabytes per
+     * sampled layer), while an estimate must cost a few layers at most. */
+    const lam_model_stats *ms = &lam_slicer_model(s)->stats;
+    if (ms->boundary_edges || ms->nonmanifold_edges) {
+        estimate_extent(s, o, e);
+        return;
+    }
     size_t k = n < LAM_ESTIMATE_SAMPLES ? n : LAM_ESTIMATE_SAMPLES;
     lam_slicer *f = NULL;
     int rc = lam_slicer_fork(s, &f, NULL);

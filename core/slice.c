@@ -456,6 +456,7 @@ fail:
 
 size_t lam_slicer_count(const lam_slicer *s) { return s->nlayers; }
 double lam_slicer_crossings(const lam_slicer *s) { return s->crossings; }
+const lam_model *lam_slicer_model(const lam_slicer *s) { return s->m; }
 const double *lam_slicer_planes(const lam_slicer *s) { return s->planes; }
 double lam_slicer_cut(const lam_slicer *s, size_t i)
 {

@@ -150,6 +150,9 @@ const double *lam_slicer_planes(const lam_slicer *s);
  * run, known before slicing. */
 double lam_slicer_crossings(const lam_slicer *s);
 
+/* The model s slices (borrowed: owned by the caller of lam_slicer_new). */
+const lam_model *lam_slicer_model(const lam_slicer *s);
+
 /* Cut height of layer i (0 <= i < count). */
 double lam_slicer_cut(const lam_slicer *s, size_t i);
 
