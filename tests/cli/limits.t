@@ -61,16 +61,7 @@ is "$RC" 0 "--max-output 1M: the same job runs"
 # and a plate 1 thick at height 49 of a run of 1000 layers of 0.1 (layers
 # 490-499) lies between the samples at layers 484 and 515: the estimate
 # sees only the 0.2-wide pin beside it, which has no room for hatches.
-cat >pinplate.ug <<'UG'
-v a 0 0 0; v b 0.2 0 0; v c 0.2 0.2 0; v d 0 0.2 0;
-v e 0 0 100; v f 0.2 0 100; v g 0.2 0.2 100; v h 0 0.2 100;
-f bottom (a d c b); f top (e f g h); f front (a b f e);
-f right (b c g f); f back (c d h g); f left (d a e h);
-v A 10 0 49; v B 110 0 49; v C 110 100 49; v D 10 100 49;
-v E 10 0 50; v F 110 0 50; v G 110 100 50; v H 10 100 50;
-f pbottom (A D C B); f ptop (E F G H); f pfront (A B F E);
-f pright (B C G F); f pback (C D H G); f pleft (D A E H);
-UG
+cp "$M/pinplate.ug" pinplate.ug # tests/models: also threads.t's
 run "$LAMINA" slice pinplate.ug -m lpbf-cli -w 0.1 -o pp.cli
 is "$RC" 0 "the pin and plate are sliced"
 size=$(wc -c <pp.cli)

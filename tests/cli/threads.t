@@ -241,16 +241,7 @@ ok $? "a plugin writer refusing layer 4: the same message and exit for -j 1, 2 a
 # layers spread over the run (limits.t): a plate 1 thick at height 49 of
 # 1000 layers of 0.1 lies between two of them (layers 484 and 515), so it
 # sees the thin pin only, about 280 kB; the plate's hatches are 2 MB.
-cat >"$TMP/pinplate.ug" <<'UG'
-v a 0 0 0; v b 0.2 0 0; v c 0.2 0.2 0; v d 0 0.2 0;
-v e 0 0 100; v f 0.2 0 100; v g 0.2 0.2 100; v h 0 0.2 100;
-f bottom (a d c b); f top (e f g h); f front (a b f e);
-f right (b c g f); f back (c d h g); f left (d a e h);
-v A 10 0 49; v B 110 0 49; v C 110 100 49; v D 10 100 49;
-v E 10 0 50; v F 110 0 50; v G 110 100 50; v H 10 100 50;
-f pbottom (A D C B); f ptop (E F G H); f pfront (A B F E);
-f pright (B C G F); f pback (C D H G); f pleft (D A E H);
-UG
+cp "$M/pinplate.ug" "$TMP/pinplate.ug" # the pin and plate of limits.t
 for j in 1 2 8; do
     rm -f "$TMP/lim.out"
     run "$LAMINA" slice "$TMP/pinplate.ug" -m lpbf-cli -w 0.1 --max-output 500k -j $j -o "$TMP/lim.out"

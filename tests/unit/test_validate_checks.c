@@ -292,28 +292,41 @@ static void hand_layer(hand *h)
     h->L.ncontours = 2;
 }
 
-static int check(lam_rays *v, hand *h, lam_layer_check *c)
+/* Validate L along z with the options o (NULL: the defaults). */
+static int check_layer(lam_rays *v, const lam_layer *L, const lam_validate_opts *o, lam_layer_check *c)
 {
     lam_frame f;
     lam_error err;
     lam_frame_axis('z', &f, &err);
-    lam_validate_opts o;
-    lam_validate_opts_init(&o);
-    int rc = lam_validate_layer(v, &h->L, &f, &o, c, &err);
+    lam_validate_opts dflt;
+    lam_validate_opts_init(&dflt);
+    int rc = lam_validate_layer(v, L, &f, o ? o : &dflt, c, &err);
     if (rc) diag("validate: %s", err.msg);
     return rc;
 }
 
+static int check(lam_rays *v, hand *h, lam_layer_check *c)
+{
+    return check_layer(v, &h->L, NULL, c);
+}
+
+/* The thesis cube with a hole and its validator: 0, or 1 after a failed test. */
+static int open_validator(lam_model **m, lam_rays **v)
+{
+    lam_error err;
+    *m = load_model("thesis_cube_hole.ug");
+    *v = NULL;
+    if (*m && !lam_rays_new(*m, v, &err)) return 0;
+    ok(0, "validator for thesis_cube_hole.ug");
+    lam_model_free(*m);
+    return 1;
+}
+
 static void test_what_is_written(void)
 {
-    lam_model *m = load_model("thesis_cube_hole.ug");
-    lam_rays *v = NULL;
-    lam_error err;
-    if (!m || lam_rays_new(m, &v, &err)) {
-        ok(0, "validator for thesis_cube_hole.ug");
-        lam_model_free(m);
-        return;
-    }
+    lam_model *m;
+    lam_rays *v;
+    if (open_validator(&m, &v)) return;
     hand h;
     lam_layer_check c;
 
@@ -508,29 +521,19 @@ static void passes_make(passes_layer *h, double c, double d)
 
 static int passes_check(lam_rays *v, passes_layer *h, int n, double inset, double dist, lam_layer_check *c)
 {
-    lam_frame f;
-    lam_error err;
-    lam_frame_axis('z', &f, &err);
     lam_validate_opts o;
     lam_validate_opts_init(&o);
     o.passes = n;
     o.inset = inset;
     o.pass_distance = dist;
-    int rc = lam_validate_layer(v, &h->L, &f, &o, c, &err);
-    if (rc) diag("validate: %s", err.msg);
-    return rc;
+    return check_layer(v, &h->L, &o, c);
 }
 
 static void test_passes(void)
 {
-    lam_model *m = load_model("thesis_cube_hole.ug");
-    lam_rays *v = NULL;
-    lam_error err;
-    if (!m || lam_rays_new(m, &v, &err)) {
-        ok(0, "validator for thesis_cube_hole.ug");
-        lam_model_free(m);
-        return;
-    }
+    lam_model *m;
+    lam_rays *v;
+    if (open_validator(&m, &v)) return;
     passes_layer h;
     lam_layer_check c;
     /* beam offset 0.05, passes 0.1 apart: right */
