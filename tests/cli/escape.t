@@ -39,7 +39,7 @@ want=$(python3 -c 'import os, sys
 p = os.fsencode(sys.argv[1]).decode("utf-8", "replace")
 p = "".join("\ufffd" if ord(c) < 32 or 0x7f <= ord(c) <= 0x9f else c for c in p)
 print(ascii("lamina: %s (4 layers)" % p))' "$P")
-is "$(svgcheck texts "$TMP/p.svg" | head -1)" "$want" "the sheet's title is the path, as text, U+FFFD for what XML cannot hold"
+is "$(svgcheck texts "$TMP/p.svg" | sed -n 1p)" "$want" "the sheet's title is the path, as text, U+FFFD for what XML cannot hold"
 # the page: the viewer's own, byte for byte, around JSON holding no '<'
 run python3 -c 'import sys
 page = open(sys.argv[1], "rb").read()
