@@ -298,7 +298,8 @@ int lam_writer_error(const lam_writer *w, lam_error *err)
     char buf[96];
     if (w->kind == W_MEMORY && w->failed != OVER_LIMIT)
         return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory writing output");
-    return lam_error_set(err, LAM_EIO, w->kind == W_MEMORY ? NULL : w->path, 0, 0, "cannot write output: %s",
+    int code = w->failed == OVER_LIMIT ? LAM_ELIMIT : LAM_EIO;
+    return lam_error_set(err, code, w->kind == W_MEMORY ? NULL : w->path, 0, 0, "cannot write output: %s",
                          reason(w->failed, buf, sizeof buf, w->limit));
 }
 

@@ -72,8 +72,9 @@ int lam_writer_over_limit(const lam_writer *w);
 unsigned long long lam_writer_bytes(const lam_writer *w);
 
 /* Set err from the writer's sticky write error: "PATH: cannot write output:
- * REASON" (strerror, or the limit). Returns the error code (LAM_EIO, or
- * LAM_ENOMEM for a memory writer), LAM_OK when no write failed. For sinks
+ * REASON" (strerror, or the limit). Returns the error code (LAM_EIO,
+ * LAM_ELIMIT past the limit, or LAM_ENOMEM for a memory writer), LAM_OK
+ * when no write failed. For sinks
  * that must report a failed write at once, with the path and the reason. */
 int lam_writer_error(const lam_writer *w, lam_error *err);
 

@@ -267,7 +267,7 @@ int cmd_slice(int argc, char **argv)
     }
     if (po.kind == LAM_PLAN_SLS && notes && !a.layers && lam_scan_estimates(&po.scan)) cli_print_estimate(a.path, &est);
     if (cli_view_save(&rep.view, &err)) {
-        rc = strstr(err.msg, "exceeds the limit") ? cli_fail_limit(&err, 1, CLI_RAISE_OUTPUT) : cli_fail_cmd("slice", &err);
+        rc = err.code == LAM_ELIMIT ? cli_fail_limit(&err, 1, CLI_RAISE_OUTPUT) : cli_fail_cmd("slice", &err);
         goto done;
     }
     {
@@ -281,8 +281,8 @@ int cmd_slice(int argc, char **argv)
     if (!rc && jw) {
         lam_writer *tmp = jw;
         jw = NULL;
-        int jover = lam_writer_over_limit(tmp);
-        if (lam_writer_commit(tmp, &err)) rc = jover ? cli_fail_limit(&err, jover, CLI_RAISE_OUTPUT) : cli_fail_cmd("slice", &err);
+        if (lam_writer_commit(tmp, &err))
+            rc = err.code == LAM_ELIMIT ? cli_fail_limit(&err, 1, CLI_RAISE_OUTPUT) : cli_fail_cmd("slice", &err);
     }
 done:
     if (sink.destroy) sink.destroy(sink.ctx);
