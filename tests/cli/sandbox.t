@@ -203,8 +203,11 @@ is "$RC $OUT" "0 3600	300	5	200	300	nil" "(with --memory 0 the same recipe keeps
 boxes 256M 300 5 0.05
 is "$RC $OUT" "0 3600	300	5	200	300	nil" "(and with the default 256M)"
 boxes 16M 300 1 0.05 creol-ladrp
-like "$RC $ERR" "^1 lamina: .*boxes\.lua:[0-9]+: memory limit exceeded: machine:plan: the plan, which takes twice its size while it is made, passed the [0-9]+ bytes left" \
-    "--memory 16M: a plan of one slicing that fits is refused as it grows past what is left"
+# (the estimate, which counts what the writer writes, now sees the 72 MB
+# LADRP program before planning; a plan it under-counts is stopped as it
+# grows: either refusal is the limit's)
+like "$RC $ERR" "^1 lamina: .*boxes\.lua:[0-9]+: memory limit exceeded: machine:plan: (the program is estimated at [0-9]+ bytes, [0-9]+ are left|the plan, which takes twice its size while it is made, passed the [0-9]+ bytes left)" \
+    "--memory 16M: a plan of one slicing that fits is refused, before or as it grows past what is left"
 boxes 0 300 1 0.05 creol-ladrp
 is "$RC $OUT" "0 3600	300	1	200	300	200" "(with --memory 0 it is planned: 200 layers)"
 # a model file larger than what is left is refused before it is read
