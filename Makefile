@@ -37,12 +37,18 @@ DEPS_OPTIONAL := chromium
 LUA_CFLAGS := -I/usr/include/lua5.4
 LUA_LIBS   := -llua5.4
 
-CPPFLAGS += -Icore -D_POSIX_C_SOURCE=200809L
+# core/ by stage (docs/architecture.md): base (errors, files, buffers,
+# threads), mesh (readers, repair, shells), layer (sections, contours,
+# nesting, offsets), plan (planners, hatching, recording), out (dialects,
+# JSON, SVG, HTML, plugins), check (validation, DRC, program readers),
+# profile (machine profiles and their key table).
+CORE_DIRS := base mesh layer plan out check profile
+CPPFLAGS += -Icore $(addprefix -Icore/,$(CORE_DIRS)) -D_POSIX_C_SOURCE=200809L
 # -fPIC everywhere: the same objects also make the Lua C module lamina.so
 CFLAGS   += -std=c11 -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes -fPIC -pthread $(OPT) $(SANFLAGS)
 LDFLAGS  += $(SANFLAGS)
 LDLIBS   += -lyaml -ldl -lm -pthread
-# Embree and GEOS are opened on first use (core/lazylib.h: a plain slice
+# Embree and GEOS are opened on first use (core/base/lazylib.h: a plain slice
 # needs neither, and loading them costs every start ~7 ms and 5 MB);
 # LAZY=0 links them as usual.
 LAZY ?= 1
@@ -51,8 +57,8 @@ CPPFLAGS += -DLAM_LAZY=0
 LDLIBS   += -lembree3 -lgeos_c
 endif
 
-CORE_SRC  := $(sort $(wildcard core/*.c))
-# The viewer's page (core/viewer.html) is compiled in as a C string.
+CORE_SRC  := $(sort $(wildcard $(CORE_DIRS:%=core/%/*.c)))
+# The viewer's page (core/out/viewer.html) is compiled in as a C string.
 VIEWER_C  := $(BUILD)/gen/viewer_html.c
 CORE_OBJ  := $(CORE_SRC:%.c=$(BUILD)/%.o) $(VIEWER_C:.c=.o)
 # Sources by folder: lua/*.c is the binding (also built as the C module
@@ -73,9 +79,9 @@ TEST_PLUGIN_SO := $(patsubst tests/plugins/%.c,$(BUILD)/tests/plugins/%.so,$(wil
 LIB     := $(BUILD)/liblamina.a
 # The installed API: core/lamina.h, the headers it names, and the plugin ABI.
 # The other headers of core/ are internal (nest.h, enclose.h, test_hooks.h, ...).
-PUBLIC_H := core/lamina.h $(addprefix core/,$(shell grep -o '^.include "[a-z_]*\.h"' core/lamina.h | cut -d'"' -f2)) \
+PUBLIC_H := core/lamina.h $(foreach h,$(shell grep -o '^.include "[a-z_]*\.h"' core/lamina.h | cut -d'"' -f2),$(wildcard $(CORE_DIRS:%=core/%/$(h)))) \
             core/lamina_plugin.h
-VERSION  := $(shell sed -n 's/.*LAMINA_VERSION "\(.*\)"/\1/p' core/version.h)
+VERSION  := $(shell sed -n 's/.*LAMINA_VERSION "\(.*\)"/\1/p' core/base/version.h)
 LAMINA  := $(BUILD)/lamina
 
 # Plugins: plugins/NAME/*.c -> plugins/NAME.so (build-san/plugins/NAME.so
@@ -112,15 +118,15 @@ $(BUILD)/%.o: %.c
 	$(CC) $(CPPFLAGS) $(CFLAGS) -MMD -MP -c $< -o $@
 
 # od (coreutils) turns the page into bytes: no tool beyond the build's own.
-$(VIEWER_C): core/viewer.html
+$(VIEWER_C): core/out/viewer.html
 	@mkdir -p $(dir $@)
-	{ echo '/* generated from core/viewer.html by the Makefile: do not edit */'; \
+	{ echo '/* generated from core/out/viewer.html by the Makefile: do not edit */'; \
 	  echo '#include "viewer_html.h"'; echo 'const char lam_viewer_html[] = {'; \
 	  od -An -v -tx1 $< | sed 's/ \([0-9a-f][0-9a-f]\)/0x\1,/g'; \
 	  echo '0x00};'; echo 'const size_t lam_viewer_html_len = sizeof lam_viewer_html - 1;'; } > $@.tmp
 	mv $@.tmp $@
 
-$(VIEWER_C:.c=.o): $(VIEWER_C) core/viewer_html.h
+$(VIEWER_C:.c=.o): $(VIEWER_C) core/out/viewer_html.h
 	$(CC) $(CPPFLAGS) $(CFLAGS) -c $< -o $@
 
 $(LIB): $(CORE_OBJ)
@@ -229,7 +235,7 @@ bench:
 # modules in share/lua/5.4, the C module in lib/lua/5.4 (a stock lua5.4
 # finds both under /usr/local), man pages, bash completion, docs. The C
 # module finds machines and plugins relative to its own file and the
-# executable relative to itself (core/paths.h), so the tree may move; with
+# executable relative to itself (core/base/paths.h), so the tree may move; with
 # other directories than these defaults set LAMINA_MACHINES/LAMINA_PLUGINS.
 BINDIR      ?= $(PREFIX)/bin
 LIBDIR      ?= $(PREFIX)/lib
@@ -262,7 +268,7 @@ $(MAN_PAGES) $(BUILD)/completion/lamina: $(MAN_STAMP)
 
 # Made on every install (FORCE) but replaced only when its text changes:
 # it holds PREFIX and the directories, which are not files make can see.
-$(BUILD)/lamina.pc: lamina.pc.in core/version.h FORCE
+$(BUILD)/lamina.pc: lamina.pc.in core/base/version.h FORCE
 	@mkdir -p $(dir $@)
 	@sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@LIBDIR@|$(patsubst $(PREFIX)/%,$${prefix}/%,$(LIBDIR))|' \
 	  -e 's|@INCLUDEDIR@|$(patsubst $(PREFIX)/%,$${prefix}/%,$(INCLUDEDIR))|' \

@@ -8,7 +8,7 @@
 -- deploys only C modules (lib/lua/5.4) and Lua files (share/lua/5.4), so the
 -- profiles go with the Lua modules (share/lua/5.4/lamina/machines) and the
 -- plugins with the C module (lib/lua/5.4/lamina/plugins): the places lamina.so
--- looks beside itself in a LuaRocks tree (core/paths.h).
+-- looks beside itself in a LuaRocks tree (core/base/paths.h).
 rockspec_format = "3.0"
 package = "lamina"
 version = "scm-1"

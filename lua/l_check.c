@@ -1,5 +1,5 @@
 /* model:validate{...} and model:check(machine [, opts]): what `lamina
- * validate` and `lamina check` test (core/validate.h, core/drc.h), with the
+ * validate` and `lamina check` test (core/check/validate.h, core/check/drc.h), with the
  * results as tables instead of a report.
  *
  * Both do every C step first (slicing aside): the layers' checks or the

@@ -1,11 +1,11 @@
-/* lamina.machine: a machine profile (YAML, core/profile.h).
+/* lamina.machine: a machine profile (YAML, core/profile/profile.h).
  *
  * lamina.machine(name or path) loads a profile; the userdata owns it.
  * machine:override{...} makes a new machine whose values differ: it holds a
  * shallow copy of the profile (numbers its own, strings and dialect
  * templates borrowed) and keeps the owning machine alive as its user value.
  * Values are validated with the YAML loader's rules and messages: the
- * fields and the keys of override are the rows of core/profile_keys.c. */
+ * fields and the keys of override are the rows of core/profile/profile_keys.c. */
 #include "l_common.h"
 
 #include <dirent.h>

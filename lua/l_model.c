@@ -24,7 +24,7 @@ void lam_lua_model_free(lua_State *L, lmodel *u)
 /* lamina.load(path) -> model | nil, message
  * In a sandbox with a memory limit the model is charged to it: a file
  * larger than the room left is refused before it is read (a model file is
- * read whole, core/file.h; the model then takes 0.3x an ASCII STL with
+ * read whole, core/base/file.h; the model then takes 0.3x an ASCII STL with
  * long numbers, 1.6x a binary STL, and up to about 2.5x while it is
  * built), and a model that turns out larger than the room is freed and
  * refused. */

@@ -8,7 +8,7 @@
  * in the layer frame for `frame: machine`), the stage starting at the model
  * origin in the plane of the first layer planned. The program is kept in
  * memory: plan:text() returns it, plan:write(path) writes it atomically.
- * The option `threads` plans on worker threads (core/plan_layers.c); only
+ * The option `threads` plans on worker threads (core/plan/plan_layers.c); only
  * the calling thread touches Lua and the writer. */
 #include "l_common.h"
 
@@ -74,7 +74,7 @@ static const lrun *check_layers(lua_State *L, const lam_layer **ls, size_t n)
     return run;
 }
 
-/* The estimate of planning these layers (core/planner.h): each layer
+/* The estimate of planning these layers (core/plan/planner.h): each layer
  * counted as it is (lam_job_estimate_add), skins by position in the run. */
 static void estimate(const lam_layer **ls, size_t n, const lam_plan_opts *o, lam_job_estimate *e)
 {
@@ -91,7 +91,7 @@ static size_t count_lines(const char *s, size_t len)
     return n;
 }
 
-/* What planning's callbacks (core/plan_layers.h) need. */
+/* What planning's callbacks (core/plan/plan_layers.h) need. */
 typedef struct planctx {
     lua_State *L;
     lplan *pl;

@@ -1,5 +1,5 @@
 /* lamina.preview(layers, path [, title]): the SVG contact sheet of
- * `lamina slice --svg` (core/svg.c) for layers of one slicing run. */
+ * `lamina slice --svg` (core/out/svg.c) for layers of one slicing run. */
 #include "l_common.h"
 #include "svg.h"
 

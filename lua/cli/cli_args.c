@@ -1,5 +1,5 @@
 /* The option parser shared by the commands: a table of options (below) and
- * the profile keys' own options (core/profile_keys.c). */
+ * the profile keys' own options (core/profile/profile_keys.c). */
 #include "cli_args.h"
 #include "pool.h"
 

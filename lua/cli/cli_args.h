@@ -4,7 +4,7 @@
  * and `-xvalue`, `--` ends the options, an unknown option gets "did you
  * mean". Every machine-profile key can be given as `--set KEY=VALUE` (`-s`);
  * the convenience options (`-w`, `--angle`, `--islands`, ...) are the
- * options of the key table's rows (core/profile_keys.c), short for --set.
+ * options of the key table's rows (core/profile/profile_keys.c), short for --set.
  *
  * Standard streams: a MODEL of `-` is standard input (the commands load it
  * with cli_load_model), and every output option (a row of the table whose

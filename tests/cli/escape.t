@@ -45,8 +45,8 @@ run python3 -c 'import sys
 page = open(sys.argv[1], "rb").read()
 head, tail = open(sys.argv[2], "rb").read().split(b"@LAMINA_RUN@")
 data = page[len(head):len(page) - len(tail)]
-print(page.startswith(head), page.endswith(tail), len(data) > 100, b"<" not in data)' "$TMP/p.html" "$TESTS/../core/viewer.html"
-is "$OUT" "True True True True" "the HTML is core/viewer.html around the run's JSON, which holds no '<': no script but the viewer's"
+print(page.startswith(head), page.endswith(tail), len(data) > 100, b"<" not in data)' "$TMP/p.html" "$TESTS/../core/out/viewer.html"
+is "$OUT" "True True True True" "the HTML is core/out/viewer.html around the run's JSON, which holds no '<': no script but the viewer's"
 is "$(python3 -c 'import json, re, sys
 s = open(sys.argv[1], encoding="utf-8").read()
 print(ascii(json.loads(re.search(r"id=\"lamina-run\">(.*?)</script>", s, re.S).group(1))["job"]["model"]))' "$TMP/p.html")" \

@@ -43,7 +43,7 @@ like "$(cat "$D/usr/lib/pkgconfig/lamina.pc")" '^prefix=/usr$' "lamina.pc names 
 
 export PKG_CONFIG_PATH="$D/usr/lib/pkgconfig" PKG_CONFIG_SYSROOT_DIR="$D" PKG_CONFIG_LIBDIR="$D/usr/lib/pkgconfig"
 is "$(pkg-config --modversion lamina)" \
-    "$(sed -n 's/.*LAMINA_VERSION "\(.*\)"/\1/p' "$ROOT/core/version.h")" "pkg-config knows lamina's version"
+    "$(sed -n 's/.*LAMINA_VERSION "\(.*\)"/\1/p' "$ROOT/core/base/version.h")" "pkg-config knows lamina's version"
 flags=$(pkg-config --cflags --libs lamina)
 ok $? "pkg-config --cflags --libs lamina"
 [[ " $flags" == *" -I$D/usr/include"* ]]; ok $? "the include path lies in the staging folder"

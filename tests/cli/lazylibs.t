@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Embree and GEOS are opened on first use (core/lazylib.h), not by the
+# Embree and GEOS are opened on first use (core/base/lazylib.h), not by the
 # loader at every start: neither the executable nor the Lua module names
 # them, a plain slice never maps them (the dynamic loader's own trace,
 # LD_DEBUG=files, says what it opened), validation opens Embree and

@@ -1,6 +1,6 @@
 # partcraft.py IN OUT TAG FIELD VALUE: a copy of part file IN with one value
 # changed and both its hashes made right again (the format of
-# core/part.h, read here on its own). TAG: C (the first contour: FIELD
+# core/plan/part.h, read here on its own). TAG: C (the first contour: FIELD
 # x|y|z of its first point, or power), H (the first hatch block: x|y|z of
 # its first vector's start, or kind: a letter's case flipped), M (the
 # first move: x|y|z), L (the first layer: z, its height), J (the header's

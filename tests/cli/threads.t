@@ -92,7 +92,7 @@ with open(sys.argv[1], "wb") as f:
 EOF
 same binary-sphere-big "$TMP/bsphere.stl" -w 0.2
 # A binary STL of 540,800 facets (a torus of 520 x 520 quads): over the
-# 524,288 from which the threads also decode and weld it (core/stl_weld.c).
+# 524,288 from which the threads also decode and weld it (core/mesh/stl_weld.c).
 # The program, `lamina info` (no -j: LAMINA_THREADS) but for its peak
 # memory line, and the error for a NaN in facet 520,000 are the same for
 # 1 and 3 threads.

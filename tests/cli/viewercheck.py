@@ -7,7 +7,7 @@
                                   (tests/models/viewer/stepped.ug) at height Z and what
                                   each must show: "X,Y tint" or "X,Y background", from
                                   the part's own geometry (point in polygon, even-odd)
-                                  and the viewer's documented layout (core/viewer.html:
+                                  and the viewer's documented layout (core/out/viewer.html:
                                   a 40 px bar above, 28 px below, the run's extent
                                   fitted with a 20 px margin, centred, v up). Points
                                   within 6 px of an edge, or by the scale bar, are left out."""

@@ -19,7 +19,7 @@
  * length (no NUL after it: a read past the end is caught), its layers made
  * along z and x (and in its own frame when it gives one).
  * A first byte of 6 is a part file of a split run (`lamina slice --layers`,
- * parts/ in the corpus; core/part.h), checked whole and joined into a
+ * parts/ in the corpus; core/plan/part.h), checked whole and joined into a
  * program through the machine profile it holds (the built-in one of its
  * process when that does not load or is a plugin's). Most mutants would
  * only meet the checksums, so three in four get both hashes made right

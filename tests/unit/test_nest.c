@@ -1,4 +1,4 @@
-/* Nesting of loops (core/nest.c): the three methods against answers known
+/* Nesting of loops (core/layer/nest.c): the three methods against answers known
  * by construction. Layouts: cells of a grid, each holding a stack of
  * concentric squares or diamonds (so depth and parent are known), wound
  * either way, starting anywhere, with extra points on their sides; an

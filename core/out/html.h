@@ -1,5 +1,5 @@
 /* The browser viewer of a planning run: one self-contained HTML file (no
- * network, no other file): the viewer's page (core/viewer.html, compiled
+ * network, no other file): the viewer's page (core/out/viewer.html, compiled
  * in at build time) with the run's layer interchange JSON (json_sink.h,
  * "lamina-run" version 1) in its <script type="application/json"
  * id="lamina-run"> element. The page draws it: a layer slider, zoom and

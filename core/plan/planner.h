@@ -37,7 +37,7 @@ typedef struct lam_ladrp_stats {
 } lam_ladrp_stats;
 typedef lam_ladrp_stats lam_ladrp_stats_out;
 
-/* Bytes of output per item of a job (core/estimate.c): measured on the
+/* Bytes of output per item of a job (core/plan/estimate.c): measured on the
  * job's own writer (lam_out_costs_measure, lam_program_costs) or, from
  * lam_plan_opts_init, the defaults (a text program with numbers of about
  * ten characters: 16 a layer, a contour block or a hatch block, 24 a

@@ -1,4 +1,4 @@
-/* The viewer's page, core/viewer.html, as a C string: generated at build
+/* The viewer's page, core/out/viewer.html, as a C string: generated at build
  * time by the Makefile (od), so the program needs no file at run time. */
 #ifndef LAM_VIEWER_HTML_H
 #define LAM_VIEWER_HTML_H
