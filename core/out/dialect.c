@@ -829,9 +829,11 @@ static int d_laser(void *ctx, int on)
     return emit(s, on ? LAM_CMD_LASER_ON : LAM_CMD_LASER_OFF, &v, NULL, NULL);
 }
 
-static int d_move(void *ctx, int deposit, const double xyz[3])
+static int d_move(void *ctx, const lam_move_info *m)
 {
     dsink *s = ctx;
+    int deposit = m->deposit;
+    const double *xyz = m->xyz;
     lam_cmd c = deposit ? LAM_CMD_DEPOSIT : LAM_CMD_TRAVEL;
     if (!s->d->cmd[c].present) return LAM_OK; /* the machine was not told to move */
     vals v;
@@ -884,7 +886,7 @@ static int d_contour(void *ctx, const lam_contour_info *ci)
     dsink *s = ctx;
     const lam_dialect *d = s->d;
     vals v;
-    int rc = block_start(s, &v, (double)ci->id, ci->power, ci->speed, ci->point_distance, ci->exposure_time);
+    int rc = block_start(s, &v, (double)ci->attrs.part, ci->power, ci->speed, ci->point_distance, ci->exposure_time);
     if (rc) return rc;
     int close = d->close_polylines && ci->n > 0;
     size_t written = ci->n + (close ? 1 : 0);
@@ -927,9 +929,9 @@ static int d_hatches(void *ctx, const lam_hatch_info *h)
     dsink *s = ctx;
     const lam_dialect *d = s->d;
     vals v;
-    int rc = block_start(s, &v, (double)h->id, h->power, h->speed, h->point_distance, h->exposure_time);
+    int rc = block_start(s, &v, (double)h->attrs.part, h->power, h->speed, h->point_distance, h->exposure_time);
     if (rc) return rc;
-    v.text[F_KIND] = h->kind;
+    v.text[F_KIND] = lam_kind_name(h->kind);
     v.num[F_N] = (double)h->n;
     v.num[F_Z] = h->z;
     v.num[F_ANGLE] = h->angle;

@@ -287,7 +287,7 @@ static int j_vector(void *ctx, const lam_vec *v)
     put(s, v->order > 1 ? "," : "");
     line(s);
     put(s, "    {\"kind\": \"");
-    put(s, v->kind);
+    put(s, lam_kind_name(v->kind));
     put(s, "\", \"from\": ");
     pt(s, v->from);
     put(s, ", \"to\": ");
@@ -385,5 +385,5 @@ int lam_json_sink(lam_writer *w, unsigned flags, lam_sink *out, lam_error *err)
     s->err = err;
     s->flags = flags;
     lam_vec_consumer c = { s, j_begin, j_layer, j_vector, j_layer_end, j_end, j_destroy };
-    return lam_vstream_sink(NULL, 0, &c, out, err);
+    return lam_vstream_sink(&c, out, err);
 }

@@ -640,7 +640,7 @@ static int ps_contour(void *ctx, const lam_contour_info *c)
     plugin_sink *s = ctx;
     if (!s->state) return not_running(s, "contour");
     last_msg[0] = '\0';
-    return writer_result(s, s->we->w.polyline(s->state, c->id, c->solid, c->uv, c->n), "polyline");
+    return writer_result(s, s->we->w.polyline(s->state, (size_t)c->attrs.part, c->solid, c->uv, c->n), "polyline");
 }
 
 static int ps_hatches(void *ctx, const lam_hatch_info *h)
@@ -651,7 +651,7 @@ static int ps_hatches(void *ctx, const lam_hatch_info *h)
         return lam_error_set(s->err, LAM_EUSAGE, NULL, 0, 0, "writer %s cannot write hatches (set hatch_strategy: none)",
                              s->we->w.name);
     last_msg[0] = '\0';
-    return writer_result(s, s->we->w.hatches(s->state, h->id, h->uv, h->n), "hatches");
+    return writer_result(s, s->we->w.hatches(s->state, (size_t)h->attrs.part, h->uv, h->n), "hatches");
 }
 
 static int ps_end(void *ctx)
@@ -683,10 +683,9 @@ static int ps_laser(void *ctx, int on)
     return contour_only(ctx);
 }
 
-static int ps_move(void *ctx, int deposit, const double xyz[3])
+static int ps_move(void *ctx, const lam_move_info *m)
 {
-    (void)deposit;
-    (void)xyz;
+    (void)m;
     return contour_only(ctx);
 }
 

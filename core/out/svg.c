@@ -313,7 +313,7 @@ static int sv_vector(void *ctx, const lam_vec *v)
     rvec *r = &s->rv[s->nrv++];
     memcpy(r->a, v->fuv, sizeof r->a);
     memcpy(r->b, v->tuv, sizeof r->b);
-    r->kind = v->kind;
+    r->kind = lam_kind_name(v->kind);
     r->exposed = v->exposed;
     return LAM_OK;
 }
@@ -380,7 +380,9 @@ int lam_svg_sink(lam_svg *s, const lam_frame *f, int frame_machine, lam_sink *ou
         axis_name(f->v, "v", s->axis[1]);
     }
     lam_vec_consumer c = { s, sv_begin, sv_layer, sv_vector, sv_layer_end, NULL, NULL };
-    return lam_vstream_sink(f, frame_machine, &c, out, err);
+    (void)f;
+    (void)frame_machine;
+    return lam_vstream_sink(&c, out, err);
 }
 
 void lam_svg_free(lam_svg *s)

@@ -25,7 +25,7 @@ static int t_layer(void *ctx, const lam_layer_info *l) { EACH((tee *)ctx, layer,
 static int t_layer_end(void *ctx, const lam_layer_info *l) { EACH((tee *)ctx, layer_end, l); }
 static int t_feed(void *ctx, double rate) { EACH((tee *)ctx, feed, rate); }
 static int t_laser(void *ctx, int on) { EACH((tee *)ctx, laser, on); }
-static int t_move(void *ctx, int deposit, const double xyz[3]) { EACH((tee *)ctx, move, deposit, xyz); }
+static int t_move(void *ctx, const lam_move_info *m) { EACH((tee *)ctx, move, m); }
 static int t_contour(void *ctx, const lam_contour_info *c) { EACH((tee *)ctx, contour, c); }
 static int t_hatches(void *ctx, const lam_hatch_info *h) { EACH((tee *)ctx, hatches, h); }
 

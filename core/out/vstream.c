@@ -5,44 +5,34 @@
 #include <string.h>
 
 typedef struct vstream {
-    lam_frame f;
-    int machine;
     lam_vec_consumer c;
-    double pos[3];           /* the stage or the scanner, output frame */
+    double pos[3], puv[2];   /* the stage or the scanner, both frames */
     int have_pos;
     size_t order;
     lam_vec_stats st;
 } vstream;
 
-static void to_uv(const vstream *s, const double p[3], double uv[2])
-{
-    if (s->machine) {
-        uv[0] = p[0];
-        uv[1] = p[1];
-        return;
-    }
-    uv[0] = p[0] * s->f.u[0] + p[1] * s->f.u[1] + p[2] * s->f.u[2];
-    uv[1] = p[0] * s->f.v[0] + p[1] * s->f.v[1] + p[2] * s->f.v[2];
-}
-
-/* One vector from the current position to p; the position moves on.
+/* One vector from the current position to (p, uv); the position moves on.
  * `always`: even of no length (the LADRP stage's moves, as the program
  * has them); a jump of no length is no jump. */
-static int emit(vstream *s, const char *kind, int exposed, int always, const double p[3])
+static int emit(vstream *s, int kind, const lam_attrs *a, int always, const double p[3], const double uv[2])
 {
     lam_vec v;
     memcpy(v.from, s->pos, sizeof v.from);
     memcpy(v.to, p, sizeof v.to);
+    memcpy(v.fuv, s->puv, sizeof v.fuv);
+    memcpy(v.tuv, uv, sizeof v.tuv);
     memcpy(s->pos, p, sizeof s->pos);
+    memcpy(s->puv, uv, sizeof s->puv);
     s->have_pos = 1;
+    int exposed = lam_kind_exposed(kind);
     double len = sqrt((v.to[0] - v.from[0]) * (v.to[0] - v.from[0]) + (v.to[1] - v.from[1]) * (v.to[1] - v.from[1]) +
                       (v.to[2] - v.from[2]) * (v.to[2] - v.from[2]));
     if (!exposed && !always && len == 0) return LAM_OK;
     v.kind = kind;
+    v.attrs = *a;
     v.exposed = exposed;
     v.order = ++s->order;
-    to_uv(s, v.from, v.fuv);
-    to_uv(s, v.to, v.tuv);
     s->st.vectors++;
     if (exposed) s->st.deposit_length += len;
     else s->st.travel_length += len;
@@ -50,24 +40,44 @@ static int emit(vstream *s, const char *kind, int exposed, int always, const dou
 }
 
 /* An SLS path starts at p: a jump there from where the scanner is. */
-static int start_at(vstream *s, const double p[3])
+static int start_at(vstream *s, const lam_attrs *a, const double p[3], const double uv[2])
 {
     if (!s->have_pos) {
         memcpy(s->pos, p, sizeof s->pos);
+        memcpy(s->puv, uv, sizeof s->puv);
         s->have_pos = 1;
         return LAM_OK;
     }
-    return emit(s, "jump", 0, 0, p);
+    return emit(s, LAM_KIND_JUMP, a, 0, p, uv);
+}
+
+/* The layer frame's (u, v) of the job's origin, the one point of the run
+ * given in the output frame only; zero terms skipped, so an axis frame
+ * gives the coordinates exactly. */
+static void origin_uv(const lam_job_info *job, double uv[2])
+{
+    lam_frame z;
+    const lam_frame *f = job->frame;
+    if (job->frame_machine || !f) {
+        if (!job->frame_machine) lam_frame_axis('z', &z, NULL);
+        f = job->frame_machine ? NULL : &z;
+    }
+    for (int k = 0; k < 2; k++) {
+        const double *a = k ? (f ? f->v : NULL) : (f ? f->u : NULL);
+        double s = 0;
+        if (!a) s = job->origin[k];
+        else
+            for (int i = 0; i < 3; i++)
+                if (a[i] != 0) s += job->origin[i] * a[i];
+        uv[k] = s;
+    }
 }
 
 static int vs_begin(void *ctx, const lam_job_info *job)
 {
     vstream *s = ctx;
-    if (job->frame) {
-        s->f = *job->frame;
-        s->machine = job->frame_machine;
-    }
     memcpy(s->pos, job->origin, sizeof s->pos);
+    origin_uv(job, s->puv);
     s->have_pos = 1;
     return s->c.begin ? s->c.begin(s->c.ctx, job) : LAM_OK;
 }
@@ -86,10 +96,9 @@ static int vs_layer_end(void *ctx, const lam_layer_info *li)
     return s->c.layer_end ? s->c.layer_end(s->c.ctx, li, &s->st) : LAM_OK;
 }
 
-static int vs_move(void *ctx, int deposit, const double xyz[3])
+static int vs_move(void *ctx, const lam_move_info *m)
 {
-    vstream *s = ctx;
-    return emit(s, deposit ? "deposit" : "travel", deposit, 1, xyz);
+    return emit(ctx, m->deposit ? LAM_KIND_DEPOSIT : LAM_KIND_TRAVEL, &m->attrs, 1, m->xyz, m->uv);
 }
 
 static int vs_contour(void *ctx, const lam_contour_info *c)
@@ -97,8 +106,11 @@ static int vs_contour(void *ctx, const lam_contour_info *c)
     vstream *s = ctx;
     if (c->n < 2) return LAM_OK;
     if (s->order == 0) s->have_pos = 0; /* the scanner starts a layer at its first path */
-    int rc = start_at(s, c->xyz);
-    for (size_t i = 1; i <= c->n && !rc; i++) rc = emit(s, "contour", 1, 1, c->xyz + 3 * (i % c->n));
+    int rc = start_at(s, &c->attrs, c->xyz, c->uv);
+    for (size_t i = 1; i <= c->n && !rc; i++) {
+        size_t k = i % c->n;
+        rc = emit(s, LAM_KIND_CONTOUR, &c->attrs, 1, c->xyz + 3 * k, c->uv + 2 * k);
+    }
     return rc;
 }
 
@@ -108,8 +120,8 @@ static int vs_hatches(void *ctx, const lam_hatch_info *h)
     if (s->order == 0 && h->n) s->have_pos = 0;
     int rc = LAM_OK;
     for (size_t i = 0; i < h->n && !rc; i++) {
-        rc = start_at(s, h->xyz + 6 * i);
-        if (!rc) rc = emit(s, h->kind ? h->kind : "core", 1, 1, h->xyz + 6 * i + 3);
+        rc = start_at(s, &h->attrs, h->xyz + 6 * i, h->uv + 4 * i);
+        if (!rc) rc = emit(s, h->kind, &h->attrs, 1, h->xyz + 6 * i + 3, h->uv + 4 * i + 2);
     }
     return rc;
 }
@@ -127,8 +139,7 @@ static void vs_destroy(void *ctx)
     free(s);
 }
 
-int lam_vstream_sink(const lam_frame *f, int frame_machine, const lam_vec_consumer *c, lam_sink *out,
-                     lam_error *err)
+int lam_vstream_sink(const lam_vec_consumer *c, lam_sink *out, lam_error *err)
 {
     memset(out, 0, sizeof *out);
     vstream *s = calloc(1, sizeof *s);
@@ -136,9 +147,6 @@ int lam_vstream_sink(const lam_frame *f, int frame_machine, const lam_vec_consum
         if (c->destroy) c->destroy(c->ctx);
         return lam_error_nomem(err, "making a preview");
     }
-    if (f) s->f = *f;
-    else lam_frame_axis('z', &s->f, NULL);
-    s->machine = frame_machine;
     s->c = *c;
     out->ctx = s;
     out->begin = vs_begin;

@@ -2,17 +2,18 @@
  * operations (plan.h) into straight vectors, one call each, for previews
  * and interchange (svg.h, html.h).
  *
- * Kinds: "deposit" and "travel" (LADRP stage moves, from the stage's last
- * position; the first layer's first move starts at the job's origin);
- * "contour" (each edge of an SLS contour pass, the closing edge last);
- * "core", "upskin", "downskin" (SLS hatch vectors); "jump" (the SLS
+ * Kinds (vocab.h's lam_vec_kind): deposit and travel (LADRP stage moves, from
+ * the stage's last position; the first layer's first move starts at the
+ * job's origin); contour (each edge of an SLS contour pass, the closing
+ * edge last); core, upskin, downskin (SLS hatch vectors); jump (the SLS
  * scanner between paths: from the end of one path to the start of the
  * next, within a layer; the scanner starts each layer at its first path).
  * Every stage move is a vector, as in the program; jumps of no length are
  * left out (the scanner does not move), and so are contours of fewer than
  * two points. Orders count from 1 within each layer, in the order the
  * machine runs. The vectors are those of the layer interchange JSON
- * (json_sink.h), which decodes a plan by the same rules. */
+ * (json_sink.h), which decodes a plan by the same rules. Both frames'
+ * coordinates are the planner's (plan.h): nothing is converted back. */
 #ifndef LAM_VSTREAM_H
 #define LAM_VSTREAM_H
 
@@ -20,7 +21,8 @@
 #include "slice.h"
 
 typedef struct lam_vec {
-    const char *kind;        /* see above (static strings) */
+    int kind;                /* lam_vec_kind (vocab.h) */
+    lam_attrs attrs;         /* the operation's (vocab.h); a jump: the next path's */
     double from[3], to[3];   /* output frame */
     double fuv[2], tuv[2];   /* the same in the layer frame */
     size_t order;            /* 1-based within the layer */
@@ -46,12 +48,8 @@ typedef struct lam_vec_consumer {
     void (*destroy)(void *ctx);     /* with the sink's destroy */
 } lam_vec_consumer;
 
-/* Make *out a sink that feeds c. f is the run's layer frame (copied; NULL:
- * the z axis's until begin brings the job's) and frame_machine says the
- * output frame is the layer frame (plan options' frame_machine); a job that
- * names its frame (lam_job_info.frame) overrides both at begin. The sink's destroy frees what it
- * holds and calls c's destroy. Errors: LAM_ENOMEM. */
-int lam_vstream_sink(const lam_frame *f, int frame_machine, const lam_vec_consumer *c, lam_sink *out,
-                     lam_error *err);
+/* Make *out a sink that feeds c. The sink's destroy frees what it holds
+ * and calls c's destroy. Errors: LAM_ENOMEM. */
+int lam_vstream_sink(const lam_vec_consumer *c, lam_sink *out, lam_error *err);
 
 #endif

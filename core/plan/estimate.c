@@ -288,7 +288,7 @@ static int sample_layer(const lam_sink *sk, const lam_job_info *job, const sampl
     lam_layer_info li = { 0, z, b[5] - b[2], b[2], b[5], &sec, NULL };
     int rc = sk->layer ? sk->layer(sk->ctx, &li) : LAM_OK;
     if (!rc && q->points && sk->contour) {
-        lam_contour_info ci = { 1, 1, 0, z, xyz, uv, q->points, 0, 0, 0, 0 };
+        lam_contour_info ci = { .attrs = lam_attrs_default(), .solid = 1, .z = z, .xyz = xyz, .uv = uv, .n = q->points };
         rc = sk->contour(sk->ctx, &ci);
     }
     if (!rc && q->vectors && sk->hatches) {
@@ -298,18 +298,23 @@ static int sample_layer(const lam_sink *sk, const lam_job_info *job, const sampl
             hu[2 * i + 1] = hx[3 * i + 1] = inside(b[1], b[4], i + 7);
             hx[3 * i + 2] = z;
         }
-        lam_hatch_info hi = { 1, LAM_VEC_CORE, "core", z, hx, hu, q->vectors, 0, 0, 0, 0, 0 };
+        lam_hatch_info hi = { .attrs = lam_attrs_default(), .kind = LAM_KIND_CORE, .z = z, .xyz = hx, .uv = hu,
+                              .n = q->vectors };
         rc = sk->hatches(sk->ctx, &hi);
     }
     for (size_t t = 0; t < q->travels && !rc && sk->move; t++) {
-        double p[3] = { inside(b[0], b[3], t), inside(b[1], b[4], t + 3), z };
+        lam_move_info m = { .attrs = lam_attrs_default(),
+                            .xyz = { inside(b[0], b[3], t), inside(b[1], b[4], t + 3), z } };
+        m.uv[0] = m.xyz[0];
+        m.uv[1] = m.xyz[1];
         if (sk->laser) rc = sk->laser(sk->ctx, 0);
-        if (!rc) rc = sk->move(sk->ctx, 0, p);
+        if (!rc) rc = sk->move(sk->ctx, &m);
         if (!rc && sk->laser) rc = sk->laser(sk->ctx, 1);
         if (!rc && sk->feed) rc = sk->feed(sk->ctx, job->rate);
         for (size_t k = 0; k < q->deposits && !rc; k++) {
-            p[0] = inside(b[0], b[3], t + k + 11);
-            rc = sk->move(sk->ctx, 1, p);
+            m.deposit = 1;
+            m.uv[0] = m.xyz[0] = inside(b[0], b[3], t + k + 11);
+            rc = sk->move(sk->ctx, &m);
         }
     }
     if (!rc && sk->layer_end) rc = sk->layer_end(sk->ctx, &li);

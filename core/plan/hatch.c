@@ -12,13 +12,6 @@
 
 #define MAX_VECTORS 50000000.0
 
-static const char *const type_names[LAM_VEC_TYPES] = { "contour", "core", "upskin", "downskin" };
-
-const char *lam_vec_type_name(int type)
-{
-    return type >= 0 && type < LAM_VEC_TYPES ? type_names[type] : "?";
-}
-
 int lam_scan_hatches(const lam_scan_cfg *cfg)
 {
     for (int t = LAM_VEC_CORE; t < LAM_VEC_TYPES; t++)

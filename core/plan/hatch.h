@@ -38,6 +38,8 @@
 #ifndef LAM_HATCH_H
 #define LAM_HATCH_H
 
+#include "vocab.h"
+
 #include <stddef.h>
 
 #include "error.h"
@@ -50,12 +52,16 @@ typedef enum lam_island_order { LAM_ISLANDS_SEQUENTIAL, LAM_ISLANDS_CHECKER, LAM
 /* The most layers a skin may reach (skin_layers). */
 #define LAM_SKIN_MAX 100
 
-/* Vector types: each has its own exposure; the hatch types also their own
- * hatch parameters (profile sections contour:, upskin:, downskin:). */
-typedef enum lam_vec_type { LAM_VEC_CONTOUR, LAM_VEC_CORE, LAM_VEC_UPSKIN, LAM_VEC_DOWNSKIN, LAM_VEC_TYPES } lam_vec_type;
-
-/* "contour", "core", "upskin", "downskin" */
-const char *lam_vec_type_name(int type);
+/* Vector types are the regions of vocab.h's lam_vec_kind: each has its own
+ * exposure; the hatch types also their own hatch parameters (profile
+ * sections contour:, upskin:, downskin:). The old names, until every user
+ * says lam_kind: */
+#define LAM_VEC_CONTOUR LAM_KIND_CONTOUR
+#define LAM_VEC_CORE LAM_KIND_CORE
+#define LAM_VEC_UPSKIN LAM_KIND_UPSKIN
+#define LAM_VEC_DOWNSKIN LAM_KIND_DOWNSKIN
+#define LAM_VEC_TYPES LAM_REGIONS
+#define lam_vec_type_name lam_kind_name
 
 typedef struct lam_exposure {
     double power;            /* laser power (machine units, e.g. W) */

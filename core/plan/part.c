@@ -232,12 +232,12 @@ static int r_laser(void *ctx, int on)
     return flush(r, 0);
 }
 
-static int r_move(void *ctx, int deposit, const double xyz[3])
+static int r_move(void *ctx, const lam_move_info *m)
 {
     rec *r = ctx;
     put_u8(r, 'M');
-    put_u8(r, deposit != 0);
-    put_f64s(r, xyz, 3);
+    put_u8(r, m->deposit != 0);
+    put_f64s(r, m->xyz, 3);
     return flush(r, 0);
 }
 
@@ -245,7 +245,7 @@ static int r_contour(void *ctx, const lam_contour_info *c)
 {
     rec *r = ctx;
     put_u8(r, 'C');
-    put_u64(r, c->id);
+    put_u64(r, (uint64_t)c->attrs.part);
     put_u8(r, c->solid != 0);
     put_u64(r, (uint64_t)(int64_t)c->depth);
     put_f64(r, c->z);
@@ -264,9 +264,9 @@ static int r_hatches(void *ctx, const lam_hatch_info *h)
 {
     rec *r = ctx;
     put_u8(r, 'H');
-    put_u64(r, h->id);
-    put_u64(r, (uint64_t)(int64_t)h->type);
-    put_cstr(r, h->kind);
+    put_u64(r, (uint64_t)h->attrs.part);
+    put_u64(r, (uint64_t)(int64_t)h->kind);
+    put_cstr(r, lam_kind_name(h->kind));
     put_f64(r, h->z);
     put_u64(r, h->n);
     put_f64(r, h->angle);
@@ -835,7 +835,8 @@ static int read_contour(lam_part *p, lam_contour_info *c, lam_error *err)
         (rc = get_u8(p, &has_uv, err)) || (rc = reals(p, (has_uv ? 5 : 3) * c->n, err)) ||
         (rc = get_f64s(p, p->d, (has_uv ? 5 : 3) * c->n, err)))
         return rc;
-    c->id = (size_t)id;
+    c->attrs = lam_attrs_default();
+    c->attrs.part = (long long)id;
     c->solid = solid;
     c->depth = (int)(int64_t)depth;
     c->power = e[0], c->speed = e[1], c->point_distance = e[2], c->exposure_time = e[3];
@@ -869,14 +870,14 @@ static int read_hatches(lam_part *p, lam_hatch_info *h, lam_error *err)
         free(kind);
         return rc;
     }
-    h->id = (size_t)id;
-    h->type = type < LAM_VEC_TYPES ? (int)type : -1;
-    h->kind = kind;
+    h->attrs = lam_attrs_default();
+    h->attrs.part = (long long)id;
+    h->kind = type < LAM_VEC_TYPES ? (int)type : -1;
     h->power = e[0], h->speed = e[1], h->point_distance = e[2], h->exposure_time = e[3];
     h->xyz = p->d;
     h->uv = p->d + 6 * h->n;
     /* the kind is written into programs: only the planner's names */
-    if (h->type < LAM_VEC_CORE || strcmp(kind, lam_vec_type_name(h->type)) != 0)
+    if (h->kind < LAM_VEC_CORE || strcmp(kind, lam_vec_type_name(h->kind)) != 0)
         rc = bad_value(p, at, err, "hatches of type %llu, kind '%.32s'", (unsigned long long)type, kind);
     else if (has_uv != 1)
         rc = bad_value(p, at, err, "hatches without their layer-frame points");
@@ -885,10 +886,7 @@ static int read_hatches(lam_part *p, lam_hatch_info *h, lam_error *err)
         else if (!(rc = check_points(p, at, "hatch end", h->xyz, 2 * h->n, 3, err)))
             rc = check_uv(p, at, "hatch end", h->uv, 2 * h->n, err);
     }
-    if (rc) {
-        free(kind);
-        h->kind = NULL;
-    }
+    free(kind);
     return rc;
 }
 
@@ -907,7 +905,8 @@ static int read_stage(lam_part *p, int tag, const lam_sink *sink, lam_error *err
     if ((rc = check_flag(p, at, tag == 'A' ? "a laser" : "a move's deposit", flag, err))) return rc;
     if (tag == 'A') return sink->laser ? sink->laser(sink->ctx, flag) : LAM_OK;
     if ((rc = get_f64s(p, x, 3, err)) || (rc = check_points(p, at, "a move to", x, 1, 3, err))) return rc;
-    return sink->move ? sink->move(sink->ctx, flag, x) : LAM_OK;
+    lam_move_info m = { .attrs = lam_attrs_default(), .deposit = flag, .xyz = { x[0], x[1], x[2] }, .uv = { x[0], x[1] } };
+    return sink->move ? sink->move(sink->ctx, &m) : LAM_OK;
 }
 
 /* The part's end: its hash, its last layer, nothing after it. */
@@ -980,7 +979,6 @@ static int replay(lam_part *p, const lam_sink *sink, lam_scan_time *time, double
             lam_hatch_info h;
             if ((rc = read_hatches(p, &h, err))) return rc;
             rc = sink->hatches ? sink->hatches(sink->ctx, &h) : LAM_OK;
-            free((char *)h.kind);
             break;
         }
         default:

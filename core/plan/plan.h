@@ -13,6 +13,7 @@
 #include <stddef.h>
 
 #include "error.h"
+#include "vocab.h"
 
 struct lam_frame;      /* slice.h */
 struct lam_layer;      /* slice.h */
@@ -53,10 +54,20 @@ typedef struct lam_layer_info {
                                          estimate; NULL otherwise */
 } lam_layer_info;
 
+/* Every operation carries both frames' coordinates, computed once by the
+ * planner: a consumer takes the frame it needs and never converts back. */
+
+/* One stage move (LADRP): from where the stage is to xyz. */
+typedef struct lam_move_info {
+    lam_attrs attrs;         /* vocab.h */
+    int deposit;             /* 1 laser on (LAM_KIND_DEPOSIT), 0 travel (LAM_KIND_TRAVEL) */
+    double xyz[3];           /* where the stage goes, output frame */
+    double uv[2];            /* the same in the layer frame */
+} lam_move_info;
+
 /* One closed contour for contour-based processes (SLS, CLI). */
 typedef struct lam_contour_info {
-    size_t id;               /* the part's id (1: one model per job), the same for all its
-                                contours and hatches (CLI's $$LABEL id) */
+    lam_attrs attrs;         /* vocab.h; attrs.part is CLI's $$LABEL id (1: one model a job) */
     int solid;               /* 1 solid (counter-clockwise), 0 hole (clockwise) */
     int depth;
     double z;                /* build height */
@@ -68,9 +79,8 @@ typedef struct lam_contour_info {
 
 /* One block of hatch vectors (a region, a stripe or an island). */
 typedef struct lam_hatch_info {
-    size_t id;               /* the part's id, as lam_contour_info's */
-    int type;                /* lam_vec_type (hatch.h): 1 core, 2 up-skin, 3 down-skin */
-    const char *kind;        /* "core", "upskin", "downskin" */
+    lam_attrs attrs;         /* as lam_contour_info's */
+    int kind;                /* lam_vec_kind (vocab.h): core, up-skin or down-skin */
     double z;                /* build height */
     const double *xyz;       /* 2 points per vector (start, end), 3 doubles each, output frame */
     const double *uv;        /* the same in the layer frame, 4 doubles per vector */
@@ -86,8 +96,8 @@ typedef struct lam_sink {
     int (*layer_end)(void *ctx, const lam_layer_info *layer);
     int (*feed)(void *ctx, double rate);
     int (*laser)(void *ctx, int on);
-    /* move the stage to xyz (absolute, output frame); deposit: laser on */
-    int (*move)(void *ctx, int deposit, const double xyz[3]);
+    /* move the stage (absolute); m->deposit: laser on */
+    int (*move)(void *ctx, const lam_move_info *m);
     int (*contour)(void *ctx, const lam_contour_info *c);
     /* a sink may buffer its output: it is complete (and write errors are
      * reported) only when end returns */

@@ -102,16 +102,16 @@ static int r_laser(void *ctx, int on)
     return r->next->laser ? r->next->laser(r->next->ctx, on) : LAM_OK;
 }
 
-static int r_move(void *ctx, int deposit, const double xyz[3])
+static int r_move(void *ctx, const lam_move_info *m)
 {
     lam_plan_data *r = ctx;
-    double uv[4] = { r->pos[0], r->pos[1], 0, 0 };
-    to_uv(r, xyz, uv + 2);
+    int deposit = m->deposit;
+    double uv[4] = { r->pos[0], r->pos[1], m->uv[0], m->uv[1] };
     r->pos[0] = uv[2];
     r->pos[1] = uv[3];
     int rc = add_vector(r, uv, deposit ? LAM_REC_DEPOSIT : LAM_REC_TRAVEL);
     if (rc) return rc;
-    return r->next->move ? r->next->move(r->next->ctx, deposit, xyz) : LAM_OK;
+    return r->next->move ? r->next->move(r->next->ctx, m) : LAM_OK;
 }
 
 static int r_contour(void *ctx, const lam_contour_info *c)
@@ -138,7 +138,7 @@ static int r_contour(void *ctx, const lam_contour_info *c)
 static int r_hatches(void *ctx, const lam_hatch_info *h)
 {
     lam_plan_data *r = ctx;
-    int kind = h->type == 2 ? LAM_REC_UPSKIN : h->type == 3 ? LAM_REC_DOWNSKIN : LAM_REC_CORE;
+    int kind = h->kind == LAM_KIND_UPSKIN ? LAM_REC_UPSKIN : h->kind == LAM_KIND_DOWNSKIN ? LAM_REC_DOWNSKIN : LAM_REC_CORE;
     if (GROW(r, vectors, nvectors, cap_vectors, h->n)) return nomem(r);
     for (size_t i = 0; i < h->n; i++) {
         int rc = add_vector(r, h->uv + 4 * i, kind);

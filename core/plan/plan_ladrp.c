@@ -64,10 +64,13 @@ typedef struct emitter {
     lam_ladrp_stats *st;
 } emitter;
 
-static void to_output(const emitter *e, double ur, double vr, double out[3])
+/* The layer frame's (u, v) of a scan-frame point, and the output frame's. */
+static void to_output(const emitter *e, double ur, double vr, double uv[2], double out[3])
 {
     double u = e->s == 0 ? ur * e->c : ur * e->c - vr * e->s;
     double v = e->s == 0 ? vr * e->c : ur * e->s + vr * e->c;
+    uv[0] = u;
+    uv[1] = v;
     if (e->o->frame_machine) {
         out[0] = u;
         out[1] = v;
@@ -90,15 +93,15 @@ static int move(emitter *e, int deposit, double ur, double vr)
 {
     int rc = laser(e, deposit);
     if (rc) return rc;
-    double p[3];
-    to_output(e, ur, vr, p);
+    lam_move_info m = { .attrs = lam_attrs_default(), .deposit = deposit };
+    to_output(e, ur, vr, m.uv, m.xyz);
     double len = hypot(ur - e->ur, vr - e->vr);
     if (deposit) e->st->deposit_length += len;
     else e->st->travel_length += len;
     e->ur = ur;
     e->vr = vr;
-    memcpy(e->pos, p, sizeof p);
-    return e->sink->move ? e->sink->move(e->sink->ctx, deposit, p) : LAM_OK;
+    memcpy(e->pos, m.xyz, sizeof m.xyz);
+    return e->sink->move ? e->sink->move(e->sink->ctx, &m) : LAM_OK;
 }
 
 /* Perimeter passes: each contour of each inset, travel to its start, then

@@ -15,7 +15,7 @@ typedef struct entry {
     size_t size;             /* bytes of the entry, header and arrays */
     union {
         double rate;
-        double xyz[3];
+        lam_move_info m;
         lam_contour_info c;
         lam_hatch_info h;
     } u;
@@ -62,12 +62,11 @@ static int rec_laser(void *ctx, int on)
     return LAM_OK;
 }
 
-static int rec_move(void *ctx, int deposit, const double xyz[3])
+static int rec_move(void *ctx, const lam_move_info *m)
 {
     entry *e = add(ctx, OP_MOVE, 0);
     if (!e) return LAM_ENOMEM;
-    e->flag = deposit;
-    memcpy(e->u.xyz, xyz, sizeof e->u.xyz);
+    e->u.m = *m;
     return LAM_OK;
 }
 
@@ -143,7 +142,7 @@ int lam_record_replay(const lam_record *r, const lam_sink *sink)
             rc = sink->laser(sink->ctx, e->flag);
             break;
         case OP_MOVE:
-            rc = sink->move(sink->ctx, e->flag, e->u.xyz);
+            rc = sink->move(sink->ctx, &e->u.m);
             break;
         case OP_CONTOUR: {
             lam_contour_info c = e->u.c;

@@ -10,7 +10,7 @@
 void lam_sls_state_init(lam_sls_state *st)
 {
     memset(st, 0, sizeof *st);
-    st->part = 1;
+    st->attrs = lam_attrs_default();
 }
 
 void lam_sls_state_free(lam_sls_state *st)
@@ -49,8 +49,9 @@ static int emit_contours(const lam_layer *L, const lam_layer *C, const lam_frame
             double du = uv[2 * j] - uv[2 * i], dv = uv[2 * j + 1] - uv[2 * i + 1];
             len += sqrt(du * du + dv * dv);
         }
-        lam_contour_info ci = { st->part, c->kind == LAM_SOLID, c->depth, L->cut, xyz, uv, c->n,
-                                e->power, e->speed, e->point_distance, e->exposure_time };
+        lam_contour_info ci = { .attrs = st->attrs, .solid = c->kind == LAM_SOLID, .depth = c->depth, .z = L->cut,
+                                .xyz = xyz, .uv = uv, .n = c->n, .power = e->power, .speed = e->speed,
+                                .point_distance = e->point_distance, .exposure_time = e->exposure_time };
         if (sink->contour) rc = sink->contour(sink->ctx, &ci);
         if (c->n) lam_scan_time_path(&st->time, &o->scan, e, uv, uv, len, 1, st->pos, &st->have_pos);
     }
@@ -102,8 +103,9 @@ static int emit_hatches(const lam_layer *L, const lam_hatches *h, const lam_fram
             lam_scan_time_path(&st->time, &o->scan, e, p, p + 2, sqrt(du * du + dv * dv), 0, st->pos,
                                &st->have_pos);
         }
-        lam_hatch_info hi = { st->part, type, lam_vec_type_name(type), L->cut, xyz, uv, B->n, B->angle,
-                              e->power, e->speed, e->point_distance, e->exposure_time };
+        lam_hatch_info hi = { .attrs = st->attrs, .kind = type, .z = L->cut, .xyz = xyz, .uv = uv, .n = B->n,
+                              .angle = B->angle, .power = e->power, .speed = e->speed,
+                              .point_distance = e->point_distance, .exposure_time = e->exposure_time };
         if (sink->hatches) rc = sink->hatches(sink->ctx, &hi);
     }
     free(xyz);

@@ -220,7 +220,7 @@ int lam_plan_ladrp_layer(const lam_layer *L, const lam_frame *f, const lam_plan_
 
 /* What SLS planning carries from layer to layer. */
 typedef struct lam_sls_state {
-    size_t part;             /* the part id of every contour and hatch block (1) */
+    lam_attrs attrs;         /* of every contour and hatch block (vocab.h's defaults) */
     double pos[2];           /* the scanner (layer plane), for jumps */
     int have_pos;
     lam_scan_time time;      /* the last layer planned */

@@ -126,7 +126,7 @@ static char *render_x(const char *tpl, double x)
     lam_job_info j = job();
     r.sink.begin(r.sink.ctx, &j);
     double p[3] = { x, 0, 0 };
-    r.sink.move(r.sink.ctx, 0, p);
+    move_to(&r.sink, 0, p);
     char *out = run_take(&r);
     lam_dialect_free(&r.d);
     size_t n = strlen(out);
@@ -328,11 +328,11 @@ static void test_moves(void)
     r.sink.layer(r.sink.ctx, &L);
     r.sink.feed(r.sink.ctx, 0.15);
     r.sink.laser(r.sink.ctx, 0);
-    r.sink.move(r.sink.ctx, 0, (double[]){ 2, 2, 3 });
+    move_to(&r.sink, 0, (double[]){ 2, 2, 3 });
     r.sink.laser(r.sink.ctx, 1);
-    r.sink.move(r.sink.ctx, 1, (double[]){ 2, 5, 3 });
-    r.sink.move(r.sink.ctx, 1, (double[]){ 0, 0, 4 });
-    r.sink.move(r.sink.ctx, 0, (double[]){ 0.5, -1.5, 4 });
+    move_to(&r.sink, 1, (double[]){ 2, 5, 3 });
+    move_to(&r.sink, 1, (double[]){ 0, 0, 4 });
+    move_to(&r.sink, 0, (double[]){ 0.5, -1.5, 4 });
     r.sink.layer_end(r.sink.ctx, &L);
     char *out = run_take(&r);
     is_str(out,
@@ -356,7 +356,7 @@ static void test_moves(void)
     run_start(&r);
     j = job();
     r.sink.begin(r.sink.ctx, &j);
-    for (int k = 1; k <= 10; k++) r.sink.move(r.sink.ctx, 1, (double[]){ 0.000004 * k, 0, 0 });
+    for (int k = 1; k <= 10; k++) move_to(&r.sink, 1, (double[]){ 0.000004 * k, 0, 0 });
     out = run_take(&r);
     double sum = 0;
     int lines = 0;
@@ -376,8 +376,8 @@ static void test_moves(void)
     set(&r.d, LAM_CMD_DEPOSIT, "{dx} {dy}");
     run_start(&r);
     r.sink.begin(r.sink.ctx, &j);
-    r.sink.move(r.sink.ctx, 0, (double[]){ 5, 5, 0 });
-    r.sink.move(r.sink.ctx, 1, (double[]){ 6, 7, 0 });
+    move_to(&r.sink, 0, (double[]){ 5, 5, 0 });
+    move_to(&r.sink, 1, (double[]){ 6, 7, 0 });
     out = run_take(&r);
     is_str(out, "6 7\n", "no travel command: the deposit is measured from the last written position");
     free(out);
@@ -390,9 +390,9 @@ static void test_contours(void)
     static const double sq_uv[] = { -1, -1, 1, -1, 1, 1, -1, 1 };
     static const double hole_xyz[] = { -0.5, -0.5, 0.5, -0.5, 0.5, 0.5, 0.5, 0.5, 0.5 };
     static const double hole_uv[] = { -0.5, -0.5, -0.5, 0.5, 0.5, 0.5 };
-    lam_contour_info a = { 1, 1, 0, 0.5, sq_xyz, sq_uv, 4, 0, 0, 0, 0 };
-    lam_contour_info b = { 2, 0, 1, 0.5, hole_xyz, hole_uv, 3, 0, 0, 0, 0 };
-    lam_contour_info c = { 3, 1, 0, 1.5, sq_xyz, sq_uv, 4, 0, 0, 0, 0 };
+    lam_contour_info a = { { 1 }, 1, 0, 0.5, sq_xyz, sq_uv, 4, 0, 0, 0, 0 };
+    lam_contour_info b = { { 2 }, 0, 1, 0.5, hole_xyz, hole_uv, 3, 0, 0, 0, 0 };
+    lam_contour_info c = { { 3 }, 1, 0, 1.5, sq_xyz, sq_uv, 4, 0, 0, 0, 0 };
     lam_layer_info L0 = { 0, 0.5, 1, 0, 1, NULL, NULL }, L1 = { 1, 1.5, 1, 1, 2, NULL, NULL };
 
     run r;
@@ -453,7 +453,7 @@ static void test_contours(void)
     set(&r.d, LAM_CMD_POLYLINE, "P {n} {points}");
     run_start(&r);
     r.sink.begin(r.sink.ctx, &j);
-    lam_contour_info nouv = { 9, 1, 0, 0.5, hole_xyz, NULL, 3, 0, 0, 0, 0 };
+    lam_contour_info nouv = { { 9 }, 1, 0, 0.5, hole_xyz, NULL, 3, 0, 0, 0, 0 };
     r.sink.contour(r.sink.ctx, &nouv);
     out = run_take(&r);
     is_str(out, "P 3 -0.500000,-0.500000,-0.500000,0.500000,0.500000,0.500000\n", "points default %%.6f, open");

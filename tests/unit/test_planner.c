@@ -44,11 +44,11 @@ static int s_layer_end(void *c, const lam_layer_info *l) { push(c, OP_LAYER_END)
 static int s_fail(void *c, const lam_layer_info *l) { (void)c; (void)l; return LAM_EIO; }
 static int s_feed(void *c, double rate) { push(c, OP_FEED)->v[0] = rate; return 0; }
 static int s_laser(void *c, int on) { push(c, OP_LASER)->on = on; return 0; }
-static int s_move(void *c, int dep, const double p[3])
+static int s_move(void *c, const lam_move_info *m)
 {
     op *o = push(c, OP_MOVE);
-    o->deposit = dep;
-    memcpy(o->v, p, sizeof o->v);
+    o->deposit = m->deposit;
+    memcpy(o->v, m->xyz, sizeof o->v);
     return 0;
 }
 static int s_contour(void *c, const lam_contour_info *ci)

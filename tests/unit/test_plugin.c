@@ -196,7 +196,7 @@ static int drive(lam_sink *s, const char *machine, const char *units, size_t lay
                 xyz[3 * i + 1] = uv[2 * i + 1] + 20;
                 xyz[3 * i + 2] = L.z;
             }
-            lam_contour_info c = {.id = id++, .solid = k == 0, .depth = k, .z = L.z, .xyz = xyz, .uv = uv, .n = 4};
+            lam_contour_info c = {.attrs.part = id++, .solid = k == 0, .depth = k, .z = L.z, .xyz = xyz, .uv = uv, .n = 4};
             if ((rc = s->contour(s->ctx, &c))) return rc;
         }
         if ((rc = s->layer_end(s->ctx, &L))) return rc;
@@ -475,11 +475,12 @@ static void test_sink_rules(void)
     is_int(s.laser(s.ctx, 1), LAM_EUSAGE, "laser: LAM_EUSAGE");
     is_str(err.msg, "writer cli-binary handles contour programs (SLS) only", "laser: message");
     lam_error_clear(&err);
-    is_int(s.move(s.ctx, 1, c), LAM_EUSAGE, "move: LAM_EUSAGE");
+    lam_move_info mv = { .deposit = 1, .xyz = { c[0], c[1], c[2] } };
+    is_int(s.move(s.ctx, &mv), LAM_EUSAGE, "move: LAM_EUSAGE");
     is_str(err.msg, "writer cli-binary handles contour programs (SLS) only", "move: message");
 
     lam_error_clear(&err);
-    lam_contour_info ci = {.id = 1, .solid = 1, .uv = solid_uv, .n = 4};
+    lam_contour_info ci = {.attrs.part = 1, .solid = 1, .uv = solid_uv, .n = 4};
     is_int(s.contour(s.ctx, &ci), LAM_EINVAL, "contour before the first layer: refused by the writer");
     contains(err.msg, "contour 1 before the first layer", "contour before layer: message");
 
@@ -500,7 +501,7 @@ static void test_sink_rules(void)
     if (rc == LAM_OK) {
         job.name = "old";
         is_int(s.begin(s.ctx, &job), LAM_OK, "old-writer: begin");
-        lam_contour_info h = {.id = 2, .solid = 0, .uv = hole_uv, .n = 4};
+        lam_contour_info h = {.attrs.part = 2, .solid = 0, .uv = hole_uv, .n = 4};
         is_int(s.layer(s.ctx, &L), LAM_OK, "old-writer: layer");
         is_int(s.contour(s.ctx, &h), LAM_OK, "old-writer: contour");
         s.destroy(s.ctx);

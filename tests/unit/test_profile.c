@@ -80,17 +80,17 @@ static void thesis_script(const lam_sink *s)
      * scan line on the top edge y = 1, stage starting at the origin (the
      * first "0.15 feedrate" comes from the preamble) */
     s->laser(s->ctx, 0);
-    s->move(s->ctx, 0, (double[]){ -1, 1.08, 0 });
-    s->move(s->ctx, 0, (double[]){ -1, 1.0, 0 });
+    move_to(s, 0, (double[]){ -1, 1.08, 0 });
+    move_to(s, 0, (double[]){ -1, 1.0, 0 });
     double y = 1.0;
     for (int line = 0; line < 4; line++) {
         s->laser(s->ctx, 1);
         s->feed(s->ctx, 0.15);
-        s->move(s->ctx, 1, (double[]){ line % 2 ? -1 : 1, y, 0 });
+        move_to(s, 1, (double[]){ line % 2 ? -1 : 1, y, 0 });
         s->laser(s->ctx, 0);
         if (line < 3) {
             y = 1.0 - 0.08 * (line + 1);
-            s->move(s->ctx, 0, (double[]){ line % 2 ? -1 : 1, y, 0 });
+            move_to(s, 0, (double[]){ line % 2 ? -1 : 1, y, 0 });
         }
     }
 }
@@ -195,9 +195,9 @@ static void ded_script(const lam_sink *s)
 {
     lam_layer_info L = { 0, 0.25, 0.5, 0, 0.5, NULL, NULL };
     s->layer(s->ctx, &L);
-    s->move(s->ctx, 0, (double[]){ 1, 2, 0.25 });
+    move_to(s, 0, (double[]){ 1, 2, 0.25 });
     s->laser(s->ctx, 1);
-    s->move(s->ctx, 1, (double[]){ 11.0005, 2, 0.25 });
+    move_to(s, 1, (double[]){ 11.0005, 2, 0.25 });
     s->laser(s->ctx, 0);
     s->layer_end(s->ctx, &L);
 }
@@ -208,7 +208,7 @@ static void cli_script(const lam_sink *s)
     static const double uv[] = { 0, 0, 10, 0, 10, 5, 0, 5 };
     lam_layer_info L = { 0, 0.05, 0.1, 0, 0.1, NULL, NULL };
     s->layer(s->ctx, &L);
-    lam_contour_info c = { 1, 1, 0, 0.05, xyz, uv, 4, 0, 0, 0, 0 };
+    lam_contour_info c = { { 1 }, 1, 0, 0.05, xyz, uv, 4, 0, 0, 0, 0 };
     s->contour(s->ctx, &c);
     s->layer_end(s->ctx, &L);
 }
@@ -327,7 +327,7 @@ static int sls_same(const char *model, const double dir[3], double width, lam_cu
             for (size_t i = 0; i < c->n; i++)
                 lam_frame_to_model(&o.frame, L->uv[2 * (c->first + i)], L->uv[2 * (c->first + i) + 1], L->cut,
                                    xyz + 3 * i);
-            lam_contour_info ci = { id++, c->kind == LAM_SOLID, c->depth, L->cut, xyz, L->uv + 2 * c->first, c->n, 0, 0, 0, 0 };
+            lam_contour_info ci = { { id++ }, c->kind == LAM_SOLID, c->depth, L->cut, xyz, L->uv + 2 * c->first, c->n, 0, 0, 0, 0 };
             sink.contour(sink.ctx, &ci);
             free(xyz);
         }

@@ -24,7 +24,7 @@ static int l_layer(void *c, const lam_layer_info *li)
     add(c, "l");
     return ((logsink *)c)->fail_layer ? LAM_EIO : 0;
 }
-static int l_move(void *c, int dep, const double p[3]) { (void)p; add(c, dep ? "D" : "T"); return 0; }
+static int l_move(void *c, const lam_move_info *m) { add(c, m->deposit ? "D" : "T"); return 0; }
 static int l_end(void *c)
 {
     add(c, "e");
@@ -57,10 +57,10 @@ int main(void)
     memset(&job, 0, sizeof job);
     lam_layer_info li;
     memset(&li, 0, sizeof li);
-    double p[3] = { 1, 2, 3 };
+    lam_move_info p = { .deposit = 1, .xyz = { 1, 2, 3 } };
     t.begin(t.ctx, &job);
     t.layer(t.ctx, &li);
-    t.move(t.ctx, 1, p);
+    t.move(t.ctx, &p);
     t.feed(t.ctx, 1); /* neither has feed: skipped */
     ok(t.end(t.ctx) == LAM_OK, "end: both fine");
     is_str(a.s, "blDe", "the first sink got every operation");
@@ -94,8 +94,8 @@ int main(void)
     li.width = 0.2;
     li.ceiling = 0.2;
     if (!rc) rc = t.layer(t.ctx, &li);
-    double q[3] = { 0.1, 0.2, 0.1 };
-    if (!rc) rc = t.move(t.ctx, 1, q);
+    lam_move_info q = { .deposit = 1, .xyz = { 0.1, 0.2, 0.1 } };
+    if (!rc) rc = t.move(t.ctx, &q);
     if (!rc) rc = t.layer_end(t.ctx, &li);
     if (!rc) rc = t.end(t.ctx);
     ok(rc == LAM_OK, "a one-layer run");

@@ -177,9 +177,10 @@ static int l_laser(void *ctx, int on)
     say(ctx, "laser %d;", on);
     return 0;
 }
-static int l_move(void *ctx, int dep, const double p[3])
+static int l_move(void *ctx, const lam_move_info *m)
 {
-    say(ctx, "%s %.17g %.17g %.17g;", dep ? "dep" : "trav", p[0], p[1], p[2]);
+    say(ctx, "%s %.17g %.17g %.17g %.17g %.17g part %lld;", m->deposit ? "dep" : "trav", m->xyz[0], m->xyz[1], m->xyz[2],
+        m->uv[0], m->uv[1], m->attrs.part);
     return 0;
 }
 static int l_contour(void *ctx, const lam_contour_info *c)
@@ -190,7 +191,7 @@ static int l_contour(void *ctx, const lam_contour_info *c)
 }
 static int l_hatches(void *ctx, const lam_hatch_info *h)
 {
-    say(ctx, "hatches n %zu type %d angle %.17g %s:", h->n, h->type, h->angle, h->kind);
+    say(ctx, "hatches n %zu kind %s angle %.17g part %lld:", h->n, lam_kind_name(h->kind), h->angle, h->attrs.part);
     for (size_t i = 0; i < 6 * h->n; i++) say(ctx, " %.17g", h->xyz[i]);
     for (size_t i = 0; i < 4 * h->n; i++) say(ctx, " %.17g", h->uv[i]);
     return 0;
@@ -200,14 +201,17 @@ static int drive(const lam_sink *s)
 {
     const double xyz[9] = { 0.1, 0.2, 0.3, 1e-300, -2.5, 3, 7, 8, 9 }, uv[6] = { 0.1, 0.2, -2.5, 3, 7, 8 };
     const double hx[12] = { 1, 2, 3, 4, 5, 6, 1.5, 2.5, 3.5, 4.5, 5.5, 6.5 }, hu[8] = { 1, 2, 4, 5, 1.5, 2.5, 4.5, 5.5 };
-    lam_contour_info c = { 1, 1, 0, 0.3, xyz, uv, 3, 100, 200, 0, 0 };
-    lam_hatch_info h = { 1, 1, "core", 0.3, hx, hu, 2, 67, 100, 200, 0, 0 };
+    lam_contour_info c = { { 1 }, 1, 0, 0.3, xyz, uv, 3, 100, 200, 0, 0 };
+    lam_hatch_info h = { .attrs = { 3 }, .kind = LAM_KIND_UPSKIN, .z = 0.3, .xyz = hx, .uv = hu, .n = 2, .angle = 67,
+                         .power = 100, .speed = 200 };
+    lam_move_info m1 = { .attrs = { 2 }, .deposit = 1, .xyz = { xyz[3], xyz[4], xyz[5] }, .uv = { -2.5, 3 } };
+    lam_move_info m2 = { .attrs = { 1 }, .deposit = 0, .xyz = { xyz[6], xyz[7], xyz[8] }, .uv = { 7, 8 } };
     int rc = s->feed(s->ctx, 1234.5);
     if (!rc) rc = s->laser(s->ctx, 1);
-    if (!rc) rc = s->move(s->ctx, 1, xyz + 3);
+    if (!rc) rc = s->move(s->ctx, &m1);
     if (!rc) rc = s->contour(s->ctx, &c);
     if (!rc) rc = s->hatches(s->ctx, &h);
-    if (!rc) rc = s->move(s->ctx, 0, xyz + 6);
+    if (!rc) rc = s->move(s->ctx, &m2);
     if (!rc) rc = s->laser(s->ctx, 0);
     return rc;
 }
@@ -254,7 +258,7 @@ static void dialect_fork(void)
              put_tpl(&d, LAM_CMD_SEPARATOR, "--") | put_tpl(&d, LAM_CMD_PREAMBLE, "begin {layers}");
     ok(rc == LAM_OK, "dialect: templates parse");
     double xyz[9] = { 0, 0, 1, 1, 0, 1, 0, 1, 1 }, uv[6] = { 0, 0, 1, 0, 0, 1 };
-    lam_contour_info ci = { 1, 1, 0, 1, xyz, uv, 3, 0, 0, 0, 0 };
+    lam_contour_info ci = { { 1 }, 1, 0, 1, xyz, uv, 3, 0, 0, 0, 0 };
     lam_layer_info li[2] = { { 0, 0.5, 0.5, 0, 0.5, NULL, NULL }, { 1, 1, 0.5, 0.5, 1, NULL, NULL } };
     lam_job_info job;
     memset(&job, 0, sizeof job);

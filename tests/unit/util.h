@@ -13,7 +13,15 @@
 
 #include "error.h"
 #include "mesh.h"
+#include "plan.h"
 #include "tap.h"
+
+/* A stage move of sink s to p (output frame; the dialects read no other). */
+static inline int move_to(const lam_sink *s, int deposit, const double p[3])
+{
+    lam_move_info m = { .attrs = lam_attrs_default(), .deposit = deposit, .xyz = { p[0], p[1], p[2] } };
+    return s->move(s->ctx, &m);
+}
 
 /* A growable NUL-terminated string: start from (sbuf){ 0 }, free b.s. */
 typedef struct sbuf {
