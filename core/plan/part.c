@@ -71,35 +71,21 @@ int lam_part_identity(const char *model_path, const char *profile, size_t profil
 
 /* ---- the recording sink ---------------------------------------------------- */
 
+/* The header in the plan's encoding's buffer, then each operation encoded
+ * by plan_record.c and written out every FLUSH_AT bytes. */
 typedef struct rec {
     lam_writer *w;
     lam_error *err;
     lam_part_meta meta;       /* strings owned */
     lam_scan_time *time;
     uint64_t hash;
-    unsigned char *b;         /* pending bytes */
-    size_t len, cap;
-    int oom;
+    lam_record b;             /* pending bytes */
+    lam_sink enc;             /* the encoder, into b */
 } rec;
 
 #define FLUSH_AT 65536
 
-static void put(rec *r, const void *p, size_t n)
-{
-    if (r->oom) return;
-    if (r->len + n > r->cap) {
-        size_t cap = lam_grow_cap(r->cap, r->len + n, FLUSH_AT * 2, 1);
-        unsigned char *nb = cap ? realloc(r->b, cap) : NULL;
-        if (!nb) {
-            r->oom = 1;
-            return;
-        }
-        r->b = nb;
-        r->cap = cap;
-    }
-    memcpy(r->b + r->len, p, n);
-    r->len += n;
-}
+static void put(rec *r, const void *p, size_t n) { lam_record_bytes(&r->b, p, n); }
 
 static void put_u64(rec *r, uint64_t v)
 {
@@ -108,22 +94,13 @@ static void put_u64(rec *r, uint64_t v)
     put(r, b, 8);
 }
 
-static void put_u8(rec *r, int v)
-{
-    unsigned char b = (unsigned char)v;
-    put(r, &b, 1);
-}
-
-static void put_f64(rec *r, double x)
-{
-    uint64_t v;
-    memcpy(&v, &x, 8);
-    put_u64(r, v);
-}
-
 static void put_f64s(rec *r, const double *x, size_t n)
 {
-    for (size_t i = 0; i < n; i++) put_f64(r, x[i]);
+    for (size_t i = 0; i < n; i++) {
+        uint64_t v;
+        memcpy(&v, &x[i], 8);
+        put_u64(r, v);
+    }
 }
 
 static void put_str(rec *r, const char *s, size_t n)
@@ -139,12 +116,20 @@ static void put_cstr(rec *r, const char *s)
 
 static int flush(rec *r, int force)
 {
-    if (r->oom) return lam_error_nomem(r->err, "writing a part file");
-    if (r->len < FLUSH_AT && !force) return LAM_OK;
-    r->hash = fnv(r->hash, r->b, r->len);
-    int rc = lam_writer_write(r->w, r->b, r->len);
-    r->len = 0;
+    if (r->b.failed) return lam_error_nomem(r->err, "writing a part file");
+    if (r->b.len < FLUSH_AT && !force) return LAM_OK;
+    r->hash = fnv(r->hash, r->b.buf, r->b.len);
+    int rc = lam_writer_write(r->w, r->b.buf, r->b.len);
+    lam_record_clear(&r->b);
     return rc ? lam_writer_error(r->w, r->err) : LAM_OK;
+}
+
+/* The attribute table the records were written with (vocab.h): a part of
+ * a lamina with other attributes is refused, not misread. */
+static void put_attr_keys(rec *r)
+{
+    put_u64(r, LAM_NATTRS);
+    for (size_t i = 0; i < LAM_NATTRS; i++) put_cstr(r, lam_attr_key(i));
 }
 
 static int r_begin(void *ctx, const lam_job_info *j)
@@ -162,40 +147,30 @@ static int r_begin(void *ctx, const lam_job_info *j)
     put_cstr(r, j->units);
     put_cstr(r, j->label);
     put_f64s(r, j->bbox, 6);
-    put_f64(r, j->bead);
-    put_f64(r, j->rate);
-    put_f64(r, j->travel_rate);
+    put_f64s(r, &j->bead, 1);
+    put_f64s(r, &j->rate, 1);
+    put_f64s(r, &j->travel_rate, 1);
     put_f64s(r, j->origin, 3);
     put_str(r, r->meta.profile, r->meta.profile_len);
     put_cstr(r, r->meta.model);
-    put_u64(r, fnv(FNV_BASIS, r->b, r->len)); /* the header's own check */
+    put_attr_keys(r);
+    put_u64(r, fnv(FNV_BASIS, r->b.buf, r->b.len)); /* the header's own check */
     if (j->layers != r->meta.layers)
         return lam_error_set(r->err, LAM_EUSAGE, NULL, 0, 0, "part: the run has %zu layers, not %zu", j->layers,
                              r->meta.layers);
     return flush(r, 0);
 }
 
-static void put_layer(rec *r, int tag, const lam_layer_info *L)
-{
-    put_u8(r, tag);
-    put_u64(r, L->index);
-    put_f64(r, L->z);
-    put_f64(r, L->width);
-    put_f64(r, L->floor);
-    put_f64(r, L->ceiling);
-}
-
 static int r_layer(void *ctx, const lam_layer_info *L)
 {
     rec *r = ctx;
-    put_layer(r, 'L', L);
+    lam_record_layer(&r->b, L);
     return flush(r, 0);
 }
 
 static int r_layer_end(void *ctx, const lam_layer_info *L)
 {
     rec *r = ctx;
-    put_layer(r, 'E', L);
     lam_scan_time t;
     memset(&t, 0, sizeof t);
     if (r->time) {
@@ -203,80 +178,42 @@ static int r_layer_end(void *ctx, const lam_layer_info *L)
         t = *r->time;
         memset(r->time, 0, sizeof *r->time);
     }
-    put_u64(r, t.layers);
-    put_u64(r, t.contours);
-    put_u64(r, t.vectors);
-    put_u64(r, t.jumps);
-    put_f64(r, t.exposure_length);
-    put_f64(r, t.jump_length);
-    put_f64(r, t.hatch_length);
-    put_f64(r, t.exposure);
-    put_f64(r, t.jump);
-    put_f64(r, t.recoat);
+    lam_record_layer_end(&r->b, L, &t);
     return flush(r, 0);
 }
 
 static int r_feed(void *ctx, double rate)
 {
     rec *r = ctx;
-    put_u8(r, 'F');
-    put_f64(r, rate);
+    r->enc.feed(r->enc.ctx, rate);
     return flush(r, 0);
 }
 
 static int r_laser(void *ctx, int on)
 {
     rec *r = ctx;
-    put_u8(r, 'A');
-    put_u8(r, on != 0);
+    r->enc.laser(r->enc.ctx, on);
     return flush(r, 0);
 }
 
 static int r_move(void *ctx, const lam_move_info *m)
 {
     rec *r = ctx;
-    put_u8(r, 'M');
-    put_u8(r, m->deposit != 0);
-    put_f64s(r, m->xyz, 3);
+    r->enc.move(r->enc.ctx, m);
     return flush(r, 0);
 }
 
 static int r_contour(void *ctx, const lam_contour_info *c)
 {
     rec *r = ctx;
-    put_u8(r, 'C');
-    put_u64(r, (uint64_t)c->attrs.part);
-    put_u8(r, c->solid != 0);
-    put_u64(r, (uint64_t)(int64_t)c->depth);
-    put_f64(r, c->z);
-    put_u64(r, c->n);
-    put_f64(r, c->power);
-    put_f64(r, c->speed);
-    put_f64(r, c->point_distance);
-    put_f64(r, c->exposure_time);
-    put_u8(r, c->uv != NULL);
-    put_f64s(r, c->xyz, 3 * c->n);
-    if (c->uv) put_f64s(r, c->uv, 2 * c->n);
+    r->enc.contour(r->enc.ctx, c);
     return flush(r, 0);
 }
 
 static int r_hatches(void *ctx, const lam_hatch_info *h)
 {
     rec *r = ctx;
-    put_u8(r, 'H');
-    put_u64(r, (uint64_t)h->attrs.part);
-    put_u64(r, (uint64_t)(int64_t)h->kind);
-    put_cstr(r, lam_kind_name(h->kind));
-    put_f64(r, h->z);
-    put_u64(r, h->n);
-    put_f64(r, h->angle);
-    put_f64(r, h->power);
-    put_f64(r, h->speed);
-    put_f64(r, h->point_distance);
-    put_f64(r, h->exposure_time);
-    put_u8(r, h->uv != NULL);
-    put_f64s(r, h->xyz, 6 * h->n);
-    if (h->uv) put_f64s(r, h->uv, 4 * h->n);
+    r->enc.hatches(r->enc.ctx, h);
     return flush(r, 0);
 }
 
@@ -285,11 +222,12 @@ static int r_end(void *ctx)
     rec *r = ctx;
     int rc = flush(r, 1);
     if (rc) return rc;
-    put_u8(r, 'Z');
-    r->hash = fnv(r->hash, r->b, r->len);
+    put(r, "Z", 1);
+    r->hash = fnv(r->hash, r->b.buf, r->b.len);
     put_u64(r, r->hash);
-    rc = lam_writer_write(r->w, r->b, r->len);
-    r->len = 0;
+    if (r->b.failed) return lam_error_nomem(r->err, "writing a part file");
+    rc = lam_writer_write(r->w, r->b.buf, r->b.len);
+    lam_record_clear(&r->b);
     return rc ? lam_writer_error(r->w, r->err) : LAM_OK;
 }
 
@@ -299,7 +237,7 @@ static void r_destroy(void *ctx)
     if (!r) return;
     free((char *)r->meta.profile);
     free((char *)r->meta.model);
-    free(r->b);
+    lam_record_free(&r->b);
     free(r);
 }
 
@@ -320,6 +258,8 @@ int lam_part_sink(const lam_part_meta *meta, lam_scan_time *time, lam_writer *w,
     }
     r->meta.profile = prof;
     r->meta.model = model;
+    lam_sink all = { .feed = r_feed, .laser = r_laser, .move = r_move, .contour = r_contour, .hatches = r_hatches };
+    r->enc = lam_record_sink(&r->b, &all);
     if (!prof || !model) {
         r_destroy(r);
         return lam_error_nomem(err, NULL);
@@ -396,15 +336,6 @@ static int get_size(lam_part *p, size_t *v, lam_error *err)
     return LAM_OK;
 }
 
-static int get_u8(lam_part *p, int *v, lam_error *err)
-{
-    unsigned char b = 0;
-    int rc = get(p, &b, 1, err);
-    if (rc) return rc;
-    *v = b;
-    return LAM_OK;
-}
-
 static int get_f64s(lam_part *p, double *x, size_t n, lam_error *err)
 {
     for (size_t i = 0; i < n; i++) {
@@ -426,19 +357,6 @@ static int get_str(lam_part *p, char **s, size_t *len, lam_error *err)
     if ((rc = get(p, *s, n, err))) return rc;
     (*s)[n] = '\0';
     if (len) *len = n;
-    return LAM_OK;
-}
-
-/* room for n reals of a record whose bytes the file must still hold */
-static int reals(lam_part *p, size_t n, lam_error *err)
-{
-    if (n > (size_t)(p->size - p->off) / 8) return corrupt(p, err, "more points than the file holds");
-    if (n < 1) n = 1; /* a record of no points still gives the sink a pointer */
-    if (n <= p->dcap) return LAM_OK;
-    double *d = lam_realloc_n(p->d, n, sizeof *d);
-    if (!d) return lam_error_nomem(err, "reading a part file");
-    p->d = d;
-    p->dcap = n;
     return LAM_OK;
 }
 
@@ -620,6 +538,23 @@ static int check_job(lam_part *p, long long at_reals, lam_error *err)
     return LAM_OK;
 }
 
+/* The header's attribute keys: the same as this lamina's (vocab.h). */
+static int read_attr_keys(lam_part *p, lam_error *err)
+{
+    size_t n = 0;
+    int rc = get_size(p, &n, err);
+    if (!rc && n != LAM_NATTRS)
+        return corrupt(p, err, "operations with another set of attributes (a part of another lamina)");
+    for (size_t i = 0; i < n && !rc; i++) {
+        char *key = NULL;
+        rc = get_str(p, &key, NULL, err);
+        if (!rc && strcmp(key, lam_attr_key(i)))
+            rc = corrupt(p, err, "operations with another set of attributes (a part of another lamina)");
+        free(key);
+    }
+    return rc;
+}
+
 static int read_header(lam_part *p, lam_error *err)
 {
     unsigned char head[16];
@@ -662,6 +597,7 @@ static int read_header(lam_part *p, lam_error *err)
     p->meta.profile = prof;
     if (!rc) rc = get_str(p, &model, NULL, err);
     p->meta.model = model;
+    if (!rc) rc = read_attr_keys(p, err);
     uint64_t want = p->hash, got = 0;
     if (!rc) rc = get_u64(p, &got, err);
     if (!rc && got != want)
@@ -774,139 +710,107 @@ int lam_part_order(lam_part **parts, size_t n, lam_error *err)
     return LAM_OK;
 }
 
-/* The layer record's fields; checks that it is the layer expected next
- * and that its values could be a layer of the job. */
-static int get_layer(lam_part *p, lam_layer_info *L, size_t want, lam_error *err)
+/* The part as the decoder's source (plan_record.h): its bytes read and
+ * hashed in order. */
+static int src_get(void *ctx, void *dst, size_t n, lam_error *err) { return get(ctx, dst, n, err); }
+
+static unsigned long long src_left(void *ctx)
 {
-    long long at = p->off - 1;
-    uint64_t index;
-    int rc;
-    memset(L, 0, sizeof *L);
-    if ((rc = get_u64(p, &index, err)) || (rc = get_f64s(p, &L->z, 1, err)) || (rc = get_f64s(p, &L->width, 1, err)) ||
-        (rc = get_f64s(p, &L->floor, 1, err)) || (rc = get_f64s(p, &L->ceiling, 1, err)))
-        return rc;
-    if (index != want) return corrupt(p, err, "a layer out of order");
-    L->index = (size_t)index;
-    p->layer.index = L->index;
-    return check_layer(p, at, L, err);
+    const lam_part *p = ctx;
+    return (unsigned long long)(p->size - p->off);
 }
 
-/* 'E': the layer's end (the same fields as its start) and its estimate */
-static int read_layer_end(lam_part *p, lam_layer_info *L, size_t want, lam_scan_time *t, lam_error *err)
+static int src_corrupt(void *ctx, const char *what, lam_error *err) { return corrupt(ctx, err, what); }
+
+/* 'L', 'E': the layer expected next, with values that could be a layer of
+ * the job; an end the same as its start, and an estimate of what the
+ * records hold. */
+static int check_layer_rec(lam_part *p, long long at, const lam_rec_op *op, size_t want, lam_error *err)
 {
-    long long at = p->off - 1;
-    int rc = get_layer(p, L, want, err);
-    if (rc) return rc;
+    if (op->index != want) {
+        p->off = at + 9;
+        return corrupt(p, err, "a layer out of order");
+    }
+    p->layer.index = op->layer.index;
+    int rc = check_layer(p, at, &op->layer, err);
+    if (rc || op->tag == 'L') return rc;
+    const lam_layer_info *L = &op->layer;
     if (L->z != p->layer.z || L->width != p->layer.width || L->floor != p->layer.floor ||
         L->ceiling != p->layer.ceiling)
         return bad_value(p, at, err, "its end does not match its start");
-    uint64_t c[4];
-    for (int i = 0; i < 4 && !rc; i++) rc = get_u64(p, &c[i], err);
-    if (!rc) rc = get_f64s(p, &t->exposure_length, 1, err);
-    if (!rc) rc = get_f64s(p, &t->jump_length, 1, err);
-    if (!rc) rc = get_f64s(p, &t->hatch_length, 1, err);
-    if (!rc) rc = get_f64s(p, &t->exposure, 1, err);
-    if (!rc) rc = get_f64s(p, &t->jump, 1, err);
-    if (!rc) rc = get_f64s(p, &t->recoat, 1, err);
-    if (rc) return rc;
-    /* a layer's counts are of what its records hold */
     for (int i = 0; i < 4; i++)
-        if (c[i] > (uint64_t)p->size)
-            return bad_value(p, at, err, "an estimate counting %llu", (unsigned long long)c[i]);
+        if (op->counts[i] > (uint64_t)p->size)
+            return bad_value(p, at, err, "an estimate counting %llu", (unsigned long long)op->counts[i]);
+    const lam_scan_time *t = &op->time;
     double r[6] = { t->exposure_length, t->jump_length, t->hatch_length, t->exposure, t->jump, t->recoat };
     for (int i = 0; i < 6; i++)
         if (!(isfinite(r[i]) && r[i] >= 0)) return bad_value(p, at, err, "an estimate of %g", r[i]);
-    t->layers = (size_t)c[0];
-    t->contours = (size_t)c[1];
-    t->vectors = (size_t)c[2];
-    t->jumps = (size_t)c[3];
     return LAM_OK;
 }
 
-/* 'C': a contour, checked */
-static int read_contour(lam_part *p, lam_contour_info *c, lam_error *err)
+/* An operation's attributes: whole numbers of no more than the file's
+ * size (a part id, a style or laser number), never negative. */
+static int check_attrs(lam_part *p, long long at, const char *what, const lam_attrs *a, lam_error *err)
 {
-    long long at = p->off - 1;
-    uint64_t id, depth;
-    int solid, has_uv, rc;
-    double e[4];
-    if ((rc = get_u64(p, &id, err)) || (rc = get_u8(p, &solid, err)) || (rc = get_u64(p, &depth, err)) ||
-        (rc = get_f64s(p, &c->z, 1, err)) || (rc = get_size(p, &c->n, err)) || (rc = get_f64s(p, e, 4, err)) ||
-        (rc = get_u8(p, &has_uv, err)) || (rc = reals(p, (has_uv ? 5 : 3) * c->n, err)) ||
-        (rc = get_f64s(p, p->d, (has_uv ? 5 : 3) * c->n, err)))
-        return rc;
-    c->attrs = lam_attrs_default();
-    c->attrs.part = (long long)id;
-    c->solid = solid;
-    c->depth = (int)(int64_t)depth;
-    c->power = e[0], c->speed = e[1], c->point_distance = e[2], c->exposure_time = e[3];
-    c->xyz = p->d;
-    c->uv = p->d + 3 * c->n;
-    if ((int64_t)depth < -1 || (int64_t)depth > INT_MAX)
-        return bad_value(p, at, err, "a contour of depth %lld", (long long)(int64_t)depth);
-    /* the planner gives every contour its layer-frame points (writers
-     * read them) */
-    if (has_uv != 1) return bad_value(p, at, err, "a contour without its layer-frame points");
-    if ((rc = check_flag(p, at, "a contour's solid", solid, err)) ||
-        (rc = check_exposure(p, at, "a contour", e, err)) ||
-        (rc = check_height(p, at, "a contour", c->z, err)) ||
-        (rc = check_points(p, at, "contour point", c->xyz, c->n, 3, err)))
-        return rc;
-    return check_uv(p, at, "contour point", c->uv, c->n, err);
+    for (size_t i = 0; i < LAM_NATTRS; i++) {
+        long long v = lam_attr_get(a, i);
+        if (v < 0 || v > p->size)
+            return bad_value(p, at, err, "%s with %s %lld", what, lam_attr_key(i), v);
+    }
+    return LAM_OK;
 }
 
-/* 'H': a block of hatch vectors, checked; h->kind is owned */
-static int read_hatches(lam_part *p, lam_hatch_info *h, lam_error *err)
+static int check_contour(lam_part *p, long long at, const lam_rec_op *op, lam_error *err)
 {
-    long long at = p->off - 1;
-    uint64_t id, type;
-    int has_uv, rc;
-    char *kind = NULL;
-    double e[4];
-    if ((rc = get_u64(p, &id, err)) || (rc = get_u64(p, &type, err)) || (rc = get_str(p, &kind, NULL, err)) ||
-        (rc = get_f64s(p, &h->z, 1, err)) || (rc = get_size(p, &h->n, err)) || (rc = get_f64s(p, &h->angle, 1, err)) ||
-        (rc = get_f64s(p, e, 4, err)) || (rc = get_u8(p, &has_uv, err)) ||
-        (rc = reals(p, (has_uv ? 10 : 6) * h->n, err)) || (rc = get_f64s(p, p->d, (has_uv ? 10 : 6) * h->n, err))) {
-        free(kind);
-        return rc;
-    }
-    h->attrs = lam_attrs_default();
-    h->attrs.part = (long long)id;
-    h->kind = type < LAM_VEC_TYPES ? (int)type : -1;
-    h->power = e[0], h->speed = e[1], h->point_distance = e[2], h->exposure_time = e[3];
-    h->xyz = p->d;
-    h->uv = p->d + 6 * h->n;
-    /* the kind is written into programs: only the planner's names */
-    if (h->kind < LAM_VEC_CORE || strcmp(kind, lam_vec_type_name(h->kind)) != 0)
-        rc = bad_value(p, at, err, "hatches of type %llu, kind '%.32s'", (unsigned long long)type, kind);
-    else if (has_uv != 1)
-        rc = bad_value(p, at, err, "hatches without their layer-frame points");
-    else if (!(rc = check_exposure(p, at, "hatches", e, err)) && !(rc = check_height(p, at, "hatches", h->z, err))) {
-        if (!isfinite(h->angle)) rc = bad_value(p, at, err, "hatches at an angle of %g", h->angle);
-        else if (!(rc = check_points(p, at, "hatch end", h->xyz, 2 * h->n, 3, err)))
-            rc = check_uv(p, at, "hatch end", h->uv, 2 * h->n, err);
-    }
-    free(kind);
+    const lam_contour_info *c = &op->contour;
+    double e[4] = { c->power, c->speed, c->point_distance, c->exposure_time };
+    int rc = check_attrs(p, at, "a contour", &c->attrs, err);
+    if (!rc) rc = check_flag(p, at, "a contour's solid", c->solid, err);
+    if (!rc && op->flag != 1) rc = bad_value(p, at, err, "a contour without its layer-frame points");
+    if (!rc) rc = check_exposure(p, at, "a contour", e, err);
+    if (!rc) rc = check_height(p, at, "a contour", c->z, err);
+    if (!rc) rc = check_points(p, at, "contour point", c->xyz, c->n, 3, err);
+    if (!rc) rc = check_uv(p, at, "contour point", c->uv, c->n, err);
     return rc;
 }
 
-/* 'F', 'A', 'M': the LADRP stage's records, checked */
-static int read_stage(lam_part *p, int tag, const lam_sink *sink, lam_error *err)
+static int check_hatches(lam_part *p, long long at, const lam_rec_op *op, lam_error *err)
 {
-    long long at = p->off - 1;
-    int rc, flag;
-    double x[3];
-    if (tag == 'F') {
-        if ((rc = get_f64s(p, x, 1, err))) return rc;
-        if (!(isfinite(x[0]) && x[0] >= 0)) return bad_value(p, at, err, "a feed rate of %g", x[0]);
-        return sink->feed ? sink->feed(sink->ctx, x[0]) : LAM_OK;
+    const lam_hatch_info *h = &op->hatches;
+    double e[4] = { h->power, h->speed, h->point_distance, h->exposure_time };
+    int rc = check_attrs(p, at, "hatches", &h->attrs, err);
+    /* the kind is written into programs: only the planner's hatch kinds */
+    if (!rc && !(h->kind >= LAM_KIND_CORE && h->kind < LAM_REGIONS))
+        rc = bad_value(p, at, err, "hatches of kind %lld (not a hatch region)", (long long)op->kind);
+    if (!rc && op->flag != 1) rc = bad_value(p, at, err, "hatches without their layer-frame points");
+    if (!rc) rc = check_exposure(p, at, "hatches", e, err);
+    if (!rc) rc = check_height(p, at, "hatches", h->z, err);
+    if (!rc && !isfinite(h->angle)) rc = bad_value(p, at, err, "hatches at an angle of %g", h->angle);
+    if (!rc) rc = check_points(p, at, "hatch end", h->xyz, 2 * h->n, 3, err);
+    if (!rc) rc = check_uv(p, at, "hatch end", h->uv, 2 * h->n, err);
+    return rc;
+}
+
+/* 'F', 'A', 'M': the LADRP stage's records */
+static int check_stage(lam_part *p, long long at, const lam_rec_op *op, lam_error *err)
+{
+    if (op->tag == 'F')
+        return isfinite(op->rate) && op->rate >= 0 ? LAM_OK : bad_value(p, at, err, "a feed rate of %g", op->rate);
+    int rc = check_flag(p, at, op->tag == 'A' ? "a laser" : "a move's deposit", op->flag, err);
+    if (rc || op->tag == 'A') return rc;
+    if ((rc = check_attrs(p, at, "a move", &op->move.attrs, err))) return rc;
+    if ((rc = check_points(p, at, "a move to", op->move.xyz, 1, 3, err))) return rc;
+    return check_uv(p, at, "a move to", op->move.uv, 1, err);
+}
+
+/* Every value of a decoded operation, as a slicing run writes it. */
+static int check_op(lam_part *p, long long at, const lam_rec_op *op, lam_error *err)
+{
+    switch (op->tag) {
+    case 'C': return check_contour(p, at, op, err);
+    case 'H': return check_hatches(p, at, op, err);
+    default: return check_stage(p, at, op, err);
     }
-    if ((rc = get_u8(p, &flag, err))) return rc;
-    if ((rc = check_flag(p, at, tag == 'A' ? "a laser" : "a move's deposit", flag, err))) return rc;
-    if (tag == 'A') return sink->laser ? sink->laser(sink->ctx, flag) : LAM_OK;
-    if ((rc = get_f64s(p, x, 3, err)) || (rc = check_points(p, at, "a move to", x, 1, 3, err))) return rc;
-    lam_move_info m = { .attrs = lam_attrs_default(), .deposit = flag, .xyz = { x[0], x[1], x[2] }, .uv = { x[0], x[1] } };
-    return sink->move ? sink->move(sink->ctx, &m) : LAM_OK;
 }
 
 /* The part's end: its hash, its last layer, nothing after it. */
@@ -925,6 +829,27 @@ static int read_end(lam_part *p, long long at, int in_layer, size_t next, lam_er
     return LAM_OK;
 }
 
+/* One record in its place: layers in order within the part's range,
+ * operations inside a layer. */
+static int place(lam_part *p, long long at, const lam_rec_op *op, int *in_layer, size_t *next, lam_error *err)
+{
+    int tag = op->tag;
+    if (!*in_layer && strchr("FAMCH", tag)) {
+        p->off = at;
+        return corrupt(p, err, "an operation outside a layer");
+    }
+    if (tag == 'L' && (*in_layer || *next >= p->meta.last)) {
+        p->off = at;
+        return corrupt(p, err, "a layer outside its range");
+    }
+    if (tag == 'E' && !*in_layer) {
+        p->off = at;
+        return corrupt(p, err, "a layer's end without its start");
+    }
+    if (tag == 'L' || tag == 'E') return check_layer_rec(p, at, op, *next, err);
+    return check_op(p, at, op, err);
+}
+
 /* Replay one part's records into sink. */
 static int replay(lam_part *p, const lam_sink *sink, lam_scan_time *time, double *layer_time, lam_error *err)
 {
@@ -936,57 +861,30 @@ static int replay(lam_part *p, const lam_sink *sink, lam_scan_time *time, double
     p->off = p->body;
     p->hash = p->body_hash;
     p->layer.index = (size_t)-1;
+    lam_rec_source src = { p, src_get, src_left, src_corrupt };
+    lam_rec_scratch sc = { 0 };
+    lam_rec_op op;
     for (;;) {
         long long at = p->off;
-        int tag;
-        if ((rc = get_u8(p, &tag, err))) return rc;
-        if (tag == 'Z') return read_end(p, at, in_layer, next, err);
-        /* the planners give operations inside layers only */
-        if (!in_layer && tag && strchr("FAMCH", tag)) {
-            p->off = at;
-            return corrupt(p, err, "an operation outside a layer");
-        }
-        lam_layer_info L;
-        switch (tag) {
-        case 'L':
-            if (in_layer || next >= p->meta.last) return corrupt(p, err, "a layer outside its range");
-            if ((rc = get_layer(p, &L, next, err))) return rc;
-            p->layer = L;
-            in_layer = 1;
-            rc = sink->layer ? sink->layer(sink->ctx, &L) : LAM_OK;
+        if ((rc = lam_rec_read(&src, &sc, &op, err))) break;
+        if (op.tag == 'Z') {
+            rc = read_end(p, at, in_layer, next, err);
             break;
-        case 'E': {
-            if (!in_layer) return corrupt(p, err, "a layer's end without its start");
-            lam_scan_time t;
-            if ((rc = read_layer_end(p, &L, next, &t, err))) return rc;
-            if (time) lam_scan_time_add(time, &t);
-            if (layer_time) layer_time[next] = lam_scan_time_total(&t);
+        }
+        if ((rc = place(p, at, &op, &in_layer, &next, err))) break;
+        if (op.tag == 'L') {
+            p->layer = op.layer;
+            in_layer = 1;
+        } else if (op.tag == 'E') {
+            if (time) lam_scan_time_add(time, &op.time);
+            if (layer_time) layer_time[next] = lam_scan_time_total(&op.time);
             in_layer = 0;
             next++;
-            rc = sink->layer_end ? sink->layer_end(sink->ctx, &L) : LAM_OK;
-            break;
         }
-        case 'F':
-        case 'A':
-        case 'M': rc = read_stage(p, tag, sink, err); break;
-        case 'C': {
-            lam_contour_info c;
-            if ((rc = read_contour(p, &c, err))) return rc;
-            rc = sink->contour ? sink->contour(sink->ctx, &c) : LAM_OK;
-            break;
-        }
-        case 'H': {
-            lam_hatch_info h;
-            if ((rc = read_hatches(p, &h, err))) return rc;
-            rc = sink->hatches ? sink->hatches(sink->ctx, &h) : LAM_OK;
-            break;
-        }
-        default:
-            p->off = at;
-            return corrupt(p, err, "an unknown record");
-        }
-        if (rc) return rc;
+        if ((rc = lam_rec_send(&op, sink))) break;
     }
+    lam_rec_scratch_free(&sc);
+    return rc;
 }
 
 int lam_part_join(lam_part *const *parts, size_t n, const lam_sink *sink, lam_scan_time *time, double *layer_time,

@@ -14,7 +14,7 @@
  * every dialect and every plugin writer. Slicing, contour building,
  * planning and hatching run in the parts; join only formats.
  *
- * Format, version 1 (integers unsigned 64-bit little-endian unless said,
+ * Format, version 2 (integers unsigned 64-bit little-endian unless said,
  * reals IEEE 754 binary64 little-endian, strings a length then the bytes):
  *
  *   magic "LAMPART\0", u32 version, u32 flags (0)
@@ -27,21 +27,14 @@
  *   profile            the resolved machine profile (lam_profile_dump), the
  *                      one join writes through
  *   model              the model's path as given (for join's messages)
+ *   attributes         u64 count, then each key (string): vocab.h's
+ *                      attribute table the records carry; a part of a
+ *                      lamina with another table is refused
  *   u64 FNV-1a hash of the header's bytes before it (read before anything
  *                      the header says is used)
- *   records            u8 tag and fields:
- *     'L' layer        index, z, width, floor, ceiling
- *     'E' layer end    the same, then the layer's build-time estimate
- *                      (lam_scan_time: 4 counts, 6 reals)
- *     'F' feed         rate
- *     'A' laser        u8 on
- *     'M' move         u8 deposit, xyz
- *     'C' contour      id, u8 solid, i64 depth, z, n, power, speed,
- *                      point_distance, exposure_time, u8 has_uv, 3n reals
- *                      (xyz), 2n reals (uv) when has_uv
- *     'H' hatches      id, i64 type, kind (string), z, n, angle, power,
- *                      speed, point_distance, exposure_time, u8 has_uv, 6n
- *                      reals, 4n when has_uv
+ *   records            the plan's encoding (plan_record.h: 'L' layer, 'E'
+ *                      layer end, 'F', 'A', 'M', 'C', 'H' operations), the
+ *                      same records worker threads keep in memory
  *     'Z' end          u64 FNV-1a hash of every byte before this tag
  *   and nothing after it.
  *
@@ -50,7 +43,8 @@
  * whose hashes match but whose values no slicing run writes (numbers that
  * are not finite; points outside the job's box, by more than two beads;
  * heights outside their layer; negative rates or exposures; flags other
- * than 0 and 1; hatch kinds other than the planner's; operations outside a
+ * than 0 and 1; hatch kinds other than the hatch regions; negative
+ * attributes or larger than the file; operations outside a
  * layer; counts larger than the file), naming the layer. Contours and
  * hatches carry their layer-frame points (has_uv 1). */
 #ifndef LAM_PART_H
@@ -61,10 +55,11 @@
 #include "error.h"
 #include "hatch.h"
 #include "plan.h"
+#include "plan_record.h"
 #include "slice.h"
 #include "writer.h"
 
-#define LAM_PART_VERSION 1
+#define LAM_PART_VERSION 2
 
 /* What a part says about itself (strings owned by the part or the caller). */
 typedef struct lam_part_meta {

@@ -2,7 +2,7 @@
 # changed and both its hashes made right again (the format of
 # core/plan/part.h, read here on its own). TAG: C (the first contour: FIELD
 # x|y|z of its first point, or power), H (the first hatch block: x|y|z of
-# its first vector's start, or kind: a letter's case flipped), M (the
+# its first vector's start, or kind: made 9, no region), M (the
 # first move: x|y|z), L (the first layer: z, its height), J (the header's
 # job: zmax of its box), - (nothing: the hashes only). VALUE: a number,
 # nan, inf, or hi+K / lo-K: the job's box on FIELD's axis, K beads beyond;
@@ -31,6 +31,11 @@ bead = f64(job + 48)
 o = job + 96
 for _ in range(2):                      # profile, model
     o += 8 + u64(o)
+nattrs = u64(o)                         # the attribute keys
+o += 8
+for _ in range(nattrs):
+    o += 8 + u64(o)
+A = 8 * nattrs                          # an attribute block
 hhash = o
 assert u64(hhash) == fnv(b[:hhash]), "the header's hash"
 axis = {"x": 0, "y": 1, "z": 2}.get(field, 0)
@@ -52,16 +57,16 @@ while chr(b[o]) != "Z":
         n, at = 8, None
     elif t == "A":
         n, at = 1, None
-    elif t == "M":
-        n, at = 25, r + 1 + 8 * axis
-    elif t == "C":
-        cnt, uv = u64(r + 25), b[r + 65]
-        n, at = 66 + 8 * cnt * (5 if uv else 3), (r + 33 if field == "power" else r + 66 + 8 * axis)
-    elif t == "H":
-        k = u64(r + 16)
-        q = r + 24 + k
-        cnt, uv = u64(q + 8), b[q + 56]
-        n, at = 24 + k + 57 + 8 * cnt * (10 if uv else 6), (r + 25 if field == "kind" else q + 57 + 8 * axis)
+    elif t == "M":                      # attrs, deposit, xyz, uv
+        n, at = A + 41, r + A + 1 + 8 * axis
+    elif t == "C":                      # attrs, solid, depth, z, n, 4 exposure, has_uv
+        q = r + A
+        cnt, uv = u64(q + 17), b[q + 57]
+        n, at = A + 58 + 8 * cnt * (5 if uv else 3), (q + 25 if field == "power" else q + 58 + 8 * axis)
+    elif t == "H":                      # attrs, kind, z, n, angle, 4 exposure, has_uv
+        q = r + A
+        cnt, uv = u64(q + 16), b[q + 64]
+        n, at = A + 65 + 8 * cnt * (10 if uv else 6), (q if field == "kind" else q + 65 + 8 * axis)
     else:
         raise SystemExit("unknown record %r at byte %d" % (t, o))
     if t == tag and hit is None:
@@ -75,7 +80,7 @@ if tag == "J":  # (lamina names the box's offset, or the bead's)
 if tag != "-":
     assert hit, "no such record"
     if field == "kind":
-        b[hit[2]] ^= 0x20
+        struct.pack_into("<Q", b, hit[2], 9)
     else:
         struct.pack_into("<d", b, hit[2], v)
     struct.pack_into("<Q", b, hhash, fnv(b[:hhash]))

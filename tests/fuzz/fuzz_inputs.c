@@ -237,10 +237,17 @@ static void put64(uint8_t *b, uint64_t v)
 static void fix_hashes(uint8_t *b, size_t n)
 {
     size_t o = 48; /* magic, version, flags, identity, first, last, layers */
-    for (int k = 0; k < 7; k++) {
+    /* the job's 4 strings, its 12 reals, the profile, the model, the
+     * attribute count and keys */
+    for (size_t k = 0, strings = 6; k < strings; k++) {
         if (o > n || n - o < 8 || le64(b + o) > n - o - 8) return;
         o += 8 + (size_t)le64(b + o);
-        if (k == 3) o += 96; /* after the 4 strings: the job's 12 reals */
+        if (k == 3) o += 96;
+        if (k == 5) {
+            if (o > n || n - o < 8 || le64(b + o) > 64) return;
+            strings += (size_t)le64(b + o);
+            o += 8;
+        }
     }
     if (o > n || n - o < 8) return;
     put64(b + o, fnv(b, o));
