@@ -3,13 +3,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "json_sink.h"
-#include "tee.h"
 #include "viewer_html.h"
 
-/* The page around the JSON: a sink that writes what comes before the data
- * when the job begins, and one that writes the rest when it ends, with the
- * JSON sink between them in a tee. */
+/* The page around the JSON: a consumer that writes what comes before the
+ * data when the job begins, and one that writes the rest when it ends,
+ * with the JSON consumer between them in the run's vector stream. */
 typedef struct page {
     lam_writer *w;
     lam_error *err;
@@ -36,16 +34,13 @@ static int page_tail(void *ctx)
     return lam_writer_error(p->w, p->err);
 }
 
-int lam_html_sink(lam_writer *w, lam_sink *out, lam_error *err)
+int lam_html_page(lam_writer *w, lam_vec_consumer *head, lam_vec_consumer *tail, lam_error *err)
 {
-    memset(out, 0, sizeof *out);
     page *p = malloc(sizeof *p);
     if (!p) return lam_error_nomem(err, "making the viewer");
     p->w = w;
     p->err = err;
-    lam_sink parts[3] = { { .ctx = p, .begin = page_head, .destroy = free }, { 0 }, { .ctx = p, .end = page_tail } };
-    int rc = lam_json_sink(w, LAM_JSON_SCRIPT, &parts[1], err);
-    if (!rc && (rc = lam_tee_sink(parts, 3, out, err))) parts[1].destroy(parts[1].ctx);
-    if (rc) free(p);
-    return rc;
+    *head = (lam_vec_consumer){ .ctx = p, .begin = page_head, .destroy = free };
+    *tail = (lam_vec_consumer){ .ctx = p, .end = page_tail };
+    return LAM_OK;
 }

@@ -18,13 +18,16 @@
 #define LAM_HTML_H
 
 #include "plan.h"
+#include "vstream.h"
 #include "writer.h"
 
-/* Make *out a sink that writes the whole page to w (borrowed: the caller
- * commits or aborts it after the run): the page up to the data when the
- * job begins, the run's JSON, the rest of the page when it ends. Errors of
- * the sink's calls go to err, which must outlive the sink. Errors:
- * LAM_ENOMEM. */
-int lam_html_sink(lam_writer *w, lam_sink *out, lam_error *err);
+/* The page around the run's JSON as two consumers of the plan's vector
+ * stream (vstream.h; views.h puts them in the stream): head writes the
+ * page up to the data when the job begins, tail the rest when it ends;
+ * between them the JSON consumer (json_sink.h) writes the data to w with
+ * its script escaping. w is borrowed (the caller commits or aborts it);
+ * head's destroy frees both. Errors of their calls go to err, which must
+ * outlive them. Errors: LAM_ENOMEM. */
+int lam_html_page(lam_writer *w, lam_vec_consumer *head, lam_vec_consumer *tail, lam_error *err);
 
 #endif

@@ -17,9 +17,9 @@
 #define FLUSH_AT 65536
 
 typedef struct js {
-    lam_writer *w;
+    lam_writer *w;           /* the JSON, or NULL */
+    lam_writer *script;      /* the same for a <script> element, or NULL */
     lam_error *err;
-    unsigned flags;
     char *buf;
     size_t len, cap;
     int rc;                  /* sticky: the first error */
@@ -62,10 +62,25 @@ static void putn(js *s, const char *t, size_t n)
 
 static void put(js *s, const char *t) { putn(s, t, strlen(t)); }
 
+/* The text with every '<' as \u003c: in JSON text '<' is only ever a
+ * string's character, so this is the text of LAM_ESC_JSON_SCRIPT strings. */
+static int write_script(lam_writer *w, const char *t, size_t n)
+{
+    int rc = LAM_OK;
+    for (const char *lt; !rc && n && (lt = memchr(t, '<', n));) {
+        rc = lam_writer_write(w, t, (size_t)(lt - t));
+        if (!rc) rc = lam_writer_write(w, "\\u003c", 6);
+        n -= (size_t)(lt - t) + 1;
+        t = lt + 1;
+    }
+    return rc || !n ? rc : lam_writer_write(w, t, n);
+}
+
 static void flush(js *s)
 {
     if (s->rc || !s->len) return;
-    if (lam_writer_write(s->w, s->buf, s->len)) s->rc = lam_writer_error(s->w, s->err);
+    if (s->w && lam_writer_write(s->w, s->buf, s->len)) s->rc = lam_writer_error(s->w, s->err);
+    if (!s->rc && s->script && write_script(s->script, s->buf, s->len)) s->rc = lam_writer_error(s->script, s->err);
     s->len = 0;
 }
 
@@ -122,7 +137,7 @@ static void pt(js *s, const double p[3])
  * path may hold, become U+FFFD, so the document stays valid). */
 static void str(js *s, const char *t)
 {
-    lam_esc_mode mode = s->flags & LAM_JSON_SCRIPT ? LAM_ESC_JSON_SCRIPT : LAM_ESC_JSON;
+    lam_esc_mode mode = LAM_ESC_JSON;
     size_t n = t ? strlen(t) : 0;
     put(s, "\"");
     while (n) {
@@ -376,14 +391,15 @@ static void j_destroy(void *ctx)
     free(s);
 }
 
-int lam_json_sink(lam_writer *w, unsigned flags, lam_sink *out, lam_error *err)
+int lam_json_consumer(lam_writer *w, lam_writer *script, lam_vec_consumer *out, lam_error *err)
 {
     memset(out, 0, sizeof *out);
     js *s = calloc(1, sizeof *s);
     if (!s) return lam_error_nomem(err, "writing the JSON");
     s->w = w;
+    s->script = script;
     s->err = err;
-    s->flags = flags;
-    lam_vec_consumer c = { s, j_begin, j_layer, j_vector, j_layer_end, j_end, j_destroy };
-    return lam_vstream_sink(&c, out, err);
+    *out = (lam_vec_consumer){ .ctx = s, .begin = j_begin, .layer = j_layer, .vector = j_vector,
+                               .layer_end = j_layer_end, .end = j_end, .destroy = j_destroy };
+    return LAM_OK;
 }

@@ -32,6 +32,7 @@
 
 #include "error.h"
 #include "plan.h"
+#include "vstream.h"
 #include "writer.h"
 
 /* The version written, and the only one read back: it changes when a
@@ -39,19 +40,17 @@
  * or given another meaning); keys added keep it. */
 #define LAM_JSON_VERSION 1
 
-/* Flags of lam_json_sink. */
-enum {
-    /* for JSON inside an HTML <script> element: every '<' in a string is
-     * written \u003c, so no "</script>" can end the element early */
-    LAM_JSON_SCRIPT = 1
-};
-
-/* A sink that writes the run as one JSON value (and a newline) to w, which
- * it neither owns nor commits: the caller may write a document around it
- * (before begin, after end) and commits or aborts w. The job's model path
- * is written as given in lam_job_info.model. Errors go to err (LAM_EIO
- * from the writer, LAM_EINVAL for a non-finite number, LAM_ENOMEM), which
- * must outlive the sink. */
-int lam_json_sink(lam_writer *w, unsigned flags, lam_sink *out, lam_error *err);
+/* The run's JSON as a consumer of the plan's vector stream (vstream.h;
+ * views.h puts it in the stream with the run's other views): written to w
+ * and, when script is not NULL, the same text with every '<' as \u003c to
+ * script, for JSON inside an HTML <script> element (no "</script>" can end
+ * it early: in JSON text '<' is only ever a string's character), so
+ * `--json` and `--html` share one text made once. Either writer may be
+ * NULL; neither is owned or committed: the caller may write a document
+ * around it (before begin, after end) and commits or aborts them. The
+ * job's model path is written as given in lam_job_info.model. Errors go to
+ * err (LAM_EIO from a writer, LAM_EINVAL for a non-finite number,
+ * LAM_ENOMEM), which must outlive the consumer. */
+int lam_json_consumer(lam_writer *w, lam_writer *script, lam_vec_consumer *out, lam_error *err);
 
 #endif

@@ -371,7 +371,7 @@ static void axis_name(const double v[3], const char *other, char out[8])
             snprintf(out, 8, "%s%s", v[k] < 0 ? "-" : "", names[k]);
 }
 
-int lam_svg_sink(lam_svg *s, const lam_frame *f, int frame_machine, lam_sink *out, lam_error *err)
+int lam_svg_consumer(lam_svg *s, const lam_frame *f, int frame_machine, lam_vec_consumer *out, lam_error *err)
 {
     s->vectors = 1;
     s->err = err;
@@ -379,10 +379,9 @@ int lam_svg_sink(lam_svg *s, const lam_frame *f, int frame_machine, lam_sink *ou
         axis_name(f->u, "u", s->axis[0]);
         axis_name(f->v, "v", s->axis[1]);
     }
-    lam_vec_consumer c = { s, sv_begin, sv_layer, sv_vector, sv_layer_end, NULL, NULL };
-    (void)f;
-    (void)frame_machine;
-    return lam_vstream_sink(&c, out, err);
+    *out = (lam_vec_consumer){ .ctx = s, .begin = sv_begin, .layer = sv_layer, .vector = sv_vector,
+                               .layer_end = sv_layer_end };
+    return LAM_OK;
 }
 
 void lam_svg_free(lam_svg *s)

@@ -24,6 +24,7 @@
 
 #include "plan.h"
 #include "slice.h"
+#include "vstream.h"
 #include "writer.h"
 
 #define LAM_SVG_MAX_PANELS 100
@@ -44,12 +45,13 @@ int lam_svg_add(lam_svg *svg, const lam_layer *layer, lam_error *err);
  * (design-rule violations); a layer without a panel is ignored. */
 int lam_svg_mark(lam_svg *svg, size_t index, double u, double v, lam_error *err);
 
-/* Make *out a sink (plan.h) that draws each wanted layer's planned vectors
- * on its panel; f is the run's frame (borrowed), frame_machine as in the
- * plan options. The sheet is borrowed: it must outlive the sink, whose
- * destroy leaves it alone. Errors of the sink's calls (out of memory) go
- * to err, which must outlive the sink. */
-int lam_svg_sink(lam_svg *svg, const lam_frame *f, int frame_machine, lam_sink *out, lam_error *err);
+/* Make *out a consumer of the plan's vector stream (vstream.h, views.h)
+ * that draws each wanted layer's planned vectors on its panel; f is the
+ * run's frame (borrowed; it names the axes), frame_machine as in the plan
+ * options. The sheet is borrowed: it must outlive the consumer, which has
+ * no destroy. Errors of its calls (out of memory) go to err, which must
+ * outlive it. */
+int lam_svg_consumer(lam_svg *svg, const lam_frame *f, int frame_machine, lam_vec_consumer *out, lam_error *err);
 
 /* Write the whole sheet. */
 int lam_svg_write(const lam_svg *svg, lam_writer *w);

@@ -5,7 +5,8 @@
 #include <string.h>
 
 typedef struct vstream {
-    lam_vec_consumer c;
+    lam_vec_consumer c[LAM_VSTREAM_MAX];
+    size_t n;
     double pos[3], puv[2];   /* the stage or the scanner, both frames */
     int have_pos;
     size_t order;
@@ -36,8 +37,20 @@ static int emit(vstream *s, int kind, const lam_attrs *a, int always, const doub
     s->st.vectors++;
     if (exposed) s->st.deposit_length += len;
     else s->st.travel_length += len;
-    return s->c.vector ? s->c.vector(s->c.ctx, &v) : LAM_OK;
+    int rc = LAM_OK;
+    for (size_t k = 0; k < s->n && !rc; k++)
+        if (s->c[k].vector) rc = s->c[k].vector(s->c[k].ctx, &v);
+    return rc;
 }
+
+/* Call member `fn` of every consumer that has it, in order, until one fails. */
+#define EACH(s, fn, ...)                                                                            \
+    do {                                                                                           \
+        int rc_ = LAM_OK;                                                                          \
+        for (size_t k_ = 0; k_ < (s)->n && !rc_; k_++)                                             \
+            if ((s)->c[k_].fn) rc_ = (s)->c[k_].fn((s)->c[k_].ctx, __VA_ARGS__);                   \
+        return rc_;                                                                                \
+    } while (0)
 
 /* An SLS path starts at p: a jump there from where the scanner is. */
 static int start_at(vstream *s, const lam_attrs *a, const double p[3], const double uv[2])
@@ -79,7 +92,7 @@ static int vs_begin(void *ctx, const lam_job_info *job)
     memcpy(s->pos, job->origin, sizeof s->pos);
     origin_uv(job, s->puv);
     s->have_pos = 1;
-    return s->c.begin ? s->c.begin(s->c.ctx, job) : LAM_OK;
+    EACH(s, begin, job);
 }
 
 static int vs_layer(void *ctx, const lam_layer_info *li)
@@ -87,13 +100,13 @@ static int vs_layer(void *ctx, const lam_layer_info *li)
     vstream *s = ctx;
     s->order = 0;
     memset(&s->st, 0, sizeof s->st);
-    return s->c.layer ? s->c.layer(s->c.ctx, li) : LAM_OK;
+    EACH(s, layer, li);
 }
 
 static int vs_layer_end(void *ctx, const lam_layer_info *li)
 {
     vstream *s = ctx;
-    return s->c.layer_end ? s->c.layer_end(s->c.ctx, li, &s->st) : LAM_OK;
+    EACH(s, layer_end, li, &s->st);
 }
 
 static int vs_move(void *ctx, const lam_move_info *m)
@@ -101,10 +114,17 @@ static int vs_move(void *ctx, const lam_move_info *m)
     return emit(ctx, m->deposit ? LAM_KIND_DEPOSIT : LAM_KIND_TRAVEL, &m->attrs, 1, m->xyz, m->uv);
 }
 
+static int path(vstream *s, const lam_contour_info *c)
+{
+    size_t order = s->order + 1;
+    EACH(s, path, c, order);
+}
+
 static int vs_contour(void *ctx, const lam_contour_info *c)
 {
     vstream *s = ctx;
-    if (c->n < 2) return LAM_OK;
+    int prc = path(s, c);
+    if (prc || c->n < 2) return prc;
     if (s->order == 0) s->have_pos = 0; /* the scanner starts a layer at its first path */
     int rc = start_at(s, &c->attrs, c->xyz, c->uv);
     for (size_t i = 1; i <= c->n && !rc; i++) {
@@ -126,28 +146,45 @@ static int vs_hatches(void *ctx, const lam_hatch_info *h)
     return rc;
 }
 
+/* every consumer ends (each finishes what it buffered): the first error */
 static int vs_end(void *ctx)
 {
     vstream *s = ctx;
-    return s->c.end ? s->c.end(s->c.ctx) : LAM_OK;
+    int rc = LAM_OK;
+    for (size_t k = 0; k < s->n; k++) {
+        int r = s->c[k].end ? s->c[k].end(s->c[k].ctx) : LAM_OK;
+        if (!rc) rc = r;
+    }
+    return rc;
+}
+
+static void destroy_all(const lam_vec_consumer *c, size_t n)
+{
+    for (size_t k = 0; k < n; k++)
+        if (c[k].destroy) c[k].destroy(c[k].ctx);
 }
 
 static void vs_destroy(void *ctx)
 {
     vstream *s = ctx;
-    if (s->c.destroy) s->c.destroy(s->c.ctx);
+    destroy_all(s->c, s->n);
     free(s);
 }
 
-int lam_vstream_sink(const lam_vec_consumer *c, lam_sink *out, lam_error *err)
+int lam_vstream_sink(const lam_vec_consumer *c, size_t n, lam_sink *out, lam_error *err)
 {
     memset(out, 0, sizeof *out);
+    if (n == 0 || n > LAM_VSTREAM_MAX) {
+        destroy_all(c, n > LAM_VSTREAM_MAX ? LAM_VSTREAM_MAX : n);
+        return lam_error_set(err, LAM_EUSAGE, NULL, 0, 0, "a vector stream of %zu consumers", n);
+    }
     vstream *s = calloc(1, sizeof *s);
     if (!s) {
-        if (c->destroy) c->destroy(c->ctx);
+        destroy_all(c, n);
         return lam_error_nomem(err, "making a preview");
     }
-    s->c = *c;
+    memcpy(s->c, c, n * sizeof *c);
+    s->n = n;
     out->ctx = s;
     out->begin = vs_begin;
     out->layer = vs_layer;

@@ -46,10 +46,20 @@ typedef struct lam_vec_consumer {
     int (*layer_end)(void *ctx, const lam_layer_info *layer, const lam_vec_stats *st);
     int (*end)(void *ctx);
     void (*destroy)(void *ctx);     /* with the sink's destroy */
+    /* an SLS contour pass begins (before its edges, even one of fewer than
+     * two points), order: its first edge's */
+    int (*path)(void *ctx, const lam_contour_info *c, size_t order);
 } lam_vec_consumer;
 
-/* Make *out a sink that feeds c. The sink's destroy frees what it holds
- * and calls c's destroy. Errors: LAM_ENOMEM. */
-int lam_vstream_sink(const lam_vec_consumer *c, lam_sink *out, lam_error *err);
+/* The most consumers one stream feeds. */
+#define LAM_VSTREAM_MAX 8
+
+/* Make *out a sink that decodes the plan once and feeds c[0..n), each
+ * call to each consumer in that order (the first error stops the call;
+ * end is given to every consumer, returning the first error). The sink
+ * owns the consumers from then on: its destroy frees what it holds and
+ * calls each one's destroy; on failure they are destroyed at once. Errors:
+ * LAM_ENOMEM, LAM_EUSAGE (n of 0 or more than LAM_VSTREAM_MAX). */
+int lam_vstream_sink(const lam_vec_consumer *c, size_t n, lam_sink *out, lam_error *err);
 
 #endif
