@@ -1,17 +1,19 @@
 /* The `lamina` executable: dispatch to one command per file (cli_*.c). */
+#define _DEFAULT_SOURCE /* madvise, MADV_HUGEPAGE */
 #include "cli.h"
 #include "cli_lua.h"
 #include "file.h"
-#include "hugemem.h"
 #include "repl.h"
 #include "version.h"
 #include "writer.h"
 
 #include <errno.h>
 #include <signal.h>
+#include <stdint.h>
 #include <stdio_ext.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/mman.h>
 #include <unistd.h>
 #ifdef __GLIBC__
 #include <malloc.h>
@@ -42,7 +44,11 @@ static void heap_setup(void)
     mallopt(M_TRIM_THRESHOLD, 1 << 30);
     size_t n = (size_t)64 << 20;
     void *p = malloc(n);
-    lam_huge_hint(p, n);
+#ifdef MADV_HUGEPAGE
+    /* the whole pages of the block (the library's arrays hint themselves) */
+    uintptr_t a = ((uintptr_t)p + 4095) & ~(uintptr_t)4095, z = ((uintptr_t)p + n) & ~(uintptr_t)4095;
+    if (p && z > a) (void)madvise((void *)a, z - a, MADV_HUGEPAGE);
+#endif
     free(p);
 #endif
 }
