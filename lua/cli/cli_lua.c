@@ -320,6 +320,7 @@ int cmd_run(int argc, char **argv)
     memset(&so, 0, sizeof so);
     so.memory = 256.0 * 1024 * 1024;
     so.time = 60;
+    so.open_lamina = luaopen_lamina;
     const char *allow[64], *out[64];
     so.allow = allow;
     so.out = out;
