@@ -2,6 +2,7 @@
  * module, in the manner of lua.c (arg table, traceback on errors, Ctrl-C
  * interrupts the running code). */
 #include "cli_lua.h"
+#include "cli_signal.h"
 
 #include <math.h>
 #include <signal.h>

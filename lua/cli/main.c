@@ -2,13 +2,13 @@
 #define _DEFAULT_SOURCE /* madvise, MADV_HUGEPAGE */
 #include "cli.h"
 #include "cli_lua.h"
+#include "cli_signal.h"
 #include "file.h"
 #include "repl.h"
 #include "version.h"
 #include "writer.h"
 
 #include <errno.h>
-#include <signal.h>
 #include <stdint.h>
 #include <stdio_ext.h>
 #include <stdlib.h>
@@ -69,29 +69,6 @@ static void close_stdout(void)
     }
 }
 
-void cli_fatal_signal(int sig)
-{
-    lam_writer_unlink_temps();
-    signal(sig, SIG_DFL);
-    raise(sig); /* held until this handler returns, then the default action */
-}
-
-/* Interrupts and hang-ups remove the temporary files of outputs being
- * written, then end the process by the same signal (exit status 128 + N
- * in a shell). A signal ignored when lamina started (nohup) stays ignored. */
-static void signals_setup(void)
-{
-    static const int sigs[] = { SIGINT, SIGTERM, SIGHUP, SIGPIPE };
-    for (size_t i = 0; i < sizeof sigs / sizeof *sigs; i++) {
-        struct sigaction sa, old;
-        if (sigaction(sigs[i], NULL, &old) == 0 && old.sa_handler == SIG_IGN) continue;
-        memset(&sa, 0, sizeof sa);
-        sa.sa_handler = cli_fatal_signal;
-        sigfillset(&sa.sa_mask);
-        sigaction(sigs[i], &sa, NULL);
-    }
-}
-
 static int help(void)
 {
     printf("lamina " LAMINA_VERSION " - process planning for layered manufacturing\n\n"
@@ -120,7 +97,7 @@ static int dispatch(int argc, char **argv);
 int main(int argc, char **argv)
 {
     atexit(close_stdout);
-    signals_setup();
+    cli_signals_setup();
     int rc = dispatch(argc, argv);
     lam_file_track(0);
     exit(rc);
