@@ -263,11 +263,12 @@ DOCDIR      ?= $(DATADIR)/doc/lamina
 MANDIR      ?= $(DATADIR)/man
 BASHCOMPDIR ?= $(DATADIR)/bash-completion/completions
 
-# Man pages: lamina(1) and lamina-CMD(1) for each command of `lamina --help`
-# (the generator checks that its list is this one), generated from the
+# Man pages: lamina(1) and lamina-CMD(1) for each command of the command
+# table (lua/cli/main.c: `lamina --help` lists the same; the generator
+# checks that its list is this one), generated from the
 # commands' --help texts and man/*.in (description, examples); the bash
 # completion from the same reading of --help and completion/lamina.bash.in.
-MAN_CMDS  := $(shell sed -n 's/^ *"  lamina \([a-z][a-z0-9-]*\) .*/\1/p' lua/cli/main.c)
+MAN_CMDS  := $(shell sed -n 's/^ *{ "\([a-z][a-z0-9-]*\)", .*/\1/p' lua/cli/main.c)
 MAN_PAGES := $(BUILD)/man/lamina.1 $(MAN_CMDS:%=$(BUILD)/man/lamina-%.1)
 MAN_STAMP := $(BUILD)/man/.stamp
 
