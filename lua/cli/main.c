@@ -88,11 +88,11 @@ typedef struct command {
     unsigned flags;      /* CMD_* */
 } command;
 
-/* clang-format off */
 static const command commands[] = {
     { "info", "MODEL [--json]", "model report: shells, cavities, volume, defects", cmd_info, 0 },
     { "slice", "MODEL [options]", "slice and plan; program to stdout or -o FILE", cmd_slice, 0 },
-    { "join", "PART... [-o FILE]", "the program of a run sliced in parts\n(lamina slice ... --layers A:B)", cmd_join, 0 },
+    { "join", "PART... [-o FILE]", "the program of a run sliced in parts\n(lamina slice ... --layers A:B)", cmd_join,
+      0 },
     { "validate", "MODEL [options]", "Embree check of every solid/hole label", cmd_validate, 0 },
     { "check", "MODEL -m MACHINE", "design-rule check (wall thickness, overhangs)", cmd_check, 0 },
     { "machines", "[--show NAME]", "list machine profiles / print one resolved", cmd_machines, 0 },
@@ -101,7 +101,6 @@ static const command commands[] = {
       CMD_LUA | CMD_INTERACTIVE },
     { "-e", "CODE [-e CODE ...]", "run Lua code with lamina loaded", cmd_eval, CMD_LUA },
 };
-/* clang-format on */
 
 #define NCOMMANDS (sizeof commands / sizeof *commands)
 #define HELP_COLUMN 28 /* the synopses' width: summaries start in one column */
