@@ -43,7 +43,8 @@ LUA_LIBS   := -llua5.4
 # JSON, SVG, HTML, plugins), check (validation, DRC, program readers),
 # profile (machine profiles and their key table).
 CORE_DIRS := base mesh layer plan out check profile
-CPPFLAGS += -Icore $(addprefix -Icore/,$(CORE_DIRS)) -D_POSIX_C_SOURCE=200809L
+CORE_INC := -Icore $(addprefix -Icore/,$(CORE_DIRS))
+CPPFLAGS += $(CORE_INC) -D_POSIX_C_SOURCE=200809L
 # -fPIC everywhere: the same objects also make the Lua C module lamina.so
 CFLAGS   += -std=c11 -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes -fPIC -pthread $(OPT) $(SANFLAGS)
 LDFLAGS  += $(SANFLAGS)
@@ -81,6 +82,12 @@ LIB     := $(BUILD)/liblamina.a
 # The other headers of core/ are internal (nest.h, enclose.h, test_hooks.h, ...).
 PUBLIC_H := core/lamina.h $(foreach h,$(shell grep -o '^.include "[a-z_]*\.h"' core/lamina.h | cut -d'"' -f2),$(wildcard $(CORE_DIRS:%=core/%/$(h)))) \
             core/lamina_plugin.h
+# The front ends (lua/, lua/cli/) see the installed headers only: PUBLIC_H
+# copied flat into INC_DIR, as `make install` lays them out, and no -Icore,
+# so a front end that includes an internal header fails to build.
+INC_DIR   := $(BUILD)/include/lamina
+INC_STAMP := $(INC_DIR)/.stamp
+FRONT_CPPFLAGS = $(filter-out $(CORE_INC),$(CPPFLAGS)) -I$(INC_DIR)
 VERSION  := $(shell sed -n 's/.*LAMINA_VERSION "\(.*\)"/\1/p' core/base/version.h)
 LAMINA  := $(BUILD)/lamina
 
@@ -95,16 +102,23 @@ PLUGIN_SO    := $(PLUGIN_NAMES:%=$(PLUGIN_OUT)/%.so)
 
 all: $(LAMINA) $(LIB) $(PLUGIN_SO) $(if $(BIND_SRC),$(LUAMOD))
 
-$(BUILD)/lua/%.o: lua/%.c
+# cp -p keeps each header's time, so a changed header rebuilds only the
+# objects that include it (their .d files name the staged copies).
+$(INC_STAMP): $(PUBLIC_H)
+	@rm -rf $(INC_DIR) && mkdir -p $(INC_DIR)
+	cp -p $(PUBLIC_H) $(INC_DIR)/
+	@touch $@
+
+$(BUILD)/lua/%.o: lua/%.c | $(INC_STAMP)
 	@mkdir -p $(dir $@)
-	$(CC) $(CPPFLAGS) -Ilua $(LUA_CFLAGS) $(CFLAGS) -MMD -MP -c $< -o $@
+	$(CC) $(FRONT_CPPFLAGS) -Ilua $(LUA_CFLAGS) $(CFLAGS) -MMD -MP -c $< -o $@
 
 $(HELP_C): lua/API.md lua/cli/help.awk
 	@mkdir -p $(dir $@)
 	awk -f lua/cli/help.awk lua/API.md > $@.tmp && mv $@.tmp $@
 
-$(HELP_C:.c=.o): $(HELP_C) lua/cli/help.h
-	$(CC) $(CPPFLAGS) -Ilua/cli $(LUA_CFLAGS) $(CFLAGS) -c $< -o $@
+$(HELP_C:.c=.o): $(HELP_C) lua/cli/help.h | $(INC_STAMP)
+	$(CC) $(FRONT_CPPFLAGS) -Ilua/cli $(LUA_CFLAGS) $(CFLAGS) -c $< -o $@
 
 $(LUAMOD): $(BIND_OBJ) $(LIB)
 	$(CC) $(LDFLAGS) -shared -o $@ $(BIND_OBJ) $(LIB) $(filter-out -llua5.4,$(LDLIBS))
@@ -249,11 +263,12 @@ DOCDIR      ?= $(DATADIR)/doc/lamina
 MANDIR      ?= $(DATADIR)/man
 BASHCOMPDIR ?= $(DATADIR)/bash-completion/completions
 
-# Man pages: lamina(1) and lamina-CMD(1) for each command of `lamina --help`
-# (the generator checks that its list is this one), generated from the
+# Man pages: lamina(1) and lamina-CMD(1) for each command of the command
+# table (lua/cli/main.c: `lamina --help` lists the same; the generator
+# checks that its list is this one), generated from the
 # commands' --help texts and man/*.in (description, examples); the bash
 # completion from the same reading of --help and completion/lamina.bash.in.
-MAN_CMDS  := $(shell sed -n 's/^ *"  lamina \([a-z][a-z0-9-]*\) .*/\1/p' lua/cli/main.c)
+MAN_CMDS  := $(shell sed -n 's/^ *{ "\([a-z][a-z0-9-]*\)", .*/\1/p' lua/cli/main.c)
 MAN_PAGES := $(BUILD)/man/lamina.1 $(MAN_CMDS:%=$(BUILD)/man/lamina-%.1)
 MAN_STAMP := $(BUILD)/man/.stamp
 

@@ -9,6 +9,12 @@
  * writes programs or previews through a lam_writer (writer.h, svg.h,
  * html.h: the browser viewer; vstream.h: a plan as a stream of vectors),
  * the run as JSON (json_sink.h; tee.h feeds one plan to several sinks).
+ * Plans of layers made already (plan_layers.h), their data kept for a
+ * reader (plan_data.h), part files of a run joined into one program
+ * (part.h) and validation over many layers (validate_run.h) are the
+ * pieces the Lua binding and the executable are built from; so are the
+ * number formatting (fmt.h), the thread count and worker pools (pool.h)
+ * and where lamina finds its data (paths.h).
  * Every fallible function returns LAM_OK or a LAM_E* code with the message
  * in a lam_error (error.h). Plugins are written against lamina_plugin.h
  * alone, which does not need this library.
@@ -17,9 +23,10 @@
  * hatching, offsets: lazylib.h), so a program does not link them.
  *
  * The headers not included here (nest.h, enclose.h, geos.h, lexnum.h,
- * fmt.h, paths.h, prefetch.h, grow.h, test_hooks.h, viewer_html.h,
- * lazylib.h, geos_lazy.h, embree_lazy.h) are internal to core/ and not
- * installed. */
+ * prefetch.h, grow.h, hugemem.h, test_hooks.h, viewer_html.h, lazylib.h,
+ * geos_lazy.h, embree_lazy.h, ...) are internal to core/ and not
+ * installed; lua/ and lua/cli/ are compiled against the installed headers
+ * only (the Makefile's INC_DIR), so they cannot use them. */
 #ifndef LAMINA_H
 #define LAMINA_H
 
@@ -51,5 +58,12 @@
 #include "svg.h"
 #include "vstream.h"
 #include "html.h"
+#include "fmt.h"
+#include "pool.h"
+#include "paths.h"
+#include "validate_run.h"
+#include "plan_layers.h"
+#include "plan_data.h"
+#include "part.h"
 
 #endif

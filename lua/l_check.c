@@ -200,6 +200,51 @@ static int keep_check(void *ctx, size_t i, const lam_vlayer *l, lam_layer_check 
     return lam_lua_stopping(c->L) ? STOPPED : LAM_OK;
 }
 
+/* model:validate's report, from the copies the job keeps. */
+static void push_report(lua_State *L, const checkjob *j)
+{
+    size_t n = j->n;
+    size_t checked = 0, confirmed = 0, disagreeing = 0, unchecked = 0, compared = 0, differ = 0;
+    lua_createtable(L, n < INT_MAX ? (int)n : 0, 8);
+    for (size_t i = 0, k = 0; i < n; i++) {
+        const lam_layer_check *c = &j->checks[i];
+        checked += c->checked;
+        confirmed += c->confirmed;
+        disagreeing += c->disagreeing;
+        unchecked += c->unchecked;
+        compared += c->area_checked != 0;
+        differ += !c->area_ok;
+        lua_createtable(L, c->nitems < INT_MAX ? (int)c->nitems : 0, 12);
+        setint(L, "index", j->index[i] + 1);
+        setnum(L, "z", j->z[i]);
+        setbool(L, "ok", c->disagreeing == 0 && c->area_ok);
+        setint(L, "checked", c->checked);
+        setint(L, "confirmed", c->confirmed);
+        setint(L, "disagreeing", c->disagreeing);
+        setint(L, "unchecked", c->unchecked);
+        setnum(L, "net_area", c->net_area);
+        if (c->area_checked) {
+            setnum(L, "section_area", c->section_area);
+            setnum(L, "area_tolerance", c->area_tolerance);
+        }
+        setbool(L, "area_ok", c->area_ok);
+        setstr(L, "area_why", c->area_why ? c->area_why : "");
+        for (size_t q = 0; q < c->nitems; q++) {
+            push_contour(L, &c->items[q], j->kinds[k + c->items[q].contour]);
+            lua_rawseti(L, -2, (lua_Integer)q + 1);
+        }
+        k += c->nitems;
+        lua_rawseti(L, -2, (lua_Integer)i + 1);
+    }
+    setbool(L, "ok", disagreeing == 0 && differ == 0);
+    setint(L, "checked", checked);
+    setint(L, "confirmed", confirmed);
+    setint(L, "disagreeing", disagreeing);
+    setint(L, "unchecked", unchecked);
+    setint(L, "areas_compared", compared);
+    setint(L, "areas_differing", differ);
+}
+
 /* model:validate{slice options | layers = {...} [, fill =]} -> report | nil, message */
 int lam_lua_validate(lua_State *L)
 {
@@ -269,46 +314,7 @@ int lam_lua_validate(lua_State *L)
     if (rc == STOPPED) return luaL_error(L, "interrupted");
     if (rc) return lam_lua_fail(L, &err);
 
-    /* the report, from the copies */
-    size_t checked = 0, confirmed = 0, disagreeing = 0, unchecked = 0, compared = 0, differ = 0;
-    lua_createtable(L, n < INT_MAX ? (int)n : 0, 8);
-    for (size_t i = 0, k = 0; i < n; i++) {
-        const lam_layer_check *c = &j->checks[i];
-        checked += c->checked;
-        confirmed += c->confirmed;
-        disagreeing += c->disagreeing;
-        unchecked += c->unchecked;
-        compared += c->area_checked != 0;
-        differ += !c->area_ok;
-        lua_createtable(L, c->nitems < INT_MAX ? (int)c->nitems : 0, 12);
-        setint(L, "index", j->index[i] + 1);
-        setnum(L, "z", j->z[i]);
-        setbool(L, "ok", c->disagreeing == 0 && c->area_ok);
-        setint(L, "checked", c->checked);
-        setint(L, "confirmed", c->confirmed);
-        setint(L, "disagreeing", c->disagreeing);
-        setint(L, "unchecked", c->unchecked);
-        setnum(L, "net_area", c->net_area);
-        if (c->area_checked) {
-            setnum(L, "section_area", c->section_area);
-            setnum(L, "area_tolerance", c->area_tolerance);
-        }
-        setbool(L, "area_ok", c->area_ok);
-        setstr(L, "area_why", c->area_why ? c->area_why : "");
-        for (size_t q = 0; q < c->nitems; q++) {
-            push_contour(L, &c->items[q], j->kinds[k + c->items[q].contour]);
-            lua_rawseti(L, -2, (lua_Integer)q + 1);
-        }
-        k += c->nitems;
-        lua_rawseti(L, -2, (lua_Integer)i + 1);
-    }
-    setbool(L, "ok", disagreeing == 0 && differ == 0);
-    setint(L, "checked", checked);
-    setint(L, "confirmed", confirmed);
-    setint(L, "disagreeing", disagreeing);
-    setint(L, "unchecked", unchecked);
-    setint(L, "areas_compared", compared);
-    setint(L, "areas_differing", differ);
+    push_report(L, j);
     return 1;
 }
 

@@ -1,4 +1,4 @@
-/* Private helpers shared by the Lua binding (lua/lamina.c, lua/l_*.c) and
+/* Private helpers shared by the Lua binding (lua/l_aux.c, lua/l_*.c) and
  * the REPL. Not part of any public interface.
  *
  * Object graph (every arrow a user value, so a child keeps its parent
@@ -81,6 +81,9 @@ typedef struct lam_sandbox_opts {
     size_t nout;
     double memory;              /* bytes of Lua memory and lamina's objects, 0: no limit */
     double time;                /* seconds from lam_lua_sandbox_start, 0: no limit */
+    lua_CFunction open_lamina;  /* the lamina module of the state (luaopen_lamina): given by
+                                   the host, so the sandbox does not call the module that
+                                   opens it */
 } lam_sandbox_opts;
 
 /* A new sandboxed state (l_sandbox.c's header says what it has), or NULL
@@ -149,8 +152,9 @@ void lam_lua_charge_or_raise(lua_State *L, size_t *slot, size_t bytes, const cha
 /* mkdir -p: 0 or an errno. No sandbox check. */
 int lam_lua_mkdirs(const char *path);
 
-/* Add lamina.sandbox to the module table on top of the stack. */
-int lam_lua_open_sandbox(lua_State *L);
+/* lamina.sandbox{...} (l_sandbox_run.c): upvalue 1 the opener of the
+ * sandbox's lamina module (luaopen_lamina). */
+int lam_lua_sandbox(lua_State *L);
 
 /* ---- userdata --------------------------------------------------------- */
 
@@ -244,6 +248,12 @@ void lam_lua_pushcontour(lua_State *L, int layer_idx, size_t k);
  * in `methods` first, then calls `fields` (self, key) for anything else. */
 void lam_lua_newclass(lua_State *L, const char *tname, const luaL_Reg *meta, const luaL_Reg *methods,
                       lua_CFunction fields);
+
+/* Add methods to class tname (made by lam_lua_newclass): luaopen_lamina
+ * gives a class the methods other files define (model:slice in l_layer.c,
+ * machine:plan in l_plan.c), so a type file does not call the files
+ * built on it. */
+void lam_lua_addmethods(lua_State *L, const char *tname, const luaL_Reg *methods);
 
 void lam_lua_open_model(lua_State *L);
 void lam_lua_open_layer(lua_State *L);

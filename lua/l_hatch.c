@@ -185,6 +185,43 @@ static void read_vectors(lua_State *L, const char *who, size_t layer, lam_hatche
     }
 }
 
+/* machine:plan's order function for layer i (of the copy of the layers at
+ * copy; the functions at fns): lamina's vectors for the layer (profile
+ * pi), then the recipe's order of them into c->given[i]. 1 when hatching
+ * failed (c->err), else 0. */
+static int order_layer(lua_State *L, lhatchctl *c, int fns, int copy, size_t i, const lam_profile *pi,
+                       const lam_layer *ly)
+{
+    lam_plan_opts oi;
+    lam_lua_plan_opts(pi, &oi);
+    lam_scan_cfg cfg = oi.scan;
+    cfg.compensation = oi.beam_offset ? oi.bead / 2 : 0;
+    size_t ns = cfg.skin_layers > 0 ? (size_t)cfg.skin_layers : 0;
+    const lam_layer *below[LAM_SKIN_MAX], *above[LAM_SKIN_MAX];
+    size_t nb = 0, na = 0;
+    for (size_t k = 1; k <= ns && k <= i; k++) {
+        lua_rawgeti(L, copy, (lua_Integer)(i - k) + 1);
+        below[nb++] = lam_lua_checklayer(L, -1);
+        lua_pop(L, 1);
+    }
+    for (size_t k = 1; k <= ns && i + k < c->n; k++) {
+        lua_rawgeti(L, copy, (lua_Integer)(i + k) + 1);
+        above[na++] = lam_lua_checklayer(L, -1);
+        lua_pop(L, 1);
+    }
+    lam_error_clear(&c->err);
+    if (lam_hatch_layer(ly, below, nb, above, na, &cfg, &c->given[i], &c->err)) return 1;
+    lua_getfield(L, fns, "order");
+    push_vectors(L, &c->given[i]);
+    lua_rawgeti(L, copy, (lua_Integer)i + 1);
+    push_params(L, pi, ly);
+    lua_call(L, 3, 1);
+    read_vectors(L, "plan: order", i, &c->given[i]);
+    lua_pop(L, 1);
+    c->has[i] = 1;
+    return 0;
+}
+
 const lam_error *lam_lua_hatch_prepare(lua_State *L, lhatchctl *c, int layers, const lam_profile *p)
 {
     if (!c) return NULL;
@@ -247,34 +284,7 @@ const lam_error *lam_lua_hatch_prepare(lua_State *L, lhatchctl *c, int layers, c
             c->has[i] = 1;
             charge_given(L, c, i);
         } else if (has_order) {
-            /* lamina's vectors for the layer, then the recipe's order */
-            lam_plan_opts oi;
-            lam_lua_plan_opts(&pi, &oi);
-            lam_scan_cfg cfg = oi.scan;
-            cfg.compensation = oi.beam_offset ? oi.bead / 2 : 0;
-            size_t ns = cfg.skin_layers > 0 ? (size_t)cfg.skin_layers : 0;
-            const lam_layer *below[LAM_SKIN_MAX], *above[LAM_SKIN_MAX];
-            size_t nb = 0, na = 0;
-            for (size_t k = 1; k <= ns && k <= i; k++) {
-                lua_rawgeti(L, copy, (lua_Integer)(i - k) + 1);
-                below[nb++] = lam_lua_checklayer(L, -1);
-                lua_pop(L, 1);
-            }
-            for (size_t k = 1; k <= ns && i + k < n; k++) {
-                lua_rawgeti(L, copy, (lua_Integer)(i + k) + 1);
-                above[na++] = lam_lua_checklayer(L, -1);
-                lua_pop(L, 1);
-            }
-            lam_error_clear(&c->err);
-            if (lam_hatch_layer(ly, below, nb, above, na, &cfg, &c->given[i], &c->err)) break;
-            lua_getfield(L, fns, "order");
-            push_vectors(L, &c->given[i]);
-            lua_rawgeti(L, copy, (lua_Integer)i + 1);
-            push_params(L, &pi, ly);
-            lua_call(L, 3, 1);
-            read_vectors(L, "plan: order", i, &c->given[i]);
-            lua_pop(L, 1);
-            c->has[i] = 1;
+            if (order_layer(L, c, fns, copy, i, &pi, ly)) break;
             charge_given(L, c, i);
         }
     }

@@ -122,6 +122,99 @@ static size_t get_list(lua_State *L, int t, const char *key, const double **out)
     return (size_t)n;
 }
 
+/* model:slice's options (table 2) into *o and *allow_open; the arrays of
+ * widths and planes stay on the stack (o points into them). */
+static void slice_opts(lua_State *L, lam_slice_opts *o, int *allow_open)
+{
+    lam_lua_checkkeys(L, 2, 2, slice_keys);
+    lam_slice_opts_init(o);
+    lam_lua_get_axis(L, 2, 2, &o->frame);
+    if (lua_getfield(L, 2, "machine") != LUA_TNIL) {
+        lmachine *mc = LAM_TESTUD(L, -1, lmachine, LAM_MACHINE, LAM_TAG_MACHINE);
+        char b[64];
+        if (!mc) lam_lua_opterror(L, 2, "machine must be a lamina.machine, got %s", lam_lua_describe(L, -1, b, sizeof b));
+        mc = lam_lua_checkmachine(L, -1);
+        if (mc->p.layer_width > 0) o->width = mc->p.layer_width;
+        o->cut = (lam_cut)mc->p.cut;
+        o->gap = mc->p.gap;
+        o->gap_limit = lam_profile_gap_limit(&mc->p);
+    }
+    lua_pop(L, 1);
+    int i, given = 0;
+    double x;
+    if (lam_lua_numfield(L, 2, 2, "width", &x)) {
+        if (!(x > 0)) lam_lua_opterror(L, 2, "width must be greater than 0, got %.14g", x);
+        o->width = x;
+        given++;
+    }
+    const double *list;
+    size_t n = get_list(L, 2, "widths", &list); /* pushes an array when present */
+    if (n) {
+        o->widths = list;
+        o->nwidths = n;
+        given++;
+    }
+    n = get_list(L, 2, "planes", &list);
+    if (n) {
+        o->planes = list;
+        o->nplanes = n;
+        given++;
+    }
+    if (given > 1) lam_lua_opterror(L, 2, "give one of width, widths and planes");
+    if (lam_lua_choicefield(L, 2, 2, "cut", cut_names, &i)) o->cut = (lam_cut)i;
+    if (lam_lua_numfield(L, 2, 2, "gap", &x)) {
+        if (x < 0) lam_lua_opterror(L, 2, "gap must be 0 or more, got %.14g", x);
+        o->gap = x;
+    }
+    if (lam_lua_choicefield(L, 2, 2, "fill", fill_names, &i)) o->fill_nonzero = i;
+    *allow_open = 0;
+    lam_lua_boolfield(L, 2, 2, "allow_open", allow_open);
+    if (lam_lua_numfield(L, 2, 2, "max_layers", &x)) {
+        if (!(x >= 1) || x != floor(x) || x > 1e15)
+            lam_lua_opterror(L, 2, "max_layers must be a whole number >= 1, got %.14g", x);
+        o->max_layers = (size_t)x;
+    }
+}
+
+/* The layers of run r (at index run) of model m into the table at result:
+ * 0, or the number of results to return (nil and a message for an open
+ * outline without allow_open; lam_lua_fail's). Raises for the memory
+ * limit and an interrupt. */
+static int slice_layers(lua_State *L, lrun *r, const lam_model *m, int allow_open, int run, int result)
+{
+    lam_error err;
+    lam_error_clear(&err);
+    for (lua_Integer k = 1;; k++) {
+        lam_lua_check_interrupt(L);
+        llayer *lu = lua_newuserdatauv(L, sizeof *lu, 2);
+        lu->tag = LAM_TAG_LAYER;
+        lu->L = NULL;
+        lu->charged = 0;
+        luaL_setmetatable(L, LAM_LAYER);
+        lua_pushvalue(L, run);
+        lua_setiuservalue(L, -2, 1);
+        if (lam_slicer_next(r->s, &lu->L, &err)) return lam_lua_fail(L, &err);
+        if (!lu->L) break;
+        /* made already (its size is known only now): at most one layer
+         * past the limit, freed by its finalizer when this raises */
+        if (!lam_lua_charge(L, &lu->charged, layer_bytes(lu->L)))
+            lam_lua_memory_raise(L, "model:slice of %s: layer %lld of %zu does not fit", m->path,
+                                 (long long)k, r->nlayers);
+        charge_slicer(L, r, m->path); /* its scratch grows with the busiest layer */
+        if (lu->L->nopen && !allow_open) {
+            const lam_open_end *e = &lu->L->open[0];
+            lua_pushnil(L);
+            lua_pushfstring(L,
+                            "%s: layer %I (z=%f): open outline from (%f, %f) to (%f, %f) could not be closed "
+                            "(gap tolerance %f); raise gap or pass allow_open=true to drop open outlines",
+                            m->path, k, lu->L->cut, e->start[0], e->start[1], e->end[0], e->end[1], lu->L->gap);
+            return 2;
+        }
+        lua_rawseti(L, result, k);
+    }
+    return 0;
+}
+
 /* model:slice{axis=, width= | widths= | planes=, cut=, gap=, fill=,
  *             allow_open=, machine=} -> { layer, ... } | nil, message */
 int lam_lua_slice(lua_State *L)
@@ -140,55 +233,9 @@ int lam_lua_slice(lua_State *L)
     mu->busy++;
     r->pinned = 1;
     lua_toclose(L, 3);
-    lam_lua_checkkeys(L, 2, 2, slice_keys);
     lam_slice_opts o;
-    lam_slice_opts_init(&o);
-    lam_lua_get_axis(L, 2, 2, &o.frame);
-    if (lua_getfield(L, 2, "machine") != LUA_TNIL) {
-        lmachine *mc = LAM_TESTUD(L, -1, lmachine, LAM_MACHINE, LAM_TAG_MACHINE);
-        char b[64];
-        if (!mc) lam_lua_opterror(L, 2, "machine must be a lamina.machine, got %s", lam_lua_describe(L, -1, b, sizeof b));
-        mc = lam_lua_checkmachine(L, -1);
-        if (mc->p.layer_width > 0) o.width = mc->p.layer_width;
-        o.cut = (lam_cut)mc->p.cut;
-        o.gap = mc->p.gap;
-        o.gap_limit = lam_profile_gap_limit(&mc->p);
-    }
-    lua_pop(L, 1);
-    int i, given = 0;
-    double x;
-    if (lam_lua_numfield(L, 2, 2, "width", &x)) {
-        if (!(x > 0)) lam_lua_opterror(L, 2, "width must be greater than 0, got %.14g", x);
-        o.width = x;
-        given++;
-    }
-    const double *list;
-    size_t n = get_list(L, 2, "widths", &list); /* pushes an array when present */
-    if (n) {
-        o.widths = list;
-        o.nwidths = n;
-        given++;
-    }
-    n = get_list(L, 2, "planes", &list);
-    if (n) {
-        o.planes = list;
-        o.nplanes = n;
-        given++;
-    }
-    if (given > 1) lam_lua_opterror(L, 2, "give one of width, widths and planes");
-    if (lam_lua_choicefield(L, 2, 2, "cut", cut_names, &i)) o.cut = (lam_cut)i;
-    if (lam_lua_numfield(L, 2, 2, "gap", &x)) {
-        if (x < 0) lam_lua_opterror(L, 2, "gap must be 0 or more, got %.14g", x);
-        o.gap = x;
-    }
-    if (lam_lua_choicefield(L, 2, 2, "fill", fill_names, &i)) o.fill_nonzero = i;
-    int allow_open = 0;
-    lam_lua_boolfield(L, 2, 2, "allow_open", &allow_open);
-    if (lam_lua_numfield(L, 2, 2, "max_layers", &x)) {
-        if (!(x >= 1) || x != floor(x) || x > 1e15)
-            lam_lua_opterror(L, 2, "max_layers must be a whole number >= 1, got %.14g", x);
-        o.max_layers = (size_t)x;
-    }
+    int allow_open;
+    slice_opts(L, &o, &allow_open);
 
     const int run = 3;
     lam_error err;
@@ -221,34 +268,8 @@ int lam_lua_slice(lua_State *L)
 
     lua_createtable(L, r->nlayers < INT_MAX ? (int)r->nlayers : 0, 0);
     int result = lua_gettop(L);
-    for (lua_Integer k = 1;; k++) {
-        lam_lua_check_interrupt(L);
-        llayer *lu = lua_newuserdatauv(L, sizeof *lu, 2);
-        lu->tag = LAM_TAG_LAYER;
-        lu->L = NULL;
-        lu->charged = 0;
-        luaL_setmetatable(L, LAM_LAYER);
-        lua_pushvalue(L, run);
-        lua_setiuservalue(L, -2, 1);
-        if (lam_slicer_next(r->s, &lu->L, &err)) return lam_lua_fail(L, &err);
-        if (!lu->L) break;
-        /* made already (its size is known only now): at most one layer
-         * past the limit, freed by its finalizer when this raises */
-        if (!lam_lua_charge(L, &lu->charged, layer_bytes(lu->L)))
-            lam_lua_memory_raise(L, "model:slice of %s: layer %lld of %zu does not fit", m->path,
-                                 (long long)k, r->nlayers);
-        charge_slicer(L, r, m->path); /* its scratch grows with the busiest layer */
-        if (lu->L->nopen && !allow_open) {
-            const lam_open_end *e = &lu->L->open[0];
-            lua_pushnil(L);
-            lua_pushfstring(L,
-                            "%s: layer %I (z=%f): open outline from (%f, %f) to (%f, %f) could not be closed "
-                            "(gap tolerance %f); raise gap or pass allow_open=true to drop open outlines",
-                            m->path, k, lu->L->cut, e->start[0], e->start[1], e->end[0], e->end[1], lu->L->gap);
-            return 2;
-        }
-        lua_rawseti(L, result, k);
-    }
+    int nres = slice_layers(L, r, m, allow_open, run, result);
+    if (nres) return nres;
     lua_settop(L, result);   /* drop the last, empty layer userdata */
     luaL_setmetatable(L, LAM_LAYERS);
     lua_replace(L, run - 1); /* the result over the options table */

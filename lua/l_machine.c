@@ -384,7 +384,6 @@ static const luaL_Reg machine_meta[] = {
 
 static const luaL_Reg machine_methods[] = {
     { "override", mc_override },
-    { "plan", lam_lua_plan },
     { "yaml", mc_yaml },
     { NULL, NULL },
 };

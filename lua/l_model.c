@@ -207,9 +207,6 @@ static const luaL_Reg model_methods[] = {
     { "shell", m_shell },
     { "triangle", m_triangle },
     { "triangles", m_triangles },
-    { "slice", lam_lua_slice },
-    { "validate", lam_lua_validate },
-    { "check", lam_lua_check },
     { NULL, NULL },
 };
 

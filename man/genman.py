@@ -317,7 +317,7 @@ def main():
     title, cmds, topopts, prose = parse_main_help(run_help(a.lamina, ['--help']))
     names = [c[0] for c in cmds]
     if a.expect is not None and sorted(a.expect.split()) != sorted(names):
-        sys.exit('genman: `lamina --help` lists the commands %s, the Makefile (lua/cli/main.c) %s'
+        sys.exit('genman: `lamina --help` lists the commands %s, the Makefile (the command table of lua/cli/main.c) %s'
                  % (' '.join(names), a.expect))
     exits = exit_codes(prose)
     common = common_sections(os.path.join(a.indir, 'common.in'), a.binaries.split() + a.binary)

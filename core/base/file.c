@@ -42,15 +42,32 @@ static int too_large(const char *path, lam_read_limit limit, unsigned long long 
                          limit.bytes, limit.raise ? "; " : "", limit.raise ? limit.raise : "");
 }
 
+/* The gate and its context, set together: a read lock while a file is
+ * asked about (any number of threads at once), the write lock to change
+ * them, so a reader never pairs one gate with another's context, and once
+ * lam_file_set_gate returns no thread still runs the old gate (its
+ * context may be freed). */
+static pthread_rwlock_t gate_mu = PTHREAD_RWLOCK_INITIALIZER;
 static lam_file_gate gate;
 static void *gate_ctx;
 
 void lam_file_set_gate(lam_file_gate g, void *ctx, lam_file_gate *old_gate, void **old_ctx)
 {
+    pthread_rwlock_wrlock(&gate_mu);
     if (old_gate) *old_gate = gate;
     if (old_ctx) *old_ctx = gate_ctx;
     gate = g;
     gate_ctx = ctx;
+    pthread_rwlock_unlock(&gate_mu);
+}
+
+/* What the gate says of path: LAM_OK without one. */
+static int ask_gate(const char *path, lam_error *err)
+{
+    pthread_rwlock_rdlock(&gate_mu);
+    int rc = gate ? gate(gate_ctx, path, err) : LAM_OK;
+    pthread_rwlock_unlock(&gate_mu);
+    return rc;
 }
 
 /* A limit from the environment that is not a size. */
@@ -124,10 +141,8 @@ int lam_file_was_read(const struct stat *st, char *as, size_t size)
 int lam_file_open(const char *path, int *fd_out, struct stat *st, lam_error *err)
 {
     *fd_out = -1;
-    if (gate) {
-        int rc = gate(gate_ctx, path, err);
-        if (rc) return rc;
-    }
+    int rc = ask_gate(path, err);
+    if (rc) return rc;
     int fd = open(path, O_RDONLY | O_NONBLOCK | O_NOCTTY | O_CLOEXEC);
     if (fd < 0) return lam_error_set(err, LAM_EIO, path, 0, 0, "cannot open: %s", strerror(errno));
     const char *bad = NULL;

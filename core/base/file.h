@@ -70,7 +70,9 @@ int lam_map_file(const char *path, lam_read_limit limit, char **data, size_t *le
  * Unigrafix include, a profile's `inherits`) is held to the sandbox's
  * directories as the file itself is. One gate per process; set it before
  * reading starts and put the old one back after (old_gate, old_ctx may be
- * NULL). */
+ * NULL). Thread-safe: readers on any thread ask the gate at once, and
+ * lam_file_set_gate waits for the calls of the old gate to return, so its
+ * context may be freed after; a gate must not itself set the gate. */
 typedef int (*lam_file_gate)(void *ctx, const char *path, lam_error *err);
 void lam_file_set_gate(lam_file_gate gate, void *ctx, lam_file_gate *old_gate, void **old_ctx);
 

@@ -9,6 +9,7 @@
 #include <errno.h>
 #include <fcntl.h>
 #include <limits.h>
+#include <pthread.h>
 #include <stdarg.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -51,6 +52,31 @@ static plugin **plugins;
 static size_t nplugins, cap_plugins;
 static writer_entry **writers;
 static size_t nwriters, cap_writers;
+
+/* The registry above is guarded by one mutex, so any thread may load
+ * plugins and make sinks. Recursive: lam_plugin_load holds it while the
+ * plugin's init calls register_writer, and lam_plugin_writer_sink while it
+ * loads the plugin that provides a writer (also no other thread sees the
+ * writers of a plugin whose init then fails). */
+static pthread_mutex_t registry_mu;
+static pthread_once_t registry_once = PTHREAD_ONCE_INIT;
+
+static void registry_init(void)
+{
+    pthread_mutexattr_t a;
+    pthread_mutexattr_init(&a);
+    pthread_mutexattr_settype(&a, PTHREAD_MUTEX_RECURSIVE);
+    pthread_mutex_init(&registry_mu, &a);
+    pthread_mutexattr_destroy(&a);
+}
+
+static void registry_lock(void)
+{
+    pthread_once(&registry_once, registry_init);
+    pthread_mutex_lock(&registry_mu);
+}
+
+static void registry_unlock(void) { pthread_mutex_unlock(&registry_mu); }
 
 /* the smallest declared size that still holds member m */
 #define HOLDS(size, type, m) ((size) >= offsetof(type, m) + sizeof(((type *)0)->m))
@@ -95,7 +121,7 @@ static int refuse(plugin *p, const char *fmt, ...)
     return 1;
 }
 
-static int host_register_writer(const struct lamina_host *host, const struct lamina_writer *w)
+static int register_writer(const struct lamina_host *host, const struct lamina_writer *w)
 {
     if (!host) return 1;
     plugin *p = (plugin *)(uintptr_t)host;
@@ -133,6 +159,16 @@ static int host_register_writer(const struct lamina_host *host, const struct lam
     e->owner = p;
     writers[nwriters++] = e;
     return 0;
+}
+
+/* A plugin's register_writer: during its init (the lock is held already)
+ * or, should it keep the host, at any time. */
+static int host_register_writer(const struct lamina_host *host, const struct lamina_writer *w)
+{
+    registry_lock();
+    int rc = register_writer(host, w);
+    registry_unlock();
+    return rc;
 }
 
 static int host_write(struct lamina_out *out, const void *data, size_t len);
@@ -339,7 +375,7 @@ static plugin *new_plugin(const char *path, int fd, const struct stat *st)
     return p;
 }
 
-int lam_plugin_load(const char *path, lam_error *err)
+static int load(const char *path, lam_error *err)
 {
     if (!path || !*path) return lam_error_set(err, LAM_EUSAGE, NULL, 0, 0, "no plugin path given");
     struct stat st;
@@ -416,8 +452,17 @@ int lam_plugin_load(const char *path, lam_error *err)
     return LAM_OK;
 }
 
+int lam_plugin_load(const char *path, lam_error *err)
+{
+    registry_lock();
+    int rc = load(path, err);
+    registry_unlock();
+    return rc;
+}
+
 void lam_plugins_unload(void)
 {
+    registry_lock();
     for (size_t i = 0; i < nwriters; i++) free(writers[i]);
     free(writers);
     writers = NULL;
@@ -427,6 +472,7 @@ void lam_plugins_unload(void)
     free(plugins);
     plugins = NULL;
     cap_plugins = 0;
+    registry_unlock();
 }
 
 static int cmp_str(const void *a, const void *b)
@@ -434,7 +480,7 @@ static int cmp_str(const void *a, const void *b)
     return strcmp(*(const char *const *)a, *(const char *const *)b);
 }
 
-size_t lam_plugin_writers(const char **names, size_t max)
+static size_t writer_names(const char **names, size_t max)
 {
     if (!names) return nwriters;
     size_t n = nwriters < max ? nwriters : max;
@@ -454,6 +500,14 @@ size_t lam_plugin_writers(const char **names, size_t max)
     memcpy(names, all, n * sizeof *names);
     free(all);
     return nwriters;
+}
+
+size_t lam_plugin_writers(const char **names, size_t max)
+{
+    registry_lock();
+    size_t n = writer_names(names, max);
+    registry_unlock();
+    return n;
 }
 
 /* ---- scanning the plugin directories ---- */
@@ -773,6 +827,8 @@ int lam_plugin_writer_sink(const char *name, lam_writer *w, lam_sink *out, lam_e
     memset(out, 0, sizeof *out);
     if (!name || !*name) return lam_error_set(err, LAM_EUSAGE, NULL, 0, 0, "no writer name given");
     if (!w) return lam_error_set(err, LAM_EUSAGE, NULL, 0, 0, "writer %s: no output given", name);
+    registry_lock();
+    int rc = LAM_OK;
     const writer_entry *we = find_writer(name);
     if (!we) {
         /* a sanitizer build's own plugins/ first, the build tree, an installed
@@ -784,11 +840,12 @@ int lam_plugin_writer_sink(const char *name, lam_writer *w, lam_sink *out, lam_e
         char *dirs[MAX_DIRS];
         size_t ndirs = lam_search_dirs("LAMINA_PLUGINS", &rel, dirs, MAX_DIRS);
         lam_error_clear(err);
-        int rc = load_named(name, dirs, ndirs, err);
+        rc = load_named(name, dirs, ndirs, err);
         for (size_t i = 0; i < ndirs; i++) free(dirs[i]);
-        if (rc) return rc;
-        we = find_writer(name);
+        we = rc ? NULL : find_writer(name);
     }
+    registry_unlock();
+    if (rc) return rc;
     plugin_sink *s = calloc(1, sizeof *s);
     if (!s) return lam_error_nomem(err, NULL);
     s->we = we;

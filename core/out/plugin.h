@@ -2,9 +2,9 @@
  * (lamina_plugin.h), keep a registry of what they provide, and adapt a
  * plugin writer to the lam_sink interface planners emit to.
  *
- * The registry is process-wide and not thread-safe: load plugins and create
- * sinks from one thread (lamina does all of this on its main thread); the
- * sinks of lam_plugin_fork run on worker threads.
+ * The registry is process-wide and thread-safe (one lock): any thread may
+ * load plugins, list writers and create sinks; a sink itself is used by one
+ * thread at a time (the sinks of lam_plugin_fork run on worker threads).
  * Everything a plugin registered (writer names, the sinks built on them)
  * stays valid until lam_plugins_unload. */
 #ifndef LAM_PLUGIN_HOST_H

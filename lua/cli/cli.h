@@ -54,17 +54,6 @@ int cli_stdout_check(lam_error *err);
 struct lam_svg;
 int cli_save_svg(const struct lam_svg *svg, const char *path, lam_error *err);
 
-/* The handler of SIGINT, SIGTERM, SIGHUP and SIGPIPE (main.c): remove the
- * temporary files of outputs being written and end by the same signal.
- * Async-signal-safe. */
-void cli_fatal_signal(int sig);
-
-/* The build-time summary of a powder-bed job (hatch.h's estimate) on
- * standard error, and as JSON on standard output (the job's and each
- * layer's total) (cli_slice.c; join prints the same). */
-struct lam_scan_time;
-void cli_print_estimate(const char *path, const struct lam_scan_time *t);
-
 int cmd_info(int argc, char **argv);
 int cmd_join(int argc, char **argv);
 int cmd_slice(int argc, char **argv);

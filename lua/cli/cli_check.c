@@ -60,6 +60,69 @@ static int draw(const args *a, lam_model *m, const lam_drc_result *res, lam_erro
     return rc;
 }
 
+/* Violation i of the report, as JSON (where: its triangles' source). */
+static void json_violation(const lam_violation *x, size_t i, const char *where)
+{
+    fprintf(stdout, "%s{\"rule\":\"%s\",\"position\":[", i ? "," : "", lam_rule_name(x->rule));
+    for (int k = 0; k < 3; k++) {
+        if (k) fputc(',', stdout);
+        cli_json_number(stdout, x->pos[k]);
+    }
+    fputs("],\"value\":", stdout);
+    cli_json_number(stdout, x->value);
+    fputs(",\"limit\":", stdout);
+    cli_json_number(stdout, x->limit);
+    fputs(",\"area\":", stdout);
+    cli_json_number(stdout, x->area);
+    fprintf(stdout, ",\"triangles\":%zu,\"source\":", x->triangles);
+    cli_json_string(stdout, where);
+    fputc('}', stdout);
+}
+
+/* The report of res (the rules o of profile prof) on standard output: text
+ * or, with --json, JSON. */
+static void report(const args *a, const lam_model *m, const lam_profile *prof, const lam_drc_opts *o,
+                   const lam_drc_result *res)
+{
+    if (a->json) {
+        fputs("{\"model\":", stdout);
+        cli_json_string(stdout, a->path);
+        fputs(",\"machine\":", stdout);
+        cli_json_string(stdout, prof->name);
+        fputs(",\"rules\":{\"min_wall\":", stdout);
+        cli_json_number(stdout, o->min_wall);
+        fputs(",\"max_overhang_deg\":", stdout);
+        if (o->max_overhang_deg > 0) cli_json_number(stdout, o->max_overhang_deg);
+        else fputs("null", stdout);
+        fputs("},\"violations\":[", stdout);
+    }
+    for (size_t i = 0; i < res->n; i++) {
+        const lam_violation *x = &res->items[i];
+        char where[700];
+        lam_mesh_describe_tri(&m->mesh, x->tri, where, sizeof where);
+        if (a->json) {
+            json_violation(x, i, where);
+        } else if (x->rule == LAM_RULE_WALL) {
+            /* the powder bed's word for the width is the spot (profile_keys.c) */
+            printf("%s: wall %.6g thick at (%g, %g, %g), thinner than the %s %s (%s; region of %zu triangles, area %g)\n",
+                   lam_rule_name(x->rule), x->value, x->pos[0], x->pos[1], x->pos[2],
+                   prof->process == LAM_PROCESS_SLS ? "spot" : "bead", LAM_NUM(x->limit), where, x->triangles, x->area);
+        } else {
+            printf("%s: overhang %.4g degrees from vertical at (%g, %g, %g), limit %s (%s; region of %zu triangles, area %g)\n",
+                   lam_rule_name(x->rule), x->value, x->pos[0], x->pos[1], x->pos[2], LAM_NUM(x->limit), where, x->triangles,
+                   x->area);
+        }
+    }
+    if (a->json) {
+        fprintf(stdout, "],\"samples\":%zu}\n", res->samples);
+    } else {
+        printf("%s: %zu violation%s of %s's rules (min_wall %s", a->path, res->n, res->n == 1 ? "" : "s", prof->name,
+               LAM_NUM(o->min_wall));
+        if (o->max_overhang_deg > 0) printf(", max_overhang %s degrees", LAM_NUM(o->max_overhang_deg));
+        printf(")\n");
+    }
+}
+
 int cmd_check(int argc, char **argv)
 {
     args a;
@@ -99,56 +162,7 @@ int cmd_check(int argc, char **argv)
         rc = cli_fail(&err);
         goto done;
     }
-    if (a.json) {
-        fputs("{\"model\":", stdout);
-        cli_json_string(stdout, a.path);
-        fputs(",\"machine\":", stdout);
-        cli_json_string(stdout, prof->name);
-        fputs(",\"rules\":{\"min_wall\":", stdout);
-        cli_json_number(stdout, o.min_wall);
-        fputs(",\"max_overhang_deg\":", stdout);
-        if (o.max_overhang_deg > 0) cli_json_number(stdout, o.max_overhang_deg);
-        else fputs("null", stdout);
-        fputs("},\"violations\":[", stdout);
-    }
-    for (size_t i = 0; i < res.n; i++) {
-        const lam_violation *x = &res.items[i];
-        char where[700];
-        lam_mesh_describe_tri(&m->mesh, x->tri, where, sizeof where);
-        if (a.json) {
-            fprintf(stdout, "%s{\"rule\":\"%s\",\"position\":[", i ? "," : "", lam_rule_name(x->rule));
-            for (int k = 0; k < 3; k++) {
-                if (k) fputc(',', stdout);
-                cli_json_number(stdout, x->pos[k]);
-            }
-            fputs("],\"value\":", stdout);
-            cli_json_number(stdout, x->value);
-            fputs(",\"limit\":", stdout);
-            cli_json_number(stdout, x->limit);
-            fputs(",\"area\":", stdout);
-            cli_json_number(stdout, x->area);
-            fprintf(stdout, ",\"triangles\":%zu,\"source\":", x->triangles);
-            cli_json_string(stdout, where);
-            fputc('}', stdout);
-        } else if (x->rule == LAM_RULE_WALL) {
-            /* the powder bed's word for the width is the spot (profile_keys.c) */
-            printf("%s: wall %.6g thick at (%g, %g, %g), thinner than the %s %s (%s; region of %zu triangles, area %g)\n",
-                   lam_rule_name(x->rule), x->value, x->pos[0], x->pos[1], x->pos[2],
-                   prof->process == LAM_PROCESS_SLS ? "spot" : "bead", LAM_NUM(x->limit), where, x->triangles, x->area);
-        } else {
-            printf("%s: overhang %.4g degrees from vertical at (%g, %g, %g), limit %s (%s; region of %zu triangles, area %g)\n",
-                   lam_rule_name(x->rule), x->value, x->pos[0], x->pos[1], x->pos[2], LAM_NUM(x->limit), where, x->triangles,
-                   x->area);
-        }
-    }
-    if (a.json) {
-        fprintf(stdout, "],\"samples\":%zu}\n", res.samples);
-    } else {
-        printf("%s: %zu violation%s of %s's rules (min_wall %s", a.path, res.n, res.n == 1 ? "" : "s", prof->name,
-               LAM_NUM(o.min_wall));
-        if (o.max_overhang_deg > 0) printf(", max_overhang %s degrees", LAM_NUM(o.max_overhang_deg));
-        printf(")\n");
-    }
+    report(&a, m, prof, &o, &res);
     if (a.svg && draw(&a, m, &res, &err)) {
         rc = cli_fail_limit(&err, 0, CLI_RAISE_LAYERS);
         goto done;

@@ -10,6 +10,7 @@
  * powder-bed job is printed as the whole run prints it (join adds the
  * parts' per-layer estimates in layer order). */
 #include "cli.h"
+#include "cli_estimate.h"
 #include "cli_join.h"
 #include "dialect.h"
 #include "part.h"

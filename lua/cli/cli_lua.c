@@ -2,6 +2,7 @@
  * module, in the manner of lua.c (arg table, traceback on errors, Ctrl-C
  * interrupts the running code). */
 #include "cli_lua.h"
+#include "cli_signal.h"
 
 #include <math.h>
 #include <signal.h>
@@ -320,6 +321,7 @@ int cmd_run(int argc, char **argv)
     memset(&so, 0, sizeof so);
     so.memory = 256.0 * 1024 * 1024;
     so.time = 60;
+    so.open_lamina = luaopen_lamina;
     const char *allow[64], *out[64];
     so.allow = allow;
     so.out = out;

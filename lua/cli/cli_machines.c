@@ -3,7 +3,6 @@
 #include "cli.h"
 #include "cli_args.h"
 #include "dialect.h"
-#include "grow.h"
 #include "profile.h"
 #include "writer.h"
 
@@ -74,7 +73,8 @@ static int collect(entry **out, size_t *count)
                 continue;
             }
             if (n == cap) {
-                entry *ne = lam_grow(e, &cap, n + 1, sizeof *ne, 16);
+                /* a directory's worth of names: no count near SIZE_MAX */
+                entry *ne = realloc(e, (cap ? 2 * cap : 16) * sizeof *ne);
                 if (!ne) {
                     free(name);
                     free(path);
@@ -82,6 +82,7 @@ static int collect(entry **out, size_t *count)
                     break;
                 }
                 e = ne;
+                cap = cap ? 2 * cap : 16;
             }
             e[n].name = name;
             e[n].path = path;

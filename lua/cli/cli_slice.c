@@ -7,6 +7,7 @@
 #include "cli.h"
 #include "cli_args.h"
 #include "cli_check.h"
+#include "cli_estimate.h"
 #include "cli_join.h"
 #include "dialect.h"
 #include "fmt.h"
@@ -135,15 +136,6 @@ static int tee_outputs(lam_sink *sink, lam_writer *jw, report *rep, const args *
     if (rc)
         for (size_t k = 1; k < n; k++) all[k].destroy(all[k].ctx);
     return rc;
-}
-
-void cli_print_estimate(const char *path, const lam_scan_time *t)
-{
-    fprintf(stderr,
-            "lamina: %s: %zu layers, %zu contour passes, %zu hatch vectors, %.6g exposed, %.6g jumped; "
-            "estimated build time %.6g s (exposure %.6g s, jumps %.6g s, recoating %.6g s)\n",
-            path, t->layers, t->contours, t->vectors, t->exposure_length, t->jump_length, lam_scan_time_total(t),
-            t->exposure, t->jump, t->recoat);
 }
 
 int cmd_slice(int argc, char **argv)

@@ -503,6 +503,50 @@ static int slice_report(void *ctx, size_t i, const lam_vlayer *l, lam_layer_chec
     return LAM_OK;
 }
 
+/* lamina validate without --program: the model sliced and every layer
+ * checked (rays v), reported through r. Returns the exit code. */
+static int validate_slices(args *a, const lam_profile *prof, lam_model *m, lam_rays *v, vreport *r,
+                           cli_progress *progress)
+{
+    lam_error err;
+    lam_error_clear(&err);
+    lam_slicer *s = NULL;
+    int rc;
+    if (lam_slicer_new(m, &a->so, &s, &err)) {
+        rc = err.code == LAM_EUSAGE ? cli_usage("validate", "%s", err.msg) : cli_fail_limit(&err, 0, CLI_RAISE_LAYERS);
+        goto out;
+    }
+    if (r->json) {
+        fputs("{\"model\":", stdout);
+        cli_json_string(stdout, a->path);
+        fprintf(stdout, ",\"fill\":\"%s\",\"layers\":[", a->so.fill_nonzero ? "nonzero" : "evenodd");
+    }
+    cli_progress_stage(progress, "preparing the layers");
+    cli_size_sense(a->path, a->machine ? prof : NULL, m, s, NULL);
+    cli_progress_begin(progress, "validating", a->path, lam_slicer_count(s));
+    lam_validate_opts vo;
+    lam_validate_opts_init(&vo);
+    vo.fill_nonzero = a->so.fill_nonzero;
+    sjob sj = { r, 0 };
+    int vrc = lam_validate_slicer(s, v, &vo, a->threads, slice_report, &sj, &err);
+    cli_progress_end(progress);
+    if (vrc) {
+        rc = cli_fail(&err);
+        goto out;
+    }
+    size_t open = sj.open;
+    rc = vreport_finish(r, a->path);
+    if (r->json) printf(",\"open_outlines\":%zu}\n", open);
+    if (open && !a->allow_open) {
+        fprintf(stderr, "lamina: %s: %zu outline%s stayed open (gap tolerance %g); use --gap or --allow-open\n", a->path,
+                open, open == 1 ? "" : "s", lam_slicer_gap(s));
+        rc = EXIT_INPUT;
+    }
+out:
+    lam_slicer_free(s);
+    return rc;
+}
+
 int cmd_validate(int argc, char **argv)
 {
     args a;
@@ -516,7 +560,6 @@ int cmd_validate(int argc, char **argv)
     lam_error_clear(&err);
     lam_profile *prof = NULL;
     lam_model *m = NULL;
-    lam_slicer *s = NULL;
     lam_rays *v = NULL;
     vreport r;
     memset(&r, 0, sizeof r);
@@ -560,40 +603,10 @@ int cmd_validate(int argc, char **argv)
         if (r.json) fputs("}\n", stdout);
         goto done;
     }
-    if (lam_slicer_new(m, &a.so, &s, &err)) {
-        rc = err.code == LAM_EUSAGE ? cli_usage("validate", "%s", err.msg) : cli_fail_limit(&err, 0, CLI_RAISE_LAYERS);
-        goto done;
-    }
-    if (r.json) {
-        fputs("{\"model\":", stdout);
-        cli_json_string(stdout, a.path);
-        fprintf(stdout, ",\"fill\":\"%s\",\"layers\":[", a.so.fill_nonzero ? "nonzero" : "evenodd");
-    }
-    cli_progress_stage(&progress, "preparing the layers");
-    cli_size_sense(a.path, a.machine ? prof : NULL, m, s, NULL);
-    cli_progress_begin(&progress, "validating", a.path, lam_slicer_count(s));
-    lam_validate_opts vo;
-    lam_validate_opts_init(&vo);
-    vo.fill_nonzero = a.so.fill_nonzero;
-    sjob sj = { &r, 0 };
-    int vrc = lam_validate_slicer(s, v, &vo, a.threads, slice_report, &sj, &err);
-    cli_progress_end(&progress);
-    if (vrc) {
-        rc = cli_fail(&err);
-        goto done;
-    }
-    size_t open = sj.open;
-    rc = vreport_finish(&r, a.path);
-    if (r.json) printf(",\"open_outlines\":%zu}\n", open);
-    if (open && !a.allow_open) {
-        fprintf(stderr, "lamina: %s: %zu outline%s stayed open (gap tolerance %g); use --gap or --allow-open\n", a.path,
-                open, open == 1 ? "" : "s", lam_slicer_gap(s));
-        rc = EXIT_INPUT;
-    }
+    rc = validate_slices(&a, prof, m, v, &r, &progress);
 done:
     fflush(stdout);
     lam_rays_free(v);
-    lam_slicer_free(s);
     lam_model_free(m);
     lam_profile_free(prof);
     cli_args_free(&a);

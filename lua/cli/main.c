@@ -1,17 +1,20 @@
-/* The `lamina` executable: dispatch to one command per file (cli_*.c). */
+/* The `lamina` executable: its command table (dispatch, --help) over one
+ * command per file (cli_*.c). */
+#define _DEFAULT_SOURCE /* madvise, MADV_HUGEPAGE */
 #include "cli.h"
 #include "cli_lua.h"
+#include "cli_signal.h"
 #include "file.h"
-#include "hugemem.h"
 #include "repl.h"
 #include "version.h"
 #include "writer.h"
 
 #include <errno.h>
-#include <signal.h>
+#include <stdint.h>
 #include <stdio_ext.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/mman.h>
 #include <unistd.h>
 #ifdef __GLIBC__
 #include <malloc.h>
@@ -42,7 +45,11 @@ static void heap_setup(void)
     mallopt(M_TRIM_THRESHOLD, 1 << 30);
     size_t n = (size_t)64 << 20;
     void *p = malloc(n);
-    lam_huge_hint(p, n);
+#ifdef MADV_HUGEPAGE
+    /* the whole pages of the block (the library's arrays hint themselves) */
+    uintptr_t a = ((uintptr_t)p + 4095) & ~(uintptr_t)4095, z = ((uintptr_t)p + n) & ~(uintptr_t)4095;
+    if (p && z > a) (void)madvise((void *)a, z - a, MADV_HUGEPAGE);
+#endif
     free(p);
 #endif
 }
@@ -63,45 +70,55 @@ static void close_stdout(void)
     }
 }
 
-void cli_fatal_signal(int sig)
-{
-    lam_writer_unlink_temps();
-    signal(sig, SIG_DFL);
-    raise(sig); /* held until this handler returns, then the default action */
-}
+/* The commands: one table drives dispatch, `lamina --help` and the list of
+ * man pages (the Makefile's MAN_CMDS reads the names of this table's
+ * entries, one per line as `{ "NAME", `; man/genman.py checks that
+ * --help lists the same ones and makes the bash completion from them).
+ * A summary's "\n" continues it on the next line of --help. */
+enum {
+    CMD_LUA = 1,         /* Lua code runs: the library's default, no record of the inputs read */
+    CMD_INTERACTIVE = 2, /* a session: glibc's heap as it is (heap_setup) */
+};
 
-/* Interrupts and hang-ups remove the temporary files of outputs being
- * written, then end the process by the same signal (exit status 128 + N
- * in a shell). A signal ignored when lamina started (nohup) stays ignored. */
-static void signals_setup(void)
-{
-    static const int sigs[] = { SIGINT, SIGTERM, SIGHUP, SIGPIPE };
-    for (size_t i = 0; i < sizeof sigs / sizeof *sigs; i++) {
-        struct sigaction sa, old;
-        if (sigaction(sigs[i], NULL, &old) == 0 && old.sa_handler == SIG_IGN) continue;
-        memset(&sa, 0, sizeof sa);
-        sa.sa_handler = cli_fatal_signal;
-        sigfillset(&sa.sa_mask);
-        sigaction(sigs[i], &sa, NULL);
-    }
-}
+typedef struct command {
+    const char *name;    /* argv[1] */
+    const char *args;    /* its synopsis after the name, for --help */
+    const char *summary; /* for --help */
+    int (*run)(int argc, char **argv);
+    unsigned flags;      /* CMD_* */
+} command;
+
+static const command commands[] = {
+    { "info", "MODEL [--json]", "model report: shells, cavities, volume, defects", cmd_info, 0 },
+    { "slice", "MODEL [options]", "slice and plan; program to stdout or -o FILE", cmd_slice, 0 },
+    { "join", "PART... [-o FILE]", "the program of a run sliced in parts\n(lamina slice ... --layers A:B)", cmd_join,
+      0 },
+    { "validate", "MODEL [options]", "Embree check of every solid/hole label", cmd_validate, 0 },
+    { "check", "MODEL -m MACHINE", "design-rule check (wall thickness, overhangs)", cmd_check, 0 },
+    { "machines", "[--show NAME]", "list machine profiles / print one resolved", cmd_machines, 0 },
+    { "run", "RECIPE.lua [ARGS...]", "run a Lua recipe (ARGS in `arg` and ...)", cmd_run, CMD_LUA },
+    { "repl", "", "Lua prompt with lamina loaded (also plain\n`lamina` on a terminal)", cmd_repl,
+      CMD_LUA | CMD_INTERACTIVE },
+    { "-e", "CODE [-e CODE ...]", "run Lua code with lamina loaded", cmd_eval, CMD_LUA },
+};
+
+#define NCOMMANDS (sizeof commands / sizeof *commands)
+#define HELP_COLUMN 28 /* the synopses' width: summaries start in one column */
 
 static int help(void)
 {
-    printf("lamina " LAMINA_VERSION " - process planning for layered manufacturing\n\n"
-           "usage:\n"
-           "  lamina info MODEL [--json]          model report: shells, cavities, volume, defects\n"
-           "  lamina slice MODEL [options]        slice and plan; program to stdout or -o FILE\n"
-           "  lamina join PART... [-o FILE]       the program of a run sliced in parts\n"
-           "                                      (lamina slice ... --layers A:B)\n"
-           "  lamina validate MODEL [options]     Embree check of every solid/hole label\n"
-           "  lamina check MODEL -m MACHINE       design-rule check (wall thickness, overhangs)\n"
-           "  lamina machines [--show NAME]       list machine profiles / print one resolved\n"
-           "  lamina run RECIPE.lua [ARGS...]     run a Lua recipe (ARGS in `arg` and ...)\n"
-           "  lamina repl                         Lua prompt with lamina loaded (also plain\n"
-           "                                      `lamina` on a terminal)\n"
-           "  lamina -e CODE [-e CODE ...]        run Lua code with lamina loaded\n"
-           "  lamina --help | --version\n\n"
+    printf("lamina " LAMINA_VERSION " - process planning for layered manufacturing\n\nusage:\n");
+    for (size_t i = 0; i < NCOMMANDS; i++) {
+        const command *c = &commands[i];
+        char syn[64];
+        snprintf(syn, sizeof syn, "%s%s%s", c->name, *c->args ? " " : "", c->args);
+        printf("  lamina %-*s ", HELP_COLUMN, syn);
+        for (const char *p = c->summary; *p; p++)
+            if (*p == '\n') printf("\n%*s", 9 + HELP_COLUMN + 1, "");
+            else putchar(*p);
+        putchar('\n');
+    }
+    printf("  lamina --help | --version\n\n"
            "'lamina COMMAND --help' describes a command's options.\n"
            "Models: Unigrafix (.ug), STL (ASCII or binary), Wavefront OBJ.\n"
            "Exit codes: 0 success, 1 input or processing error, 2 usage error,\n"
@@ -114,7 +131,7 @@ static int dispatch(int argc, char **argv);
 int main(int argc, char **argv)
 {
     atexit(close_stdout);
-    signals_setup();
+    cli_signals_setup();
     int rc = dispatch(argc, argv);
     lam_file_track(0);
     exit(rc);
@@ -123,25 +140,20 @@ int main(int argc, char **argv)
 static int dispatch(int argc, char **argv)
 {
     if (argc < 2) return lua_main_default();
-    const char *cmd = argv[1];
-    if (strcmp(cmd, "repl") != 0) heap_setup();
+    const char *name = argv[1];
+    const command *c = NULL;
+    for (size_t i = 0; i < NCOMMANDS && !c; i++)
+        if (strcmp(commands[i].name, name) == 0) c = &commands[i];
+    unsigned flags = c ? c->flags : 0;
+    if (!(flags & CMD_INTERACTIVE)) heap_setup();
     /* a command's outputs may not replace what it read (writer.h); Lua
      * (run, repl, -e) keeps the library's default: no record */
-    int lua = !strcmp(cmd, "run") || !strcmp(cmd, "repl") || !strcmp(cmd, "-e");
-    if (!lua) lam_file_track(1);
-    if (strcmp(cmd, "--help") == 0 || strcmp(cmd, "-h") == 0 || strcmp(cmd, "help") == 0) return help();
-    if (strcmp(cmd, "--version") == 0) {
+    if (!(flags & CMD_LUA)) lam_file_track(1);
+    if (c) return c->run(argc - 1, argv + 1);
+    if (strcmp(name, "--help") == 0 || strcmp(name, "-h") == 0 || strcmp(name, "help") == 0) return help();
+    if (strcmp(name, "--version") == 0) {
         printf("lamina " LAMINA_VERSION "\n");
         return EXIT_OK;
     }
-    if (strcmp(cmd, "info") == 0) return cmd_info(argc - 1, argv + 1);
-    if (strcmp(cmd, "slice") == 0) return cmd_slice(argc - 1, argv + 1);
-    if (strcmp(cmd, "join") == 0) return cmd_join(argc - 1, argv + 1);
-    if (strcmp(cmd, "validate") == 0) return cmd_validate(argc - 1, argv + 1);
-    if (strcmp(cmd, "check") == 0) return cmd_check(argc - 1, argv + 1);
-    if (strcmp(cmd, "machines") == 0) return cmd_machines(argc - 1, argv + 1);
-    if (strcmp(cmd, "run") == 0) return cmd_run(argc - 1, argv + 1);
-    if (strcmp(cmd, "repl") == 0) return cmd_repl(argc - 1, argv + 1);
-    if (strcmp(cmd, "-e") == 0) return cmd_eval(argc - 1, argv + 1);
-    return cli_usage(NULL, "unknown command '%s'", cmd);
+    return cli_usage(NULL, "unknown command '%s'", name);
 }

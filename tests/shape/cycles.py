@@ -73,7 +73,10 @@ calls, defs, need = {}, {}, {}
 for dp, _, fs in os.walk(build):
     for f in fs:
         if f.endswith(".o") and os.path.splitext(f)[0] in names:
-            m = names[os.path.splitext(f)[0]]
+            # the object's own source when it has one (build/lua/lamina.o is
+            # lua/lamina, not core/lamina.h's module), else the stem's module
+            src = os.path.splitext(os.path.relpath(os.path.join(dp, f), build))[0]
+            m = src if os.path.exists(os.path.join(root, src + ".c")) else names[os.path.splitext(f)[0]]
             out = subprocess.run(["nm", os.path.join(dp, f)], capture_output=True, text=True).stdout
             for line in out.split("\n"):
                 p = line.split()
