@@ -45,6 +45,7 @@
 #include "validate.h"
 #include "drc.h"
 #include "writer.h"
+#include "vocab.h"
 #include "plan.h"
 #include "hatch.h"
 #include "dialect.h"
@@ -64,6 +65,8 @@
 #include "validate_run.h"
 #include "plan_layers.h"
 #include "plan_data.h"
+#include "plan_record.h"
+#include "views.h"
 #include "part.h"
 
 #endif

@@ -19,7 +19,8 @@
 
 #include "dialect.h"
 #include "plugin.h"
-#include "plan_data.h"
+#include "tee.h"
+#include "views.h"
 #include "plan_layers.h"
 #include "pool.h"
 #include "writer.h"
@@ -35,8 +36,20 @@ typedef struct planjob {
     int have_sink;
     lam_error err;           /* the sink reports through it: it must not move */
     lam_plan_data rec;          /* what was planned, per layer: handed to the plan */
-    lam_sink tee;            /* records into rec, then writes into sink */
+    lam_sink tee;            /* the program's sink and the plan data's (views.h) */
 } planjob;
+
+/* The program's sink and the plan data fed by one plan: j->tee owns both,
+ * and j->sink is the tee from then on (so releasing it releases both). */
+static int plan_data_tee(planjob *j)
+{
+    lam_views v = { .data = &j->rec };
+    lam_sink both[2] = { j->sink };
+    int rc = lam_views_sink(&v, &both[1], &j->err);
+    if (!rc && (rc = lam_tee_sink(both, 2, &j->tee, &j->err))) both[1].destroy(both[1].ctx);
+    if (!rc) j->sink = j->tee;
+    return rc;
+}
 
 static void job_release(planjob *j)
 {
@@ -289,7 +302,7 @@ again:;
                   : lam_plugin_writer_sink(p.writer, j->w, &j->sink, &j->err);
     if (rc) return lam_lua_fail(L, &j->err);
     j->have_sink = 1;
-    lam_plan_data_sink(&j->rec, &j->sink, &run->frame, o.frame_machine, &j->err, &j->tee);
+    if ((rc = plan_data_tee(j))) return lam_lua_fail(L, &j->err);
 
     lam_job_info job;
     memset(&job, 0, sizeof job);
@@ -301,6 +314,8 @@ again:;
     job.rate = o.rate;
     job.travel_rate = o.travel_rate;
     job.label = run->label;
+    job.frame = &run->frame;
+    job.frame_machine = o.frame_machine;
     if (o.frame_machine) {
         const double bb[6] = { run->uvbox[0], run->uvbox[1], run->wmin, run->uvbox[2], run->uvbox[3], run->wmax };
         memcpy(job.bbox, bb, sizeof bb);
@@ -482,6 +497,17 @@ static int p_write(lua_State *L)
     return 1;
 }
 
+/* The attributes (vocab.h) that are not at their default, as fields of
+ * the table on top. */
+static void push_attrs(lua_State *L, const lam_attrs *a)
+{
+    for (size_t i = 0; i < LAM_NATTRS; i++)
+        if (lam_attr_get(a, i) != lam_attr_default(i)) {
+            lua_pushinteger(L, (lua_Integer)lam_attr_get(a, i));
+            lua_setfield(L, -2, lam_attr_key(i));
+        }
+}
+
 /* plan:layer(i) -> { index, z, deposit, travel, time, contours, vectors } | nil
  * (tables made now from the record: nothing refers back to the plan) */
 static int p_layer(lua_State *L)
@@ -516,6 +542,7 @@ static int p_layer(lua_State *L)
         lua_setfield(L, -2, "depth");
         lua_pushinteger(L, (lua_Integer)c.order);
         lua_setfield(L, -2, "order");
+        push_attrs(L, &c.attrs);
         for (size_t q = 0; q < 2 * c.n; q++) {
             pl = check(L, 1);
             lua_pushnumber(L, pl->rec->pts[2 * c.first + q]);
@@ -533,8 +560,9 @@ static int p_layer(lua_State *L)
             lua_pushnumber(L, v.uv[q]);
             lua_rawseti(L, -2, q + 1);
         }
-        lua_pushstring(L, lam_rec_kind_name(v.kind));
+        lua_pushstring(L, lam_kind_name(v.kind));
         lua_setfield(L, -2, "kind");
+        push_attrs(L, &v.attrs);
         lua_pushinteger(L, (lua_Integer)v.order);
         lua_setfield(L, -2, "order");
         lua_rawseti(L, -2, (lua_Integer)k + 1);

@@ -10,7 +10,7 @@
  * The JSON is streamed as the run goes (the JSON sink writes each layer
  * when it is planned and forgets it), so memory does not grow with the
  * run; it is the page's only text from the run, and its strings write '<'
- * as \u003c (LAM_JSON_SCRIPT, escape.h's LAM_ESC_JSON_SCRIPT), so no
+ * as \u003c (lam_json_consumer's script text: escape.h's LAM_ESC_JSON_SCRIPT), so no
  * "</script>" or "<!--" can end or change the element. The page's script
  * shows the run's strings (model path, machine, units) as text only
  * (textContent, document.title, canvas text), never as markup. */

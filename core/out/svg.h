@@ -9,7 +9,7 @@
  * bar (class "scalebar": a line 1, 2 or 5 times a power of ten model units
  * long, at most 60 px, and its label "LENGTH UNITS").
  *
- * Fed by a planning run (lam_svg_sink), each panel also draws the layer's
+ * Fed by a planning run (lam_svg_consumer), each panel also draws the layer's
  * planned vectors (vstream.h) over a lighter fill: one <path> per vector
  * whose class is its kind (deposit, contour, core, upskin, downskin;
  * travel and jump dashed grey; a contour pass's edges joined into one

@@ -11,7 +11,7 @@
 #include "cli_join.h"
 #include "dialect.h"
 #include "fmt.h"
-#include "json_sink.h"
+#include "views.h"
 #include "model.h"
 #include "planner.h"
 #include "plugin.h"
@@ -121,20 +121,18 @@ static int on_layer(void *ctx, const lam_layer *L, lam_error *err)
     return cli_view_layer(&r->view, L, err);
 }
 
-/* The program's sink, the JSON's (--json) and the pictures' (--svg,
- * --html) fed by one plan: *sink becomes a tee that owns them all. On
- * failure *sink is left as it was. */
+/* The program's sink and the views (--json, --svg, --html: views.h, one
+ * vector stream decoded once) fed by one plan: *sink becomes a tee that
+ * owns them both. On failure *sink is left as it was. */
 static int tee_outputs(lam_sink *sink, lam_writer *jw, report *rep, const args *a, lam_slicer *s,
                        const lam_plan_opts *po, lam_error *err)
 {
-    lam_sink all[4] = { *sink };
-    size_t n = 1;
-    int rc = jw ? lam_json_sink(jw, 0, &all[n], err) : LAM_OK;
-    if (!rc && jw) n++;
-    if (!rc) rc = cli_view_open(&rep->view, a, s, po, all, &n, err);
-    if (!rc && n > 1) rc = lam_tee_sink(all, n, sink, err);
-    if (rc)
-        for (size_t k = 1; k < n; k++) all[k].destroy(all[k].ctx);
+    lam_views views = { .json = jw };
+    int rc = cli_view_open(&rep->view, a, s, po, &views, err);
+    if (rc || !(views.json || views.html || views.svg)) return rc;
+    lam_sink all[2] = { *sink };
+    if ((rc = lam_views_sink(&views, &all[1], err))) return rc;
+    if ((rc = lam_tee_sink(all, 2, sink, err))) all[1].destroy(all[1].ctx);
     return rc;
 }
 

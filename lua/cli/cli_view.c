@@ -1,13 +1,13 @@
 #include "cli_view.h"
 
 #include "cli.h"
-#include "html.h"
+
 
 #include <stdio.h>
 #include <string.h>
 
-int cli_view_open(cli_view *v, const args *a, lam_slicer *s, const lam_plan_opts *po, lam_sink *sinks,
-                  size_t *n, lam_error *err)
+int cli_view_open(cli_view *v, const args *a, lam_slicer *s, const lam_plan_opts *po, lam_views *views,
+                  lam_error *err)
 {
     memset(v, 0, sizeof *v);
     v->limit = a->max_output ? a->max_output : LAM_DEFAULT_MAX_OUTPUT;
@@ -19,10 +19,12 @@ int cli_view_open(cli_view *v, const args *a, lam_slicer *s, const lam_plan_opts
         snprintf(title, sizeof title, "lamina: %s", a->path);
         v->svg_path = a->svg;
         rc = lam_svg_new(lam_slicer_count(s), box, title, &v->svg, err);
-        if (!rc && !(rc = lam_svg_sink(v->svg, lam_slicer_frame(s), po->frame_machine, &sinks[*n], err))) (*n)++;
+        views->svg = v->svg;
+        views->frame = lam_slicer_frame(s);
+        views->frame_machine = po->frame_machine;
     }
     if (!rc && a->html && !(rc = cli_writer("--html", a->html, &v->hw, err))) lam_writer_set_limit(v->hw, v->limit);
-    if (!rc && a->html && !(rc = lam_html_sink(v->hw, &sinks[*n], err))) (*n)++;
+    views->html = v->hw;
     return rc;
 }
 

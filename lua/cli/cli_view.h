@@ -6,7 +6,7 @@
 
 #include "cli_args.h"
 #include "planner.h"
-#include "svg.h"
+#include "views.h"
 
 typedef struct cli_view {
     lam_svg *svg;
@@ -15,12 +15,11 @@ typedef struct cli_view {
     unsigned long long limit;/* each file's most bytes (--max-output, or the default) */
 } cli_view;
 
-/* Start the pictures a asks for of slicer s's run planned with po, and add
- * their sinks at sinks[*n] (room for two more), *n counting them; the
- * caller owns those sinks (a tee, say). err must outlive the run. Returns
- * LAM_OK or an error code with err set. */
-int cli_view_open(cli_view *v, const args *a, lam_slicer *s, const lam_plan_opts *po, lam_sink *sinks,
-                  size_t *n, lam_error *err);
+/* Start the pictures a asks for of slicer s's run planned with po, named
+ * in *views (its svg, frame and html; the caller makes the views' sink).
+ * err must outlive the run. Returns LAM_OK or an error code with err set. */
+int cli_view_open(cli_view *v, const args *a, lam_slicer *s, const lam_plan_opts *po, lam_views *views,
+                  lam_error *err);
 
 /* Every layer of the run, before it is planned (the run's layer callback). */
 int cli_view_layer(cli_view *v, const lam_layer *L, lam_error *err);

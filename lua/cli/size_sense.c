@@ -3,8 +3,7 @@
 #include <stdio.h>
 
 #include "fmt.h"
-#include "html.h"
-#include "json_sink.h"
+#include "views.h"
 
 int cli_size_sense(const char *path, const lam_profile *machine, const lam_model *m, const lam_slicer *s,
                    const lam_plan_opts *po)
@@ -55,13 +54,15 @@ int cli_size_sense(const char *path, const lam_profile *machine, const lam_model
 static int open_json(void *arg, lam_writer *w, lam_sink *out, lam_error *err)
 {
     (void)arg;
-    return lam_json_sink(w, 0, out, err);
+    lam_views v = { .json = w };
+    return lam_views_sink(&v, out, err);
 }
 
 static int open_html(void *arg, lam_writer *w, lam_sink *out, lam_error *err)
 {
     (void)arg;
-    return lam_html_sink(w, out, err);
+    lam_views v = { .html = w };
+    return lam_views_sink(&v, out, err);
 }
 
 int cli_check_outputs(const char *json, const char *html, const lam_slicer *s, const lam_model *m,

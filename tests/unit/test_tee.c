@@ -76,11 +76,14 @@ int main(void)
     ok(strchr(a.s, 'x') && strchr(b.s, 'x'), "destroy destroys every sink");
     ok(lam_tee_sink(both, 0, &t, &err) == LAM_EUSAGE, "a tee of no sinks: LAM_EUSAGE");
 
-    /* the JSON sink into memory, behind a tee */
-    lam_writer *w;
+    /* the JSON into memory, behind a tee: the <script> text to w, the
+     * plain JSON to w2, from one consumer of one vector stream */
+    lam_writer *w, *w2;
     lam_writer_memory(&w, &err);
+    lam_writer_memory(&w2, &err);
     lam_sink js, one[1];
-    ok(lam_json_sink(w, LAM_JSON_SCRIPT, &js, &err) == LAM_OK, "a JSON sink");
+    lam_vec_consumer jc;
+    ok(lam_json_consumer(w2, w, &jc, &err) == LAM_OK && lam_vstream_sink(&jc, 1, &js, &err) == LAM_OK, "a JSON sink");
     one[0] = js;
     lam_tee_sink(one, 1, &t, &err);
     job.model = "a\"b\\</script>\xff.ug";
@@ -110,12 +113,19 @@ int main(void)
                     "\"travel_length\": 0, \"time\": null}") != NULL,
        "the layer's figures: sqrt(0.06)");
     ok(len > 0 && text[len - 1] == '\n', "the document ends with a newline");
+    char *plain;
+    size_t plen;
+    lam_writer_take(w2, &plain, &plen, &err);
+    ok(strstr(plain, "\"model\": \"a\\\"b\\\\</script>\\ufffd.ug\"") != NULL && plen + 5 == len,
+       "the plain JSON: the same text with its one '<' as it is");
+    free(plain);
     free(text);
     t.destroy(t.ctx);
 
     /* a NaN is an error, not a document that no reader accepts */
     lam_writer_memory(&w, &err);
-    lam_json_sink(w, 0, &js, &err);
+    lam_json_consumer(w, NULL, &jc, &err);
+    lam_vstream_sink(&jc, 1, &js, &err);
     job.bead = NAN;
     ok(js.begin(js.ctx, &job) == LAM_EINVAL && strstr(err.msg, "not finite"), "NaN: LAM_EINVAL (%s)", err.msg);
     js.destroy(js.ctx);
