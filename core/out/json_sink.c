@@ -2,6 +2,7 @@
 #include "json_sink.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -309,6 +310,13 @@ static int j_vector(void *ctx, const lam_vec *v)
     pt(s, v->to);
     put(s, ", \"order\": ");
     size(s, v->order);
+    for (size_t i = 0; i < LAM_NATTRS; i++) /* an attribute at its default is left out (vocab.h) */
+        if (lam_attr_get(&v->attrs, i) != lam_attr_default(i)) {
+            char b[32];
+            put(s, ", ");
+            key(s, lam_attr_key(i));
+            put(s, (snprintf(b, sizeof b, ": %lld", lam_attr_get(&v->attrs, i)), b));
+        }
     put(s, "}");
     s->vectors++;
     if (s->len >= FLUSH_AT) flush(s);
