@@ -3,7 +3,7 @@
  *
  * A library user loads a mesh (import.h; file.h: the input size limits),
  * builds a model (model.h), slices it (slice.h: layers of contours,
- * contour.h), may offset, fill or check the layers (offset.h, fill.h,
+ * contour.h), may offset, fill or check the layers (offset.h, winding.h,
  * section.h, validate.h, drc.h, rays.h), plans them for a machine profile
  * (profile.h, planner.h, plan.h, hatch.h: scan strategies, dialect.h) and
  * writes programs or previews through a lam_writer (writer.h, svg.h,
@@ -31,7 +31,7 @@
 #include "model.h"
 #include "slice.h"
 #include "contour.h"
-#include "fill.h"
+#include "winding.h"
 #include "offset.h"
 #include "section.h"
 #include "rays.h"

@@ -8,7 +8,7 @@
 #include <string.h>
 
 #include "contour.h"
-#include "fill.h"
+#include "winding.h"
 #include "fmt.h"
 #include "grow.h"
 #include "hugemem.h"

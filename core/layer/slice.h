@@ -67,7 +67,7 @@ typedef struct lam_slice_opts {
                                 in lam_layer.open: the caller decides whether that fails. */
     double gap_limit;        /* > 0: the automatic gap is at most this */
     int fill_nonzero;        /* 0: even-odd (the thesis's nesting parity); 1: non-zero
-                                winding, overlapping shells merge (fill.h) */
+                                winding, overlapping shells merge (winding.h) */
     /* Layer boundaries, one of: */
     double width;            /* > 0: uniform layers from the model's minimum;
                                 0: lam_default_width of the extent */

@@ -1,4 +1,4 @@
-#include "fill.h"
+#include "winding.h"
 
 #include "geos.h"
 
