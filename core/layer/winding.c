@@ -27,109 +27,99 @@ int lam_loops_winding(const lam_loops *L, double u, double v)
     return w;
 }
 
+/* The loops as one multilinestring, each loop closed (NULL: *rc says why). */
+static GEOSGeometry *loop_lines(lam_geos *c, const lam_loops *loops, int *rc)
+{
+    size_t nl = loops->nloops;
+    GEOSGeometry **lines = calloc(nl, sizeof *lines), *mls = NULL;
+    if (!lines) {
+        *rc = LAM_ENOMEM;
+        return NULL;
+    }
+    *rc = LAM_OK;
+    const double *p = loops->uv;
+    for (size_t l = 0; l < nl && !*rc; l++) {
+        size_t n = loops->len[l];
+        GEOSCoordSequence *cs = GEOSCoordSeq_create_r(c->h, (unsigned)(n + 1), 2);
+        if (!cs) {
+            *rc = LAM_EGEOM;
+            break;
+        }
+        for (size_t i = 0; i <= n; i++)
+            GEOSCoordSeq_setXY_r(c->h, cs, (unsigned)i, p[2 * (i % n)], p[2 * (i % n) + 1]);
+        if (!(lines[l] = GEOSGeom_createLineString_r(c->h, cs))) *rc = LAM_EGEOM;
+        p += 2 * n;
+    }
+    if (!*rc && !(mls = GEOSGeom_createCollection_r(c->h, GEOS_MULTILINESTRING, lines, (unsigned)nl))) *rc = LAM_EGEOM;
+    if (mls) {
+        free(lines); /* owned by mls now */
+        return mls;
+    }
+    for (size_t l = 0; l < nl; l++)
+        if (lines[l]) GEOSGeom_destroy_r(c->h, lines[l]);
+    free(lines);
+    return NULL;
+}
+
+/* The union of the faces of the arrangement where the loops' winding
+ * number is not zero, into *uni (NULL: no such face). */
+static int nonzero_union(lam_geos *c, const lam_loops *loops, const GEOSGeometry *faces, GEOSGeometry **uni)
+{
+    *uni = NULL;
+    int nf = GEOSGetNumGeometries_r(c->h, faces), rc = LAM_OK;
+    GEOSGeometry **kept = calloc(nf > 0 ? (size_t)nf : 1, sizeof *kept);
+    if (!kept) return LAM_ENOMEM;
+    unsigned nk = 0;
+    for (int i = 0; i < nf; i++) {
+        const GEOSGeometry *face = GEOSGetGeometryN_r(c->h, faces, i);
+        GEOSGeometry *pt = face ? GEOSPointOnSurface_r(c->h, face) : NULL;
+        double x, y;
+        if (!pt || !GEOSGeomGetX_r(c->h, pt, &x) || !GEOSGeomGetY_r(c->h, pt, &y)) {
+            if (pt) GEOSGeom_destroy_r(c->h, pt);
+            rc = LAM_EGEOM;
+            break;
+        }
+        GEOSGeom_destroy_r(c->h, pt);
+        if (lam_loops_winding(loops, x, y) != 0) kept[nk++] = GEOSGeom_clone_r(c->h, face);
+    }
+    GEOSGeometry *coll = NULL;
+    if (!rc && nk && !(coll = GEOSGeom_createCollection_r(c->h, GEOS_MULTIPOLYGON, kept, nk))) rc = LAM_EGEOM;
+    if (coll) {
+        free(kept); /* owned by coll now */
+        *uni = GEOSUnaryUnionPrec_r(c->h, coll, c->grid); /* faces of one noding: valid, edge to edge */
+        GEOSGeom_destroy_r(c->h, coll);
+        return *uni ? LAM_OK : LAM_EGEOM;
+    }
+    for (int i = 0; i < nf; i++)
+        if (kept[i]) GEOSGeom_destroy_r(c->h, kept[i]);
+    free(kept);
+    return rc;
+}
+
 int lam_fill_nonzero(lam_loops *loops, lam_error *err)
 {
     if (loops->nloops == 0) return LAM_OK;
     lam_geos c;
     int rc = lam_geos_init(&c, err);
     if (rc) return rc;
-    size_t nl = loops->nloops;
     double mag = 0;
     for (size_t i = 0; i < 2 * loops->npoints; i++) mag = fmax(mag, fabs(loops->uv[i]));
     c.grid = lam_geos_grid(mag);
-    GEOSGeometry **lines = calloc(nl, sizeof *lines), *mls = NULL, *noded = NULL, *faces = NULL, *uni = NULL;
-    GEOSGeometry **kept = NULL;
+    GEOSGeometry *mls = loop_lines(&c, loops, &rc), *noded = NULL, *faces = NULL, *uni = NULL;
     lam_loops_builder out = { 0 };
-    if (!lines) {
-        rc = LAM_ENOMEM;
-        goto done;
-    }
-    const double *p = loops->uv;
-    for (size_t l = 0; l < nl; l++) {
-        size_t n = loops->len[l];
-        GEOSCoordSequence *cs = GEOSCoordSeq_create_r(c.h, (unsigned)(n + 1), 2);
-        if (!cs) {
-            rc = LAM_EGEOM;
-            goto done;
-        }
-        for (size_t i = 0; i <= n; i++)
-            GEOSCoordSeq_setXY_r(c.h, cs, (unsigned)i, p[2 * (i % n)], p[2 * (i % n) + 1]);
-        if (!(lines[l] = GEOSGeom_createLineString_r(c.h, cs))) {
-            rc = LAM_EGEOM;
-            goto done;
-        }
-        p += 2 * n;
-    }
-    mls = GEOSGeom_createCollection_r(c.h, GEOS_MULTILINESTRING, lines, (unsigned)nl);
-    if (!mls) {
-        rc = LAM_EGEOM;
-        goto done;
-    }
-    free(lines); /* owned by mls now */
-    lines = NULL;
     /* union of linework nodes it at every crossing, by snap-rounding on
      * the grid (geos.h): near-coincident edges of overlapping shells are
      * noded where a floating-point noder finds "non-noded intersections" */
-    if (!(noded = GEOSUnaryUnionPrec_r(c.h, mls, c.grid))) {
-        rc = LAM_EGEOM;
-        goto done;
-    }
+    if (!rc && !(noded = GEOSUnaryUnionPrec_r(c.h, mls, c.grid))) rc = LAM_EGEOM;
     const GEOSGeometry *in[1] = { noded };
-    if (!(faces = GEOSPolygonize_r(c.h, in, 1))) {
-        rc = LAM_EGEOM;
-        goto done;
-    }
-    int nf = GEOSGetNumGeometries_r(c.h, faces);
-    kept = calloc(nf > 0 ? (size_t)nf : 1, sizeof *kept);
-    if (!kept) {
-        rc = LAM_ENOMEM;
-        goto done;
-    }
-    unsigned nk = 0;
-    for (int i = 0; i < nf; i++) {
-        const GEOSGeometry *face = GEOSGetGeometryN_r(c.h, faces, i);
-        GEOSGeometry *pt = face ? GEOSPointOnSurface_r(c.h, face) : NULL;
-        double x, y;
-        if (!pt || !GEOSGeomGetX_r(c.h, pt, &x) || !GEOSGeomGetY_r(c.h, pt, &y)) {
-            if (pt) GEOSGeom_destroy_r(c.h, pt);
-            rc = LAM_EGEOM;
-            goto done;
-        }
-        GEOSGeom_destroy_r(c.h, pt);
-        if (lam_loops_winding(loops, x, y) != 0) kept[nk++] = GEOSGeom_clone_r(c.h, face);
-    }
-    if (nk) {
-        GEOSGeometry *coll = GEOSGeom_createCollection_r(c.h, GEOS_MULTIPOLYGON, kept, nk);
-        if (!coll) {
-            rc = LAM_EGEOM;
-            goto done;
-        }
-        free(kept);
-        kept = NULL;
-        uni = GEOSUnaryUnionPrec_r(c.h, coll, c.grid); /* faces of one noding: valid, edge to edge */
-        GEOSGeom_destroy_r(c.h, coll);
-        if (!uni) {
-            rc = LAM_EGEOM;
-            goto done;
-        }
-        rc = lam_geos_add_polygons(&c, uni, &out);
-    }
+    if (!rc && !(faces = GEOSPolygonize_r(c.h, in, 1))) rc = LAM_EGEOM;
+    if (!rc) rc = nonzero_union(&c, loops, faces, &uni);
+    if (!rc && uni) rc = lam_geos_add_polygons(&c, uni, &out);
     if (!rc) {
         free(loops->uv);
         free(loops->len);
         *loops = out.loops;
         memset(&out, 0, sizeof out);
-    }
-done:
-    if (lines) {
-        for (size_t l = 0; l < nl; l++)
-            if (lines[l]) GEOSGeom_destroy_r(c.h, lines[l]);
-        free(lines);
-    }
-    if (kept) {
-        for (int i = 0; i < nf; i++)
-            if (kept[i]) GEOSGeom_destroy_r(c.h, kept[i]);
-        free(kept);
     }
     if (mls) GEOSGeom_destroy_r(c.h, mls);
     if (noded) GEOSGeom_destroy_r(c.h, noded);
