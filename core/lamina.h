@@ -2,10 +2,10 @@
  * `pkg-config --cflags --libs lamina`.
  *
  * A library user loads a mesh (import.h; file.h: the input size limits),
- * builds a model (model.h), slices it (slice.h: layers of contours,
- * contour.h), may offset, fill or check the layers (offset.h, winding.h,
- * section.h, validate.h, drc.h, rays.h), plans them for a machine profile
- * (profile.h, planner.h, plan.h, hatch.h: scan strategies, dialect.h) and
+ * builds a model (model.h), slices it (slice.h; frame.h: the layer frame;
+ * layer.h, contour.h: layers of contours), may offset, fill or check the
+ * layers (offset.h, winding.h, section.h, validate.h, drc.h, rays.h), plans
+ * them for a machine profile (profile.h, planner.h, plan.h, hatch.h: scan strategies, dialect.h) and
  * writes programs or previews through a lam_writer (writer.h, svg.h,
  * html.h: the browser viewer; vstream.h: a plan as a stream of vectors),
  * the run as JSON (json_sink.h; tee.h feeds one plan to several sinks).
@@ -29,6 +29,8 @@
 #include "file.h"
 #include "import.h"
 #include "model.h"
+#include "frame.h"
+#include "layer.h"
 #include "slice.h"
 #include "contour.h"
 #include "winding.h"
