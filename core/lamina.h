@@ -17,9 +17,9 @@
  * hatching, offsets: lazylib.h), so a program does not link them.
  *
  * The headers not included here (nest.h, enclose.h, geos.h, lexnum.h,
- * fmt.h, paths.h, prefetch.h, grow.h, test_hooks.h, viewer_html.h,
- * lazylib.h, geos_lazy.h, embree_lazy.h) are internal to core/ and not
- * installed. */
+ * fmt.h, paths.h, prefetch.h, grow.h, buf.h, test_hooks.h, viewer_html.h,
+ * lazylib.h, geos_lazy.h, embree_lazy.h, hatch_internal.h) are internal to
+ * core/ and not installed. */
 #ifndef LAMINA_H
 #define LAMINA_H
 

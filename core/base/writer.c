@@ -15,8 +15,8 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "buf.h"
 #include "file.h"
-#include "grow.h"
 
 enum kind { W_FILE, W_DEVICE, W_STREAM, W_MEMORY };
 
@@ -24,8 +24,7 @@ struct lam_writer {
     enum kind kind;
     FILE *f;
     char *path, *tmp;      /* W_FILE */
-    char *buf;             /* W_MEMORY */
-    size_t len, cap;
+    lam_buf mem;           /* W_MEMORY */
     int failed;            /* errno of the first failure, 0 if none */
     int lockfd;            /* W_FILE: holds the temporary's flock until commit/abort */
     unsigned long long written, limit;
@@ -312,17 +311,10 @@ int lam_writer_write(lam_writer *w, const void *data, size_t len)
     }
     w->written += len;
     if (w->kind == W_MEMORY) {
-        if (w->len + len + 1 > w->cap) {
-            char *nb = lam_grow(w->buf, &w->cap, w->len + len + 1, 1, 4096);
-            if (!nb) {
-                w->failed = ENOMEM;
-                return LAM_ENOMEM;
-            }
-            w->buf = nb;
+        if (lam_buf_append(&w->mem, data, len)) {
+            w->failed = ENOMEM;
+            return LAM_ENOMEM;
         }
-        memcpy(w->buf + w->len, data, len);
-        w->len += len;
-        w->buf[w->len] = '\0';
         return LAM_OK;
     }
     if (len && fwrite(data, 1, len, w->f) != len) {
@@ -360,7 +352,7 @@ static void release(lam_writer *w)
     if (w->kind == W_FILE && w->lockfd >= 0) close(w->lockfd);
     free(w->path);
     free(w->tmp);
-    free(w->buf);
+    lam_buf_free(&w->mem);
     free(w);
 }
 
@@ -420,9 +412,7 @@ int lam_writer_take(lam_writer *w, char **data, size_t *len, lam_error *err)
         release(w);
         return rc;
     }
-    *data = w->buf ? w->buf : calloc(1, 1);
-    *len = w->len;
-    w->buf = NULL;
+    *data = lam_buf_take(&w->mem, len);
     release(w);
     return *data ? LAM_OK : lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory");
 }
