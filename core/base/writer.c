@@ -159,6 +159,49 @@ static int open_device(const char *path, lam_writer **out, lam_error *err)
     return LAM_OK;
 }
 
+/* The mode of the file at path it replaces, else the usual one. */
+static mode_t target_mode(const char *path)
+{
+    struct stat old;
+    if (stat(path, &old) == 0 && S_ISREG(old.st_mode)) return old.st_mode & 07777;
+    mode_t mask = umask(0);
+    umask(mask);
+    return 0666 & ~mask;
+}
+
+/* A new temporary beside w->path, named into w->tmp (room bytes),
+ * registered as live and locked: its descriptor, or -1 with *e the errno. */
+static int create_temp(lam_writer *w, size_t room, int *e)
+{
+    /* Signals are held from mkstemp until the temporary is registered, so
+     * a handler never misses it. Same directory as the target, so the final
+     * rename is atomic. */
+    sigset_t all, was;
+    sigfillset(&all);
+    int fd = -1;
+    for (int attempt = 0; attempt < 8 && fd < 0; attempt++) {
+        snprintf(w->tmp, room, "%s.tmp-%ld-XXXXXX", w->path, (long)getpid());
+        sigprocmask(SIG_BLOCK, &all, &was);
+        fd = mkstemp(w->tmp);
+        if (fd >= 0) live_add(w->tmp);
+        sigprocmask(SIG_SETMASK, &was, NULL);
+        if (fd < 0) {
+            *e = errno;
+            break;
+        }
+        /* the lock marks it live (remove_stale); a cleaner that locked it
+         * first (between mkstemp and here) has unlinked it: make another */
+        struct stat ts;
+        if (flock(fd, LOCK_EX) != 0 || fstat(fd, &ts) != 0 || ts.st_nlink == 0) {
+            live_remove(w->tmp);
+            close(fd);
+            fd = -1;
+            *e = EAGAIN;
+        }
+    }
+    return fd;
+}
+
 int lam_writer_file(const char *path, lam_writer **out, lam_error *err)
 {
     *out = NULL;
@@ -193,42 +236,8 @@ int lam_writer_file(const char *path, lam_writer **out, lam_error *err)
     w->kind = W_FILE;
     w->lockfd = -1;
     remove_stale(w->path);
-    /* the mode of the file it replaces, else the usual one */
-    mode_t mode;
-    struct stat old;
-    if (stat(w->path, &old) == 0 && S_ISREG(old.st_mode)) {
-        mode = old.st_mode & 07777;
-    } else {
-        mode_t mask = umask(0);
-        umask(mask);
-        mode = 0666 & ~mask;
-    }
-    /* Signals are held from mkstemp until the temporary is registered, so
-     * a handler never misses it. Same directory as the target, so the final
-     * rename is atomic. */
-    sigset_t all, was;
-    sigfillset(&all);
-    int fd = -1, e = 0;
-    for (int attempt = 0; attempt < 8 && fd < 0; attempt++) {
-        snprintf(w->tmp, n + 48, "%s.tmp-%ld-XXXXXX", w->path, (long)getpid());
-        sigprocmask(SIG_BLOCK, &all, &was);
-        fd = mkstemp(w->tmp);
-        if (fd >= 0) live_add(w->tmp);
-        sigprocmask(SIG_SETMASK, &was, NULL);
-        if (fd < 0) {
-            e = errno;
-            break;
-        }
-        /* the lock marks it live (remove_stale); a cleaner that locked it
-         * first (between mkstemp and here) has unlinked it: make another */
-        struct stat ts;
-        if (flock(fd, LOCK_EX) != 0 || fstat(fd, &ts) != 0 || ts.st_nlink == 0) {
-            live_remove(w->tmp);
-            close(fd);
-            fd = -1;
-            e = EAGAIN;
-        }
-    }
+    mode_t mode = target_mode(w->path);
+    int e = 0, fd = create_temp(w, n + 48, &e);
     if (fd >= 0) {
         fchmod(fd, mode);
         w->lockfd = dup(fd);

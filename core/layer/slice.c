@@ -692,6 +692,42 @@ static uint32_t slot_of(const lam_slicer *s, uint32_t e)
     }
 }
 
+/* The section's segments s->seg_in/seg_out[0..nseg) between its na active
+ * edges, grouped by entry edge and walked into chains. */
+static int chain_segments(lam_slicer *s, size_t na, size_t nseg, chains *ch, lam_error *err)
+{
+    /* segments grouped by entry edge (counting sort keeps triangle order) */
+    memset(s->in_first, 0, (na + 1) * sizeof *s->in_first);
+    memset(s->indeg, 0, na * sizeof *s->indeg);
+    for (size_t g = 0; g < nseg; g++) {
+        s->in_first[s->seg_in[g] + 1]++;
+        s->indeg[s->seg_out[g]]++;
+        s->used[g] = 0;
+    }
+    for (size_t k = 0; k < na; k++) s->in_first[k + 1] += s->in_first[k];
+    size_t *fill = malloc((na + 1) * sizeof *fill);
+    if (!fill) return nomem(err);
+    for (size_t k = 0; k <= na; k++) fill[k] = s->in_first[k];
+    for (size_t g = 0; g < nseg; g++) s->in_seg[fill[s->seg_in[g]]++] = (uint32_t)g;
+    free(fill);
+
+    /* Open chains first, from edges more segments leave than enter (open
+     * surfaces), then the closed loops. */
+    for (size_t g = 0; g < nseg; g++) {
+        uint32_t k = s->seg_in[g];
+        if (!s->used[g] && s->indeg[k] < s->in_first[k + 1] - s->in_first[k]) {
+            int rc = walk(s, ch, (uint32_t)g, err);
+            if (rc) return rc;
+        }
+    }
+    for (size_t g = 0; g < nseg; g++)
+        if (!s->used[g]) {
+            int rc = walk(s, ch, (uint32_t)g, err);
+            if (rc) return rc;
+        }
+    return LAM_OK;
+}
+
 /* Cut at height c: the active edges' points and the directed segments of
  * the triangles crossing the plane, chained into polylines by edge. */
 static int section(lam_slicer *s, size_t layer, chains *ch, lam_error *err)
@@ -758,36 +794,7 @@ static int section(lam_slicer *s, size_t layer, chains *ch, lam_error *err)
         }
     }
 #undef BELOW
-    /* segments grouped by entry edge (counting sort keeps triangle order) */
-    memset(s->in_first, 0, (na + 1) * sizeof *s->in_first);
-    memset(s->indeg, 0, na * sizeof *s->indeg);
-    for (size_t g = 0; g < nseg; g++) {
-        s->in_first[s->seg_in[g] + 1]++;
-        s->indeg[s->seg_out[g]]++;
-        s->used[g] = 0;
-    }
-    for (size_t k = 0; k < na; k++) s->in_first[k + 1] += s->in_first[k];
-    size_t *fill = malloc((na + 1) * sizeof *fill);
-    if (!fill) return nomem(err);
-    for (size_t k = 0; k <= na; k++) fill[k] = s->in_first[k];
-    for (size_t g = 0; g < nseg; g++) s->in_seg[fill[s->seg_in[g]]++] = (uint32_t)g;
-    free(fill);
-
-    /* Open chains first, from edges more segments leave than enter (open
-     * surfaces), then the closed loops. */
-    for (size_t g = 0; g < nseg; g++) {
-        uint32_t k = s->seg_in[g];
-        if (!s->used[g] && s->indeg[k] < s->in_first[k + 1] - s->in_first[k]) {
-            int rc = walk(s, ch, (uint32_t)g, err);
-            if (rc) return rc;
-        }
-    }
-    for (size_t g = 0; g < nseg; g++)
-        if (!s->used[g]) {
-            int rc = walk(s, ch, (uint32_t)g, err);
-            if (rc) return rc;
-        }
-    return LAM_OK;
+    return chain_segments(s, na, nseg, ch, err);
 }
 
 /* ---- gap closing ------------------------------------------------------------ */

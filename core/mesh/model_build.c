@@ -41,6 +41,30 @@ static int cmp_u64(const void *x, const void *y)
     return a < b ? -1 : a > b;
 }
 
+/* The edge table's triangles per edge (CSR: e->first, e->tris) from
+ * e->tri_edge, and hdir[at] (may be NULL) for each: whether the triangle
+ * runs along the edge from its lower vertex. */
+static int edge_tris(const lam_mesh *m, lam_edges *e, unsigned char *hdir, lam_error *err)
+{
+    size_t n = e->n, nh = 3 * m->ntris;
+    e->first = lam_big_calloc(n + 1, sizeof *e->first);
+    e->tris = lam_big_malloc(nh * sizeof *e->tris + 1);
+    if (!e->first || !e->tris) return oom(err);
+    for (size_t i = 0; i < nh; i++) e->first[e->tri_edge[i] + 1]++;
+    for (size_t i = 0; i < n; i++) e->first[i + 1] += e->first[i];
+    uint32_t *fill = lam_big_malloc((n + 1) * sizeof *fill);
+    if (!fill) return oom(err);
+    memcpy(fill, e->first, (n + 1) * sizeof *fill);
+    for (size_t i = 0; i < nh; i++) {
+        uint32_t at = fill[e->tri_edge[i]]++;
+        e->tris[at] = (uint32_t)(i / 3);
+        /* hdir[at]: the triangle runs along the edge from its lower vertex */
+        if (hdir) hdir[at] = m->tris[i] < m->tris[i % 3 == 2 ? i - 2 : i + 1];
+    }
+    free(fill);
+    return LAM_OK;
+}
+
 /* The edge table. Half-edges are bucketed by their lower vertex (a
  * counting sort), and each vertex's few half-edges are matched by their
  * upper vertex: linear and cache-friendly, unlike a hash of all edges.
@@ -122,22 +146,7 @@ static int build_edges(const lam_mesh *m, lam_edges *e, unsigned char *hdir, lam
     e->n = n;
     uint32_t *shrunk = realloc(e->v, 2 * n * sizeof *e->v + 1); /* ~1.5 edges per triangle, not 3 */
     if (shrunk) e->v = shrunk;
-    e->first = lam_big_calloc(n + 1, sizeof *e->first);
-    e->tris = lam_big_malloc(nh * sizeof *e->tris + 1);
-    if (!e->first || !e->tris) return oom(err);
-    for (size_t i = 0; i < nh; i++) e->first[e->tri_edge[i] + 1]++;
-    for (size_t i = 0; i < n; i++) e->first[i + 1] += e->first[i];
-    uint32_t *fill = lam_big_malloc((n + 1) * sizeof *fill);
-    if (!fill) return oom(err);
-    memcpy(fill, e->first, (n + 1) * sizeof *fill);
-    for (size_t i = 0; i < nh; i++) {
-        uint32_t at = fill[e->tri_edge[i]]++;
-        e->tris[at] = (uint32_t)(i / 3);
-        /* hdir[at]: the triangle runs along the edge from its lower vertex */
-        if (hdir) hdir[at] = m->tris[i] < m->tris[i % 3 == 2 ? i - 2 : i + 1];
-    }
-    free(fill);
-    return LAM_OK;
+    return edge_tris(m, e, hdir, err);
 }
 
 /* Does triangle t traverse edge (a -> b) in that direction? */
@@ -348,6 +357,54 @@ static int index_shells(lam_model *md, lam_error *err)
     return LAM_OK;
 }
 
+/* Measure the shells (volume, area; *zero_area: triangles without area)
+ * and turn each outward by its signed volume. Errors: LAM_ENOMEM. */
+static int outward_shells(lam_model *md, size_t *zero_area, lam_error *err)
+{
+    double *ref = malloc(3 * md->nshells * sizeof *ref);
+    double *comp = calloc(md->nshells, sizeof *comp);
+    if (!ref || !comp) {
+        free(ref);
+        free(comp);
+        return oom(err);
+    }
+    *zero_area = measure_shells(md, ref, comp);
+    free(ref);
+    free(comp);
+    for (size_t s = 0; s < md->nshells; s++)
+        if (md->shells[s].volume < 0) flip_shell(md, s);
+    return LAM_OK;
+}
+
+/* The counts and the bounding box of md's stats (volume, area and
+ * cavities are counted as the shells are settled). */
+static void count_stats(lam_model *md, size_t degenerate)
+{
+    lam_model_stats *st = &md->stats;
+    const lam_mesh *m = &md->mesh;
+    st->triangles = m->ntris;
+    st->vertices = m->nverts;
+    st->edges = md->edges.n;
+    st->shells = md->nshells;
+    st->wires = m->nwires;
+    st->degenerate_tris = degenerate;
+    for (size_t i = 0; i < md->edges.n; i++) {
+        uint32_t k = md->edges.first[i + 1] - md->edges.first[i];
+        if (k == 1) st->boundary_edges++;
+        else if (k > 2) st->nonmanifold_edges++;
+    }
+    for (int j = 0; j < 3; j++) {
+        st->bbox[j] = INFINITY;
+        st->bbox[j + 3] = -INFINITY;
+    }
+    for (size_t v = 0; v < m->nverts; v++)
+        for (int j = 0; j < 3; j++) {
+            double x = m->xyz[3 * v + j];
+            if (x < st->bbox[j]) st->bbox[j] = x;
+            if (x > st->bbox[j + 3]) st->bbox[j + 3] = x;
+        }
+}
+
 int lam_model_from_mesh(lam_mesh *mesh, const char *path, const char *format,
                         lam_model **out, lam_error *err)
 {
@@ -393,20 +450,8 @@ int lam_model_from_mesh(lam_mesh *mesh, const char *path, const char *format,
     free(hdir);
     if ((rc = index_shells(md, err))) goto fail;
 
-    double *ref = malloc(3 * md->nshells * sizeof *ref);
-    double *comp = calloc(md->nshells, sizeof *comp);
-    if (!ref || !comp) {
-        free(ref);
-        free(comp);
-        rc = oom(err);
-        goto fail;
-    }
-    size_t zero_area = measure_shells(md, ref, comp);
-    free(ref);
-    free(comp);
-    for (size_t s = 0; s < md->nshells; s++)
-        if (md->shells[s].volume < 0) flip_shell(md, s);
-    if ((rc = lam_count_enclosing(md, err))) goto fail;
+    size_t zero_area = 0;
+    if ((rc = outward_shells(md, &zero_area, err)) || (rc = lam_count_enclosing(md, err))) goto fail;
     lam_model_stats *st = &md->stats;
     for (size_t s = 0; s < md->nshells; s++) {
         lam_shell *sh = &md->shells[s];
@@ -427,27 +472,7 @@ int lam_model_from_mesh(lam_mesh *mesh, const char *path, const char *format,
         goto fail;
     }
 
-    st->triangles = m->ntris;
-    st->vertices = m->nverts;
-    st->edges = md->edges.n;
-    st->shells = md->nshells;
-    st->wires = m->nwires;
-    st->degenerate_tris = collapsed + zero_area;
-    for (size_t i = 0; i < md->edges.n; i++) {
-        uint32_t k = md->edges.first[i + 1] - md->edges.first[i];
-        if (k == 1) st->boundary_edges++;
-        else if (k > 2) st->nonmanifold_edges++;
-    }
-    for (int j = 0; j < 3; j++) {
-        st->bbox[j] = INFINITY;
-        st->bbox[j + 3] = -INFINITY;
-    }
-    for (size_t v = 0; v < m->nverts; v++)
-        for (int j = 0; j < 3; j++) {
-            double x = m->xyz[3 * v + j];
-            if (x < st->bbox[j]) st->bbox[j] = x;
-            if (x > st->bbox[j + 3]) st->bbox[j + 3] = x;
-        }
+    count_stats(md, collapsed + zero_area);
     *out = md;
     return LAM_OK;
 fail:
