@@ -4,11 +4,13 @@
  * A library user loads a mesh (import.h; file.h: the input size limits),
  * builds a model (model.h), slices it (slice.h; frame.h: the layer frame;
  * layer.h, contour.h: layers of contours), may offset, fill or check the
- * layers (offset.h, winding.h, section.h, validate.h, drc.h, rays.h), plans
- * them for a machine profile (profile.h, planner.h, plan.h, hatch.h: scan strategies, dialect.h) and
- * writes programs or previews through a lam_writer (writer.h, svg.h,
- * html.h: the browser viewer; vstream.h: a plan as a stream of vectors),
- * the run as JSON (json_sink.h; tee.h feeds one plan to several sinks).
+ * layers (offset.h, winding.h: the fill rule, section.h, validate.h,
+ * drc.h, rays.h), plans them for a machine profile (profile.h,
+ * profile_keys.h: its keys and fields, planner.h, plan.h, hatch.h: scan
+ * strategies, dialect.h) and writes programs or previews through a
+ * lam_writer (writer.h, svg.h, html.h: the browser viewer; vstream.h: a
+ * plan as a stream of vectors), the run as JSON (json_sink.h; tee.h feeds
+ * one plan to several sinks).
  * Every fallible function returns LAM_OK or a LAM_E* code with the message
  * in a lam_error (error.h). Plugins are written against lamina_plugin.h
  * alone, which does not need this library.
