@@ -11,7 +11,6 @@
 #include "dialect.h"
 #include "fmt.h"
 #include "lexnum.h"
-#include "profile.h"
 #include "slice.h"
 
 /* Choices are stored as an int through the row's offset. */

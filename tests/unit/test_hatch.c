@@ -1,4 +1,4 @@
-/* core/plan/hatch.c: hatching the thesis's cube with its hole (the square
+/* core/plan/hatch*.c: hatching the thesis's cube with its hole (the square
  * [-1, 1]^2 around the hole [-0.5, 0.5]^2: area 3), checked with the test's
  * own geometry (the two squares are known exactly); orders by their
  * defining property; skins against empty and full neighbours; the budget
