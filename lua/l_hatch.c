@@ -113,7 +113,7 @@ static void push_params(lua_State *L, const lam_profile *p, const lam_layer *ly)
         lam_lua_push_key(L, p, key);
         lua_setfield(L, -2, lam_key_lua_name(key));
     }
-    const lam_scan *s = &p->scan.type[LAM_VEC_CORE];
+    const lam_scan *s = &p->scan.type[LAM_KIND_CORE];
     lua_pushnumber(L, fmod(s->angle + (double)ly->index * s->angle_increment, 360.0));
     lua_setfield(L, -2, "angle");
     lua_pushinteger(L, (lua_Integer)ly->index + 1);
@@ -131,7 +131,7 @@ static void push_vectors(lua_State *L, const lam_hatches *h)
                 lua_pushnumber(L, v[j]);
                 lua_rawseti(L, -2, j + 1);
             }
-            lua_pushstring(L, lam_vec_type_name(h->blocks[b].type));
+            lua_pushstring(L, lam_kind_name(h->blocks[b].type));
             lua_setfield(L, -2, "kind");
             lua_rawseti(L, -2, (lua_Integer)(h->blocks[b].first + i) + 1);
         }
@@ -162,14 +162,14 @@ static void read_vectors(lua_State *L, const char *who, size_t layer, lam_hatche
                            (lua_Integer)layer + 1, (lua_Integer)i, j + 1, lam_lua_describe(L, -1, b, sizeof b));
             lua_pop(L, 1);
         }
-        int t = LAM_VEC_CORE;
+        int t = LAM_KIND_CORE;
         if (lua_getfield(L, -1, "kind") != LUA_TNIL) {
             const char *k = lua_tostring(L, -1);
-            for (t = LAM_VEC_CORE; t < LAM_VEC_TYPES && !(k && lua_type(L, -1) == LUA_TSTRING &&
-                                                           !strcmp(k, lam_vec_type_name(t)));
+            for (t = LAM_KIND_CORE; t < LAM_REGIONS && !(k && lua_type(L, -1) == LUA_TSTRING &&
+                                                           !strcmp(k, lam_kind_name(t)));
                  t++) {
             }
-            if (t == LAM_VEC_TYPES)
+            if (t == LAM_REGIONS)
                 luaL_error(L, "%s (layer %I): vector %I: kind must be core, upskin or downskin, got %s", who,
                            (lua_Integer)layer + 1, (lua_Integer)i, lam_lua_describe(L, -1, b, sizeof b));
         }

@@ -15,8 +15,8 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "buf.h"
 #include "file.h"
-#include "grow.h"
 
 enum kind { W_FILE, W_DEVICE, W_STREAM, W_MEMORY };
 
@@ -24,8 +24,7 @@ struct lam_writer {
     enum kind kind;
     FILE *f;
     char *path, *tmp;      /* W_FILE */
-    char *buf;             /* W_MEMORY */
-    size_t len, cap;
+    lam_buf mem;           /* W_MEMORY */
     int failed;            /* errno of the first failure, 0 if none */
     int lockfd;            /* W_FILE: holds the temporary's flock until commit/abort */
     unsigned long long written, limit;
@@ -160,6 +159,49 @@ static int open_device(const char *path, lam_writer **out, lam_error *err)
     return LAM_OK;
 }
 
+/* The mode of the file at path it replaces, else the usual one. */
+static mode_t target_mode(const char *path)
+{
+    struct stat old;
+    if (stat(path, &old) == 0 && S_ISREG(old.st_mode)) return old.st_mode & 07777;
+    mode_t mask = umask(0);
+    umask(mask);
+    return 0666 & ~mask;
+}
+
+/* A new temporary beside w->path, named into w->tmp (room bytes),
+ * registered as live and locked: its descriptor, or -1 with *e the errno. */
+static int create_temp(lam_writer *w, size_t room, int *e)
+{
+    /* Signals are held from mkstemp until the temporary is registered, so
+     * a handler never misses it. Same directory as the target, so the final
+     * rename is atomic. */
+    sigset_t all, was;
+    sigfillset(&all);
+    int fd = -1;
+    for (int attempt = 0; attempt < 8 && fd < 0; attempt++) {
+        snprintf(w->tmp, room, "%s.tmp-%ld-XXXXXX", w->path, (long)getpid());
+        sigprocmask(SIG_BLOCK, &all, &was);
+        fd = mkstemp(w->tmp);
+        if (fd >= 0) live_add(w->tmp);
+        sigprocmask(SIG_SETMASK, &was, NULL);
+        if (fd < 0) {
+            *e = errno;
+            break;
+        }
+        /* the lock marks it live (remove_stale); a cleaner that locked it
+         * first (between mkstemp and here) has unlinked it: make another */
+        struct stat ts;
+        if (flock(fd, LOCK_EX) != 0 || fstat(fd, &ts) != 0 || ts.st_nlink == 0) {
+            live_remove(w->tmp);
+            close(fd);
+            fd = -1;
+            *e = EAGAIN;
+        }
+    }
+    return fd;
+}
+
 int lam_writer_file(const char *path, lam_writer **out, lam_error *err)
 {
     *out = NULL;
@@ -194,42 +236,8 @@ int lam_writer_file(const char *path, lam_writer **out, lam_error *err)
     w->kind = W_FILE;
     w->lockfd = -1;
     remove_stale(w->path);
-    /* the mode of the file it replaces, else the usual one */
-    mode_t mode;
-    struct stat old;
-    if (stat(w->path, &old) == 0 && S_ISREG(old.st_mode)) {
-        mode = old.st_mode & 07777;
-    } else {
-        mode_t mask = umask(0);
-        umask(mask);
-        mode = 0666 & ~mask;
-    }
-    /* Signals are held from mkstemp until the temporary is registered, so
-     * a handler never misses it. Same directory as the target, so the final
-     * rename is atomic. */
-    sigset_t all, was;
-    sigfillset(&all);
-    int fd = -1, e = 0;
-    for (int attempt = 0; attempt < 8 && fd < 0; attempt++) {
-        snprintf(w->tmp, n + 48, "%s.tmp-%ld-XXXXXX", w->path, (long)getpid());
-        sigprocmask(SIG_BLOCK, &all, &was);
-        fd = mkstemp(w->tmp);
-        if (fd >= 0) live_add(w->tmp);
-        sigprocmask(SIG_SETMASK, &was, NULL);
-        if (fd < 0) {
-            e = errno;
-            break;
-        }
-        /* the lock marks it live (remove_stale); a cleaner that locked it
-         * first (between mkstemp and here) has unlinked it: make another */
-        struct stat ts;
-        if (flock(fd, LOCK_EX) != 0 || fstat(fd, &ts) != 0 || ts.st_nlink == 0) {
-            live_remove(w->tmp);
-            close(fd);
-            fd = -1;
-            e = EAGAIN;
-        }
-    }
+    mode_t mode = target_mode(w->path);
+    int e = 0, fd = create_temp(w, n + 48, &e);
     if (fd >= 0) {
         fchmod(fd, mode);
         w->lockfd = dup(fd);
@@ -312,17 +320,10 @@ int lam_writer_write(lam_writer *w, const void *data, size_t len)
     }
     w->written += len;
     if (w->kind == W_MEMORY) {
-        if (w->len + len + 1 > w->cap) {
-            char *nb = lam_grow(w->buf, &w->cap, w->len + len + 1, 1, 4096);
-            if (!nb) {
-                w->failed = ENOMEM;
-                return LAM_ENOMEM;
-            }
-            w->buf = nb;
+        if (lam_buf_append(&w->mem, data, len)) {
+            w->failed = ENOMEM;
+            return LAM_ENOMEM;
         }
-        memcpy(w->buf + w->len, data, len);
-        w->len += len;
-        w->buf[w->len] = '\0';
         return LAM_OK;
     }
     if (len && fwrite(data, 1, len, w->f) != len) {
@@ -360,7 +361,7 @@ static void release(lam_writer *w)
     if (w->kind == W_FILE && w->lockfd >= 0) close(w->lockfd);
     free(w->path);
     free(w->tmp);
-    free(w->buf);
+    lam_buf_free(&w->mem);
     free(w);
 }
 
@@ -420,9 +421,7 @@ int lam_writer_take(lam_writer *w, char **data, size_t *len, lam_error *err)
         release(w);
         return rc;
     }
-    *data = w->buf ? w->buf : calloc(1, 1);
-    *len = w->len;
-    w->buf = NULL;
+    *data = lam_buf_take(&w->mem, len);
     release(w);
     return *data ? LAM_OK : lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory");
 }

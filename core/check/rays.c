@@ -142,20 +142,11 @@ static void gather(const struct RTCFilterFunctionNArguments *a)
     }
 }
 
-int lam_rays_new(const lam_model *m, lam_rays **out, lam_error *err)
+/* The model's extent, the scale and tolerances that follow from it, and
+ * the ray directions in float and double. Errors: LAM_EGEOM (a model no
+ * double can measure). */
+static int measure(lam_rays *v, const lam_mesh *mesh, lam_error *err)
 {
-    *out = NULL;
-    if (!m) return lam_error_set(err, LAM_EUSAGE, NULL, 0, 0, "no model to validate against");
-    const lam_mesh *mesh = &m->mesh;
-    if (mesh->nverts > UINT32_MAX)
-        return lam_error_set(err, LAM_EGEOM, NULL, 0, 0, "too many vertices for Embree");
-    int rc = lam_embree_load(err);
-    if (rc) return rc;
-    lam_rays *v = calloc(1, sizeof *v);
-    if (!v) return nomem(err);
-    v->m = m;
-    v->ecode = RTC_ERROR_NONE;
-
     double lo[3] = { INFINITY, INFINITY, INFINITY }, hi[3] = { -INFINITY, -INFINITY, -INFINITY };
     for (size_t i = 0; i < mesh->nverts; i++)
         for (int k = 0; k < 3; k++) {
@@ -171,11 +162,9 @@ int lam_rays_new(const lam_model *m, lam_rays **out, lam_error *err)
         if (v->center[k] - lo[k] > v->maxabs) v->maxabs = v->center[k] - lo[k];
     }
     if (!(v->scale > 0) || !isfinite(v->scale)) {
-        if (!isfinite(v->scale)) {
-            free(v);
+        if (!isfinite(v->scale))
             return lam_error_set(err, LAM_EGEOM, NULL, 0, 0,
                                  "the model spans more than a double can measure: nothing to check");
-        }
         v->scale = 1;
     }
     v->unit = v->scale;
@@ -192,6 +181,51 @@ int lam_rays_new(const lam_model *m, lam_rays **out, lam_error *err)
             v->dirf[k][j] = (float)DIRS[k][j];
             v->dird[k][j] = v->dirf[k][j];
         }
+    return LAM_OK;
+}
+
+/* The model's triangles, centred and scaled (see lam_rays), as one
+ * geometry of v's scene with the gathering filter; Embree's errors reach
+ * on_rtc_error. */
+static void add_mesh(lam_rays *v, const lam_mesh *mesh)
+{
+    RTCGeometry g = rtcNewGeometry(v->dev, RTC_GEOMETRY_TYPE_TRIANGLE);
+    if (g) {
+        float *vb = rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                            3 * sizeof(float), mesh->nverts);
+        unsigned *ib = rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                               3 * sizeof(unsigned), mesh->ntris);
+        if (vb && ib) {
+            for (size_t i = 0; i < 3 * mesh->nverts; i++)
+                vb[i] = (float)((mesh->xyz[i] - v->center[i % 3]) / v->unit);
+            for (size_t i = 0; i < 3 * mesh->ntris; i++) ib[i] = mesh->tris[i];
+            rtcSetGeometryBuildQuality(g, RTC_BUILD_QUALITY_HIGH);
+            rtcSetGeometryIntersectFilterFunction(g, gather);
+            rtcCommitGeometry(g);
+            rtcAttachGeometry(v->scene, g);
+        }
+        rtcReleaseGeometry(g);
+    }
+}
+
+int lam_rays_new(const lam_model *m, lam_rays **out, lam_error *err)
+{
+    *out = NULL;
+    if (!m) return lam_error_set(err, LAM_EUSAGE, NULL, 0, 0, "no model to validate against");
+    const lam_mesh *mesh = &m->mesh;
+    if (mesh->nverts > UINT32_MAX)
+        return lam_error_set(err, LAM_EGEOM, NULL, 0, 0, "too many vertices for Embree");
+    int rc = lam_embree_load(err);
+    if (rc) return rc;
+    lam_rays *v = calloc(1, sizeof *v);
+    if (!v) return nomem(err);
+    v->m = m;
+    v->ecode = RTC_ERROR_NONE;
+
+    if ((rc = measure(v, mesh, err))) {
+        free(v);
+        return rc;
+    }
 
     v->dev = rtcNewDevice(NULL);
     if (!v->dev) {
@@ -206,25 +240,7 @@ int lam_rays_new(const lam_model *m, lam_rays **out, lam_error *err)
         rtcSetSceneFlags(v->scene, RTC_SCENE_FLAG_ROBUST);
         rtcSetSceneBuildQuality(v->scene, RTC_BUILD_QUALITY_HIGH);
     }
-    if (v->scene && mesh->ntris) {
-        RTCGeometry g = rtcNewGeometry(v->dev, RTC_GEOMETRY_TYPE_TRIANGLE);
-        if (g) {
-            float *vb = rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                3 * sizeof(float), mesh->nverts);
-            unsigned *ib = rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                                   3 * sizeof(unsigned), mesh->ntris);
-            if (vb && ib) {
-                for (size_t i = 0; i < 3 * mesh->nverts; i++)
-                    vb[i] = (float)((mesh->xyz[i] - v->center[i % 3]) / v->unit);
-                for (size_t i = 0; i < 3 * mesh->ntris; i++) ib[i] = mesh->tris[i];
-                rtcSetGeometryBuildQuality(g, RTC_BUILD_QUALITY_HIGH);
-                rtcSetGeometryIntersectFilterFunction(g, gather);
-                rtcCommitGeometry(g);
-                rtcAttachGeometry(v->scene, g);
-            }
-            rtcReleaseGeometry(g);
-        }
-    }
+    if (v->scene && mesh->ntris) add_mesh(v, mesh);
     if (v->scene && v->ecode == RTC_ERROR_NONE) rtcCommitScene(v->scene);
     enum RTCError e = rtcGetDeviceError(v->dev);
     if (v->ecode == RTC_ERROR_NONE && (e != RTC_ERROR_NONE || !v->scene)) {
@@ -431,6 +447,49 @@ static int tri_side(const lam_rays *v, uint32_t t, const section_pt *q)
     return (hgt > 0) == (area > 0) ? 1 : -1;
 }
 
+/* The winding along a ray in direction d from its hits h[0..n) (sorted by
+ * s, each once): the crossings ahead (s >= 0), one per shell at one place
+ * along the ray. CAST_OK with *w, or CAST_UNRELIABLE (a grazed edge or
+ * silhouette). */
+static int crossings(const lam_rays *v, hit *h, size_t n, const double *d, int *w)
+{
+    const uint32_t *shell = v->m->tri_shell;
+    int sum = 0;
+    size_t i = 0;
+    while (i < n && h[i].s < 0) i++;
+    while (i < n) {
+        size_t j = i + 1;
+        while (j < n && h[j].s - h[j - 1].s <= v->tol) j++;
+        /* group [i, j): hits at the same place along the ray. The sign of
+         * each crossing from the double normal must agree with Embree's
+         * (else the ray grazes the triangle); it replaces ng. */
+        for (size_t a = i; a < j; a++) {
+            int s = tri_sign(v, h[a].prim, d);
+            if (s == 2) s = 0; /* degenerate triangle: no side to cross */
+            else if (s == 0 || s != h[a].ng) return CAST_UNRELIABLE;
+            h[a].ng = s;
+        }
+        /* one crossing per shell: a ray through a shared edge or vertex
+         * may hit several of its triangles, all with the same sign;
+         * mixed signs mean an edge or a silhouette grazed */
+        for (size_t a = i; a < j; a++) {
+            int sa = h[a].ng;
+            if (!sa) continue;
+            uint32_t sh = shell ? shell[h[a].prim] : 0;
+            int first = 1;
+            for (size_t b = i; b < j; b++) {
+                if (b == a || !h[b].ng || (shell ? shell[h[b].prim] : 0) != sh) continue;
+                if (h[b].ng != sa) return CAST_UNRELIABLE;
+                if (b < a) first = 0;
+            }
+            if (first) sum += sa;
+        }
+        i = j;
+    }
+    *w = sum;
+    return CAST_OK;
+}
+
 /* Cast direction k from p (a section point q when not NULL); on CAST_OK *w
  * is the winding along that ray. */
 static int cast_dir(lam_rays *v, const double p[3], const section_pt *q, int k, int *w)
@@ -486,41 +545,7 @@ static int cast_dir(lam_rays *v, const double p[3], const section_pt *q, int k, 
     n = u;
     if (n > 1) qsort(h, n, sizeof *h, by_s);
 
-    const uint32_t *shell = v->m->tri_shell;
-    int sum = 0;
-    size_t i = 0;
-    while (i < n && h[i].s < 0) i++;
-    while (i < n) {
-        size_t j = i + 1;
-        while (j < n && h[j].s - h[j - 1].s <= v->tol) j++;
-        /* group [i, j): hits at the same place along the ray. The sign of
-         * each crossing from the double normal must agree with Embree's
-         * (else the ray grazes the triangle); it replaces ng. */
-        for (size_t a = i; a < j; a++) {
-            int s = tri_sign(v, h[a].prim, d);
-            if (s == 2) s = 0; /* degenerate triangle: no side to cross */
-            else if (s == 0 || s != h[a].ng) return CAST_UNRELIABLE;
-            h[a].ng = s;
-        }
-        /* one crossing per shell: a ray through a shared edge or vertex
-         * may hit several of its triangles, all with the same sign;
-         * mixed signs mean an edge or a silhouette grazed */
-        for (size_t a = i; a < j; a++) {
-            int sa = h[a].ng;
-            if (!sa) continue;
-            uint32_t sh = shell ? shell[h[a].prim] : 0;
-            int first = 1;
-            for (size_t b = i; b < j; b++) {
-                if (b == a || !h[b].ng || (shell ? shell[h[b].prim] : 0) != sh) continue;
-                if (h[b].ng != sa) return CAST_UNRELIABLE;
-                if (b < a) first = 0;
-            }
-            if (first) sum += sa;
-        }
-        i = j;
-    }
-    *w = sum;
-    return CAST_OK;
+    return crossings(v, h, n, d, w);
 }
 
 int lam_rays_cast(lam_rays *v, const double p[3], const double d[3], double tmin, double *t, uint32_t *tri,

@@ -468,6 +468,71 @@ static int void_side_pass(layer_ctx *X, const double m[2], const double nv[2], d
     return 0;
 }
 
+/* The two test points beside one edge of a contour, what the model has
+ * there, and (read back as passes) the void side where the pass lies. */
+typedef struct sides {
+    double uv[2][2], xyz[2][3]; /* [0]: left of the edge, [1]: right */
+    int wind[2];
+    int pass_fit;               /* void_side_pass's answer; 2: no passes to look for */
+    double pass_uv[2], pass_xyz[3];
+    int pass_w;
+} sides;
+
+/* The test points at d either side of the midpoint m of a contour edge
+ * (normal nl, length len; gi the edge's index in the layer) into uv: d as
+ * the preferred inset allows, halved until no edge of the layer is nearer
+ * either point than d / 2 (a vertex poking in from the side). Returns d,
+ * below X->dmin when no such points were found. */
+static double side_points(layer_ctx *X, size_t gi, const double m[2], const double nl[2], double len,
+                          double uv[2][2])
+{
+    double r = fmin(lam_rays_target_inset(X->v), len / 4);
+    double d = fmin(r, clearance(&X->G, gi, m, nl, 2 * r) / 2);
+    for (; d >= X->dmin; d /= 2) {
+        for (int sd = 0; sd < 2; sd++) {
+            uv[sd][0] = m[0] + (sd ? -d : d) * nl[0];
+            uv[sd][1] = m[1] + (sd ? -d : d) * nl[1];
+        }
+        if (nearest_edge(&X->G, uv[0], d / 2) >= d / 2 && nearest_edge(&X->G, uv[1], d / 2) >= d / 2) break;
+    }
+    return d;
+}
+
+/* Judge both sides of one edge against what the contour's label expects:
+ * the first point tested (or the first disagreeing one) goes into it, the
+ * first disagreement is the problem. */
+static void judge_sides(layer_ctx *X, lam_contour_check *it, sides *S, int interior_left, int interior_material,
+                        int *have_first, int *disagree)
+{
+    for (int sd = 0; sd < 2; sd++) {
+        int interior = sd == 0 ? interior_left : !interior_left;
+        int expect = interior ? interior_material : !interior_material;
+        int truth = S->wind[sd] != 0;
+        if (!expect && S->pass_fit != 2) {
+            /* the void side as the pass found it */
+            memcpy(S->uv[sd], S->pass_uv, sizeof S->pass_uv);
+            memcpy(S->xyz[sd], S->pass_xyz, sizeof S->pass_xyz);
+            S->wind[sd] = S->pass_w;
+            truth = S->pass_fit != 1;
+        }
+        int bad = truth != expect;
+        if (!*have_first || (bad && !*disagree)) {
+            memcpy(it->uv, S->uv[sd], sizeof it->uv);
+            memcpy(it->xyz, S->xyz[sd], sizeof it->xyz);
+            it->winding_found = S->wind[sd];
+            it->expected_material = expect;
+            *have_first = 1;
+        }
+        if (bad && !*disagree) {
+            *disagree = 1;
+            const char *why = expect ? WHY_VOID
+                              : !X->o->fill_nonzero && S->wind[sd] % 2 == 0 ? WHY_OVERLAP
+                                                                             : WHY_SOLID;
+            problem(it, LAM_VP_MATERIAL, why);
+        }
+    }
+}
+
 /* Test points beside the contour's longest edges: the material check, and
  * the nesting found at the first point inside it. LAM_OK or LAM_ENOMEM. */
 static int check_material(layer_ctx *X, size_t ci, lam_contour_check *it)
@@ -487,30 +552,19 @@ static int check_material(layer_ctx *X, size_t ci, lam_contour_check *it)
         double len = clen[q];
         double m[2] = { a[0] + (b[0] - a[0]) / 2, a[1] + (b[1] - a[1]) / 2 };
         double nl[2] = { -(b[1] - a[1]) / len, (b[0] - a[0]) / len };
-        double r = fmin(lam_rays_target_inset(X->v), len / 4);
-        double d = fmin(r, clearance(&X->G, c->first + i, m, nl, 2 * r) / 2);
-        double side_uv[2][2];
-        /* no edge of the layer nearer either point than d / 2 (a vertex
-         * poking in from the side): else halve d */
-        for (; d >= X->dmin; d /= 2) {
-            for (int sd = 0; sd < 2; sd++) {
-                side_uv[sd][0] = m[0] + (sd ? -d : d) * nl[0];
-                side_uv[sd][1] = m[1] + (sd ? -d : d) * nl[1];
-            }
-            if (nearest_edge(&X->G, side_uv[0], d / 2) >= d / 2 && nearest_edge(&X->G, side_uv[1], d / 2) >= d / 2)
-                break;
-        }
+        sides S;
+        double d = side_points(X, c->first + i, m, nl, len, S.uv);
         if (!(d >= X->dmin)) continue;
         if (!nested) {
             nested = 1;
-            if (!nesting(&X->N, &X->G, X->area, ci, side_uv[interior_left ? 0 : 1], &it->depth_found,
+            if (!nesting(&X->N, &X->G, X->area, ci, S.uv[interior_left ? 0 : 1], &it->depth_found,
                          &it->parent_found)) {
                 it->depth_found = -1;
                 it->parent_found = -1;
             }
         }
-        double side_xyz[2][3];
-        int wind[2] = { 0, 0 }, r0 = LAM_OK;
+        S.wind[0] = S.wind[1] = 0;
+        int r0 = LAM_OK;
         /* read back as passes, the label's void side is tested where the
          * pass lies (void_side_pass), not at d: a point d off an inset
          * contour may sit on the model's face */
@@ -518,7 +572,7 @@ static int check_material(layer_ctx *X, size_t ci, lam_contour_check *it)
         int vs = (interior_left ? interior_material : !interior_material) ? 1 : 0; /* the label's void side */
         for (int sd = 0; sd < 2 && r0 == LAM_OK; sd++) {
             if (passes && sd == vs) continue;
-            r0 = layer_point(X->v, X->f, L->cut, X->below, side_uv[sd], side_xyz[sd], &wind[sd]);
+            r0 = layer_point(X->v, X->f, L->cut, X->below, S.uv[sd], S.xyz[sd], &S.wind[sd]);
             if (r0 == LAM_ENOMEM) return LAM_ENOMEM;
         }
         if (r0 != LAM_OK) {
@@ -526,48 +580,21 @@ static int check_material(layer_ctx *X, size_t ci, lam_contour_check *it)
             continue;
         }
         /* read back as passes: the void side where the pass says */
-        int pass_fit = 2; /* 2: no passes to look for */
-        double pass_uv[2], pass_xyz[3];
-        int pass_w = 0;
+        S.pass_fit = 2;
+        S.pass_w = 0;
         if (passes) {
             double nv[2] = { vs ? -nl[0] : nl[0], vs ? -nl[1] : nl[1] };
             int k = it->pass;
-            pass_fit = void_side_pass(X, m, nv, d, &k, pass_uv, pass_xyz, &pass_w);
-            if (pass_fit == -2) return LAM_ENOMEM;
-            if (pass_fit < 0) {
+            S.pass_fit = void_side_pass(X, m, nv, d, &k, S.pass_uv, S.pass_xyz, &S.pass_w);
+            if (S.pass_fit == -2) return LAM_ENOMEM;
+            if (S.pass_fit < 0) {
                 undecided = 1;
                 continue;
             }
-            if (pass_fit == 1) it->pass = k;
+            if (S.pass_fit == 1) it->pass = k;
         }
         it->edges++;
-        for (int sd = 0; sd < 2; sd++) {
-            int interior = sd == 0 ? interior_left : !interior_left;
-            int expect = interior ? interior_material : !interior_material;
-            int truth = wind[sd] != 0;
-            if (!expect && pass_fit != 2) {
-                /* the void side as the pass found it */
-                memcpy(side_uv[sd], pass_uv, sizeof pass_uv);
-                memcpy(side_xyz[sd], pass_xyz, sizeof pass_xyz);
-                wind[sd] = pass_w;
-                truth = pass_fit != 1;
-            }
-            int bad = truth != expect;
-            if (!have_first || (bad && !disagree)) {
-                memcpy(it->uv, side_uv[sd], sizeof it->uv);
-                memcpy(it->xyz, side_xyz[sd], sizeof it->xyz);
-                it->winding_found = wind[sd];
-                it->expected_material = expect;
-                have_first = 1;
-            }
-            if (bad && !disagree) {
-                disagree = 1;
-                const char *why = expect ? WHY_VOID
-                                  : !X->o->fill_nonzero && wind[sd] % 2 == 0 ? WHY_OVERLAP
-                                                                            : WHY_SOLID;
-                problem(it, LAM_VP_MATERIAL, why);
-            }
-        }
+        judge_sides(X, it, &S, interior_left, interior_material, &have_first, &disagree);
     }
     if (!it->edges) it->why = undecided ? WHY_UNDECIDED : WHY_NOPOINT;
     return LAM_OK;

@@ -27,7 +27,8 @@
 #ifndef LAM_CONTOUR_H
 #define LAM_CONTOUR_H
 
-#include "slice.h"
+#include "error.h"
+#include "layer.h"
 
 /* Loops as input to lam_contours_assign: points back to back (2 doubles
  * each), loop l has len[l] points. */

@@ -1,6 +1,6 @@
 #include "geos.h"
 
-#include "slice.h"
+#include "layer.h"
 
 #include <math.h>
 #include <stdio.h>

@@ -337,6 +337,45 @@ static uint32_t mix(uint32_t x)
     return x;
 }
 
+/* The tree sweep's parents, from each loop's link (the nearest other loop
+ * to its left) and whether its inside begins there (opens): the loop whose
+ * inside begins just left of the point, or a loop beside it whose parent
+ * it shares; then the depths must agree. state and stack are scratch
+ * (state zeroed, stack nl long). 0 when the answers do not hold together. */
+static int tree_parents(lam_nest_loop *li, size_t nl, const long *link, const unsigned char *opens,
+                        unsigned char *state, long *stack)
+{
+    int good = 1;
+    for (size_t l = 0; l < nl && good; l++) {
+        size_t sp = 0;
+        long at = (long)l;
+        while (state[at] == 0 && link[at] >= 0 && !opens[at]) {
+            state[at] = 1;
+            stack[sp++] = at;
+            at = link[at];
+        }
+        if (state[at] == 1) {
+            good = 0; /* a cycle of loops beside each other */
+            break;
+        }
+        if (state[at] == 0) { /* a root, or inside the loop it links to */
+            li[at].parent = link[at];
+            state[at] = 2;
+        }
+        long parent = li[at].parent;
+        while (sp) {
+            long x = stack[--sp];
+            li[x].parent = parent;
+            state[x] = 2;
+        }
+    }
+    for (size_t l = 0; l < nl && good; l++) {
+        long p = li[l].parent;
+        good = p < 0 ? li[l].depth == 0 : li[l].depth == li[p].depth + 1 && lam_nest_larger(li, (size_t)p, l);
+    }
+    return good;
+}
+
 /* The tree sweep; *agreed = 0 when its answers do not hold together (the
  * caller then uses the scan). */
 static int nest_tree(const double *uv, lam_nest_loop *li, size_t nl, int *agreed, lam_error *err)
@@ -406,35 +445,7 @@ static int nest_tree(const double *uv, lam_nest_loop *li, size_t nl, int *agreed
             if (me->depth < 0) good = 0;
         }
     }
-    /* Parents: the loop whose inside begins just left of the point, or a
-     * loop beside it whose parent it shares; then the depths must agree. */
-    for (size_t l = 0; l < nl && good; l++) {
-        size_t sp = 0;
-        long at = (long)l;
-        while (state[at] == 0 && link[at] >= 0 && !opens[at]) {
-            state[at] = 1;
-            stack[sp++] = at;
-            at = link[at];
-        }
-        if (state[at] == 1) {
-            good = 0; /* a cycle of loops beside each other */
-            break;
-        }
-        if (state[at] == 0) { /* a root, or inside the loop it links to */
-            li[at].parent = link[at];
-            state[at] = 2;
-        }
-        long parent = li[at].parent;
-        while (sp) {
-            long x = stack[--sp];
-            li[x].parent = parent;
-            state[x] = 2;
-        }
-    }
-    for (size_t l = 0; l < nl && good; l++) {
-        long p = li[l].parent;
-        good = p < 0 ? li[l].depth == 0 : li[l].depth == li[p].depth + 1 && lam_nest_larger(li, (size_t)p, l);
-    }
+    if (good) good = tree_parents(li, nl, link, opens, state, stack);
     *agreed = good;
     free(e); free(ev); free(arr); free(prio); free(link); free(opens); free(state); free(stack); free(efirst);
     return LAM_OK;

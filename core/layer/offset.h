@@ -5,7 +5,8 @@
 #ifndef LAM_OFFSET_H
 #define LAM_OFFSET_H
 
-#include "slice.h"
+#include "error.h"
+#include "layer.h"
 
 /* A new layer (lam_layer_free) with the same index, heights and cut, whose
  * contours are L's material region offset by `distance` (negative: inward).

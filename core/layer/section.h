@@ -29,7 +29,7 @@
 
 #include "error.h"
 #include "model.h"
-#include "slice.h"
+#include "frame.h"
 
 typedef struct lam_section_index lam_section_index;
 

@@ -8,7 +8,7 @@
 #include <string.h>
 
 #include "contour.h"
-#include "fill.h"
+#include "winding.h"
 #include "fmt.h"
 #include "grow.h"
 #include "hugemem.h"
@@ -18,69 +18,6 @@
 
 
 static int nomem(lam_error *err) { return lam_error_nomem(err, "while slicing"); }
-
-/* ---- frames --------------------------------------------------------------- */
-
-static void set3(double *d, double x, double y, double z)
-{
-    d[0] = x;
-    d[1] = y;
-    d[2] = z;
-}
-
-int lam_frame_axis(char axis, lam_frame *f, lam_error *err)
-{
-    memset(f, 0, sizeof *f);
-    switch (axis) {
-    case 'x': case 'X':
-        set3(f->u, 0, 1, 0); set3(f->v, 0, 0, 1); set3(f->w, 1, 0, 0);
-        return LAM_OK;
-    case 'y': case 'Y':
-        set3(f->u, 0, 0, 1); set3(f->v, 1, 0, 0); set3(f->w, 0, 1, 0);
-        return LAM_OK;
-    case 'z': case 'Z':
-        set3(f->u, 1, 0, 0); set3(f->v, 0, 1, 0); set3(f->w, 0, 0, 1);
-        return LAM_OK;
-    }
-    return lam_error_set(err, LAM_EUSAGE, NULL, 0, 0, "unknown axis '%c' (x, y, z or a direction DX,DY,DZ)", axis);
-}
-
-int lam_frame_direction(const double d[3], lam_frame *f, lam_error *err)
-{
-    double len = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-    if (!(len > 0) || !isfinite(len))
-        return lam_error_set(err, LAM_EUSAGE, NULL, 0, 0, "slice direction must be a finite non-zero vector");
-    /* exact positive axes keep their exact thesis frames */
-    if (d[1] == 0 && d[2] == 0 && d[0] > 0) return lam_frame_axis('x', f, err);
-    if (d[0] == 0 && d[2] == 0 && d[1] > 0) return lam_frame_axis('y', f, err);
-    if (d[0] == 0 && d[1] == 0 && d[2] > 0) return lam_frame_axis('z', f, err);
-    for (int k = 0; k < 3; k++) f->w[k] = d[k] / len;
-    int least = 0;
-    for (int k = 1; k < 3; k++)
-        if (fabs(f->w[k]) < fabs(f->w[least])) least = k;
-    double a[3] = { 0, 0, 0 };
-    a[least] = 1;
-    double dot = f->w[least];
-    for (int k = 0; k < 3; k++) f->u[k] = a[k] - dot * f->w[k];
-    double ul = sqrt(f->u[0] * f->u[0] + f->u[1] * f->u[1] + f->u[2] * f->u[2]);
-    for (int k = 0; k < 3; k++) f->u[k] /= ul;
-    f->v[0] = f->w[1] * f->u[2] - f->w[2] * f->u[1];
-    f->v[1] = f->w[2] * f->u[0] - f->w[0] * f->u[2];
-    f->v[2] = f->w[0] * f->u[1] - f->w[1] * f->u[0];
-    return LAM_OK;
-}
-
-void lam_frame_to_model(const lam_frame *f, double u, double v, double w, double xyz[3])
-{
-    for (int k = 0; k < 3; k++) {
-        /* skip zero terms so axis frames map coordinates exactly */
-        double s = 0;
-        if (f->u[k] != 0) s += u * f->u[k];
-        if (f->v[k] != 0) s += v * f->v[k];
-        if (f->w[k] != 0) s += w * f->w[k];
-        xyz[k] = s;
-    }
-}
 
 static double dot_exact(const double *p, const double *a)
 {
@@ -584,33 +521,6 @@ void lam_slicer_seek(lam_slicer *s, size_t i)
 #undef PASSED
 }
 
-lam_layer *lam_layer_clone(const lam_layer *L)
-{
-    lam_layer *c = malloc(sizeof *c);
-    if (!c) return NULL;
-    *c = *L;
-    c->uv = malloc(2 * L->npoints * sizeof *c->uv + 1);
-    c->contours = malloc(L->ncontours * sizeof *c->contours + 1);
-    c->open = malloc(L->nopen * sizeof *c->open + 1);
-    if (!c->uv || !c->contours || !c->open) {
-        lam_layer_free(c);
-        return NULL;
-    }
-    if (L->npoints) memcpy(c->uv, L->uv, 2 * L->npoints * sizeof *c->uv);
-    if (L->ncontours) memcpy(c->contours, L->contours, L->ncontours * sizeof *c->contours);
-    if (L->nopen) memcpy(c->open, L->open, L->nopen * sizeof *c->open);
-    return c;
-}
-
-void lam_layer_free(lam_layer *l)
-{
-    if (!l) return;
-    free(l->uv);
-    free(l->contours);
-    free(l->open);
-    free(l);
-}
-
 static int grow_u32(uint32_t **p, size_t n, lam_error *err)
 {
     uint32_t *np = lam_realloc_n(*p, n + 1, sizeof **p);
@@ -782,6 +692,42 @@ static uint32_t slot_of(const lam_slicer *s, uint32_t e)
     }
 }
 
+/* The section's segments s->seg_in/seg_out[0..nseg) between its na active
+ * edges, grouped by entry edge and walked into chains. */
+static int chain_segments(lam_slicer *s, size_t na, size_t nseg, chains *ch, lam_error *err)
+{
+    /* segments grouped by entry edge (counting sort keeps triangle order) */
+    memset(s->in_first, 0, (na + 1) * sizeof *s->in_first);
+    memset(s->indeg, 0, na * sizeof *s->indeg);
+    for (size_t g = 0; g < nseg; g++) {
+        s->in_first[s->seg_in[g] + 1]++;
+        s->indeg[s->seg_out[g]]++;
+        s->used[g] = 0;
+    }
+    for (size_t k = 0; k < na; k++) s->in_first[k + 1] += s->in_first[k];
+    size_t *fill = malloc((na + 1) * sizeof *fill);
+    if (!fill) return nomem(err);
+    for (size_t k = 0; k <= na; k++) fill[k] = s->in_first[k];
+    for (size_t g = 0; g < nseg; g++) s->in_seg[fill[s->seg_in[g]]++] = (uint32_t)g;
+    free(fill);
+
+    /* Open chains first, from edges more segments leave than enter (open
+     * surfaces), then the closed loops. */
+    for (size_t g = 0; g < nseg; g++) {
+        uint32_t k = s->seg_in[g];
+        if (!s->used[g] && s->indeg[k] < s->in_first[k + 1] - s->in_first[k]) {
+            int rc = walk(s, ch, (uint32_t)g, err);
+            if (rc) return rc;
+        }
+    }
+    for (size_t g = 0; g < nseg; g++)
+        if (!s->used[g]) {
+            int rc = walk(s, ch, (uint32_t)g, err);
+            if (rc) return rc;
+        }
+    return LAM_OK;
+}
+
 /* Cut at height c: the active edges' points and the directed segments of
  * the triangles crossing the plane, chained into polylines by edge. */
 static int section(lam_slicer *s, size_t layer, chains *ch, lam_error *err)
@@ -848,36 +794,7 @@ static int section(lam_slicer *s, size_t layer, chains *ch, lam_error *err)
         }
     }
 #undef BELOW
-    /* segments grouped by entry edge (counting sort keeps triangle order) */
-    memset(s->in_first, 0, (na + 1) * sizeof *s->in_first);
-    memset(s->indeg, 0, na * sizeof *s->indeg);
-    for (size_t g = 0; g < nseg; g++) {
-        s->in_first[s->seg_in[g] + 1]++;
-        s->indeg[s->seg_out[g]]++;
-        s->used[g] = 0;
-    }
-    for (size_t k = 0; k < na; k++) s->in_first[k + 1] += s->in_first[k];
-    size_t *fill = malloc((na + 1) * sizeof *fill);
-    if (!fill) return nomem(err);
-    for (size_t k = 0; k <= na; k++) fill[k] = s->in_first[k];
-    for (size_t g = 0; g < nseg; g++) s->in_seg[fill[s->seg_in[g]]++] = (uint32_t)g;
-    free(fill);
-
-    /* Open chains first, from edges more segments leave than enter (open
-     * surfaces), then the closed loops. */
-    for (size_t g = 0; g < nseg; g++) {
-        uint32_t k = s->seg_in[g];
-        if (!s->used[g] && s->indeg[k] < s->in_first[k + 1] - s->in_first[k]) {
-            int rc = walk(s, ch, (uint32_t)g, err);
-            if (rc) return rc;
-        }
-    }
-    for (size_t g = 0; g < nseg; g++)
-        if (!s->used[g]) {
-            int rc = walk(s, ch, (uint32_t)g, err);
-            if (rc) return rc;
-        }
-    return LAM_OK;
+    return chain_segments(s, na, nseg, ch, err);
 }
 
 /* ---- gap closing ------------------------------------------------------------ */

@@ -26,22 +26,11 @@
 #include <stdint.h>
 
 #include "error.h"
+#include "frame.h"
+#include "layer.h"
 #include "model.h"
 
 typedef enum lam_cut { LAM_CUT_FLOOR, LAM_CUT_MIDDLE, LAM_CUT_CEILING } lam_cut;
-
-/* A right-handed layer frame: u x v = w, all unit length. */
-typedef struct lam_frame {
-    double u[3], v[3], w[3];
-} lam_frame;
-
-/* The thesis's frames: 'x' -> (y, z, x), 'y' -> (z, x, y), 'z' -> (x, y, z).
- * Returns LAM_EUSAGE for any other letter. */
-int lam_frame_axis(char axis, lam_frame *f, lam_error *err);
-
-/* A frame for any non-zero direction: w = d/|d|, u from the world axis least
- * aligned with w (ties: x, y, z), v = w x u. +x, +y, +z give the axis frames. */
-int lam_frame_direction(const double d[3], lam_frame *f, lam_error *err);
 
 /* The default gap-closing tolerance scales with the model: gap < 0
  * (LAM_GAP_AUTO) means LAM_GAP_REL times the model's size, the diagonal of
@@ -67,7 +56,7 @@ typedef struct lam_slice_opts {
                                 in lam_layer.open: the caller decides whether that fails. */
     double gap_limit;        /* > 0: the automatic gap is at most this */
     int fill_nonzero;        /* 0: even-odd (the thesis's nesting parity); 1: non-zero
-                                winding, overlapping shells merge (fill.h) */
+                                winding, overlapping shells merge (winding.h) */
     /* Layer boundaries, one of: */
     double width;            /* > 0: uniform layers from the model's minimum;
                                 0: lam_default_width of the extent */
@@ -93,40 +82,6 @@ double lam_default_width(double extent);
  * diagonal of its bounding box): LAM_GAP_REL * size, at most limit when
  * limit > 0. */
 double lam_default_gap(double size, double limit);
-
-typedef enum lam_kind { LAM_SOLID = 0, LAM_HOLE = 1 } lam_kind;
-
-typedef struct lam_contour {
-    size_t first, n;         /* points uv[2*first .. 2*(first+n)) of the layer */
-    int depth;               /* nesting depth among the layer's contours */
-    long parent;             /* index of the contour directly around it, -1 if none */
-    lam_kind kind;           /* solid at even depth, hole at odd depth */
-    double area;             /* signed: > 0 counter-clockwise (solids), < 0 holes */
-    double perimeter;
-    double bbox[4];          /* umin vmin umax vmax */
-} lam_contour;
-
-/* An open polyline that gap closing could not close. */
-typedef struct lam_open_end {
-    double start[2], end[2];
-} lam_open_end;
-
-typedef struct lam_layer {
-    size_t index;            /* 0-based */
-    double floor, ceiling, width;
-    double cut;              /* height of the section along w */
-    double *uv;              /* 2 per point, owned */
-    size_t npoints;
-    lam_contour *contours;   /* parents before children; owned */
-    size_t ncontours;
-    double gap;              /* the gap-closing tolerance used */
-    size_t gaps_closed;      /* gaps bridged by the gap-closing pass */
-    double max_gap;          /* largest bridged gap */
-    size_t slivers;          /* loops dropped for (nearly) no area (contour.h) */
-    size_t twins;            /* coincident loops cancelled in pairs (contour.h) */
-    lam_open_end *open;      /* polylines left open (dropped from contours) */
-    size_t nopen;
-} lam_layer;
 
 typedef struct lam_slicer lam_slicer;
 
@@ -174,7 +129,6 @@ void lam_slicer_free(lam_slicer *s);
 /* The bytes slicer s holds now: its schedule and its scratch (as grown so
  * far), not the model's nor the layers'. For a budget (the Lua sandbox). */
 size_t lam_slicer_bytes(const lam_slicer *s);
-void lam_layer_free(lam_layer *layer);
 
 /* A second sweep over the same run: it shares s's model, layers and
  * schedule (s must outlive it and not be freed first) and keeps its own
@@ -186,11 +140,5 @@ int lam_slicer_fork(const lam_slicer *s, lam_slicer **out, lam_error *err);
  * costs the edges scheduled in between, backward a sweep from the start;
  * the layers come out bit for bit as from a sweep that never jumped. */
 void lam_slicer_seek(lam_slicer *s, size_t i);
-
-/* A copy of layer L with arrays of its own (NULL when out of memory). */
-lam_layer *lam_layer_clone(const lam_layer *L);
-
-/* Layer-frame point (u, v) at height w to model coordinates. */
-void lam_frame_to_model(const lam_frame *f, double u, double v, double w, double xyz[3]);
 
 #endif

@@ -1,6 +1,6 @@
 /* Which shells enclose which: the count behind the cavity rule (a shell
- * inside an odd number of others is a cavity). Internal to core/: model.c
- * calls it while it builds a model.
+ * inside an odd number of others is a cavity). Internal to core/:
+ * model_build.c calls it while it builds a model.
  *
  * Candidates first: shell s can only lie in shell o when s's bounding box
  * lies in o's. The pairs come from a bounding-volume tree over the shells

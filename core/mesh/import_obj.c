@@ -32,6 +32,7 @@
  * index 0, index out of range, fewer than 3 vertices, non-finite
  * coordinates; LAM_EGEOM from the triangulation. Linear time. */
 #include "import.h"
+#include "buf.h"
 #include "grow.h"
 #include "lexnum.h"
 
@@ -161,8 +162,7 @@ typedef struct obj_state {
     size_t base;        /* mesh index of this file's vertex 1 */
     uint32_t *idx;      /* the current face's vertices */
     size_t cap;
-    char *name;         /* current g/o name, NULL for none */
-    size_t name_cap;
+    lam_buf name;       /* current g/o name, empty for none */
     uint32_t name_off;  /* its offset in the mesh's strings once stored */
 } obj_state;
 
@@ -253,7 +253,7 @@ static int obj_face(obj_lex *lx, lam_mesh *m, obj_state *st)
                         nv == 1 ? "vertex" : "vertices");
 
     uint32_t face;
-    const char *name = st->name && st->name[0] ? st->name : NULL;
+    const char *name = st->name.data && st->name.data[0] ? st->name.data : NULL;
     if (name && st->name_off != LAM_NO_NAME) {
         rc = lam_mesh_add_face(m, NULL, lx->path, fline, fcol, &face, lx->err);
         if (!rc) m->faces[face].name = st->name_off;
@@ -269,24 +269,12 @@ static int obj_face(obj_lex *lx, lam_mesh *m, obj_state *st)
 static int obj_name(obj_lex *lx, obj_state *st)
 {
     long line = lx->tline, col = lx->tcol;
-    size_t len = 0;
     st->name_off = LAM_NO_NAME;
+    lam_buf_clear(&st->name);
     while (obj_next(lx)) {
-        size_t need = len + lx->n + 2;
-        if (need > st->name_cap) {
-            size_t ncap = st->name_cap ? st->name_cap : 64;
-            while (ncap < need) ncap *= 2;
-            char *nn = realloc(st->name, ncap);
-            if (!nn) return at_error(lx, LAM_ENOMEM, line, col, "out of memory reading a name");
-            st->name = nn;
-            st->name_cap = ncap;
-        }
-        if (len) st->name[len++] = ' ';
-        memcpy(st->name + len, lx->tok, lx->n);
-        len += lx->n;
-        st->name[len] = '\0';
+        if ((st->name.len && lam_buf_append(&st->name, " ", 1)) || lam_buf_append(&st->name, lx->tok, lx->n))
+            return at_error(lx, LAM_ENOMEM, line, col, "out of memory reading a name");
     }
-    if (!len && st->name) st->name[0] = '\0';
     return LAM_OK;
 }
 
@@ -318,6 +306,6 @@ int lam_import_obj_buf(const char *path, const char *data, size_t len,
         if (!rc) obj_end_line(&lx);
     }
     free(st.idx);
-    free(st.name);
+    lam_buf_free(&st.name);
     return rc;
 }

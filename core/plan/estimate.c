@@ -59,10 +59,10 @@ static void boundary(const lam_layer *L, double deg, double *cross, double *alon
 static int skin_type(const lam_plan_opts *o, size_t index, size_t nlayers)
 {
     size_t k = o->scan.skin_layers > 0 ? (size_t)o->scan.skin_layers : 0;
-    if (!k || !nlayers) return LAM_VEC_CORE;
-    if (index < k) return LAM_VEC_DOWNSKIN;
-    if (index + k >= nlayers) return LAM_VEC_UPSKIN;
-    return LAM_VEC_CORE;
+    if (!k || !nlayers) return LAM_KIND_CORE;
+    if (index < k) return LAM_KIND_DOWNSKIN;
+    if (index + k >= nlayers) return LAM_KIND_UPSKIN;
+    return LAM_KIND_CORE;
 }
 
 /* Vectors and blocks of hatching an area `area` with perimeter `perim` of

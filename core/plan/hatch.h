@@ -52,16 +52,9 @@ typedef enum lam_island_order { LAM_ISLANDS_SEQUENTIAL, LAM_ISLANDS_CHECKER, LAM
 /* The most layers a skin may reach (skin_layers). */
 #define LAM_SKIN_MAX 100
 
-/* Vector types are the regions of vocab.h's lam_vec_kind: each has its own
- * exposure; the hatch types also their own hatch parameters (profile
- * sections contour:, upskin:, downskin:). The old names, until every user
- * says lam_kind: */
-#define LAM_VEC_CONTOUR LAM_KIND_CONTOUR
-#define LAM_VEC_CORE LAM_KIND_CORE
-#define LAM_VEC_UPSKIN LAM_KIND_UPSKIN
-#define LAM_VEC_DOWNSKIN LAM_KIND_DOWNSKIN
-#define LAM_VEC_TYPES LAM_REGIONS
-#define lam_vec_type_name lam_kind_name
+/* A region (vocab.h's first kinds: contour, core, up-skin, down-skin) has
+ * its own exposure; the hatch regions also their own hatch parameters
+ * (profile sections contour:, upskin:, downskin:). */
 
 typedef struct lam_exposure {
     double power;            /* laser power (machine units, e.g. W) */
@@ -87,7 +80,7 @@ typedef struct lam_scan {
 
 /* Everything hatching a layer needs. */
 typedef struct lam_scan_cfg {
-    lam_scan type[LAM_VEC_TYPES];  /* [LAM_VEC_CONTOUR]: only its exposure is used */
+    lam_scan type[LAM_REGIONS];  /* [LAM_KIND_CONTOUR]: only its exposure is used */
     int contour_count;       /* contour passes */
     double contour_distance; /* between passes */
     double compensation;     /* the first pass's inset (half the spot, or 0) */
@@ -107,7 +100,7 @@ int lam_scan_estimates(const lam_scan_cfg *cfg);
 /* A block: consecutive vectors of one type (one stripe, one island, or a
  * whole region for lines). */
 typedef struct lam_hatch_block {
-    int type;                /* lam_vec_type */
+    int type;                /* lam_vec_kind (vocab.h): a hatch region */
     size_t first, n;         /* vectors [first, first + n) */
     double angle;            /* the block's hatch direction, degrees */
 } lam_hatch_block;
@@ -117,7 +110,7 @@ typedef struct lam_hatches {
     size_t nv, cap_v;
     lam_hatch_block *blocks;
     size_t nblocks, cap_blocks;
-    double area[LAM_VEC_TYPES];   /* the region's area per type (not shrunk) */
+    double area[LAM_REGIONS];   /* the region's area per type (not shrunk) */
 } lam_hatches;
 
 /* Hatch layer L: its region split into core, up-skin and down-skin by the

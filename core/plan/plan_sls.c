@@ -37,7 +37,7 @@ static int emit_contours(const lam_layer *L, const lam_layer *C, const lam_frame
         if (C->contours[k].n > maxn) maxn = C->contours[k].n;
     double *xyz = malloc((3 * maxn + 1) * sizeof *xyz);
     if (!xyz) return lam_error_nomem(err, "planning a layer");
-    const lam_exposure *e = &o->scan.type[LAM_VEC_CONTOUR].exposure;
+    const lam_exposure *e = &o->scan.type[LAM_KIND_CONTOUR].exposure;
     int rc = LAM_OK;
     for (size_t k = 0; k < C->ncontours && !rc; k++) {
         const lam_contour *c = &C->contours[k];
@@ -92,7 +92,7 @@ static int emit_hatches(const lam_layer *L, const lam_hatches *h, const lam_fram
     int rc = LAM_OK;
     for (size_t b = 0; b < h->nblocks && !rc; b++) {
         const lam_hatch_block *B = &h->blocks[b];
-        int type = B->type >= LAM_VEC_CORE && B->type < LAM_VEC_TYPES ? B->type : LAM_VEC_CORE;
+        int type = B->type >= LAM_KIND_CORE && B->type < LAM_REGIONS ? B->type : LAM_KIND_CORE;
         const lam_exposure *e = &o->scan.type[type].exposure;
         const double *uv = h->v + 4 * B->first;
         for (size_t i = 0; i < B->n; i++) {

@@ -21,7 +21,7 @@ void lam_plan_opts_init(lam_plan_opts *o)
     o->scan.contour_count = 1;
     o->scan.contours_first = 1;
     lam_out_costs_default(&o->costs);
-    for (int t = 0; t < LAM_VEC_TYPES; t++) {
+    for (int t = 0; t < LAM_REGIONS; t++) {
         o->scan.type[t].distance = 0.1;
         o->scan.type[t].stripe_width = 10;
         o->scan.type[t].island_size = 5;

@@ -148,6 +148,86 @@ static int hexval(const char *t, size_t n, unsigned long *cp)
     return 1;
 }
 
+/* Where byte `off` of a double-quoted scalar's value v is in the text
+ * t[0..L), its content starting at q: the position, -1 when the text does
+ * not read back as v; *verify = 0 when off falls in (or at) an escape,
+ * whose bytes are not v's. */
+static long double_quoted_at(const char *t, long L, long q, const char *v, size_t off, int *verify)
+{
+    size_t k = 0;
+    while (k < off) {
+        if (q >= L) return -1;
+        if (t[q] == '\\') {
+            if (q + 1 >= L) return -1;
+            char e = t[q + 1];
+            size_t rl = 2, dl = 1;
+            unsigned long cp = 0;
+            if (e == 'x' || e == 'u' || e == 'U') {
+                size_t h = e == 'x' ? 2 : e == 'u' ? 4 : 8;
+                if (q + 2 + (long)h > L || !hexval(t + q + 2, h, &cp)) return -1;
+                rl = 2 + h;
+                dl = cp < 0x80 ? 1 : cp < 0x800 ? 2 : cp < 0x10000 ? 3 : 4;
+            } else if (e == 'N' || e == '_') {
+                dl = 2;
+            } else if (e == 'L' || e == 'P') {
+                dl = 3;
+            }
+            if (k + dl > off) {
+                *verify = 0; /* inside an escape: point at it */
+                break;
+            }
+            k += dl;
+            q += (long)rl;
+        } else {
+            if (t[q] != v[k]) return -1;
+            q++;
+            k++;
+        }
+    }
+    if (q < L && t[q] == '\\') *verify = 0;
+    return q;
+}
+
+/* scalar_pos for a literal block (`|`): the value's line `li` is text
+ * line m.line + 1 + li at the block's indentation. */
+static void literal_pos(const src *s, const yaml_node_t *n, size_t off, long *line, long *col)
+{
+    yaml_mark_t m = n->start_mark;
+    const char *v = (const char *)n->data.scalar.value;
+    size_t vlen = n->data.scalar.length;
+    const char *t = s->text;
+    long L = (long)s->len;
+    size_t li = 0, lstart = 0;
+    for (size_t k = 0; k < off; k++)
+        if (v[k] == '\n') {
+            li++;
+            lstart = k + 1;
+        }
+    /* indentation: that of the first content line that is not blank */
+    long indent = -1;
+    for (size_t l = m.line + 1;; l++) {
+        long a = line_start(s, l);
+        if (a < 0) return;
+        long b = a;
+        while (b < L && t[b] == ' ') b++;
+        if (b < L && t[b] != '\n' && t[b] != '\r') {
+            indent = b - a;
+            break;
+        }
+    }
+    size_t tline = m.line + 1 + li;
+    long qline = line_start(s, tline);
+    if (qline < 0 || indent < 0) return;
+    long q = qline + indent + (long)(off - lstart);
+    if (q > L || memcmp(t + qline + indent, v + lstart, off - lstart) != 0) return;
+    *line = (long)tline + 1;
+    *col = col_of(s, qline, q) + 1;
+    if (off < vlen && (q >= L || t[q] != v[off])) {
+        *line = (long)m.line + 1;
+        *col = (long)m.column + 1;
+    }
+}
+
 /* Position (1-based line, column) in the file of byte `off` of scalar n's
  * value: exact for single-line plain and quoted scalars and for literal
  * blocks, checked against the raw text; otherwise the scalar's start. */
@@ -187,74 +267,12 @@ static void scalar_pos(const src *s, const yaml_node_t *n, size_t off, long *lin
             }
         }
         break;
-    case YAML_DOUBLE_QUOTED_SCALAR_STYLE: {
-        if (!single_line || t[p] != '"') return;
-        q = p + 1;
-        size_t k = 0;
-        while (k < off) {
-            if (q >= L) return;
-            if (t[q] == '\\') {
-                if (q + 1 >= L) return;
-                char e = t[q + 1];
-                size_t rl = 2, dl = 1;
-                unsigned long cp = 0;
-                if (e == 'x' || e == 'u' || e == 'U') {
-                    size_t h = e == 'x' ? 2 : e == 'u' ? 4 : 8;
-                    if (q + 2 + (long)h > L || !hexval(t + q + 2, h, &cp)) return;
-                    rl = 2 + h;
-                    dl = cp < 0x80 ? 1 : cp < 0x800 ? 2 : cp < 0x10000 ? 3 : 4;
-                } else if (e == 'N' || e == '_') {
-                    dl = 2;
-                } else if (e == 'L' || e == 'P') {
-                    dl = 3;
-                }
-                if (k + dl > off) {
-                    verify = 0; /* inside an escape: point at it */
-                    break;
-                }
-                k += dl;
-                q += (long)rl;
-            } else {
-                if (t[q] != v[k]) return;
-                q++;
-                k++;
-            }
-        }
-        if (q < L && t[q] == '\\') verify = 0;
+    case YAML_DOUBLE_QUOTED_SCALAR_STYLE:
+        if (!single_line || t[p] != '"' || (q = double_quoted_at(t, L, p + 1, v, off, &verify)) < 0) return;
         break;
-    }
-    case YAML_LITERAL_SCALAR_STYLE: {
-        size_t li = 0, lstart = 0;
-        for (size_t k = 0; k < off; k++)
-            if (v[k] == '\n') {
-                li++;
-                lstart = k + 1;
-            }
-        /* indentation: that of the first content line that is not blank */
-        long indent = -1;
-        for (size_t l = m.line + 1;; l++) {
-            long a = line_start(s, l);
-            if (a < 0) return;
-            long b = a;
-            while (b < L && t[b] == ' ') b++;
-            if (b < L && t[b] != '\n' && t[b] != '\r') {
-                indent = b - a;
-                break;
-            }
-        }
-        tline = m.line + 1 + li;
-        qline = line_start(s, tline);
-        if (qline < 0 || indent < 0) return;
-        q = qline + indent + (long)(off - lstart);
-        if (q > L || memcmp(t + qline + indent, v + lstart, off - lstart) != 0) return;
-        *line = (long)tline + 1;
-        *col = col_of(s, qline, q) + 1;
-        if (off < vlen && (q >= L || t[q] != v[off])) {
-            *line = (long)m.line + 1;
-            *col = (long)m.column + 1;
-        }
+    case YAML_LITERAL_SCALAR_STYLE:
+        literal_pos(s, n, off, line, col);
         return;
-    }
     default:
         return;
     }

@@ -14,44 +14,12 @@
 
 #include <stddef.h>
 
-#include "dialect.h"
 #include "error.h"
-#include "hatch.h"
+#include "profile_keys.h"
+#include "writer.h"
 
-typedef enum lam_process { LAM_PROCESS_LADRP, LAM_PROCESS_SLS } lam_process;
-typedef enum lam_first_line { LAM_FIRST_EDGE, LAM_FIRST_CENTER } lam_first_line;
-
-typedef struct lam_profile {
-    char *name;              /* `name:` */
-    char *path;              /* the file it was loaded from */
-    char *description;       /* optional */
-    lam_process process;
-    char *units;             /* default "mm" */
-    double bead_width;       /* LADRP: required, > 0; SLS: copy of spot_width */
-    double spot_width;       /* SLS: required, > 0 */
-    double layer_width;      /* > 0; 0 when absent (the slicer's default applies) */
-    int cut;                 /* lam_cut (slice.h); default LAM_CUT_MIDDLE */
-    double feed_rate;        /* >= 0, deposit feed, default 0 */
-    double travel_rate;      /* >= 0, default feed_rate */
-    double gap;              /* gap-closing tolerance, >= 0; LAM_GAP_AUTO (`gap: auto`, the
-                                default): the slicer's, scaled with the model */
-    int frame_machine;       /* `frame: machine` -> 1, `model` (default) -> 0 */
-    /* raster (LADRP) */
-    lam_first_line first_line;   /* default edge */
-    double angle, angle_step;    /* degrees, default 0 */
-    int alternate;               /* boustrophedon, default true */
-    double min_deposit;          /* >= 0, default 0 */
-    int perimeters;              /* passes around each contour offset by d/2, default 0 */
-    int islands;                 /* raster island by island, nearest next; default false */
-    /* SLS */
-    int beam_offset;             /* contours inset by spot/2, default false */
-    lam_scan_cfg scan;           /* hatching, skins, exposure, time (hatch.h);
-                                    scan.compensation is not a key: the planner's */
-    /* design rules (optional) */
-    double max_overhang_deg;     /* 0 when absent */
-    char *writer;                /* "text" (default: the dialect) or a plugin writer name; never NULL */
-    lam_dialect dialect;
-} lam_profile;
+/* lam_profile itself, field by field, is in profile_keys.h beside the key
+ * table that describes its fields. */
 
 /* Load a profile from a file, resolving `inherits:` (a shipped profile name
  * or a path relative to the inheriting file; chains allowed, cycles are an

@@ -11,7 +11,6 @@
 #include "dialect.h"
 #include "fmt.h"
 #include "lexnum.h"
-#include "profile.h"
 #include "slice.h"
 
 /* Choices are stored as an int through the row's offset. */
@@ -152,7 +151,7 @@ const lam_key lam_profile_keys[] = {
     { .name = "beam_offset", .type = LAM_KEY_BOOLEAN, .flags = LAM_KEY_PLAN, .def = "false",
       .option = "beam-offset", .offset = AT(beam_offset), .planner = LAM_READ_SLS,
       .doc = "sls: inset contours by half the spot" },
-    HATCH_ROWS("", LAM_VEC_CORE, "sls, core"),
+    HATCH_ROWS("", LAM_KIND_CORE, "sls, core"),
     { .name = "contour_count", .type = LAM_KEY_INTEGER, .flags = LAM_KEY_PLAN, .lo = 0, .hi = 1000, .def = "1",
       .offset = AT(scan.contour_count), .planner = LAM_READ_SLS,
       .instead = "raster.perimeters", .doc = "sls: contour passes round the region (the first offset by the spot "
@@ -177,9 +176,9 @@ const lam_key lam_profile_keys[] = {
       .offset = AT(scan.jump_delay), .planner = LAM_READ_SLS, .doc = "sls: seconds added to every jump" },
     { .name = "recoat_time", .type = LAM_KEY_NUMBER, .flags = LAM_KEY_PLAN, .lo = 0, .hi = HUGE_VAL, .def = "0",
       .offset = AT(scan.recoat_time), .planner = LAM_READ_SLS, .doc = "sls: seconds to spread each layer's powder" },
-    EXPOSURE_ROWS("contour.", LAM_VEC_CONTOUR, "sls, contour passes"),
-    HATCH_ROWS("upskin.", LAM_VEC_UPSKIN, "sls, up-skin"),
-    HATCH_ROWS("downskin.", LAM_VEC_DOWNSKIN, "sls, down-skin"),
+    EXPOSURE_ROWS("contour.", LAM_KIND_CONTOUR, "sls, contour passes"),
+    HATCH_ROWS("upskin.", LAM_KIND_UPSKIN, "sls, up-skin"),
+    HATCH_ROWS("downskin.", LAM_KIND_DOWNSKIN, "sls, down-skin"),
     { .name = "max_overhang_deg", .type = LAM_KEY_NUMBER, .flags = LAM_KEY_OPTIONAL, .lo = 0, .hi = 90,
       .offset = AT(max_overhang_deg), .doc = "design rule for `lamina check`, degrees from the vertical (0: no rule)" },
     { .name = "writer", .type = LAM_KEY_STRING, .flags = LAM_KEY_NONEMPTY | LAM_KEY_FIXED, .def = "text",

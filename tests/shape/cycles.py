@@ -1,10 +1,12 @@
 #!/usr/bin/env python3
 """Cycles among modules, by includes and by calls.
   cycles.py SRCROOT BUILDDIR
-A module is a source file's stem (core/plan/hatch.c and hatch.h are one).
-Include edges: X -> Y when X.c or X.h includes "Y.h". Call edges: X -> Y
-when X.o needs a symbol (nm: U) that Y.o defines (T, D, B, R): what the
-linker sees, so a call through a header's static inline is not an edge.
+A module is a source file's path without its extension (core/plan/hatch.c
+and hatch.h are one). Include edges: X -> Y when X.c or X.h includes
+"Y.h", found as the compiler finds it: beside X first, else by its stem in
+core/, lua/, plugins/. Call edges: X -> Y when X.o needs a symbol (nm: U)
+that Y.o defines (T, D, B, R): what the linker sees, so a call through a
+header's static inline is not an edge.
 Prints each strongly connected component of more than one module; exit 1
 if there is any."""
 import os
@@ -67,16 +69,22 @@ for d in DIRS:
             m = mod(os.path.join(dp, f))
             for line in open(os.path.join(dp, f), encoding="utf-8", errors="replace"):
                 r = re.match(r'\s*#\s*include\s+"(?:.*/)?([A-Za-z_0-9]+)\.h"', line)
-                if r and r.group(1) in names and names[r.group(1)] != m:
-                    inc.setdefault(m, set()).add(names[r.group(1)])
+                if not r:
+                    continue
+                # as the compiler looks: the includer's directory first
+                # (lua/lamina.c is not core/lamina.h), then the include path
+                here = os.path.join(dp, r.group(1) + ".h")
+                to = mod(here) if os.path.exists(here) else names.get(r.group(1))
+                if to and to != m:
+                    inc.setdefault(m, set()).add(to)
 calls, defs, need = {}, {}, {}
 for dp, _, fs in os.walk(build):
     for f in fs:
-        if f.endswith(".o") and os.path.splitext(f)[0] in names:
-            # the object's own source when it has one (build/lua/lamina.o is
-            # lua/lamina, not core/lamina.h's module), else the stem's module
-            src = os.path.splitext(os.path.relpath(os.path.join(dp, f), build))[0]
-            m = src if os.path.exists(os.path.join(root, src + ".c")) else names[os.path.splitext(f)[0]]
+        stem = os.path.splitext(f)[0]
+        src = os.path.join(root, os.path.relpath(os.path.join(dp, stem), build))
+        if f.endswith(".o") and (os.path.exists(src + ".c") or stem in names):
+            # build/lua/lamina.o is lua/lamina.c's, not core/lamina.h's
+            m = mod(src) if os.path.exists(src + ".c") else names[stem]
             out = subprocess.run(["nm", os.path.join(dp, f)], capture_output=True, text=True).stdout
             for line in out.split("\n"):
                 p = line.split()

@@ -1,4 +1,4 @@
-/* core/plan/hatch.c: hatching the thesis's cube with its hole (the square
+/* core/plan/hatch*.c: hatching the thesis's cube with its hole (the square
  * [-1, 1]^2 around the hole [-0.5, 0.5]^2: area 3), checked with the test's
  * own geometry (the two squares are known exactly); orders by their
  * defining property; skins against empty and full neighbours; the budget
@@ -31,7 +31,7 @@ static lam_scan_cfg cfg_lines(double h, double angle, int order)
     memset(&c, 0, sizeof c);
     c.contour_count = 1;
     c.contours_first = 1;
-    for (int t = 0; t < LAM_VEC_TYPES; t++) {
+    for (int t = 0; t < LAM_REGIONS; t++) {
         c.type[t].strategy = LAM_HATCH_LINES;
         c.type[t].distance = h;
         c.type[t].angle = angle;
@@ -83,7 +83,7 @@ int main(void)
     ok(h.nv > 55 && inside, "%zu vectors, every one inside the square and outside the hole", h.nv);
     ok(dir, "every vector at 30 degrees");
     is_num(total * 0.05, 3, 0.03, "length x distance is the area 3 (%g)", total * 0.05);
-    is_num(h.area[LAM_VEC_CORE], 3, 1e-9, "the region's area, all core without skins");
+    is_num(h.area[LAM_KIND_CORE], 3, 1e-9, "the region's area, all core without skins");
     /* meander: successive lines run opposite ways; a line cut by the hole
      * runs both its pieces the same way */
     int alternate = 1;
@@ -120,7 +120,7 @@ int main(void)
     /* islands, random order: the same seed the same vectors; another seed
      * the same islands in another order */
     c = cfg_lines(0.1, 0, LAM_ORDER_MEANDER);
-    for (int t = 0; t < LAM_VEC_TYPES; t++) {
+    for (int t = 0; t < LAM_REGIONS; t++) {
         c.type[t].strategy = LAM_HATCH_ISLANDS;
         c.type[t].island_size = 0.5;
         c.type[t].island_order = LAM_ISLANDS_RANDOM;
@@ -131,7 +131,7 @@ int main(void)
     lam_hatch_layer(L, NULL, 0, NULL, 0, &c, &h, &err);
     lam_hatch_layer(L, NULL, 0, NULL, 0, &c, &h2, &err);
     ok(h.nv == h2.nv && h.nv && !memcmp(h.v, h2.v, 4 * h.nv * sizeof *h.v), "random islands: deterministic");
-    for (int t = 0; t < LAM_VEC_TYPES; t++) c.type[t].seed = 12;
+    for (int t = 0; t < LAM_REGIONS; t++) c.type[t].seed = 12;
     lam_hatch_layer(L, NULL, 0, NULL, 0, &c, &h2, &err);
     double s1 = 0, s2 = 0;
     for (size_t i = 0; i < h.nv; i++) s1 += len(h.v + 4 * i);
@@ -146,14 +146,14 @@ int main(void)
     c.skin_layers = 1;
     const lam_layer *same[1] = { L };
     lam_hatch_layer(L, NULL, 0, same, 1, &c, &h, &err);
-    is_num(h.area[LAM_VEC_DOWNSKIN], 3, 1e-9, "skins: nothing below, all down-skin");
-    is_num(h.area[LAM_VEC_CORE] + h.area[LAM_VEC_UPSKIN], 0, 1e-9, "... no core, no up-skin");
+    is_num(h.area[LAM_KIND_DOWNSKIN], 3, 1e-9, "skins: nothing below, all down-skin");
+    is_num(h.area[LAM_KIND_CORE] + h.area[LAM_KIND_UPSKIN], 0, 1e-9, "... no core, no up-skin");
     lam_hatch_layer(L, same, 1, NULL, 0, &c, &h, &err);
-    is_num(h.area[LAM_VEC_UPSKIN], 3, 1e-9, "skins: covered below, nothing above: all up-skin");
+    is_num(h.area[LAM_KIND_UPSKIN], 3, 1e-9, "skins: covered below, nothing above: all up-skin");
     lam_hatch_layer(L, same, 1, same, 1, &c, &h, &err);
-    is_num(h.area[LAM_VEC_CORE], 3, 1e-9, "skins: covered on both sides: all core");
+    is_num(h.area[LAM_KIND_CORE], 3, 1e-9, "skins: covered on both sides: all core");
     int kinds = 1;
-    for (size_t b = 0; b < h.nblocks; b++) kinds &= h.blocks[b].type == LAM_VEC_CORE;
+    for (size_t b = 0; b < h.nblocks; b++) kinds &= h.blocks[b].type == LAM_KIND_CORE;
     ok(h.nblocks && kinds, "... and every block is core");
 
     /* a hatch distance that would make too many vectors */

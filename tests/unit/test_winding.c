@@ -1,6 +1,6 @@
 /* Non-zero fill: overlapping shells merge; holes stay where the winding is
  * zero; even-odd (the default) keeps the nesting parity. */
-#include "fill.h"
+#include "winding.h"
 #include "meshes.h"
 #include "model.h"
 #include "slice.h"

@@ -1,4 +1,4 @@
-/* Fill rules for a layer's loops.
+/* The winding rule: fill rules for a layer's loops (even-odd, non-zero).
  *
  * The slicer's raw loops are oriented by the mesh (material on the left).
  * Even-odd (the thesis's nesting parity) keeps them as they are. Non-zero
@@ -7,8 +7,8 @@
  * with GEOS, the faces of the arrangement polygonised, each face kept when
  * the winding number at an interior point is non-zero, and the kept faces
  * united. */
-#ifndef LAM_FILL_H
-#define LAM_FILL_H
+#ifndef LAM_WINDING_H
+#define LAM_WINDING_H
 
 #include "contour.h"
 
