@@ -315,7 +315,7 @@ static int j_vector(void *ctx, const lam_vec *v)
             char b[32];
             put(s, ", ");
             key(s, lam_attr_key(i));
-            put(s, (snprintf(b, sizeof b, ": %lld", lam_attr_get(&v->attrs, i)), b));
+            put(s, (snprintf(b, sizeof b, "%lld", lam_attr_get(&v->attrs, i)), b));
         }
     put(s, "}");
     s->vectors++;

@@ -4,9 +4,10 @@
 # LAM_ATTRS, set by the SLS and LADRP planners: three files) is built, and
 # the attribute is found in the JSON, the viewer's data, Lua's plan data
 # and the part files, with no other file edited.
-#   attr_demo.sh SRCDIR     (make check-attr; prints TAP)
+#   attr_demo.sh SRCDIR LAMINA   (tests/cli/attr_demo.t; prints TAP; LAMINA:
+# the lamina of SRCDIR as built, which has no such attribute)
 set -u
-SRC=$(cd "$1" && pwd)
+SRC=$(cd "$1" && pwd) OLD=$2
 T=$(mktemp -d)
 trap 'rm -rf "$T"' EXIT
 n=0 failed=0
@@ -26,10 +27,10 @@ L=$T/build/lamina M=$SRC/tests/models
 cd "$T" || exit 1
 "$L" slice "$M/thesis_cube_hole.ug" -q -m lpbf-cli -w 0.5 -s hatch_strategy=lines -o prog --json run.json --html run.html
 ok $? "an SLS run with --json and --html"
-grep -q '"kind": "core", .*"demo": 7}' run.json; ok $? "JSON: the first layer's hatch vectors carry demo 7 (its index + 7)"
+grep -Eq '"kind": "(core|upskin|downskin)", .*"demo": 7}' run.json; ok $? "JSON: the first layer's hatch vectors carry demo 7 (its index + 7)"
 grep -q '"kind": "contour", .*"demo": 8}' run.json; ok $? "JSON: the second layer's contour edges carry demo 8"
 grep -q '"kind": "jump", .*"demo": ' run.json; ok $? "JSON: jumps carry the next path's"
-grep -q '"kind": "core", .*"demo": 7}' run.html; ok $? "the viewer's data carries it"
+grep -Eq '"kind": "(core|upskin|downskin)", .*"demo": 7}' run.html; ok $? "the viewer's data carries it"
 "$L" slice "$M/thesis_cube_hole.ug" -q -m creol-ladrp -w 0.5 --json ladrp.json -o /dev/null
 grep -q '"kind": "deposit", .*"demo": 5}' ladrp.json; ok $? "JSON: LADRP deposits carry demo 5"
 cat >data.lua <<'LUA'
@@ -42,10 +43,10 @@ out=$("$L" run data.lua "$M/thesis_cube_hole.ug")
 [ "$out" = "8	8	nil" ]; ok $? "Lua plan data: vectors and contours carry demo (8 on layer 2); part at its default is absent (got '$out')"
 "$L" slice "$M/thesis_cube_hole.ug" -q -m lpbf-cli -w 0.5 -s hatch_strategy=lines --layers 1/2 -o p1 &&
     "$L" slice "$M/thesis_cube_hole.ug" -q -m lpbf-cli -w 0.5 -s hatch_strategy=lines --layers 2/2 -o p2 &&
-    "$L" join p1 p2 -o joined && cmp -s joined prog
+    "$L" join -q p1 p2 -o joined && cmp -s joined prog
 ok $? "part files carry it: two parts join into the whole run's program"
 grep -aq demo p1; ok $? "a part's header names the attribute"
-"$SRC/build/lamina" join p1 p2 -o /dev/null 2>err; rc=$?
+"$OLD" join p1 p2 -o /dev/null 2>err; rc=$?
 [ $rc -eq 1 ] && grep -q 'another set of attributes' err; ok $? "a lamina without the attribute refuses the parts: $(cat err)"
 echo "1..$n"
 [ "$failed" -eq 0 ]
