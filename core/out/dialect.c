@@ -1,7 +1,7 @@
 /* The sink that writes a plan through a dialect's templates, and the
  * layer text worker threads format with it. See dialect.h; the template
  * language itself is dialect_template.c. */
-#include "dialect_template.h"
+#include "dialect.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -56,16 +56,16 @@ static int emit(dsink *s, lam_cmd c, const lam_tvals *v, double rel[3], int has_
 static void job_vals(const dsink *s, lam_tvals *v)
 {
     memset(v, 0, sizeof *v);
-    v->text[F_NAME] = s->name;
-    v->text[F_PROCESS] = s->process;
-    v->text[F_UNITS] = s->units;
-    v->text[F_LABEL] = s->label;
-    v->num[F_LAYERS] = (double)s->job.layers;
-    v->num[F_DIMENSION] = 3;
-    v->num[F_BEAD] = s->job.bead;
-    v->num[F_RATE] = s->job.rate;
-    v->num[F_TRAVEL_RATE] = s->job.travel_rate;
-    for (int j = 0; j < 6; j++) v->num[F_XMIN + j] = s->job.bbox[j];
+    v->text[LAM_TF_NAME] = s->name;
+    v->text[LAM_TF_PROCESS] = s->process;
+    v->text[LAM_TF_UNITS] = s->units;
+    v->text[LAM_TF_LABEL] = s->label;
+    v->num[LAM_TF_LAYERS] = (double)s->job.layers;
+    v->num[LAM_TF_DIMENSION] = 3;
+    v->num[LAM_TF_BEAD] = s->job.bead;
+    v->num[LAM_TF_RATE] = s->job.rate;
+    v->num[LAM_TF_TRAVEL_RATE] = s->job.travel_rate;
+    for (int j = 0; j < 6; j++) v->num[LAM_TF_XMIN + j] = s->job.bbox[j];
 }
 
 static char *dup_or_empty(const char *s)
@@ -97,12 +97,12 @@ static int layer_cmd(dsink *s, lam_cmd c, const lam_layer_info *L)
 {
     lam_tvals v;
     memset(&v, 0, sizeof v);
-    v.num[F_INDEX] = (double)L->index;
-    v.num[F_NUMBER] = (double)L->index + 1;
-    v.num[F_Z] = L->z;
-    v.num[F_WIDTH] = L->width;
-    v.num[F_FLOOR] = L->floor;
-    v.num[F_CEILING] = L->ceiling;
+    v.num[LAM_TF_INDEX] = (double)L->index;
+    v.num[LAM_TF_NUMBER] = (double)L->index + 1;
+    v.num[LAM_TF_Z] = L->z;
+    v.num[LAM_TF_WIDTH] = L->width;
+    v.num[LAM_TF_FLOOR] = L->floor;
+    v.num[LAM_TF_CEILING] = L->ceiling;
     return emit(s, c, &v, NULL, NULL);
 }
 
@@ -127,7 +127,7 @@ static int d_feed(void *ctx, double rate)
 {
     lam_tvals v;
     memset(&v, 0, sizeof v);
-    v.num[F_RATE] = rate;
+    v.num[LAM_TF_RATE] = rate;
     return emit(ctx, LAM_CMD_FEED, &v, NULL, NULL);
 }
 
@@ -136,7 +136,7 @@ static int d_laser(void *ctx, int on)
     dsink *s = ctx;
     lam_tvals v;
     memset(&v, 0, sizeof v);
-    v.num[F_RATE] = s->job.rate;
+    v.num[LAM_TF_RATE] = s->job.rate;
     return emit(s, on ? LAM_CMD_LASER_ON : LAM_CMD_LASER_OFF, &v, NULL, NULL);
 }
 
@@ -147,13 +147,13 @@ static int d_move(void *ctx, int deposit, const double xyz[3])
     if (!s->d->cmd[c].present) return LAM_OK; /* the machine was not told to move */
     lam_tvals v;
     memset(&v, 0, sizeof v);
-    v.num[F_DX] = xyz[0] - s->pos[0];
-    v.num[F_DY] = xyz[1] - s->pos[1];
-    v.num[F_DZ] = xyz[2] - s->pos[2];
-    v.num[F_X] = xyz[0];
-    v.num[F_Y] = xyz[1];
-    v.num[F_Z] = xyz[2];
-    v.num[F_RATE] = deposit ? s->job.rate : s->job.travel_rate;
+    v.num[LAM_TF_DX] = xyz[0] - s->pos[0];
+    v.num[LAM_TF_DY] = xyz[1] - s->pos[1];
+    v.num[LAM_TF_DZ] = xyz[2] - s->pos[2];
+    v.num[LAM_TF_X] = xyz[0];
+    v.num[LAM_TF_Y] = xyz[1];
+    v.num[LAM_TF_Z] = xyz[2];
+    v.num[LAM_TF_RATE] = deposit ? s->job.rate : s->job.travel_rate;
     double rel[3];
     int has_rel[3] = { 0, 0, 0 };
     int rc = emit(s, c, &v, rel, has_rel);
@@ -181,12 +181,12 @@ static int block_start(dsink *s, lam_tvals *v, double id, double power, double s
         s->sep_at = at;
         s->sep_len = s->b.len - at;
     }
-    v->num[F_INDEX] = (double)index;
-    v->num[F_ID] = id;
-    v->num[F_POWER] = power;
-    v->num[F_SPEED] = speed;
-    v->num[F_POINT_DISTANCE] = point_distance;
-    v->num[F_EXPOSURE_TIME] = exposure_time;
+    v->num[LAM_TF_INDEX] = (double)index;
+    v->num[LAM_TF_ID] = id;
+    v->num[LAM_TF_POWER] = power;
+    v->num[LAM_TF_SPEED] = speed;
+    v->num[LAM_TF_POINT_DISTANCE] = point_distance;
+    v->num[LAM_TF_EXPOSURE_TIME] = exposure_time;
     return rc;
 }
 
@@ -199,11 +199,11 @@ static int d_contour(void *ctx, const lam_contour_info *ci)
     if (rc) return rc;
     int close = d->close_polylines && ci->n > 0;
     size_t written = ci->n + (close ? 1 : 0);
-    v.num[F_DIR] = ci->solid ? 1 : 0;
-    v.text[F_KIND] = ci->solid ? "solid" : "hole";
-    v.num[F_DEPTH] = ci->depth;
-    v.num[F_N] = (double)written;
-    v.num[F_Z] = ci->z;
+    v.num[LAM_TF_DIR] = ci->solid ? 1 : 0;
+    v.text[LAM_TF_KIND] = ci->solid ? "solid" : "hole";
+    v.num[LAM_TF_DEPTH] = ci->depth;
+    v.num[LAM_TF_N] = (double)written;
+    v.num[LAM_TF_Z] = ci->z;
     if (ci->uv) {
         v.uv = ci->uv;
         v.uv_stride = 2;
@@ -220,10 +220,10 @@ static int d_contour(void *ctx, const lam_contour_info *ci)
         memset(&pv, 0, sizeof pv);
         for (size_t k = 0; k < written && !rc; k++) {
             const double *p = ci->xyz + 3 * (k % ci->n);
-            pv.num[F_X] = p[0];
-            pv.num[F_Y] = p[1];
-            pv.num[F_Z] = p[2];
-            pv.num[F_I] = (double)k;
+            pv.num[LAM_TF_X] = p[0];
+            pv.num[LAM_TF_Y] = p[1];
+            pv.num[LAM_TF_Z] = p[2];
+            pv.num[LAM_TF_I] = (double)k;
             rc = emit(s, LAM_CMD_VERTEX, &pv, NULL, NULL);
         }
         if (rc) return rc;
@@ -240,10 +240,10 @@ static int d_hatches(void *ctx, const lam_hatch_info *h)
     lam_tvals v;
     int rc = block_start(s, &v, (double)h->id, h->power, h->speed, h->point_distance, h->exposure_time);
     if (rc) return rc;
-    v.text[F_KIND] = h->kind;
-    v.num[F_N] = (double)h->n;
-    v.num[F_Z] = h->z;
-    v.num[F_ANGLE] = h->angle;
+    v.text[LAM_TF_KIND] = h->kind;
+    v.num[LAM_TF_N] = (double)h->n;
+    v.num[LAM_TF_Z] = h->z;
+    v.num[LAM_TF_ANGLE] = h->angle;
     if (h->uv) {
         v.uv = h->uv;
         v.uv_stride = 2;
@@ -256,12 +256,12 @@ static int d_hatches(void *ctx, const lam_hatch_info *h)
     if (d->cmd[LAM_CMD_HATCH].present) {
         lam_tvals pv;
         memset(&pv, 0, sizeof pv);
-        pv.num[F_POWER] = h->power;
-        pv.num[F_SPEED] = h->speed;
+        pv.num[LAM_TF_POWER] = h->power;
+        pv.num[LAM_TF_SPEED] = h->speed;
         for (size_t k = 0; k < h->n && !rc; k++) {
             const double *p = h->xyz + 6 * k;
-            for (int j = 0; j < 3; j++) pv.num[F_X0 + j] = p[j], pv.num[F_X1 + j] = p[3 + j];
-            pv.num[F_I] = (double)k;
+            for (int j = 0; j < 3; j++) pv.num[LAM_TF_X0 + j] = p[j], pv.num[LAM_TF_X1 + j] = p[3 + j];
+            pv.num[LAM_TF_I] = (double)k;
             rc = emit(s, LAM_CMD_HATCH, &pv, NULL, NULL);
         }
         if (rc) return rc;
@@ -326,7 +326,7 @@ static int relative_moves(const lam_dialect *d)
     for (int m = 0; m < 2; m++) {
         const lam_template *t = &d->cmd[moves[m]];
         for (size_t i = 0; t->present && i < t->nsegs; i++)
-            if (t->segs[i].field == F_DX || t->segs[i].field == F_DY || t->segs[i].field == F_DZ) return 1;
+            if (t->segs[i].field == LAM_TF_DX || t->segs[i].field == LAM_TF_DY || t->segs[i].field == LAM_TF_DZ) return 1;
     }
     return 0;
 }
