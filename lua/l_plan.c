@@ -4,9 +4,7 @@
  * planned as they are, through the core planners of the machine's process
  * (lam_plan_ladrp_layer / lam_plan_sls_layer) into the machine's writer:
  * its dialect templates, or a plugin writer (`writer:` in the profile). The
- * job header mirrors lam_plan_run: bounding box of the model (or of the run
- * in the layer frame for `frame: machine`), the stage starting at the model
- * origin in the plane of the first layer planned. The program is kept in
+ * job header is lam_plan_run's (lam_job_init: plan_job below). The program is kept in
  * memory: plan:text() returns it, plan:write(path) writes it atomically.
  * The option `threads` plans on worker threads (core/plan/plan_layers.c); only
  * the calling thread touches Lua and the writer. */
@@ -184,6 +182,15 @@ static void planned(void *ctx, size_t i, const lam_ladrp_stats *ls, const lam_sc
     }
 }
 
+/* The job header (lam_job_init, as lam_plan_run's): the box of the model,
+ * or of the run in the layer frame for `frame: machine`; the stage starts
+ * at the model origin in the plane of the first layer planned. */
+static void plan_job(lam_job_info *job, const lam_plan_opts *o, const lrun *run, const lam_layer **ls, size_t n)
+{
+    const double uvw[6] = { run->uvbox[0], run->uvbox[1], run->wmin, run->uvbox[2], run->uvbox[3], run->wmax };
+    lam_job_init(job, o, n, o->frame_machine ? uvw : run->bbox, ls[0]->cut, &run->frame, run->label, NULL);
+}
+
 /* machine:plan(layers [, opts]) -> plan | nil, message */
 int lam_lua_plan(lua_State *L)
 {
@@ -251,11 +258,9 @@ again:;
     lam_lua_plan_opts(&p, &o);
     o.max_output = (unsigned long long)max_output;
     /* the estimate in the writer's own bytes (planner.h) */
-    lam_job_info cj = { .name = o.name, .process = o.kind == LAM_PLAN_LADRP ? "ladrp" : "sls", .units = o.units,
-                        .layers = n, .bead = o.bead, .rate = o.rate, .travel_rate = o.travel_rate, .label = run->label,
-                        .frame = &run->frame };
-    memcpy(cj.bbox, run->bbox, sizeof cj.bbox);
-    lam_program_costs(&p, &cj, &o.costs, NULL);
+    lam_job_info job;
+    plan_job(&job, &o, run, ls, n);
+    lam_program_costs(&p, &job, &o.costs, NULL);
     lam_job_estimate est;
     estimate(ls, n, &o, &est);
     if (lam_plan_check_estimate(&est, &o, o.max_output, &j->err))
@@ -291,24 +296,6 @@ again:;
     j->have_sink = 1;
     lam_plan_data_sink(&j->rec, &j->sink, &run->frame, o.frame_machine, &j->err, &j->tee);
 
-    lam_job_info job;
-    memset(&job, 0, sizeof job);
-    job.name = o.name;
-    job.process = o.kind == LAM_PLAN_LADRP ? "ladrp" : "sls";
-    job.units = o.units;
-    job.layers = n;
-    job.bead = o.bead;
-    job.rate = o.rate;
-    job.travel_rate = o.travel_rate;
-    job.label = run->label;
-    if (o.frame_machine) {
-        const double bb[6] = { run->uvbox[0], run->uvbox[1], run->wmin, run->uvbox[2], run->uvbox[3], run->wmax };
-        memcpy(job.bbox, bb, sizeof bb);
-        job.origin[2] = ls[0]->cut;
-    } else {
-        memcpy(job.bbox, run->bbox, sizeof job.bbox);
-        lam_frame_to_model(&run->frame, 0, 0, ls[0]->cut, job.origin);
-    }
     const lam_sink *s = &j->tee;
     rc = s->begin ? s->begin(s->ctx, &job) : LAM_OK;
     lam_plan_layers_job lj;

@@ -84,30 +84,38 @@ static void job_bbox(const lam_slicer *s, const lam_model *m, const lam_plan_opt
     bb[5] = planes[lam_slicer_count(s)];
 }
 
-void lam_plan_job(const lam_slicer *s, const lam_model *m, const lam_plan_opts *o, lam_job_info *job,
-                  char label[128])
+void lam_job_init(lam_job_info *job, const lam_plan_opts *o, size_t layers, const double bbox[6], double cut0,
+                  const lam_frame *f, const char *label, const char *model)
 {
-    const lam_frame *f = lam_slicer_frame(s);
     memset(job, 0, sizeof *job);
     job->name = o->name;
     job->process = o->kind == LAM_PLAN_LADRP ? "ladrp" : "sls";
     job->units = o->units;
-    job->layers = lam_slicer_count(s);
+    job->layers = layers;
     job->bead = o->bead;
     job->rate = o->rate;
     job->travel_rate = o->travel_rate;
-    job_bbox(s, m, o, job->bbox);
-    lam_job_label(m ? m->path : NULL, label, 128);
+    memcpy(job->bbox, bbox, sizeof job->bbox);
     job->label = label;
-    job->model = m ? m->path : NULL;
+    job->model = model;
     job->frame = f;
     job->frame_machine = o->frame_machine;
     /* the stage starts at the model origin of the first layer's plane */
-    double cut0 = job->layers ? lam_slicer_cut(s, 0) : 0;
     if (o->frame_machine) {
         job->origin[0] = job->origin[1] = 0;
         job->origin[2] = cut0;
     } else {
         lam_frame_to_model(f, 0, 0, cut0, job->origin);
     }
+}
+
+void lam_plan_job(const lam_slicer *s, const lam_model *m, const lam_plan_opts *o, lam_job_info *job,
+                  char label[128])
+{
+    double bb[6];
+    job_bbox(s, m, o, bb);
+    lam_job_label(m ? m->path : NULL, label, 128);
+    size_t layers = lam_slicer_count(s);
+    lam_job_init(job, o, layers, bb, layers ? lam_slicer_cut(s, 0) : 0, lam_slicer_frame(s), label,
+                 m ? m->path : NULL);
 }
