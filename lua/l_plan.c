@@ -15,7 +15,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "dialect.h"
 #include "plugin.h"
 #include "plan_data.h"
 #include "plan_layers.h"
@@ -289,9 +288,7 @@ again:;
     unsigned long long limit = o.max_output ? o.max_output : LAM_DEFAULT_MAX_OUTPUT;
     /* the sandbox's room (see stop), if less; at least 1 (0 is no limit) */
     lam_writer_set_limit(j->w, room / 2 < limit ? (room / 2 ? room / 2 : 1) : limit);
-    int text = !p.writer || strcmp(p.writer, "text") == 0;
-    int rc = text ? lam_dialect_sink(&p.dialect, j->w, &j->sink, &j->err)
-                  : lam_plugin_writer_sink(p.writer, j->w, &j->sink, &j->err);
+    int rc = lam_program_sink(p.writer, &p.dialect, j->w, &j->sink, &j->err);
     if (rc) return lam_lua_fail(L, &j->err);
     j->have_sink = 1;
     lam_plan_data_sink(&j->rec, &j->sink, &run->frame, o.frame_machine, &j->err, &j->tee);
@@ -343,7 +340,7 @@ again:;
     if (fit) pl->data = fit;
     pl->lines = count_lines(pl->data, pl->len);
     pl->layers = n;
-    pl->binary = !text;
+    pl->binary = !lam_program_text(p.writer);
     snprintf(pl->name, sizeof pl->name, "%s", p.name ? p.name : "");
     snprintf(pl->process, sizeof pl->process, "%s", job.process);
     pl->rec = malloc(sizeof *pl->rec);

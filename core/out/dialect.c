@@ -293,6 +293,8 @@ static void d_destroy(void *ctx)
     free(s);
 }
 
+static int d_fork(void *ctx, int moves, lam_sink_fork *out, lam_error *err);
+
 int lam_dialect_sink(const lam_dialect *d, lam_writer *w, lam_sink *out, lam_error *err)
 {
     memset(out, 0, sizeof *out);
@@ -312,6 +314,7 @@ int lam_dialect_sink(const lam_dialect *d, lam_writer *w, lam_sink *out, lam_err
     out->hatches = d_hatches;
     out->end = d_end;
     out->destroy = d_destroy;
+    out->fork = d_fork;
     return LAM_OK;
 }
 
@@ -331,11 +334,10 @@ static int relative_moves(const lam_dialect *d)
     return 0;
 }
 
-int lam_dialect_fork(const lam_sink *main, int moves, lam_sink *out, lam_error *err)
+/* A worker's sink formatting layers like m's (lam_dialect_fork). */
+static int fork_of(const dsink *m, int moves, lam_sink *out, lam_error *err)
 {
     memset(out, 0, sizeof *out);
-    if (!main || main->begin != d_begin) return LAM_EUSAGE;
-    const dsink *m = main->ctx;
     if (moves && relative_moves(m->d)) return LAM_EUSAGE;
     dsink *s = calloc(1, sizeof *s);
     if (!s) return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory");
@@ -361,9 +363,9 @@ int lam_dialect_fork(const lam_sink *main, int moves, lam_sink *out, lam_error *
     return LAM_OK;
 }
 
-void lam_dialect_fork_start(const lam_sink *worker, lam_error *err)
+static void fork_start(void *ctx, lam_error *err)
 {
-    dsink *s = worker->ctx;
+    dsink *s = ctx;
     s->err = err;
     s->b.len = 0;
     s->b.oom = 0;
@@ -372,9 +374,9 @@ void lam_dialect_fork_start(const lam_sink *worker, lam_error *err)
     s->sep_at = s->sep_len = s->layer_blocks = 0;
 }
 
-void lam_dialect_fork_take(const lam_sink *worker, lam_dialect_text *t)
+static void fork_take(void *ctx, lam_layer_text *t)
 {
-    dsink *s = worker->ctx;
+    dsink *s = ctx;
     char *keep = t->s;
     size_t keep_cap = t->cap;
     t->s = s->b.s;
@@ -390,9 +392,9 @@ void lam_dialect_fork_take(const lam_sink *worker, lam_dialect_text *t)
     s->b.len = 0;
 }
 
-int lam_dialect_put(const lam_sink *main, const lam_dialect_text *t)
+static int fork_put(void *ctx, const lam_layer_text *t)
 {
-    dsink *s = main->ctx;
+    dsink *s = ctx;
     if (t->has_sep && s->blocks == 0) {
         /* the first block of the program: no separator before it */
         lam_tbuf_put(&s->b, t->s, t->sep_at);
@@ -403,6 +405,41 @@ int lam_dialect_put(const lam_sink *main, const lam_dialect_text *t)
     s->blocks += t->blocks;
     if (s->b.oom) return lam_error_set(s->err, LAM_ENOMEM, NULL, 0, 0, "out of memory writing a layer");
     return t->complete && s->b.len >= FLUSH_AT ? flush(s) : LAM_OK;
+}
+
+/* The sink's fork member (plan.h). */
+static int d_fork(void *ctx, int moves, lam_sink_fork *out, lam_error *err)
+{
+    memset(out, 0, sizeof *out);
+    int rc = fork_of(ctx, moves, &out->sink, err);
+    if (rc) return rc;
+    out->start = fork_start;
+    out->take = fork_take;
+    out->put = fork_put;
+    out->main = ctx;
+    return LAM_OK;
+}
+
+int lam_dialect_fork(const lam_sink *main, int moves, lam_sink *out, lam_error *err)
+{
+    memset(out, 0, sizeof *out);
+    if (!main || main->begin != d_begin) return LAM_EUSAGE;
+    return fork_of(main->ctx, moves, out, err);
+}
+
+void lam_dialect_fork_start(const lam_sink *worker, lam_error *err)
+{
+    fork_start(worker->ctx, err);
+}
+
+void lam_dialect_fork_take(const lam_sink *worker, lam_dialect_text *t)
+{
+    fork_take(worker->ctx, t);
+}
+
+int lam_dialect_put(const lam_sink *main, const lam_dialect_text *t)
+{
+    return fork_put(main->ctx, t);
 }
 
 void lam_dialect_text_free(lam_dialect_text *t)

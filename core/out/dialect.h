@@ -77,16 +77,9 @@ int lam_dialect_sink(const lam_dialect *d, lam_writer *w, lam_sink *out, lam_err
 /* Layer text formatted by worker threads (issue 15): a worker formats a
  * whole layer (layer, its operations, layer_end) into its own buffer and
  * the writer thread appends the buffers in layer order with
- * lam_dialect_put; the bytes are those the sink writes on one thread. */
-typedef struct lam_dialect_text {
-    char *s;                 /* the text (owned; lam_dialect_text_free) */
-    size_t len, cap;
-    int complete;            /* the layer's layer_end was formatted */
-    int has_sep;             /* the first separator of the layer is s[sep_at .. +sep_len) */
-    size_t sep_at, sep_len;
-    size_t blocks;           /* contour and hatch blocks in it */
-    size_t layer;            /* the layer's index (plugin writers, plugin.h) */
-} lam_dialect_text;
+ * lam_dialect_put; the bytes are those the sink writes on one thread. The
+ * sink's fork member (plan.h) is these functions; they stay for tests. */
+typedef lam_layer_text lam_dialect_text; /* plan.h */
 
 /* A worker's sink formatting layers like `main`, a lam_dialect_sink after
  * its begin (its job strings are shared: main must outlive it). Returns

@@ -4,7 +4,7 @@
  * Workers make and plan whole layers, each into a recording
  * (plan_record.h) or, for a sink that can fork (lam_sink.fork: a text
  * dialect whose text does not hang on the moves before, a plugin writer
- * that allows it), straight into that layer's bytes; the calling thread
+ * that allows it, a tee of one of them), straight into that layer's bytes; the calling thread
  * hands each layer to the callbacks and replays its recording onto the
  * real sink or appends its bytes, strictly in layer order, so every sink
  * writes exactly what a run on one thread writes.
@@ -20,9 +20,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "dialect.h"
 #include "plan_record.h"
-#include "plugin.h"
 #include "pool.h"
 
 typedef struct result {
@@ -31,7 +29,7 @@ typedef struct result {
     int slice_rc, plan_rc;
     lam_error slice_err, plan_err;
     lam_record ops;          /* what planning it sent to the sink */
-    lam_dialect_text text;   /* or, for a sink that forks, the layer's bytes */
+    lam_layer_text text;     /* or, for a sink that forks, the layer's bytes */
     int has_text;
     double entry[3], exit[3];/* LADRP: the stage before and after, as the worker had it */
     int entry_laser, exit_laser;
@@ -45,10 +43,8 @@ typedef struct wstate {
     double exit[3];
     int exit_laser;
     lam_sls_state st;
-    lam_sink text;           /* formats layers for a sink that forks (run.text) */
+    lam_sink_fork text;      /* formats layers for a sink that forks (run.text) */
 } wstate;
-
-enum { TEXT_DIALECT = 1, TEXT_PLUGIN };
 
 typedef struct run {
     const lam_plan_source *src;
@@ -56,7 +52,7 @@ typedef struct run {
     lam_plan_opts wo;        /* the planners' options: the run's totals are the driver's */
     const lam_sink *sink;
     size_t skins, window, consumed;
-    int text;                /* workers format the layers' bytes: TEXT_DIALECT, TEXT_PLUGIN, or 0 */
+    int text;                /* workers format the layers' bytes (lam_sink.fork) */
     result *res;             /* task t's result at t % window */
     wstate *ws;
     /* the writer's side */
@@ -248,18 +244,6 @@ static int worker_plan(run *r, wstate *w, size_t i, int warm, const lam_layer *c
     return rc;
 }
 
-static void text_start(const run *r, const lam_sink *rs, lam_error *err)
-{
-    if (r->text == TEXT_PLUGIN) lam_plugin_fork_start(rs, err);
-    else lam_dialect_fork_start(rs, err);
-}
-
-static void text_take(const run *r, const lam_sink *rs, lam_dialect_text *t)
-{
-    if (r->text == TEXT_PLUGIN) lam_plugin_fork_take(rs, t);
-    else lam_dialect_fork_take(rs, t);
-}
-
 /* The writer gets the layer: the source's own, one it hands over, or a
  * copy (the skins of the next ones keep theirs). */
 static void keep_layer(run *r, unsigned worker, size_t i, const lam_layer *L, result *R)
@@ -300,16 +284,16 @@ static int produce(void *ctx, unsigned worker, size_t i)
     if (rc) return rc;
     /* a forked sink formats the layer here, whole; other sinks get the
      * recording replayed */
-    lam_sink rs = r->text ? w->text : lam_record_sink(&R->ops, r->sink);
+    lam_sink rs = r->text ? w->text.sink : lam_record_sink(&R->ops, r->sink);
     lam_layer_info li = info(near[i - lo]);
     R->has_text = r->text;
     if (r->text) {
-        text_start(r, &rs, &R->plan_err);
-        rc = rs.layer(rs.ctx, &li); /* out of memory: the error is in plan_err */
+        w->text.start(rs.ctx, &R->plan_err);
+        rc = rs.layer ? rs.layer(rs.ctx, &li) : LAM_OK; /* out of memory: the error is in plan_err */
     }
     if (!rc) rc = worker_plan(r, w, i, warm, near, lo, &rs, R);
-    if (!rc && r->text) rc = rs.layer_end(rs.ctx, &li);
-    if (r->text) text_take(r, &rs, &R->text);
+    if (!rc && r->text && rs.layer_end) rc = rs.layer_end(rs.ctx, &li);
+    if (r->text) w->text.take(rs.ctx, &R->text);
     if (rc && R->plan_err.code == LAM_OK) {
         if (R->ops.failed) lam_error_nomem(&R->plan_err, "planning a layer");
         else lam_error_set(&R->plan_err, rc, NULL, 0, 0, "planning failed");
@@ -353,7 +337,7 @@ static int write_layer(run *r, size_t i, result *R)
     if (text) {
         /* the layer's bytes as the worker formatted them: whole, or up to
          * the error planning it */
-        rc = R->has_text == TEXT_PLUGIN ? lam_plugin_put(sink, &R->text) : lam_dialect_put(sink, &R->text);
+        rc = r->ws[0].text.put(r->ws[0].text.main, &R->text);
     } else {
         rc = sink->layer ? sink->layer(sink->ctx, &li) : LAM_OK;
         if (!rc && same) {
@@ -393,21 +377,6 @@ static int consume(void *ctx, size_t i, int prc)
     return rc;
 }
 
-/* A worker's formatter for sink: a text dialect's or, for contours, a
- * plugin writer's that allows it (which, in *kind); LAM_EUSAGE when
- * neither can. */
-static int fork_text(const lam_sink *sink, int ladrp, lam_sink *out, int *kind, lam_error *err)
-{
-    int rc = lam_dialect_fork(sink, ladrp, out, err);
-    if (rc != LAM_EUSAGE) {
-        *kind = TEXT_DIALECT;
-        return rc;
-    }
-    if (ladrp) return LAM_EUSAGE;
-    *kind = TEXT_PLUGIN;
-    return lam_plugin_fork(sink, out, err);
-}
-
 /* The workers' state; sinks that fork format the layers' bytes on the
  * workers when every worker has its formatter (otherwise the recordings
  * are replayed: the same bytes). */
@@ -415,10 +384,10 @@ static int setup(run *r, unsigned threads)
 {
     int rc = LAM_OK;
     for (unsigned k = 0; k < threads; k++) lam_sls_state_init(&r->ws[k].st);
-    r->text = 1;
+    r->text = r->sink->fork != NULL;
     for (unsigned k = 0; k < threads && r->text; k++) {
-        int kind = 0, frc = fork_text(r->sink, r->o->kind == LAM_PLAN_LADRP, &r->ws[k].text, &kind, r->err);
-        r->text = frc ? 0 : kind;
+        int frc = r->sink->fork(r->sink->ctx, r->o->kind == LAM_PLAN_LADRP, &r->ws[k].text, r->err);
+        r->text = !frc;
         if (frc == LAM_ENOMEM) rc = frc;
     }
     return rc;
@@ -428,12 +397,12 @@ static void teardown(run *r, unsigned threads)
 {
     for (unsigned k = 0; r->ws && k < threads; k++) {
         lam_sls_state_free(&r->ws[k].st);
-        if (r->ws[k].text.destroy) r->ws[k].text.destroy(r->ws[k].text.ctx);
+        if (r->ws[k].text.sink.destroy) r->ws[k].text.sink.destroy(r->ws[k].text.sink.ctx);
     }
     for (size_t t = 0; r->res && t < r->window; t++) {
         lam_layer_free(r->res[t].owned);
         lam_record_free(&r->res[t].ops);
-        lam_dialect_text_free(&r->res[t].text);
+        free(r->res[t].text.s);
     }
     free(r->res);
     free(r->ws);
