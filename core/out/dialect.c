@@ -328,8 +328,10 @@ static int relative_moves(const lam_dialect *d)
     const lam_cmd moves[2] = { LAM_CMD_TRAVEL, LAM_CMD_DEPOSIT };
     for (int m = 0; m < 2; m++) {
         const lam_template *t = &d->cmd[moves[m]];
-        for (size_t i = 0; t->present && i < t->nsegs; i++)
-            if (t->segs[i].field == LAM_TF_DX || t->segs[i].field == LAM_TF_DY || t->segs[i].field == LAM_TF_DZ) return 1;
+        for (size_t i = 0; t->present && i < t->nsegs; i++) {
+            int f = t->segs[i].field;
+            if (f == LAM_TF_DX || f == LAM_TF_DY || f == LAM_TF_DZ) return 1;
+        }
     }
     return 0;
 }

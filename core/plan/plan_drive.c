@@ -226,7 +226,8 @@ static void entry_stage(const run *r, const wstate *w, size_t i, int warm, const
 static int worker_plan(run *r, wstate *w, size_t i, int warm, const lam_layer *const *near, size_t lo,
                        const lam_sink *rs, result *R)
 {
-    if (r->o->kind != LAM_PLAN_LADRP) return plan_one(r, i, near, lo, rs, NULL, NULL, &w->st, &R->stats, &R->time, &R->plan_err);
+    if (r->o->kind != LAM_PLAN_LADRP)
+        return plan_one(r, i, near, lo, rs, NULL, NULL, &w->st, &R->stats, &R->time, &R->plan_err);
     double pos[3];
     int laser;
     entry_stage(r, w, i, warm, near, pos, &laser);
