@@ -6,7 +6,7 @@
  * its dialect templates, or a plugin writer (`writer:` in the profile). The
  * job header is lam_plan_run's (lam_job_init: plan_job below). The program is kept in
  * memory: plan:text() returns it, plan:write(path) writes it atomically.
- * The option `threads` plans on worker threads (core/plan/plan_layers.c); only
+ * The option `threads` plans on worker threads (core/plan/plan_drive.c); only
  * the calling thread touches Lua and the writer. */
 #include "l_common.h"
 
