@@ -51,6 +51,7 @@
 #include "writer.h"
 #include "plan.h"
 #include "hatch.h"
+#include "dialect_template.h"
 #include "dialect.h"
 #include "profile.h"
 #include "profile_keys.h"
