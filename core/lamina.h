@@ -52,6 +52,7 @@
 #include "vocab.h"
 #include "plan.h"
 #include "hatch.h"
+#include "dialect_template.h"
 #include "dialect.h"
 #include "profile.h"
 #include "profile_keys.h"

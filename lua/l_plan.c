@@ -4,11 +4,9 @@
  * planned as they are, through the core planners of the machine's process
  * (lam_plan_ladrp_layer / lam_plan_sls_layer) into the machine's writer:
  * its dialect templates, or a plugin writer (`writer:` in the profile). The
- * job header mirrors lam_plan_run: bounding box of the model (or of the run
- * in the layer frame for `frame: machine`), the stage starting at the model
- * origin in the plane of the first layer planned. The program is kept in
+ * job header is lam_plan_run's (lam_job_init: plan_job below). The program is kept in
  * memory: plan:text() returns it, plan:write(path) writes it atomically.
- * The option `threads` plans on worker threads (core/plan/plan_layers.c); only
+ * The option `threads` plans on worker threads (core/plan/plan_drive.c); only
  * the calling thread touches Lua and the writer. */
 #include "l_common.h"
 
@@ -17,7 +15,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "dialect.h"
 #include "plugin.h"
 #include "tee.h"
 #include "views.h"
@@ -197,57 +194,69 @@ static void planned(void *ctx, size_t i, const lam_ladrp_stats *ls, const lam_sc
     }
 }
 
-/* machine:plan(layers [, opts]) -> plan | nil, message */
-int lam_lua_plan(lua_State *L)
+/* The job header (lam_job_init, as lam_plan_run's): the box of the model,
+ * or of the run in the layer frame for `frame: machine`; the stage starts
+ * at the model origin in the plane of the first layer planned. */
+static void plan_job(lam_job_info *job, const lam_plan_opts *o, const lrun *run, const lam_layer **ls, size_t n)
 {
-    lam_lua_checkmachine(L, 1);
-    luaL_checktype(L, 2, LUA_TTABLE);
+    const double uvw[6] = { run->uvbox[0], run->uvbox[1], run->wmin, run->uvbox[2], run->uvbox[3], run->wmax };
+    lam_job_init(job, o, n, o->frame_machine ? uvw : run->bbox, ls[0]->cut, &run->frame, run->label, NULL);
+}
+
+/* What machine:plan's options (argument 3) say, read before any pointer
+ * is kept: they may run metamethods and the recipe's functions. */
+typedef struct planargs {
     lam_lua_overrides ovr;
-    memset(&ovr, 0, sizeof ovr);
-    double max_output = 0, nthreads = 0;
-    unsigned threads = lam_lua_threads(L); /* the script's default (lamina.threads()) */
+    double max_output;
+    unsigned threads;
+    lhatchctl *ctl;
+} planargs;
+
+/* Read the options into a (the recipe's hatcher at 4, or nil); the
+ * recipe's error, if it fails, or NULL. */
+static const lam_error *read_args(lua_State *L, planargs *a)
+{
+    memset(a, 0, sizeof *a);
+    double nthreads = 0;
+    a->threads = lam_lua_threads(L); /* the script's default (lamina.threads()) */
     lua_settop(L, 3);
-    lhatchctl *ctl = NULL;
     if (!lua_isnoneornil(L, 3)) {
         luaL_checktype(L, 3, LUA_TTABLE);
-        ctl = lam_lua_hatch_split(L, 3); /* at 4 (or nil) */
+        a->ctl = lam_lua_hatch_split(L, 3); /* at 4 (or nil) */
         static const char *const own[] = { "max_output", "threads", NULL }; /* read here, not profile keys */
-        lam_lua_read_overrides(L, 3, 3, LAM_KEY_PLAN, own, &ovr); /* may run metamethods: before any pointer */
-        lam_lua_check_readers(L, 3, &ovr, &lam_lua_checkmachine(L, 1)->p);
-        if (lam_lua_numfield(L, 3, 3, "max_output", &max_output) && !(max_output >= 1 && max_output < 1.8e19))
-            lam_lua_opterror(L, 3, "max_output must be a number of bytes >= 1, got %.14g", max_output);
+        lam_lua_read_overrides(L, 3, 3, LAM_KEY_PLAN, own, &a->ovr); /* may run metamethods: before any pointer */
+        lam_lua_check_readers(L, 3, &a->ovr, &lam_lua_checkmachine(L, 1)->p);
+        if (lam_lua_numfield(L, 3, 3, "max_output", &a->max_output) && !(a->max_output >= 1 && a->max_output < 1.8e19))
+            lam_lua_opterror(L, 3, "max_output must be a number of bytes >= 1, got %.14g", a->max_output);
         if (lam_lua_numfield(L, 3, 3, "threads", &nthreads)) {
             if (!(nthreads >= 0 && nthreads <= LAM_MAX_THREADS && nthreads == floor(nthreads)))
                 lam_lua_opterror(L, 3, "threads must be a whole number from 0 to %d (0: the online cores), got %.14g",
                                  LAM_MAX_THREADS, nthreads);
-            threads = nthreads == 0 ? lam_online_cores() : (unsigned)nthreads;
+            a->threads = nthreads == 0 ? lam_online_cores() : (unsigned)nthreads;
         }
     } else {
         lua_pushnil(L);
     }
-    if (ctl) {
-        /* the recipe's functions run now, before any pointer is kept */
-        lam_profile base = lam_lua_checkmachine(L, 1)->p;
-        lam_lua_apply_overrides(&ovr, &base);
-        const lam_error *e = lam_lua_hatch_prepare(L, ctl, 2, &base);
-        if (e) return lam_lua_fail(L, e);
-    }
-    lua_settop(L, 4);
-    int collected = 0;
-again:;
-    lua_Unsigned nl = lua_rawlen(L, 2);
-    if (nl == 0) luaL_argerror(L, 2, "no layers to plan (an empty table)");
-    if (nl > SIZE_MAX / sizeof(void *)) luaL_argerror(L, 2, "too many layers");
-    size_t n = (size_t)nl;
-    /* Everything Lua is allocated first: after this, until the program is
-     * complete, no call can run the collector (and a finalizer with it), so
-     * the pointers into the machine and the layers stay good. */
-    const lam_layer **ls = lua_newuserdatauv(L, n * sizeof *ls, 0);
-    lplan *pl = lua_newuserdatauv(L, sizeof *pl, 0);
-    memset(pl, 0, sizeof *pl);
-    pl->tag = LAM_TAG_PLAN;
+    if (!a->ctl) return NULL;
+    /* the recipe's functions run now, before any pointer is kept */
+    lam_profile base = lam_lua_checkmachine(L, 1)->p;
+    lam_lua_apply_overrides(&a->ovr, &base);
+    return lam_lua_hatch_prepare(L, a->ctl, 2, &base);
+}
+
+/* The plan (at *plan on the stack) and the job that makes it, with room
+ * for n layer pointers (*ls). Everything Lua is allocated here: after
+ * this, until the program is complete, no call can run the collector (and
+ * a finalizer with it), so the pointers into the machine and the layers
+ * stay good. */
+static planjob *new_job(lua_State *L, size_t n, const lam_layer ***ls, lplan **pl, int *plan)
+{
+    *ls = lua_newuserdatauv(L, n * sizeof **ls, 0);
+    *pl = lua_newuserdatauv(L, sizeof **pl, 0);
+    memset(*pl, 0, sizeof **pl);
+    (*pl)->tag = LAM_TAG_PLAN;
     luaL_setmetatable(L, LAM_PLAN);
-    int plan = lua_gettop(L);
+    *plan = lua_gettop(L);
     planjob *j = lua_newuserdatauv(L, sizeof *j, 0);
     memset(j, 0, sizeof *j);
     j->tag = LAM_TAG_PLANJOB;
@@ -256,19 +265,94 @@ again:;
         lua_setfield(L, -2, "__gc");
     }
     lua_setmetatable(L, -2);
+    return j;
+}
 
+/* Plan the layers into the job's writer (at most limit bytes) through the
+ * machine's sink and the plan's record: begin, the layers (the planning
+ * driver, lam_plan_layers). Returns LAM_OK or an error (j->err). */
+static int plan_into(planjob *j, planctx *pc, const lam_plan_opts *o, const lam_job_info *job, const lrun *run,
+                     const lam_layer **ls, size_t n, unsigned long long limit)
+{
+    if (lam_writer_memory(&j->w, &j->err)) return j->err.code;
+    lam_writer_set_limit(j->w, limit);
+    int rc = lam_program_sink(pc->p->writer, &pc->p->dialect, j->w, &j->sink, &j->err);
+    if (rc) return rc;
+    j->have_sink = 1;
+    if ((rc = plan_data_tee(j))) return rc;
+    const lam_sink *s = &j->tee;
+    rc = s->begin ? s->begin(s->ctx, job) : LAM_OK;
+    lam_plan_layers_job lj;
+    memset(&lj, 0, sizeof lj);
+    lj.layers = ls;
+    lj.n = n;
+    lj.frame = &run->frame;
+    lj.o = o;
+    memcpy(lj.origin, job->origin, sizeof lj.origin);
+    if (pc->ctl) {
+        lj.layer_opts = layer_opts;
+        lj.given = given;
+    }
+    lj.stop = stop;
+    lj.planned = planned;
+    lj.ctx = pc;
+    return rc ? rc : lam_plan_layers(&lj, s, &j->err);
+}
+
+/* The program made: into the plan (at `plan`), which owns it and the
+ * record from now on. Returns lua's result count. */
+static int plan_done(lua_State *L, planjob *j, lplan *pl, int plan, const lam_profile *p, size_t n,
+                     const char *process)
+{
+    int rc = lam_writer_take(j->w, &pl->data, &pl->len, &j->err);
+    j->w = NULL;
+    if (rc) return lam_lua_fail(L, &j->err);
+    char *fit = realloc(pl->data, pl->len + 1); /* the buffer grew by doubling: give back its slack */
+    if (fit) pl->data = fit;
+    pl->lines = count_lines(pl->data, pl->len);
+    pl->layers = n;
+    pl->binary = !lam_program_text(p->writer);
+    snprintf(pl->name, sizeof pl->name, "%s", p->name ? p->name : "");
+    snprintf(pl->process, sizeof pl->process, "%s", process);
+    pl->rec = malloc(sizeof *pl->rec);
+    if (!pl->rec) return luaL_error(L, "out of memory");
+    *pl->rec = j->rec; /* the plan owns the record now */
+    memset(&j->rec, 0, sizeof j->rec);
+    lua_settop(L, plan);
+    size_t bytes = plan_bytes(pl->len, n, pl->rec);
+    if (!lam_lua_charge(L, &pl->charged, bytes))
+        return lam_lua_memory_raise(L, "machine:plan: the plan takes %zu bytes", bytes); /* p_gc frees it */
+    return 1;
+}
+
+/* machine:plan(layers [, opts]) -> plan | nil, message */
+int lam_lua_plan(lua_State *L)
+{
+    lam_lua_checkmachine(L, 1);
+    luaL_checktype(L, 2, LUA_TTABLE);
+    planargs a;
+    const lam_error *e = read_args(L, &a);
+    if (e) return lam_lua_fail(L, e);
+    lua_settop(L, 4);
+    int collected = 0;
+again:;
+    lua_Unsigned nl = lua_rawlen(L, 2);
+    if (nl == 0) luaL_argerror(L, 2, "no layers to plan (an empty table)");
+    if (nl > SIZE_MAX / sizeof(void *)) luaL_argerror(L, 2, "too many layers");
+    size_t n = (size_t)nl;
+    const lam_layer **ls;
+    lplan *pl;
+    int plan;
+    planjob *j = new_job(L, n, &ls, &pl, &plan);
     lam_profile p = lam_lua_checkmachine(L, 1)->p;
-    lam_lua_apply_overrides(&ovr, &p);
+    lam_lua_apply_overrides(&a.ovr, &p);
     const lrun *run = check_layers(L, ls, n);
     lam_plan_opts o;
     lam_lua_plan_opts(&p, &o);
-    o.max_output = (unsigned long long)max_output;
-    /* the estimate in the writer's own bytes (planner.h) */
-    lam_job_info cj = { .name = o.name, .process = o.kind == LAM_PLAN_LADRP ? "ladrp" : "sls", .units = o.units,
-                        .layers = n, .bead = o.bead, .rate = o.rate, .travel_rate = o.travel_rate, .label = run->label,
-                        .frame = &run->frame };
-    memcpy(cj.bbox, run->bbox, sizeof cj.bbox);
-    lam_program_costs(&p, &cj, &o.costs, NULL);
+    o.max_output = (unsigned long long)a.max_output;
+    lam_job_info job;
+    plan_job(&job, &o, run, ls, n);
+    lam_program_costs(&p, &job, &o.costs, NULL); /* the estimate in the writer's own bytes (planner.h) */
     lam_job_estimate est;
     estimate(ls, n, &o, &est);
     if (lam_plan_check_estimate(&est, &o, o.max_output, &j->err))
@@ -276,7 +360,7 @@ again:;
     /* a worker holds a layer's operations until it is written: layers
      * estimated beyond LAM_THREAD_LAYER_MAX are planned on this thread, as
      * lam_plan_run does */
-    o.threads = est.layers && est.bytes / (double)est.layers > LAM_THREAD_LAYER_MAX ? 1 : threads;
+    o.threads = est.layers && est.bytes / (double)est.layers > LAM_THREAD_LAYER_MAX ? 1 : a.threads;
     size_t room = lam_lua_mem_room(L);
     if (!sandbox_fit(&est, room, &o.threads)) {
         if (collected)
@@ -290,63 +374,17 @@ again:;
         collected = 1;
         goto again;
     }
-
     lam_error_clear(&j->err);
     if (!(pl->layer_time = calloc(n, sizeof *pl->layer_time))) return luaL_error(L, "out of memory");
-    if (lam_writer_memory(&j->w, &j->err)) return lam_lua_fail(L, &j->err);
     unsigned long long limit = o.max_output ? o.max_output : LAM_DEFAULT_MAX_OUTPUT;
+    planctx pc = { L, pl, j, a.ctl, &p, 0, n, room, 0 };
     /* the sandbox's room (see stop), if less; at least 1 (0 is no limit) */
-    lam_writer_set_limit(j->w, room / 2 < limit ? (room / 2 ? room / 2 : 1) : limit);
-    int text = !p.writer || strcmp(p.writer, "text") == 0;
-    int rc = text ? lam_dialect_sink(&p.dialect, j->w, &j->sink, &j->err)
-                  : lam_plugin_writer_sink(p.writer, j->w, &j->sink, &j->err);
-    if (rc) return lam_lua_fail(L, &j->err);
-    j->have_sink = 1;
-    if ((rc = plan_data_tee(j))) return lam_lua_fail(L, &j->err);
-
-    lam_job_info job;
-    memset(&job, 0, sizeof job);
-    job.name = o.name;
-    job.process = o.kind == LAM_PLAN_LADRP ? "ladrp" : "sls";
-    job.units = o.units;
-    job.layers = n;
-    job.bead = o.bead;
-    job.rate = o.rate;
-    job.travel_rate = o.travel_rate;
-    job.label = run->label;
-    job.frame = &run->frame;
-    job.frame_machine = o.frame_machine;
-    if (o.frame_machine) {
-        const double bb[6] = { run->uvbox[0], run->uvbox[1], run->wmin, run->uvbox[2], run->uvbox[3], run->wmax };
-        memcpy(job.bbox, bb, sizeof bb);
-        job.origin[2] = ls[0]->cut;
-    } else {
-        memcpy(job.bbox, run->bbox, sizeof job.bbox);
-        lam_frame_to_model(&run->frame, 0, 0, ls[0]->cut, job.origin);
-    }
-    const lam_sink *s = &j->tee;
-    rc = s->begin ? s->begin(s->ctx, &job) : LAM_OK;
-    lam_plan_layers_job lj;
-    memset(&lj, 0, sizeof lj);
-    lj.layers = ls;
-    lj.n = n;
-    lj.frame = &run->frame;
-    lj.o = &o;
-    memcpy(lj.origin, job.origin, sizeof lj.origin);
-    planctx pc = { L, pl, j, ctl, &p, 0, n, room, 0 };
-    if (ctl) {
-        lj.layer_opts = layer_opts;
-        lj.given = given;
-    }
-    lj.stop = stop;
-    lj.planned = planned;
-    lj.ctx = &pc;
-    if (!rc) rc = lam_plan_layers(&lj, s, &j->err);
+    int rc = plan_into(j, &pc, &o, &job, run, ls, n, room / 2 < limit ? (room / 2 ? room / 2 : 1) : limit);
     if (pc.stopped) {
         lam_lua_check_interrupt(L); /* raises: the job's __gc cleans up */
         return luaL_error(L, "interrupted");
     }
-    if (pc.over || (room / 2 < limit && lam_writer_over_limit(j->w))) {
+    if (pc.over || (room / 2 < limit && j->w && lam_writer_over_limit(j->w))) {
         if (collected)
             return lam_lua_memory_raise(L, "machine:plan: the plan, which takes twice its size while it is made, "
                                            "passed the %zu bytes left", room);
@@ -357,32 +395,14 @@ again:;
         collected = 1;
         goto again;
     }
-    if (!rc && s->end) rc = s->end(s->ctx);
-    if (j->sink.destroy) j->sink.destroy(j->sink.ctx);
+    if (!rc && j->tee.end) rc = j->tee.end(j->tee.ctx);
+    if (j->have_sink && j->sink.destroy) j->sink.destroy(j->sink.ctx);
     j->have_sink = 0;
     if (rc) {
         if (j->err.code == LAM_OK) lam_error_set(&j->err, rc, NULL, 0, 0, "planning failed");
         return lam_lua_fail(L, &j->err);
     }
-    rc = lam_writer_take(j->w, &pl->data, &pl->len, &j->err);
-    j->w = NULL;
-    if (rc) return lam_lua_fail(L, &j->err);
-    char *fit = realloc(pl->data, pl->len + 1); /* the buffer grew by doubling: give back its slack */
-    if (fit) pl->data = fit;
-    pl->lines = count_lines(pl->data, pl->len);
-    pl->layers = n;
-    pl->binary = !text;
-    snprintf(pl->name, sizeof pl->name, "%s", p.name ? p.name : "");
-    snprintf(pl->process, sizeof pl->process, "%s", job.process);
-    pl->rec = malloc(sizeof *pl->rec);
-    if (!pl->rec) return luaL_error(L, "out of memory");
-    *pl->rec = j->rec; /* the plan owns the record now */
-    memset(&j->rec, 0, sizeof j->rec);
-    lua_settop(L, plan);
-    size_t bytes = plan_bytes(pl->len, n, pl->rec);
-    if (!lam_lua_charge(L, &pl->charged, bytes))
-        return lam_lua_memory_raise(L, "machine:plan: the plan takes %zu bytes", bytes); /* p_gc frees it */
-    return 1;
+    return plan_done(L, j, pl, plan, &p, n, job.process);
 }
 
 /* ---- the plan userdata -------------------------------------------------- */

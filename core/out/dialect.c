@@ -1,699 +1,10 @@
-/* Command templates of a machine dialect (parse once, render per command)
- * and the sink that writes a plan through them. See dialect.h. */
+/* The sink that writes a plan through a dialect's templates, and the
+ * layer text worker threads format with it. See dialect.h; the template
+ * language itself is dialect_template.c. */
 #include "dialect.h"
 
-#include <float.h>
-#include <math.h>
-#include <stdarg.h>
-#include <stdint.h>
-#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-#include "fmt.h"
-#include "lexnum.h"
-
-/* ---- commands and fields ---------------------------------------------- */
-
-static const char *const cmd_names[LAM_CMD_COUNT] = {
-    "preamble", "postamble", "layer", "layer_end", "feed", "laser_on", "laser_off", "travel", "deposit",
-    "contour_begin", "contour_end", "loop_begin", "loop_end", "vertex", "polyline", "separator",
-    "hatches_begin", "hatch", "hatches_end", "hatches",
-};
-
-const char *lam_cmd_name(lam_cmd c)
-{
-    return (unsigned)c < LAM_CMD_COUNT ? cmd_names[c] : "?";
-}
-
-enum field {
-    F_NAME, F_PROCESS, F_UNITS, F_LAYERS, F_DIMENSION, F_BEAD, F_RATE, F_TRAVEL_RATE,
-    F_XMIN, F_YMIN, F_ZMIN, F_XMAX, F_YMAX, F_ZMAX,
-    F_INDEX, F_NUMBER, F_Z, F_WIDTH, F_FLOOR, F_CEILING,
-    F_DX, F_DY, F_DZ, F_X, F_Y, F_I,
-    F_ID, F_DIR, F_KIND, F_DEPTH, F_N, F_POINTS,
-    F_LABEL, F_POWER, F_SPEED, F_POINT_DISTANCE, F_EXPOSURE_TIME, F_ANGLE, F_X0, F_Y0, F_Z0, F_X1, F_Y1, F_Z1,
-    F_COUNT
-};
-
-static const char *const field_names[F_COUNT] = {
-    "name", "process", "units", "layers", "dimension", "bead", "rate", "travel_rate",
-    "xmin", "ymin", "zmin", "xmax", "ymax", "zmax",
-    "index", "number", "z", "width", "floor", "ceiling",
-    "dx", "dy", "dz", "x", "y", "i",
-    "id", "dir", "kind", "depth", "n", "points",
-    "label", "power", "speed", "point_distance", "exposure_time", "angle", "x0", "y0", "z0", "x1", "y1", "z1",
-};
-
-enum ftype { T_INT, T_NUM, T_TEXT, T_POINTS };
-
-static enum ftype field_type(int f)
-{
-    switch (f) {
-    case F_INDEX: case F_NUMBER: case F_LAYERS: case F_DIMENSION: case F_N: case F_ID: case F_DIR:
-    case F_DEPTH: case F_I:
-        return T_INT;
-    case F_NAME: case F_PROCESS: case F_UNITS: case F_KIND: case F_LABEL:
-        return T_TEXT;
-    case F_POINTS:
-        return T_POINTS;
-    default:
-        return T_NUM;
-    }
-}
-
-#define B(f) ((uint64_t)1 << (f))
-
-#define EXPOSURE " power speed point_distance exposure_time"
-
-/* The fields of each command, in the order dialect.h lists them. */
-static const char *const cmd_field_text[LAM_CMD_COUNT] = {
-    [LAM_CMD_PREAMBLE] = "name process units layers dimension bead rate travel_rate xmin ymin zmin xmax ymax zmax "
-                         "label",
-    [LAM_CMD_POSTAMBLE] = "name process units layers dimension bead rate travel_rate xmin ymin zmin xmax ymax zmax "
-                          "label",
-    [LAM_CMD_LAYER] = "index number z width floor ceiling",
-    [LAM_CMD_LAYER_END] = "index number z width floor ceiling",
-    [LAM_CMD_FEED] = "rate",
-    [LAM_CMD_LASER_ON] = "rate",
-    [LAM_CMD_LASER_OFF] = "rate",
-    [LAM_CMD_TRAVEL] = "dx dy dz x y z rate",
-    [LAM_CMD_DEPOSIT] = "dx dy dz x y z rate",
-    [LAM_CMD_CONTOUR_BEGIN] = "index id dir kind depth n z points" EXPOSURE,
-    [LAM_CMD_CONTOUR_END] = "index id dir kind depth n z points" EXPOSURE,
-    [LAM_CMD_LOOP_BEGIN] = "n z",
-    [LAM_CMD_LOOP_END] = "n z",
-    [LAM_CMD_VERTEX] = "x y z i",
-    [LAM_CMD_POLYLINE] = "index id dir kind depth n z points" EXPOSURE,
-    [LAM_CMD_SEPARATOR] = "",
-    [LAM_CMD_HATCHES_BEGIN] = "index id kind n z angle points" EXPOSURE,
-    [LAM_CMD_HATCH] = "x0 y0 z0 x1 y1 z1 i power speed",
-    [LAM_CMD_HATCHES_END] = "index id kind n z angle points" EXPOSURE,
-    [LAM_CMD_HATCHES] = "index id kind n z angle points" EXPOSURE,
-};
-
-const char *lam_cmd_fields(lam_cmd c)
-{
-    return (unsigned)c < LAM_CMD_COUNT ? cmd_field_text[c] : "";
-}
-
-static int field_id(const char *name, size_t len)
-{
-    for (int f = 0; f < F_COUNT; f++)
-        if (strlen(field_names[f]) == len && memcmp(field_names[f], name, len) == 0) return f;
-    return -1;
-}
-
-static uint64_t cmd_fields(lam_cmd c)
-{
-    uint64_t set = 0;
-    for (const char *p = cmd_field_text[c]; *p;) {
-        size_t len = strcspn(p, " ");
-        set |= B(field_id(p, len));
-        p += len;
-        p += strspn(p, " ");
-    }
-    return set;
-}
-
-/* ---- templates ---------------------------------------------------------- */
-
-#define MAX_WIDTH 40
-#define MAX_PREC 40
-
-struct lam_tseg {
-    int field;      /* -1: literal text */
-    char *lit;      /* literal (owned) */
-    size_t len;
-    char conv;      /* 0 default, else d i f F e E g G s */
-    int prec;       /* -1 when not given */
-    int fast;       /* exactly %.Nf (or %f): lam_fmt_fixed with prec */
-    char spec[32];  /* the conversion for snprintf (d/i with "ll") */
-};
-
-void lam_template_free(lam_template *t)
-{
-    if (!t) return;
-    for (size_t i = 0; i < t->nsegs; i++) free(t->segs[i].lit);
-    free(t->segs);
-    free(t->source);
-    memset(t, 0, sizeof *t);
-}
-
-void lam_dialect_free(lam_dialect *d)
-{
-    if (!d) return;
-    for (int c = 0; c < LAM_CMD_COUNT; c++) lam_template_free(&d->cmd[c]);
-}
-
-static int push_seg(lam_template *t, size_t *cap, const lam_tseg *s)
-{
-    if (t->nsegs == *cap) {
-        size_t nc = *cap ? 2 * *cap : 8;
-        lam_tseg *ns = realloc(t->segs, nc * sizeof *ns);
-        if (!ns) return 0;
-        t->segs = ns;
-        *cap = nc;
-    }
-    t->segs[t->nsegs++] = *s;
-    return 1;
-}
-
-/* Append text[0..n) to the literal segment at the end of t (a new one if
- * the last segment is a field). */
-static int push_lit(lam_template *t, size_t *cap, const char *text, size_t n)
-{
-    lam_tseg *last = t->nsegs ? &t->segs[t->nsegs - 1] : NULL;
-    if (!last || last->field >= 0) {
-        lam_tseg s;
-        memset(&s, 0, sizeof s);
-        s.field = -1;
-        if (!push_seg(t, cap, &s)) return 0;
-        last = &t->segs[t->nsegs - 1];
-    }
-    char *nl = realloc(last->lit, last->len + n + 1);
-    if (!nl) return 0;
-    memcpy(nl + last->len, text, n);
-    last->len += n;
-    nl[last->len] = '\0';
-    last->lit = nl;
-    return 1;
-}
-
-static int perr(lam_error *err, size_t *offset, size_t at, const char *fmt, ...) __attribute__((format(printf, 4, 5)));
-static int perr(lam_error *err, size_t *offset, size_t at, const char *fmt, ...)
-{
-    if (offset) *offset = at;
-    va_list ap;
-    va_start(ap, fmt);
-    int rc = lam_error_vset(err, LAM_EINVAL, NULL, 0, 0, -1, fmt, ap);
-    va_end(ap);
-    return rc;
-}
-
-/* Parse the conversion spec text[at..] (starting at '%') for field f up to the
- * closing '}'. On success fills seg and sets *endp to the '}' offset. */
-static int parse_spec(lam_cmd c, int f, const char *text, size_t at, lam_tseg *seg, size_t *endp,
-                      size_t *offset, lam_error *err)
-{
-    (void)c;
-    size_t p = at;
-    enum ftype ty = field_type(f);
-    if (text[p] != '%')
-        return perr(err, offset, p, "a format starts with '%%' (as in {%s:%%.3f}), got '%c'", field_names[f],
-                    text[p] ? text[p] : ' ');
-    p++;
-    char flags[8];
-    size_t nflags = 0;
-    while (text[p] && strchr("-+ 0#", text[p])) {
-        if (memchr(flags, text[p], nflags))
-            return perr(err, offset, p, "flag '%c' given twice in the format of '%s'", text[p], field_names[f]);
-        flags[nflags++] = text[p++];
-    }
-    int width = -1;
-    size_t wat = p;
-    if (text[p] >= '0' && text[p] <= '9') {
-        width = 0;
-        while (text[p] >= '0' && text[p] <= '9') {
-            if (width <= MAX_WIDTH) width = width * 10 + (text[p] - '0');
-            p++;
-        }
-        if (width > MAX_WIDTH)
-            return perr(err, offset, wat, "width of '%s' is more than %d", field_names[f], MAX_WIDTH);
-    }
-    int prec = -1;
-    if (text[p] == '.') {
-        p++;
-        size_t pat = p;
-        if (!(text[p] >= '0' && text[p] <= '9')) {
-            if (text[p] == '*') return perr(err, offset, p, "'*' is not allowed in a format: give the precision");
-            return perr(err, offset, p, "precision of '%s' needs digits after '.'", field_names[f]);
-        }
-        prec = 0;
-        while (text[p] >= '0' && text[p] <= '9') {
-            if (prec <= MAX_PREC) prec = prec * 10 + (text[p] - '0');
-            p++;
-        }
-        if (prec > MAX_PREC)
-            return perr(err, offset, pat, "precision of '%s' is more than %d", field_names[f], MAX_PREC);
-    }
-    char conv = text[p];
-    if (conv == '*') return perr(err, offset, p, "'*' is not allowed in a format: give the width");
-    if (conv == 'n') return perr(err, offset, p, "%%n is not allowed: a template only formats values");
-    if (conv && strchr("hlLqjzt", conv))
-        return perr(err, offset, p,
-                    "length modifier '%c' is not allowed: write just the conversion (d i f F e E g G, s for text)",
-                    conv);
-    if (conv == '}' || conv == '\0')
-        return perr(err, offset, p, "the format of '%s' has no conversion letter (d i f F e E g G, s for text)",
-                    field_names[f]);
-    if (!strchr("difFeEgGs", conv))
-        return perr(err, offset, p, "unsupported conversion '%%%c' (allowed: d i f F e E g G, s for text fields)",
-                    conv);
-    if (conv == 's' && ty != T_TEXT)
-        return perr(err, offset, p, "%%s is for text fields; '%s' is a number (use d i f F e E g G)", field_names[f]);
-    if (conv != 's' && ty == T_TEXT)
-        return perr(err, offset, p, "'%s' is text: format it with %%s", field_names[f]);
-    if (conv == 'd' || conv == 'i') {
-        if (ty == T_POINTS) return perr(err, offset, p, "'points' are coordinates: use f F e E g G");
-        if (memchr(flags, '#', nflags))
-            return perr(err, offset, at + 1 + (size_t)((char *)memchr(flags, '#', nflags) - flags),
-                        "flag '#' does not apply to %%%c", conv);
-    }
-    if (conv == 's') {
-        for (size_t k = 0; k < nflags; k++)
-            if (flags[k] != '-')
-                return perr(err, offset, at + 1 + k, "flag '%c' does not apply to %%s (only '-')", flags[k]);
-    }
-    p++;
-    if (text[p] != '}') {
-        if (text[p] == '\0') return perr(err, offset, p, "unterminated field '%s': expected '}'", field_names[f]);
-        return perr(err, offset, p, "unexpected '%c' after the conversion of '%s', expected '}'", text[p],
-                    field_names[f]);
-    }
-    /* the snprintf spec */
-    char *s = seg->spec;
-    size_t k = 0;
-    s[k++] = '%';
-    memcpy(s + k, flags, nflags);
-    k += nflags;
-    if (width >= 0) k += (size_t)snprintf(s + k, sizeof seg->spec - k, "%d", width);
-    if (prec >= 0) k += (size_t)snprintf(s + k, sizeof seg->spec - k, ".%d", prec);
-    if (conv == 'd' || conv == 'i') {
-        s[k++] = 'l';
-        s[k++] = 'l';
-    }
-    s[k++] = conv;
-    s[k] = '\0';
-    seg->conv = conv;
-    seg->prec = prec;
-    seg->fast = conv == 'f' && nflags == 0 && width < 0;
-    if (seg->fast && prec < 0) seg->prec = 6;
-    *endp = p;
-    return LAM_OK;
-}
-
-int lam_template_parse(lam_cmd c, const char *text, lam_template *t, size_t *offset, lam_error *err)
-{
-    memset(t, 0, sizeof *t);
-    if (offset) *offset = 0;
-    if ((unsigned)c >= LAM_CMD_COUNT) return perr(err, offset, 0, "no such command");
-    size_t cap = 0;
-    uint64_t allowed = cmd_fields(c);
-    int rc = LAM_OK;
-    size_t i = 0;
-    while (text[i] && !rc) {
-        char ch = text[i];
-        if (ch == '{' && text[i + 1] == '{') {
-            if (!push_lit(t, &cap, "{", 1)) goto nomem;
-            i += 2;
-            continue;
-        }
-        if (ch == '}') {
-            if (text[i + 1] == '}') {
-                if (!push_lit(t, &cap, "}", 1)) goto nomem;
-                i += 2;
-                continue;
-            }
-            rc = perr(err, offset, i, "single '}' (write '}}' for a literal brace)");
-            break;
-        }
-        if (ch != '{') {
-            size_t run = strcspn(text + i, "{}");
-            if (!push_lit(t, &cap, text + i, run)) goto nomem;
-            i += run;
-            continue;
-        }
-        /* a field: {name} or {name:%spec} */
-        size_t open = i, ns = i + 1, ne = ns;
-        while (text[ne] && text[ne] != '}' && text[ne] != ':' && text[ne] != '{' && text[ne] != '\n') ne++;
-        if (text[ne] != '}' && text[ne] != ':') {
-            rc = perr(err, offset, open, "unterminated '{': a field ends with '}' (write '{{' for a literal brace)");
-            break;
-        }
-        if (ne == ns) {
-            rc = perr(err, offset, open, "empty field name in '{}' (write '{{' for a literal brace)");
-            break;
-        }
-        int f = field_id(text + ns, ne - ns);
-        if (f < 0 || !(allowed & B(f))) {
-            char shown[64];
-            lam_quote_bytes(shown, sizeof shown, (const unsigned char *)text + ns, ne - ns);
-            if (!allowed) {
-                rc = perr(err, offset, ns, "unknown field %s: the %s command has no fields", shown, cmd_names[c]);
-            } else {
-                rc = perr(err, offset, ns, "unknown field %s for the %s command (fields: %s)", shown, cmd_names[c],
-                          cmd_field_text[c]);
-            }
-            break;
-        }
-        lam_tseg seg;
-        memset(&seg, 0, sizeof seg);
-        seg.field = f;
-        seg.prec = -1;
-        size_t close = ne;
-        if (text[ne] == ':') {
-            /* the spec must end with '}' before any newline */
-            size_t e = ne + 1;
-            while (text[e] && text[e] != '}' && text[e] != '\n') e++;
-            if (text[e] != '}') {
-                rc = perr(err, offset, open,
-                          "unterminated '{': a field ends with '}' (write '{{' for a literal brace)");
-                break;
-            }
-            rc = parse_spec(c, f, text, ne + 1, &seg, &close, offset, err);
-            if (rc) break;
-        } else if (field_type(f) == T_POINTS) {
-            seg.conv = 'f';
-            seg.prec = 6;
-            seg.fast = 1;
-            strcpy(seg.spec, "%.6f");
-        }
-        if (!push_seg(t, &cap, &seg)) goto nomem;
-        i = close + 1;
-    }
-    if (!rc && !(t->source = strdup(text))) goto nomem;
-    if (rc) {
-        lam_template_free(t);
-        return rc;
-    }
-    t->present = 1;
-    return LAM_OK;
-nomem:
-    lam_template_free(t);
-    return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory");
-}
-
-/* ---- rendering ---------------------------------------------------------- */
-
-/* The text of the fixed-point number a segment printed last: a layer's
- * points repeat its height, so the SLS point command writes the digits of
- * z once per layer instead of once per point (a third of its numbers).
- * The text depends only on the segment and the rounded value. */
-typedef struct numo {
-    const void *seg;
-    unsigned long long q;
-    int neg;
-    size_t len;
-    char txt[32];
-} numo;
-
-typedef struct buf {
-    char *s;
-    size_t len, cap;
-    int oom;
-    numo memo[F_COUNT];      /* by the segment's field */
-} buf;
-
-static char *room_grow(buf *b, size_t n);
-
-/* Room for n more bytes and a NUL at the end of b; NULL when out of memory.
- * The test inline (once per number written), the growth out of line. */
-static inline char *room(buf *b, size_t n)
-{
-    return !b->oom && b->len + n + 1 <= b->cap ? b->s + b->len : room_grow(b, n);
-}
-
-static char *room_grow(buf *b, size_t n)
-{
-    if (b->oom) return NULL;
-    if (b->len + n + 1 > b->cap) {
-        size_t nc = b->cap ? b->cap : 256;
-        while (nc < b->len + n + 1) nc *= 2;
-        char *ns = realloc(b->s, nc);
-        if (!ns) {
-            b->oom = 1;
-            return NULL;
-        }
-        b->s = ns;
-        b->cap = nc;
-    }
-    return b->s + b->len;
-}
-
-static void put(buf *b, const char *s, size_t n)
-{
-    if (!n) return; /* s may be NULL: an empty layer's text */
-    char *at = room(b, n);
-    if (!at) return;
-    memcpy(at, s, n);
-    b->len += n;
-    b->s[b->len] = '\0';
-}
-
-/* The shortest digits by trying 1, 2, ... 17 of them, and %g's notation:
- * slow (a printf per try), for the cases the fast way leaves. */
-static size_t number_slow(char *out, double x)
-{
-    return strlen(lam_fmt_num(out, x, 17));
-}
-
-/* d[0..17) rounded to k digits (k < 17) in place, half up; the exponent
- * grows on a carry out of the first digit. 0 when the digits cut off are
- * exactly half (x's own rounding to k digits may go either way: only
- * printf knows). */
-static int round_digits(char *d, int k, int *exp10)
-{
-    int tie = d[k] == '5';
-    for (int i = k + 1; i < 17 && tie; i++) tie = d[i] == '0';
-    if (tie) return 0;
-    if (d[k] >= '5') {
-        int i = k - 1;
-        while (i >= 0 && d[i] == '9') d[i--] = '0';
-        if (i >= 0) {
-            d[i]++;
-        } else {
-            memmove(d + 1, d, (size_t)k - 1);
-            d[0] = '1';
-            (*exp10)++;
-        }
-    }
-    return 1;
-}
-
-/* d[0..n) times 10^exp10 as "D.DDDe+XX" into b; returns the length. */
-static size_t sci(char *b, int neg, const char *d, int n, int exp10)
-{
-    size_t k = 0;
-    if (neg) b[k++] = '-';
-    b[k++] = d[0];
-    if (n > 1) {
-        b[k++] = '.';
-        memcpy(b + k, d + 1, (size_t)n - 1);
-        k += (size_t)n - 1;
-    }
-    int e = exp10 < 0 ? -exp10 : exp10;
-    b[k++] = 'e';
-    b[k++] = exp10 < 0 ? '-' : '+';
-    if (e >= 100) b[k++] = (char)('0' + e / 100);
-    b[k++] = (char)('0' + e / 10 % 10);
-    b[k++] = (char)('0' + e % 10);
-    b[k] = '\0';
-    return k;
-}
-
-size_t lam_dialect_number(char *out, double x)
-{
-    if (x == 0) x = 0; /* no "-0" */
-    if (!isfinite(x)) return (size_t)snprintf(out, LAM_FMT_MAX, "%g", x);
-    /* subnormals have fewer digits than 15: the slow way */
-    if (x == 0 || fabs(x) < DBL_MIN) return number_slow(out, x);
-    /* Plain notation (1e-4 <= |x| < 1e15): the fewest decimals d whose
-     * exact rounding q = round(|x| * 10^d) reads back, q / 10^d == |x| (q
-     * and 10^d are exact, so the division rounds as reading the text does),
-     * are the fewest digits, and that rounding is the one %e would give:
-     * lam_fmt_fixed prints it without printf. Up to 16 digits, while q
-     * stays exact; beyond, the general way below. */
-    static const double p10[] = { 1, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15 };
-    if (fabs(x) >= 1e-4 && fabs(x) < 1e15) {
-        unsigned long long q;
-        for (int d = 0; d <= 15 && lam_fmt_scaled(x, d, &q); d++)
-            if ((double)q / p10[d] == fabs(x)) return lam_fmt_fixed(out, x, d);
-    }
-    /* One printf gives x to 17 digits, D17. Its roundings to 15 and 16
-     * digits are x's own, unless D17 sits on a midpoint (then printf
-     * decides). When any k <= 15 digits read back as x, so do x's 15 with
-     * the zeros after them taken off: a 15-digit step (>= 1e-15 of x) is
-     * far wider than x's half-ulp (<= 1.2e-16 of x). So: 15 digits less
-     * their zeros, else 16, else 17. */
-    char e17[40];
-    snprintf(e17, sizeof e17, "%.16e", x);
-    int neg = e17[0] == '-';
-    const char *m = e17 + neg;
-    char d17[17];
-    d17[0] = m[0];
-    memcpy(d17 + 1, m + 2, 16);
-    int exp17 = atoi(strchr(m, 'e') + 1);
-    char d[17];
-    int exp10 = exp17, prec = 17;
-    for (int k = 15; k <= 16; k++) {
-        memcpy(d, d17, 17);
-        exp10 = exp17;
-        if (!round_digits(d, k, &exp10)) return number_slow(out, x);
-        char b[40];
-        size_t n = sci(b, neg, d, k, exp10);
-        double back;
-        if (lam_parse_number((const unsigned char *)b, n, &back) == LAM_OK && back == x) {
-            prec = k;
-            break;
-        }
-    }
-    if (prec == 17) {
-        memcpy(d, d17, 17);
-        exp10 = exp17;
-    }
-    while (prec > 1 && d[prec - 1] == '0') prec--;
-    /* plain decimals for 1e-4 <= |x| < 1e17, as %.17g; a number whose
-     * shortest digits stop before the point (1e10, 2^55) prints every
-     * digit of x there, %g's way: below 2^53 x is that whole number */
-    if (exp10 >= -4 && exp10 < 17 && prec < exp10 + 1) {
-        if (fabs(x) >= 9007199254740992.0) return number_slow(out, x);
-        memset(d + prec, '0', (size_t)(exp10 + 1 - prec));
-        prec = exp10 + 1;
-    }
-    if (exp10 < -4 || exp10 >= 17) return sci(out, neg, d, prec, exp10);
-    size_t k = 0;
-    if (neg) out[k++] = '-';
-    if (exp10 < 0) {
-        out[k++] = '0';
-        out[k++] = '.';
-        for (int i = 0; i < -exp10 - 1; i++) out[k++] = '0';
-        memcpy(out + k, d, (size_t)prec);
-        k += (size_t)prec;
-    } else {
-        memcpy(out + k, d, (size_t)exp10 + 1);
-        k += (size_t)exp10 + 1;
-        if (prec > exp10 + 1) {
-            out[k++] = '.';
-            memcpy(out + k, d + exp10 + 1, (size_t)(prec - exp10 - 1));
-            k += (size_t)(prec - exp10 - 1);
-        }
-    }
-    out[k] = '\0';
-    return k;
-}
-
-/* 1 when the fixed rendering s (from lam_fmt_fixed) is "-0", "-0.000...". */
-static int negative_zero(const char *s)
-{
-    if (s[0] != '-') return 0;
-    for (const char *p = s + 1; *p; p++)
-        if (*p != '0' && *p != '.') return 0;
-    return 1;
-}
-
-/* Render number x with seg's conversion (or the default for ftype ty). */
-static size_t fmt_number(char *out, const lam_tseg *seg, double x, enum ftype ty, numo *m)
-{
-    if (seg->conv == 0) {
-        if (ty == T_INT && fabs(x) < 9e18) return (size_t)snprintf(out, LAM_FMT_MAX, "%lld", (long long)x);
-        return lam_dialect_number(out, x);
-    }
-    if (x == 0) x = 0; /* never "-0" */
-    if ((seg->conv == 'f' || seg->conv == 'F') && seg->fast) {
-        /* one formatting; a negative that rounds to zero loses its sign */
-        unsigned long long q;
-        if (m && lam_fmt_scaled(x, seg->prec, &q)) {
-            int neg = signbit(x) && q;
-            if (m->seg == seg && m->q == q && m->neg == neg) {
-                memcpy(out, m->txt, m->len + 1);
-                return m->len;
-            }
-            size_t n = lam_fmt_scaled_text(out, q, seg->prec, neg);
-            if (n < sizeof m->txt) {
-                m->seg = seg;
-                m->q = q;
-                m->neg = neg;
-                m->len = n;
-                memcpy(m->txt, out, n + 1);
-            }
-            return n;
-        }
-        size_t n = lam_fmt_fixed(out, x, seg->prec);
-        if (out[0] == '-' && negative_zero(out)) memmove(out, out + 1, n--);
-        return n;
-    }
-    if (seg->conv == 'f' || seg->conv == 'F') {
-        if (isfinite(x) && signbit(x)) {
-            char tmp[LAM_FMT_MAX];
-            lam_fmt_fixed(tmp, x, seg->prec < 0 ? 6 : seg->prec);
-            if (negative_zero(tmp)) x = 0;
-        }
-    }
-    int n;
-    if (seg->conv == 'd' || seg->conv == 'i') {
-        if (fabs(x) < 9e18) n = snprintf(out, LAM_FMT_MAX, seg->spec, (long long)llround(x));
-        else return lam_dialect_number(out, x);
-    } else {
-        n = snprintf(out, LAM_FMT_MAX, seg->spec, x);
-    }
-    /* width and precision <= 40 keep any double under 360 characters */
-    return n < 0 ? 0 : n >= LAM_FMT_MAX ? LAM_FMT_MAX - 1 : (size_t)n;
-}
-
-/* The values a command can use. */
-typedef struct vals {
-    double num[F_COUNT];
-    const char *text[F_COUNT];
-    const double *uv;        /* points: 2 per point, or xyz with stride 3 */
-    size_t uv_stride, npts;
-    int close;
-} vals;
-
-/* Render t into b; for travel/deposit also the text of dx dy dz
- * (rel[k] set to the value the machine reads, has_rel[k] to 1). Numbers
- * are formatted straight into b. */
-static void render(const lam_template *t, const vals *v, buf *b, double rel[3], int has_rel[3])
-{
-    for (size_t i = 0; i < t->nsegs; i++) {
-        const lam_tseg *s = &t->segs[i];
-        if (s->field < 0) {
-            put(b, s->lit, s->len);
-            continue;
-        }
-        enum ftype ty = field_type(s->field);
-        if (ty == T_TEXT) {
-            const char *txt = v->text[s->field] ? v->text[s->field] : "";
-            if (!s->conv) {
-                put(b, txt, strlen(txt));
-            } else {
-                int n = snprintf(NULL, 0, s->spec, txt);
-                char *tmp = n >= 0 ? malloc((size_t)n + 1) : NULL;
-                if (!tmp) {
-                    b->oom = 1;
-                    return;
-                }
-                snprintf(tmp, (size_t)n + 1, s->spec, txt);
-                put(b, tmp, (size_t)n);
-                free(tmp);
-            }
-        } else if (ty == T_POINTS) {
-            size_t total = v->npts + (v->close && v->npts ? 1 : 0);
-            for (size_t k = 0; k < total; k++) {
-                const double *p = v->uv + (k % v->npts) * v->uv_stride;
-                for (int j = 0; j < 2; j++) {
-                    if (k || j) put(b, ",", 1);
-                    char *at = room(b, LAM_FMT_MAX);
-                    if (!at) return;
-                    b->len += fmt_number(at, s, p[j], T_NUM, NULL);
-                }
-            }
-        } else {
-            char *at = room(b, LAM_FMT_MAX);
-            if (!at) return;
-            size_t n = fmt_number(at, s, v->num[s->field], ty, &b->memo[s->field]);
-            b->len += n;
-            int k = s->field == F_DX ? 0 : s->field == F_DY ? 1 : s->field == F_DZ ? 2 : -1;
-            if (rel && k >= 0 && !has_rel[k]) {
-                double back;
-                has_rel[k] = 1;
-                rel[k] = lam_parse_number((const unsigned char *)at, n, &back) == LAM_OK && isfinite(back)
-                             ? back
-                             : v->num[s->field];
-            }
-        }
-    }
-}
 
 /* ---- the sink ----------------------------------------------------------- */
 
@@ -706,7 +17,7 @@ typedef struct dsink {
     double pos[3];                  /* the stage position as the machine knows it */
     size_t blocks;                  /* contour blocks written */
     size_t layer_index, in_layer;   /* contours seen in the current layer */
-    buf b;
+    lam_tbuf b;
     /* a worker's layer text (lam_dialect_fork): w is NULL, the strings are
      * the main sink's, and the layer's first separator is noted */
     int worker, borrowed, complete, has_sep;
@@ -731,30 +42,30 @@ static int flush(dsink *s)
     return rc ? lam_writer_error(s->w, s->err) : LAM_OK;
 }
 
-static int emit(dsink *s, lam_cmd c, const vals *v, double rel[3], int has_rel[3])
+static int emit(dsink *s, lam_cmd c, const lam_tvals *v, double rel[3], int has_rel[3])
 {
     const lam_template *t = &s->d->cmd[c];
     if (!t->present) return LAM_OK;
-    render(t, v, &s->b, rel, has_rel);
-    put(&s->b, "\n", 1);
+    lam_template_render(t, v, &s->b, rel, has_rel);
+    lam_tbuf_put(&s->b, "\n", 1);
     if (s->b.oom) return lam_error_set(s->err, LAM_ENOMEM, NULL, 0, 0, "out of memory writing the %s command",
-                                       cmd_names[c]);
+                                       lam_cmd_name(c));
     return s->w && s->b.len >= FLUSH_BIG ? flush(s) : LAM_OK;
 }
 
-static void job_vals(const dsink *s, vals *v)
+static void job_vals(const dsink *s, lam_tvals *v)
 {
     memset(v, 0, sizeof *v);
-    v->text[F_NAME] = s->name;
-    v->text[F_PROCESS] = s->process;
-    v->text[F_UNITS] = s->units;
-    v->text[F_LABEL] = s->label;
-    v->num[F_LAYERS] = (double)s->job.layers;
-    v->num[F_DIMENSION] = 3;
-    v->num[F_BEAD] = s->job.bead;
-    v->num[F_RATE] = s->job.rate;
-    v->num[F_TRAVEL_RATE] = s->job.travel_rate;
-    for (int j = 0; j < 6; j++) v->num[F_XMIN + j] = s->job.bbox[j];
+    v->text[LAM_TF_NAME] = s->name;
+    v->text[LAM_TF_PROCESS] = s->process;
+    v->text[LAM_TF_UNITS] = s->units;
+    v->text[LAM_TF_LABEL] = s->label;
+    v->num[LAM_TF_LAYERS] = (double)s->job.layers;
+    v->num[LAM_TF_DIMENSION] = 3;
+    v->num[LAM_TF_BEAD] = s->job.bead;
+    v->num[LAM_TF_RATE] = s->job.rate;
+    v->num[LAM_TF_TRAVEL_RATE] = s->job.travel_rate;
+    for (int j = 0; j < 6; j++) v->num[LAM_TF_XMIN + j] = s->job.bbox[j];
 }
 
 static char *dup_or_empty(const char *s)
@@ -777,21 +88,21 @@ static int d_begin(void *ctx, const lam_job_info *job)
     if (!s->name || !s->process || !s->units || !s->label) return lam_error_set(s->err, LAM_ENOMEM, NULL, 0, 0, "out of memory");
     memcpy(s->pos, job->origin, sizeof s->pos);
     s->blocks = 0;
-    vals v;
+    lam_tvals v;
     job_vals(s, &v);
     return emit(s, LAM_CMD_PREAMBLE, &v, NULL, NULL);
 }
 
 static int layer_cmd(dsink *s, lam_cmd c, const lam_layer_info *L)
 {
-    vals v;
+    lam_tvals v;
     memset(&v, 0, sizeof v);
-    v.num[F_INDEX] = (double)L->index;
-    v.num[F_NUMBER] = (double)L->index + 1;
-    v.num[F_Z] = L->z;
-    v.num[F_WIDTH] = L->width;
-    v.num[F_FLOOR] = L->floor;
-    v.num[F_CEILING] = L->ceiling;
+    v.num[LAM_TF_INDEX] = (double)L->index;
+    v.num[LAM_TF_NUMBER] = (double)L->index + 1;
+    v.num[LAM_TF_Z] = L->z;
+    v.num[LAM_TF_WIDTH] = L->width;
+    v.num[LAM_TF_FLOOR] = L->floor;
+    v.num[LAM_TF_CEILING] = L->ceiling;
     return emit(s, c, &v, NULL, NULL);
 }
 
@@ -814,18 +125,18 @@ static int d_layer_end(void *ctx, const lam_layer_info *L)
 
 static int d_feed(void *ctx, double rate)
 {
-    vals v;
+    lam_tvals v;
     memset(&v, 0, sizeof v);
-    v.num[F_RATE] = rate;
+    v.num[LAM_TF_RATE] = rate;
     return emit(ctx, LAM_CMD_FEED, &v, NULL, NULL);
 }
 
 static int d_laser(void *ctx, int on)
 {
     dsink *s = ctx;
-    vals v;
+    lam_tvals v;
     memset(&v, 0, sizeof v);
-    v.num[F_RATE] = s->job.rate;
+    v.num[LAM_TF_RATE] = s->job.rate;
     return emit(s, on ? LAM_CMD_LASER_ON : LAM_CMD_LASER_OFF, &v, NULL, NULL);
 }
 
@@ -836,15 +147,15 @@ static int d_move(void *ctx, const lam_move_info *m)
     const double *xyz = m->xyz;
     lam_cmd c = deposit ? LAM_CMD_DEPOSIT : LAM_CMD_TRAVEL;
     if (!s->d->cmd[c].present) return LAM_OK; /* the machine was not told to move */
-    vals v;
+    lam_tvals v;
     memset(&v, 0, sizeof v);
-    v.num[F_DX] = xyz[0] - s->pos[0];
-    v.num[F_DY] = xyz[1] - s->pos[1];
-    v.num[F_DZ] = xyz[2] - s->pos[2];
-    v.num[F_X] = xyz[0];
-    v.num[F_Y] = xyz[1];
-    v.num[F_Z] = xyz[2];
-    v.num[F_RATE] = deposit ? s->job.rate : s->job.travel_rate;
+    v.num[LAM_TF_DX] = xyz[0] - s->pos[0];
+    v.num[LAM_TF_DY] = xyz[1] - s->pos[1];
+    v.num[LAM_TF_DZ] = xyz[2] - s->pos[2];
+    v.num[LAM_TF_X] = xyz[0];
+    v.num[LAM_TF_Y] = xyz[1];
+    v.num[LAM_TF_Z] = xyz[2];
+    v.num[LAM_TF_RATE] = deposit ? s->job.rate : s->job.travel_rate;
     double rel[3];
     int has_rel[3] = { 0, 0, 0 };
     int rc = emit(s, c, &v, rel, has_rel);
@@ -858,7 +169,7 @@ static int d_move(void *ctx, const lam_move_info *m)
 /* A contour or hatch block starts: the separator between blocks, and the
  * fields every block has (its index in the layer, its part id, its
  * exposure). Fills v. */
-static int block_start(dsink *s, vals *v, double id, double power, double speed, double point_distance,
+static int block_start(dsink *s, lam_tvals *v, double id, double power, double speed, double point_distance,
                        double exposure_time)
 {
     size_t index = s->in_layer++;
@@ -872,12 +183,12 @@ static int block_start(dsink *s, vals *v, double id, double power, double speed,
         s->sep_at = at;
         s->sep_len = s->b.len - at;
     }
-    v->num[F_INDEX] = (double)index;
-    v->num[F_ID] = id;
-    v->num[F_POWER] = power;
-    v->num[F_SPEED] = speed;
-    v->num[F_POINT_DISTANCE] = point_distance;
-    v->num[F_EXPOSURE_TIME] = exposure_time;
+    v->num[LAM_TF_INDEX] = (double)index;
+    v->num[LAM_TF_ID] = id;
+    v->num[LAM_TF_POWER] = power;
+    v->num[LAM_TF_SPEED] = speed;
+    v->num[LAM_TF_POINT_DISTANCE] = point_distance;
+    v->num[LAM_TF_EXPOSURE_TIME] = exposure_time;
     return rc;
 }
 
@@ -885,16 +196,16 @@ static int d_contour(void *ctx, const lam_contour_info *ci)
 {
     dsink *s = ctx;
     const lam_dialect *d = s->d;
-    vals v;
+    lam_tvals v;
     int rc = block_start(s, &v, (double)ci->attrs.part, ci->power, ci->speed, ci->point_distance, ci->exposure_time);
     if (rc) return rc;
     int close = d->close_polylines && ci->n > 0;
     size_t written = ci->n + (close ? 1 : 0);
-    v.num[F_DIR] = ci->solid ? 1 : 0;
-    v.text[F_KIND] = ci->solid ? "solid" : "hole";
-    v.num[F_DEPTH] = ci->depth;
-    v.num[F_N] = (double)written;
-    v.num[F_Z] = ci->z;
+    v.num[LAM_TF_DIR] = ci->solid ? 1 : 0;
+    v.text[LAM_TF_KIND] = ci->solid ? "solid" : "hole";
+    v.num[LAM_TF_DEPTH] = ci->depth;
+    v.num[LAM_TF_N] = (double)written;
+    v.num[LAM_TF_Z] = ci->z;
     if (ci->uv) {
         v.uv = ci->uv;
         v.uv_stride = 2;
@@ -907,14 +218,14 @@ static int d_contour(void *ctx, const lam_contour_info *ci)
     if ((rc = emit(s, LAM_CMD_CONTOUR_BEGIN, &v, NULL, NULL))) return rc;
     if ((rc = emit(s, LAM_CMD_LOOP_BEGIN, &v, NULL, NULL))) return rc;
     if (d->cmd[LAM_CMD_VERTEX].present) {
-        vals pv;
+        lam_tvals pv;
         memset(&pv, 0, sizeof pv);
         for (size_t k = 0; k < written && !rc; k++) {
             const double *p = ci->xyz + 3 * (k % ci->n);
-            pv.num[F_X] = p[0];
-            pv.num[F_Y] = p[1];
-            pv.num[F_Z] = p[2];
-            pv.num[F_I] = (double)k;
+            pv.num[LAM_TF_X] = p[0];
+            pv.num[LAM_TF_Y] = p[1];
+            pv.num[LAM_TF_Z] = p[2];
+            pv.num[LAM_TF_I] = (double)k;
             rc = emit(s, LAM_CMD_VERTEX, &pv, NULL, NULL);
         }
         if (rc) return rc;
@@ -928,13 +239,13 @@ static int d_hatches(void *ctx, const lam_hatch_info *h)
 {
     dsink *s = ctx;
     const lam_dialect *d = s->d;
-    vals v;
+    lam_tvals v;
     int rc = block_start(s, &v, (double)h->attrs.part, h->power, h->speed, h->point_distance, h->exposure_time);
     if (rc) return rc;
-    v.text[F_KIND] = lam_kind_name(h->kind);
-    v.num[F_N] = (double)h->n;
-    v.num[F_Z] = h->z;
-    v.num[F_ANGLE] = h->angle;
+    v.text[LAM_TF_KIND] = lam_kind_name(h->kind);
+    v.num[LAM_TF_N] = (double)h->n;
+    v.num[LAM_TF_Z] = h->z;
+    v.num[LAM_TF_ANGLE] = h->angle;
     if (h->uv) {
         v.uv = h->uv;
         v.uv_stride = 2;
@@ -945,14 +256,14 @@ static int d_hatches(void *ctx, const lam_hatch_info *h)
     v.npts = 2 * h->n;
     if ((rc = emit(s, LAM_CMD_HATCHES_BEGIN, &v, NULL, NULL))) return rc;
     if (d->cmd[LAM_CMD_HATCH].present) {
-        vals pv;
+        lam_tvals pv;
         memset(&pv, 0, sizeof pv);
-        pv.num[F_POWER] = h->power;
-        pv.num[F_SPEED] = h->speed;
+        pv.num[LAM_TF_POWER] = h->power;
+        pv.num[LAM_TF_SPEED] = h->speed;
         for (size_t k = 0; k < h->n && !rc; k++) {
             const double *p = h->xyz + 6 * k;
-            for (int j = 0; j < 3; j++) pv.num[F_X0 + j] = p[j], pv.num[F_X1 + j] = p[3 + j];
-            pv.num[F_I] = (double)k;
+            for (int j = 0; j < 3; j++) pv.num[LAM_TF_X0 + j] = p[j], pv.num[LAM_TF_X1 + j] = p[3 + j];
+            pv.num[LAM_TF_I] = (double)k;
             rc = emit(s, LAM_CMD_HATCH, &pv, NULL, NULL);
         }
         if (rc) return rc;
@@ -964,7 +275,7 @@ static int d_hatches(void *ctx, const lam_hatch_info *h)
 static int d_end(void *ctx)
 {
     dsink *s = ctx;
-    vals v;
+    lam_tvals v;
     job_vals(s, &v);
     int rc = emit(s, LAM_CMD_POSTAMBLE, &v, NULL, NULL);
     return rc ? rc : flush(s);
@@ -983,6 +294,8 @@ static void d_destroy(void *ctx)
     free(s->b.s);
     free(s);
 }
+
+static int d_fork(void *ctx, int moves, lam_sink_fork *out, lam_error *err);
 
 int lam_dialect_sink(const lam_dialect *d, lam_writer *w, lam_sink *out, lam_error *err)
 {
@@ -1003,6 +316,7 @@ int lam_dialect_sink(const lam_dialect *d, lam_writer *w, lam_sink *out, lam_err
     out->hatches = d_hatches;
     out->end = d_end;
     out->destroy = d_destroy;
+    out->fork = d_fork;
     return LAM_OK;
 }
 
@@ -1016,17 +330,18 @@ static int relative_moves(const lam_dialect *d)
     const lam_cmd moves[2] = { LAM_CMD_TRAVEL, LAM_CMD_DEPOSIT };
     for (int m = 0; m < 2; m++) {
         const lam_template *t = &d->cmd[moves[m]];
-        for (size_t i = 0; t->present && i < t->nsegs; i++)
-            if (t->segs[i].field == F_DX || t->segs[i].field == F_DY || t->segs[i].field == F_DZ) return 1;
+        for (size_t i = 0; t->present && i < t->nsegs; i++) {
+            int f = t->segs[i].field;
+            if (f == LAM_TF_DX || f == LAM_TF_DY || f == LAM_TF_DZ) return 1;
+        }
     }
     return 0;
 }
 
-int lam_dialect_fork(const lam_sink *main, int moves, lam_sink *out, lam_error *err)
+/* A worker's sink formatting layers like m's (lam_dialect_fork). */
+static int fork_of(const dsink *m, int moves, lam_sink *out, lam_error *err)
 {
     memset(out, 0, sizeof *out);
-    if (!main || main->begin != d_begin) return LAM_EUSAGE;
-    const dsink *m = main->ctx;
     if (moves && relative_moves(m->d)) return LAM_EUSAGE;
     dsink *s = calloc(1, sizeof *s);
     if (!s) return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory");
@@ -1052,9 +367,9 @@ int lam_dialect_fork(const lam_sink *main, int moves, lam_sink *out, lam_error *
     return LAM_OK;
 }
 
-void lam_dialect_fork_start(const lam_sink *worker, lam_error *err)
+static void fork_start(void *ctx, lam_error *err)
 {
-    dsink *s = worker->ctx;
+    dsink *s = ctx;
     s->err = err;
     s->b.len = 0;
     s->b.oom = 0;
@@ -1063,9 +378,9 @@ void lam_dialect_fork_start(const lam_sink *worker, lam_error *err)
     s->sep_at = s->sep_len = s->layer_blocks = 0;
 }
 
-void lam_dialect_fork_take(const lam_sink *worker, lam_dialect_text *t)
+static void fork_take(void *ctx, lam_layer_text *t)
 {
-    dsink *s = worker->ctx;
+    dsink *s = ctx;
     char *keep = t->s;
     size_t keep_cap = t->cap;
     t->s = s->b.s;
@@ -1081,19 +396,54 @@ void lam_dialect_fork_take(const lam_sink *worker, lam_dialect_text *t)
     s->b.len = 0;
 }
 
-int lam_dialect_put(const lam_sink *main, const lam_dialect_text *t)
+static int fork_put(void *ctx, const lam_layer_text *t)
 {
-    dsink *s = main->ctx;
+    dsink *s = ctx;
     if (t->has_sep && s->blocks == 0) {
         /* the first block of the program: no separator before it */
-        put(&s->b, t->s, t->sep_at);
-        put(&s->b, t->s + t->sep_at + t->sep_len, t->len - t->sep_at - t->sep_len);
+        lam_tbuf_put(&s->b, t->s, t->sep_at);
+        lam_tbuf_put(&s->b, t->s + t->sep_at + t->sep_len, t->len - t->sep_at - t->sep_len);
     } else {
-        put(&s->b, t->s, t->len);
+        lam_tbuf_put(&s->b, t->s, t->len);
     }
     s->blocks += t->blocks;
     if (s->b.oom) return lam_error_set(s->err, LAM_ENOMEM, NULL, 0, 0, "out of memory writing a layer");
     return t->complete && s->b.len >= FLUSH_AT ? flush(s) : LAM_OK;
+}
+
+/* The sink's fork member (plan.h). */
+static int d_fork(void *ctx, int moves, lam_sink_fork *out, lam_error *err)
+{
+    memset(out, 0, sizeof *out);
+    int rc = fork_of(ctx, moves, &out->sink, err);
+    if (rc) return rc;
+    out->start = fork_start;
+    out->take = fork_take;
+    out->put = fork_put;
+    out->main = ctx;
+    return LAM_OK;
+}
+
+int lam_dialect_fork(const lam_sink *main, int moves, lam_sink *out, lam_error *err)
+{
+    memset(out, 0, sizeof *out);
+    if (!main || main->begin != d_begin) return LAM_EUSAGE;
+    return fork_of(main->ctx, moves, out, err);
+}
+
+void lam_dialect_fork_start(const lam_sink *worker, lam_error *err)
+{
+    fork_start(worker->ctx, err);
+}
+
+void lam_dialect_fork_take(const lam_sink *worker, lam_dialect_text *t)
+{
+    fork_take(worker->ctx, t);
+}
+
+int lam_dialect_put(const lam_sink *main, const lam_dialect_text *t)
+{
+    return fork_put(main->ctx, t);
 }
 
 void lam_dialect_text_free(lam_dialect_text *t)

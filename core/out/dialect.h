@@ -62,47 +62,10 @@
 
 #include <stddef.h>
 
+#include "dialect_template.h"
 #include "error.h"
 #include "plan.h"
 #include "writer.h"
-
-typedef enum lam_cmd {
-    LAM_CMD_PREAMBLE, LAM_CMD_POSTAMBLE, LAM_CMD_LAYER, LAM_CMD_LAYER_END,
-    LAM_CMD_FEED, LAM_CMD_LASER_ON, LAM_CMD_LASER_OFF, LAM_CMD_TRAVEL, LAM_CMD_DEPOSIT,
-    LAM_CMD_CONTOUR_BEGIN, LAM_CMD_CONTOUR_END, LAM_CMD_LOOP_BEGIN, LAM_CMD_LOOP_END,
-    LAM_CMD_VERTEX, LAM_CMD_POLYLINE, LAM_CMD_SEPARATOR,
-    LAM_CMD_HATCHES_BEGIN, LAM_CMD_HATCH, LAM_CMD_HATCHES_END, LAM_CMD_HATCHES,
-    LAM_CMD_COUNT
-} lam_cmd;
-
-/* The YAML key of a command ("preamble", "laser_on", ...). */
-const char *lam_cmd_name(lam_cmd c);
-
-/* The fields a command's template may use, separated by spaces (static;
- * "" for none). */
-const char *lam_cmd_fields(lam_cmd c);
-
-typedef struct lam_tseg lam_tseg; /* private */
-
-typedef struct lam_template {
-    int present;             /* 0: the command emits nothing */
-    char *source;            /* the template text as written (owned) */
-    lam_tseg *segs;          /* parsed form (owned) */
-    size_t nsegs;
-} lam_template;
-
-typedef struct lam_dialect {
-    lam_template cmd[LAM_CMD_COUNT];
-    int close_polylines;     /* `points` repeats the first point */
-} lam_dialect;
-
-/* Parse `text` as the template of command c into *t. On error returns
- * LAM_EINVAL with err->msg saying what is wrong and *offset the byte offset
- * in text where it is (the profile loader turns that into line:column). */
-int lam_template_parse(lam_cmd c, const char *text, lam_template *t, size_t *offset, lam_error *err);
-
-void lam_template_free(lam_template *t);
-void lam_dialect_free(lam_dialect *d);
 
 /* A sink that writes through the dialect's templates to w (not owned;
  * the caller commits or aborts it). Relative moves (dx dy dz) are measured
@@ -114,16 +77,9 @@ int lam_dialect_sink(const lam_dialect *d, lam_writer *w, lam_sink *out, lam_err
 /* Layer text formatted by worker threads (issue 15): a worker formats a
  * whole layer (layer, its operations, layer_end) into its own buffer and
  * the writer thread appends the buffers in layer order with
- * lam_dialect_put; the bytes are those the sink writes on one thread. */
-typedef struct lam_dialect_text {
-    char *s;                 /* the text (owned; lam_dialect_text_free) */
-    size_t len, cap;
-    int complete;            /* the layer's layer_end was formatted */
-    int has_sep;             /* the first separator of the layer is s[sep_at .. +sep_len) */
-    size_t sep_at, sep_len;
-    size_t blocks;           /* contour and hatch blocks in it */
-    size_t layer;            /* the layer's index (plugin writers, plugin.h) */
-} lam_dialect_text;
+ * lam_dialect_put; the bytes are those the sink writes on one thread. The
+ * sink's fork member (plan.h) is these functions; they stay for tests. */
+typedef lam_layer_text lam_dialect_text; /* plan.h */
 
 /* A worker's sink formatting layers like `main`, a lam_dialect_sink after
  * its begin (its job strings are shared: main must outlive it). Returns
@@ -147,11 +103,5 @@ void lam_dialect_fork_take(const lam_sink *worker, lam_dialect_text *t);
 int lam_dialect_put(const lam_sink *main, const lam_dialect_text *t);
 
 void lam_dialect_text_free(lam_dialect_text *t);
-
-/* The default rendering of a number field: lam_fmt_num(buf, x, 17), the
- * fewest significant digits that read back as exactly x (fmt.h): 600,
- * 0.08, 0.1, 1e-05, 1e+20; never "-0". buf holds LAM_FMT_MAX bytes.
- * Returns the length. */
-size_t lam_dialect_number(char *buf, double x);
 
 #endif

@@ -766,11 +766,10 @@ static void layer_calls(lam_sink *out, plugin_sink *s)
     out->destroy = ps_destroy;
 }
 
-int lam_plugin_fork(const lam_sink *main, lam_sink *out, lam_error *err)
+/* A worker's sink for the plugin sink m (lam_plugin_fork). */
+static int fork_of(const plugin_sink *m, lam_sink *out, lam_error *err)
 {
     memset(out, 0, sizeof *out);
-    if (!main || main->begin != ps_begin) return LAM_EUSAGE;
-    const plugin_sink *m = main->ctx;
     if (!m->state || !m->we->w.layer_written || !m->we->w.abort) return LAM_EUSAGE;
     plugin_sink *s = calloc(1, sizeof *s);
     if (!s) return lam_error_nomem(err, "starting threads");
@@ -789,17 +788,17 @@ int lam_plugin_fork(const lam_sink *main, lam_sink *out, lam_error *err)
     return LAM_OK;
 }
 
-void lam_plugin_fork_start(const lam_sink *worker, lam_error *err)
+static void fork_start(void *ctx, lam_error *err)
 {
-    plugin_sink *s = worker->ctx;
+    plugin_sink *s = ctx;
     s->err = err;
     s->out.len = 0;
     s->out.failed = 0;
 }
 
-void lam_plugin_fork_take(const lam_sink *worker, lam_dialect_text *t)
+static void fork_take(void *ctx, lam_layer_text *t)
 {
-    plugin_sink *s = worker->ctx;
+    plugin_sink *s = ctx;
     char *keep = t->s;
     size_t keep_cap = t->cap;
     memset(t, 0, sizeof *t);
@@ -813,13 +812,49 @@ void lam_plugin_fork_take(const lam_sink *worker, lam_dialect_text *t)
     s->out.len = 0;
 }
 
-int lam_plugin_put(const lam_sink *main, const lam_dialect_text *t)
+static int fork_put(void *ctx, const lam_layer_text *t)
 {
-    plugin_sink *s = main->ctx;
+    plugin_sink *s = ctx;
     if (!s->state) return not_running(s, "layer");
     if (t->len && lam_writer_write(s->out.w, t->s, t->len) != LAM_OK) s->out.failed = 1;
     last_msg[0] = '\0';
     return writer_result(s, s->out.failed ? 1 : s->we->w.layer_written(s->state, t->layer), "layer");
+}
+
+/* The sink's fork member (plan.h): writers take contours only, no moves. */
+static int ps_fork(void *ctx, int moves, lam_sink_fork *out, lam_error *err)
+{
+    memset(out, 0, sizeof *out);
+    if (moves) return LAM_EUSAGE;
+    int rc = fork_of(ctx, &out->sink, err);
+    if (rc) return rc;
+    out->start = fork_start;
+    out->take = fork_take;
+    out->put = fork_put;
+    out->main = ctx;
+    return LAM_OK;
+}
+
+int lam_plugin_fork(const lam_sink *main, lam_sink *out, lam_error *err)
+{
+    memset(out, 0, sizeof *out);
+    if (!main || main->begin != ps_begin) return LAM_EUSAGE;
+    return fork_of(main->ctx, out, err);
+}
+
+void lam_plugin_fork_start(const lam_sink *worker, lam_error *err)
+{
+    fork_start(worker->ctx, err);
+}
+
+void lam_plugin_fork_take(const lam_sink *worker, lam_dialect_text *t)
+{
+    fork_take(worker->ctx, t);
+}
+
+int lam_plugin_put(const lam_sink *main, const lam_dialect_text *t)
+{
+    return fork_put(main->ctx, t);
 }
 
 int lam_plugin_writer_sink(const char *name, lam_writer *w, lam_sink *out, lam_error *err)
@@ -854,11 +889,16 @@ int lam_plugin_writer_sink(const char *name, lam_writer *w, lam_sink *out, lam_e
     layer_calls(out, s);
     out->begin = ps_begin;
     out->end = ps_end;
+    out->fork = ps_fork;
     return LAM_OK;
+}
+
+int lam_program_text(const char *writer)
+{
+    return !writer || !strcmp(writer, "text");
 }
 
 int lam_program_sink(const char *writer, const lam_dialect *d, lam_writer *w, lam_sink *out, lam_error *err)
 {
-    return !writer || !strcmp(writer, "text") ? lam_dialect_sink(d, w, out, err)
-                                              : lam_plugin_writer_sink(writer, w, out, err);
+    return lam_program_text(writer) ? lam_dialect_sink(d, w, out, err) : lam_plugin_writer_sink(writer, w, out, err);
 }

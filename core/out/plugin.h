@@ -66,7 +66,6 @@ int lam_plugin_load(const char *path, lam_error *err);
 int lam_plugin_writer_sink(const char *name, lam_writer *w, lam_sink *out, lam_error *err);
 
 struct lam_dialect;
-struct lam_dialect_text;
 
 /* Layers formatted by worker threads through a plugin writer that allows
  * it (lamina_writer.layer_written), as lam_dialect_fork does for text
@@ -79,16 +78,20 @@ struct lam_dialect_text;
  * errors go to err), lam_plugin_fork_take moves the bytes since into t (t's
  * old buffer goes back to the worker), and lam_plugin_put writes them
  * through main, in layer order, and tells the writer (the writer's or the
- * output's error). */
+ * output's error). The sink's fork member (plan.h) is these functions. */
 int lam_plugin_fork(const lam_sink *main, lam_sink *out, lam_error *err);
 void lam_plugin_fork_start(const lam_sink *worker, lam_error *err);
-void lam_plugin_fork_take(const lam_sink *worker, struct lam_dialect_text *t);
-int lam_plugin_put(const lam_sink *main, const struct lam_dialect_text *t);
+void lam_plugin_fork_take(const lam_sink *worker, lam_layer_text *t);
+int lam_plugin_put(const lam_sink *main, const lam_layer_text *t);
 
 /* The sink a machine profile writes its programs through: the dialect's
  * templates (lam_dialect_sink) when writer is NULL or "text", else the
  * plugin writer of that name (above). Ownership and errors as theirs. */
 int lam_program_sink(const char *writer, const struct lam_dialect *d, lam_writer *w, lam_sink *out, lam_error *err);
+
+/* 1 when a profile's `writer` means its dialect's templates (NULL or
+ * "text": lam_program_sink writes text), 0 for a plugin writer. */
+int lam_program_text(const char *writer);
 
 /* Unload every plugin (dlclose) and empty the registry. Any sink or writer
  * name obtained before becomes invalid. For tests and leak checks. */

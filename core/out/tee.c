@@ -41,6 +41,14 @@ static int t_end(void *ctx)
     return first;
 }
 
+/* One sink: its own fork (the bytes a worker formats are all a tee of one
+ * writes). Of several, none: their layers are recorded and replayed. */
+static int t_fork(void *ctx, int moves, lam_sink_fork *out, lam_error *err)
+{
+    tee *t = ctx;
+    return t->s[0].fork(t->s[0].ctx, moves, out, err);
+}
+
 static void t_destroy(void *ctx)
 {
     tee *t = ctx;
@@ -71,5 +79,6 @@ int lam_tee_sink(const lam_sink *sinks, size_t n, lam_sink *out, lam_error *err)
     out->end = t_end;
     out->destroy = t_destroy;
     out->hatches = hatches ? t_hatches : NULL; /* NULL: no sink wants them */
+    out->fork = n == 1 && sinks[0].fork ? t_fork : NULL;
     return LAM_OK;
 }

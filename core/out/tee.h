@@ -18,7 +18,8 @@
  * first error. The tee copies the sink structs and owns them from then on:
  * its destroy destroys each. On failure (LAM_EUSAGE for n of 0 or more
  * than LAM_TEE_MAX, LAM_ENOMEM) nothing is taken: the caller still owns
- * the sinks. */
+ * the sinks. The tee forwards fork (plan.h) when it feeds one sink; a tee
+ * of several cannot be forked (their layers are recorded and replayed). */
 int lam_tee_sink(const lam_sink *sinks, size_t n, lam_sink *out, lam_error *err);
 
 #endif

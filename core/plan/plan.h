@@ -18,6 +18,7 @@
 struct lam_frame;      /* slice.h */
 struct lam_layer;      /* slice.h */
 struct lam_scan_time;  /* hatch.h */
+struct lam_sink_fork;  /* below */
 
 /* What a whole job looks like, for preambles and headers. */
 typedef struct lam_job_info {
@@ -106,6 +107,44 @@ typedef struct lam_sink {
     void (*destroy)(void *ctx);
     /* a block of hatch vectors (NULL: the sink ignores hatches) */
     int (*hatches)(void *ctx, const lam_hatch_info *h);
+    /* Optional (NULL: the sink cannot; a planner on threads then records
+     * each layer and replays it, plan_record.h): a formatter of this
+     * sink's layers for a worker thread, so a worker writes a whole
+     * layer's bytes itself and the sink appends them in layer order
+     * (issue 15). Called on the calling thread after begin; `moves`: the
+     * plan sends moves (LADRP). Fills *out and returns LAM_OK, LAM_EUSAGE
+     * (making nothing) when the sink cannot for such a plan (a text
+     * dialect's relative moves hang on the moves before), or LAM_ENOMEM
+     * (err). The sink must outlive the fork. A tee forwards it (tee.h). */
+    int (*fork)(void *ctx, int moves, struct lam_sink_fork *out, lam_error *err);
 } lam_sink;
+
+/* A layer's bytes formatted by a worker's fork of a sink (lam_sink.fork). */
+typedef struct lam_layer_text {
+    char *s;                 /* the bytes (owned: free) */
+    size_t len, cap;
+    int complete;            /* the layer's layer_end was formatted */
+    int has_sep;             /* the first separator of the layer is s[sep_at .. +sep_len) */
+    size_t sep_at, sep_len;
+    size_t blocks;           /* contour and hatch blocks in it */
+    size_t layer;            /* the layer's index (plugin writers, plugin.h) */
+} lam_layer_text;
+
+/* A worker's fork of a sink (lam_sink.fork). */
+typedef struct lam_sink_fork {
+    lam_sink sink;           /* on the worker's thread: layer, the operations, layer_end
+                                (no begin, end or fork); sink.destroy releases the fork */
+    /* Start a layer (ctx: sink.ctx); its errors (out of memory) go to err
+     * until the next start. */
+    void (*start)(void *ctx, lam_error *err);
+    /* Move the bytes formatted since the start into t, and t's old buffer
+     * into the worker for reuse (ctx: sink.ctx). */
+    void (*take)(void *ctx, lam_layer_text *t);
+    /* On the calling thread, in layer order: write t through the forked
+     * sink (ctx: main) as if its layer had been sent to it. Returns the
+     * sink's error. */
+    int (*put)(void *main, const lam_layer_text *t);
+    void *main;              /* the forked sink's ctx */
+} lam_sink_fork;
 
 #endif

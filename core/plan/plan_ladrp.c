@@ -136,23 +136,13 @@ static int perimeters(emitter *e, const lam_layer *L, lam_layer **inner, lam_err
     return rc;
 }
 
-/* The raster of one region (a layer, or one island of it). */
-static int raster(emitter *e, const lam_layer *L, int approach, lam_error *err)
+/* The region's edges in the scan frame (rotated by -angle) into edges,
+ * sorted by their top, and the region's extent across the lines; returns
+ * how many (edges along the scan direction are never crossed: left out). */
+static size_t scan_edges(const emitter *e, const lam_layer *L, xedge *edges, double *vmin, double *vmax)
 {
-    const lam_plan_opts *o = e->o;
-    lam_ladrp_stats *st = e->st;
-    /* the region's edges in the scan frame (rotated by -angle) */
-    xedge *edges = malloc((L->npoints + 1) * sizeof *edges);
-    double *xs = malloc((L->npoints + 1) * sizeof *xs);
-    uint32_t *active = malloc((L->npoints + 1) * sizeof *active);
-    if (!edges || !xs || !active) {
-        free(edges);
-        free(xs);
-        free(active);
-        return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory planning a layer");
-    }
     size_t ne = 0;
-    double vmin = INFINITY, vmax = -INFINITY;
+    *vmin = INFINITY, *vmax = -INFINITY;
     for (size_t k = 0; k < L->ncontours; k++) {
         const lam_contour *c = &L->contours[k];
         for (size_t i = 0; i < c->n; i++) {
@@ -162,8 +152,8 @@ static int raster(emitter *e, const lam_layer *L, int approach, lam_error *err)
             double pv = e->s == 0 ? p[1] * e->c : -p[0] * e->s + p[1] * e->c;
             double qu = e->s == 0 ? q[0] * e->c : q[0] * e->c + q[1] * e->s;
             double qv = e->s == 0 ? q[1] * e->c : -q[0] * e->s + q[1] * e->c;
-            if (pv < vmin) vmin = pv;
-            if (pv > vmax) vmax = pv;
+            if (pv < *vmin) *vmin = pv;
+            if (pv > *vmax) *vmax = pv;
             if (pv == qv) continue; /* along the scan direction: never crossed */
             xedge *x = &edges[ne++];
             if (pv < qv) { x->vlo = pv; x->ulo = pu; x->vhi = qv; x->uhi = qu; }
@@ -171,6 +161,25 @@ static int raster(emitter *e, const lam_layer *L, int approach, lam_error *err)
         }
     }
     if (ne) qsort(edges, ne, sizeof *edges, cmp_vhi_desc);
+    return ne;
+}
+
+/* The raster of one region (a layer, or one island of it). */
+static int raster(emitter *e, const lam_layer *L, int approach, lam_error *err)
+{
+    const lam_plan_opts *o = e->o;
+    lam_ladrp_stats *st = e->st;
+    xedge *edges = malloc((L->npoints + 1) * sizeof *edges);
+    double *xs = malloc((L->npoints + 1) * sizeof *xs);
+    uint32_t *active = malloc((L->npoints + 1) * sizeof *active);
+    if (!edges || !xs || !active) {
+        free(edges);
+        free(xs);
+        free(active);
+        return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory planning a layer");
+    }
+    double vmin, vmax;
+    size_t ne = scan_edges(e, L, edges, &vmin, &vmax);
 
     int rc = LAM_OK;
     double d = o->bead;

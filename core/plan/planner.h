@@ -175,6 +175,16 @@ int lam_out_costs_measure(lam_sink_open open, void *arg, const lam_job_info *job
  * job like `job` (lam_plan_job); on error c is left as it was. */
 int lam_program_costs(const struct lam_profile *p, const lam_job_info *job, lam_out_costs *c, lam_error *err);
 
+/* The one builder of a job header (lam_plan_job, Lua's machine:plan): a
+ * plan with options o of `layers` layers whose box in the output frame is
+ * bbox (the model's, or the run's (u, v, w) box when o->frame_machine),
+ * the stage starting at the model origin in the plane of the first layer
+ * planned, cut height cut0. f (the run's frame: always set), label (NULL:
+ * "part") and model (the model's path, or NULL) are borrowed, as o's
+ * strings. */
+void lam_job_init(lam_job_info *job, const lam_plan_opts *o, size_t layers, const double bbox[6], double cut0,
+                  const lam_frame *f, const char *label, const char *model);
+
 /* The job lam_plan_run describes to its sink's begin for slicer s and
  * model m (NULL: the job's box from the slicer; label: room for 128
  * bytes, the job's label). */

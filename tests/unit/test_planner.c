@@ -63,7 +63,7 @@ static int s_contour(void *c, const lam_contour_info *ci)
 static lam_sink recorder(rec *r)
 {
     memset(r, 0, sizeof *r);
-    lam_sink s = { r, s_begin, s_layer, s_layer_end, s_feed, s_laser, s_move, s_contour, NULL, NULL, NULL };
+    lam_sink s = { r, s_begin, s_layer, s_layer_end, s_feed, s_laser, s_move, s_contour, NULL, NULL, NULL, NULL };
     return s;
 }
 

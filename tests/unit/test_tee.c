@@ -31,6 +31,14 @@ static int l_end(void *c)
     return ((logsink *)c)->fail_end ? LAM_EINVAL : 0;
 }
 static void l_destroy(void *c) { add(c, "x"); }
+static int l_fork(void *c, int moves, lam_sink_fork *out, lam_error *err)
+{
+    (void)err;
+    add(c, moves ? "F" : "f");
+    memset(out, 0, sizeof *out);
+    out->main = c;
+    return LAM_OK;
+}
 
 static lam_sink mk(logsink *l)
 {
@@ -75,6 +83,21 @@ int main(void)
     t.destroy(t.ctx);
     ok(strchr(a.s, 'x') && strchr(b.s, 'x'), "destroy destroys every sink");
     ok(lam_tee_sink(both, 0, &t, &err) == LAM_EUSAGE, "a tee of no sinks: LAM_EUSAGE");
+
+    /* fork (plan.h): a tee of one forwards its sink's, a tee of several has none */
+    a.s[0] = b.s[0] = '\0';
+    both[0].fork = both[1].fork = l_fork;
+    lam_sink_fork fk;
+    ok(lam_tee_sink(both, 2, &t, &err) == LAM_OK && t.fork == NULL, "a tee of two sinks cannot be forked");
+    free(t.ctx); /* not destroyed: the sinks stay ours */
+    ok(lam_tee_sink(both, 1, &t, &err) == LAM_OK && t.fork != NULL, "a tee of one sink that forks does too");
+    ok(t.fork(t.ctx, 1, &fk, &err) == LAM_OK && fk.main == &a, "... with the sink's own fork");
+    is_str(a.s, "F", "... which was told of the moves");
+    free(t.ctx);
+    both[0].fork = NULL;
+    ok(lam_tee_sink(both, 1, &t, &err) == LAM_OK && t.fork == NULL, "a tee of one that does not fork does not");
+    free(t.ctx);
+    both[1].fork = NULL;
 
     /* the JSON into memory, behind a tee: the <script> text to w, the
      * plain JSON to w2, from one consumer of one vector stream */
