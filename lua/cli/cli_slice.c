@@ -136,153 +136,169 @@ static int tee_outputs(lam_sink *sink, lam_writer *jw, report *rep, const args *
     return rc;
 }
 
-int cmd_slice(int argc, char **argv)
-{
+/* Everything one `lamina slice` holds, released by job_free. */
+typedef struct job {
     args a;
-    int rc = cli_parse_args("slice", usage_text,
-                            OPT_MODEL | OPT_SLICE | OPT_SET | OPT_PLAN | OPT_SVG | OPT_JSON_FILE | OPT_TALK | OPT_PART,
-                            argc, argv,
-                            &a);
-    if (rc) {
-        cli_args_free(&a);
-        return rc < 0 ? EXIT_OK : rc;
-    }
     lam_error err;
-    lam_error_clear(&err);
-    lam_profile *prof = NULL;
-    lam_model *m = NULL;
-    lam_slicer *s = NULL;
-    lam_writer *w = NULL, *jw = NULL;
-    lam_sink sink = { 0 };
+    lam_profile *prof;
+    lam_model *m;
+    lam_slicer *s;
+    lam_writer *w, *jw;
+    lam_sink sink;
     report rep;
-    memset(&rep, 0, sizeof rep);
-    rep.path = a.path;
-    rep.vr.out = stderr;
-    cli_progress_init(&rep.progress, a.talk, !a.out || !strcmp(a.out, "-"));
-    rep.vr.progress = &rep.progress;
-
     lam_plan_opts po;
-    if ((rc = cli_profile("slice", &a, &prof, &po))) goto done;
-    if (cli_load_model(a.path, a.threads, &m, &err)) {
-        rc = cli_fail(&err);
-        goto done;
-    }
-    a.path = rep.path = m->path; /* "<stdin>" for "-" */
-    /* every input is read now (a plugin only later, checked at commit):
-     * no output may replace one, and --svg, written last, is told now */
-    const char *outs[][2] = { { "-o", a.out }, { "--svg", a.svg }, { "--json", a.json_out }, { "--html", a.html } };
-    for (size_t i = 0; i < sizeof outs / sizeof *outs; i++)
-        if (cli_output_check(outs[i][0], outs[i][1], &err)) {
-            rc = cli_fail_cmd("slice", &err);
-            goto done;
-        }
-    if (lam_slicer_new(m, &a.so, &s, &err)) {
-        rc = err.code == LAM_EUSAGE ? cli_usage("slice", "%s", err.msg) : cli_fail_limit(&err, 0, CLI_RAISE_LAYERS);
-        goto done;
-    }
-    if (a.validate) {
-        if (lam_rays_new(m, &rep.v, &err)) {
-            rc = cli_fail(&err);
-            goto done;
-        }
-        rep.frame = lam_slicer_frame(s);
-        rep.fill_nonzero = a.so.fill_nonzero;
-    }
-    if (cli_writer("-o", a.out, &w, &err) || (a.json_out && cli_writer("--json", a.json_out, &jw, &err))) {
-        rc = cli_fail_cmd("slice", &err);
-        goto done;
-    }
-    /* every output file is held to the limit as it is written */
-    lam_writer_set_limit(w, a.max_output ? a.max_output : LAM_DEFAULT_MAX_OUTPUT);
-    if (jw) lam_writer_set_limit(jw, a.max_output ? a.max_output : LAM_DEFAULT_MAX_OUTPUT);
     lam_scan_time est;
-    memset(&est, 0, sizeof est);
-    po.time = &est;
-    if (a.layers) {
-        if ((rc = cli_part_setup(&a, prof, s, &po, w, &sink))) goto done;
-    } else {
-        int src = lam_program_sink(prof->writer, &prof->dialect, w, &sink, &err);
-        if (!src) src = tee_outputs(&sink, jw, &rep, &a, s, &po, &err);
-        if (src) {
-            rc = cli_fail_cmd("slice", &err);
-            goto done;
-        }
+} job;
+
+/* The profile, the model, the slicer and (--validate) the rays: every input
+ * is read now (a plugin only later, checked at commit), so no output may
+ * replace one, and --svg, written last, is told now. */
+static int open_inputs(job *j)
+{
+    int rc = cli_profile("slice", &j->a, &j->prof, &j->po);
+    if (rc) return rc;
+    if (cli_load_model(j->a.path, j->a.threads, &j->m, &j->err)) return cli_fail(&j->err);
+    j->a.path = j->rep.path = j->m->path; /* "<stdin>" for "-" */
+    const char *outs[][2] = { { "-o", j->a.out }, { "--svg", j->a.svg }, { "--json", j->a.json_out },
+                              { "--html", j->a.html } };
+    for (size_t i = 0; i < sizeof outs / sizeof *outs; i++)
+        if (cli_output_check(outs[i][0], outs[i][1], &j->err)) return cli_fail_cmd("slice", &j->err);
+    if (lam_slicer_new(j->m, &j->a.so, &j->s, &j->err))
+        return j->err.code == LAM_EUSAGE ? cli_usage("slice", "%s", j->err.msg)
+                                         : cli_fail_limit(&j->err, 0, CLI_RAISE_LAYERS);
+    if (j->a.validate) {
+        if (lam_rays_new(j->m, &j->rep.v, &j->err)) return cli_fail(&j->err);
+        j->rep.frame = lam_slicer_frame(j->s);
+        j->rep.fill_nonzero = j->a.so.fill_nonzero;
     }
-    size_t nl = lam_slicer_count(s);
+    return EXIT_OK;
+}
+
+/* The program's writer and sink (a part file's with --layers), the views,
+ * every output held to the limit as it is written. */
+static int open_outputs(job *j)
+{
+    const args *a = &j->a;
+    if (cli_writer("-o", a->out, &j->w, &j->err) || (a->json_out && cli_writer("--json", a->json_out, &j->jw, &j->err)))
+        return cli_fail_cmd("slice", &j->err);
+    unsigned long long limit = a->max_output ? a->max_output : LAM_DEFAULT_MAX_OUTPUT;
+    lam_writer_set_limit(j->w, limit);
+    if (j->jw) lam_writer_set_limit(j->jw, limit);
+    j->po.time = &j->est;
+    if (a->layers) return cli_part_setup(&j->a, j->prof, j->s, &j->po, j->w, &j->sink);
+    int rc = lam_program_sink(j->prof->writer, &j->prof->dialect, j->w, &j->sink, &j->err);
+    if (!rc) rc = tee_outputs(&j->sink, j->jw, &j->rep, a, j->s, &j->po, &j->err);
+    if (rc) return cli_fail_cmd("slice", &j->err);
     /* the estimate in the program's own bytes (the defaults if the
      * writer cannot be sampled: it then fails the run itself) */
-    if (!a.layers) {
-        lam_job_info cj;
-        char label[128];
-        lam_plan_job(s, m, &po, &cj, label);
-        lam_program_costs(prof, &cj, &po.costs, NULL);
-    }
-    cli_progress_stage(&rep.progress, "reading the model and preparing the layers");
-    cli_size_sense(a.path, a.machine ? prof : NULL, m, s, &po);
-    if (!a.layers && cli_check_outputs(a.json_out, a.html, s, m, &po, &err)) {
-        rc = cli_fail_limit(&err, 0, CLI_RAISE_OUTPUT);
-        goto done;
-    }
-    cli_progress_begin(&rep.progress, "slicing", a.path, nl);
-    rc = lam_plan_run(s, m, &po, &sink, on_layer, &rep, &err);
-    cli_progress_end(&rep.progress);
-    if (rc) {
-        int full = lam_writer_over_limit(w) || (jw && lam_writer_over_limit(jw)) ||
-                   (rep.view.hw && lam_writer_over_limit(rep.view.hw));
-        rc = err.code == LAM_EUSAGE ? cli_usage("slice", "%s", err.msg) : cli_fail_limit(&err, full, CLI_RAISE_OUTPUT);
-        goto done;
-    }
-    size_t notes = cli_progress_notes(&rep.progress);
-    if (notes && rep.gap_layers > notes)
-        fprintf(stderr, "lamina: %s: closed %zu gaps in %zu layers, largest %g (gap tolerance %g)\n", a.path,
-                rep.gaps_total, rep.gap_layers, rep.gap_max, lam_slicer_gap(s));
-    if (notes && rep.degenerate_layers > notes)
+    lam_job_info cj;
+    char label[128];
+    lam_plan_job(j->s, j->m, &j->po, &cj, label);
+    lam_program_costs(j->prof, &cj, &j->po.costs, NULL);
+    return EXIT_OK;
+}
+
+/* The run: sizes sensed and checked first, then every layer planned. */
+static int run_plan(job *j)
+{
+    cli_progress_stage(&j->rep.progress, "reading the model and preparing the layers");
+    cli_size_sense(j->a.path, j->a.machine ? j->prof : NULL, j->m, j->s, &j->po);
+    if (!j->a.layers && cli_check_outputs(j->a.json_out, j->a.html, j->s, j->m, &j->po, &j->err))
+        return cli_fail_limit(&j->err, 0, CLI_RAISE_OUTPUT);
+    cli_progress_begin(&j->rep.progress, "slicing", j->a.path, lam_slicer_count(j->s));
+    int rc = lam_plan_run(j->s, j->m, &j->po, &j->sink, on_layer, &j->rep, &j->err);
+    cli_progress_end(&j->rep.progress);
+    if (!rc) return EXIT_OK;
+    int full = lam_writer_over_limit(j->w) || (j->jw && lam_writer_over_limit(j->jw)) ||
+               (j->rep.view.hw && lam_writer_over_limit(j->rep.view.hw));
+    return j->err.code == LAM_EUSAGE ? cli_usage("slice", "%s", j->err.msg) : cli_fail_limit(&j->err, full, CLI_RAISE_OUTPUT);
+}
+
+/* What the run found, said once for the run when the notes were cut
+ * short; a disagreeing label or an open outline (without --allow-open)
+ * fails it. */
+static int report_run(job *j)
+{
+    const report *r = &j->rep;
+    const char *path = j->a.path;
+    size_t notes = cli_progress_notes(&j->rep.progress);
+    if (notes && r->gap_layers > notes)
+        fprintf(stderr, "lamina: %s: closed %zu gaps in %zu layers, largest %g (gap tolerance %g)\n", path,
+                r->gaps_total, r->gap_layers, r->gap_max, lam_slicer_gap(j->s));
+    if (notes && r->degenerate_layers > notes)
         fprintf(stderr, "lamina: %s: dropped %zu loops of no area, cancelled %zu coincident loops, in %zu layers\n",
-                a.path, rep.slivers, rep.twins, rep.degenerate_layers);
-    if (rep.vr.disagreeing || rep.vr.areas_differ) {
+                path, r->slivers, r->twins, r->degenerate_layers);
+    if (r->vr.disagreeing || r->vr.areas_differ) {
         fprintf(stderr, "lamina: %s: %zu contour%s and %zu layer area%s disagree with the model; nothing written\n",
-                a.path, rep.vr.disagreeing, rep.vr.disagreeing == 1 ? "" : "s", rep.vr.areas_differ,
-                rep.vr.areas_differ == 1 ? "" : "s");
-        rc = EXIT_CHECK;
-        goto done;
+                path, r->vr.disagreeing, r->vr.disagreeing == 1 ? "" : "s", r->vr.areas_differ,
+                r->vr.areas_differ == 1 ? "" : "s");
+        return EXIT_CHECK;
     }
-    if (rep.open_total) {
-        fprintf(stderr, "lamina: %s: %zu outline%s stayed open (gap tolerance %g)%s\n", a.path, rep.open_total,
-                rep.open_total == 1 ? "" : "s", lam_slicer_gap(s),
-                a.allow_open ? "; dropped (--allow-open)" : "; use --gap to close larger gaps or --allow-open to drop them");
-        if (!a.allow_open) {
-            rc = EXIT_INPUT;
-            goto done;
-        }
+    if (r->open_total) {
+        fprintf(stderr, "lamina: %s: %zu outline%s stayed open (gap tolerance %g)%s\n", path, r->open_total,
+                r->open_total == 1 ? "" : "s", lam_slicer_gap(j->s),
+                j->a.allow_open ? "; dropped (--allow-open)" : "; use --gap to close larger gaps or --allow-open to drop them");
+        if (!j->a.allow_open) return EXIT_INPUT;
     }
-    if (po.kind == LAM_PLAN_SLS && notes && !a.layers && lam_scan_estimates(&po.scan)) cli_print_estimate(a.path, &est);
-    if (cli_view_save(&rep.view, &err)) {
-        rc = err.code == LAM_ELIMIT ? cli_fail_limit(&err, 1, CLI_RAISE_OUTPUT) : cli_fail_cmd("slice", &err);
-        goto done;
+    if (j->po.kind == LAM_PLAN_SLS && notes && !j->a.layers && lam_scan_estimates(&j->po.scan))
+        cli_print_estimate(path, &j->est);
+    return EXIT_OK;
+}
+
+/* The sheet and the viewer, the program, the JSON: each whole or not at all. */
+static int commit_outputs(job *j)
+{
+    if (cli_view_save(&j->rep.view, &j->err))
+        return j->err.code == LAM_ELIMIT ? cli_fail_limit(&j->err, 1, CLI_RAISE_OUTPUT) : cli_fail_cmd("slice", &j->err);
+    lam_writer *tmp = j->w;
+    j->w = NULL;
+    int over = lam_writer_over_limit(tmp), rc = EXIT_OK;
+    if (lam_writer_commit(tmp, &j->err))
+        rc = j->err.code == LAM_EUSAGE ? cli_fail_cmd("slice", &j->err) : cli_fail_limit(&j->err, over, CLI_RAISE_OUTPUT);
+    cli_progress_stage(&j->rep.progress, "writing the outputs");
+    if (!rc && j->jw) {
+        tmp = j->jw;
+        j->jw = NULL;
+        if (lam_writer_commit(tmp, &j->err))
+            rc = j->err.code == LAM_ELIMIT ? cli_fail_limit(&j->err, 1, CLI_RAISE_OUTPUT) : cli_fail_cmd("slice", &j->err);
     }
-    {
-        lam_writer *tmp = w;
-        w = NULL;
-        int over = lam_writer_over_limit(tmp);
-        if (lam_writer_commit(tmp, &err))
-            rc = err.code == LAM_EUSAGE ? cli_fail_cmd("slice", &err) : cli_fail_limit(&err, over, CLI_RAISE_OUTPUT);
-        cli_progress_stage(&rep.progress, "writing the outputs");
+    return rc;
+}
+
+static void job_free(job *j)
+{
+    if (j->sink.destroy) j->sink.destroy(j->sink.ctx);
+    lam_writer_abort(j->w);
+    lam_writer_abort(j->jw);
+    cli_view_free(&j->rep.view);
+    lam_rays_free(j->rep.v);
+    lam_slicer_free(j->s);
+    lam_model_free(j->m);
+    lam_profile_free(j->prof);
+    cli_args_free(&j->a);
+}
+
+int cmd_slice(int argc, char **argv)
+{
+    job j;
+    memset(&j, 0, sizeof j);
+    int rc = cli_parse_args("slice", usage_text,
+                            OPT_MODEL | OPT_SLICE | OPT_SET | OPT_PLAN | OPT_SVG | OPT_JSON_FILE | OPT_TALK | OPT_PART,
+                            argc, argv, &j.a);
+    if (rc) {
+        cli_args_free(&j.a);
+        return rc < 0 ? EXIT_OK : rc;
     }
-    if (!rc && jw) {
-        lam_writer *tmp = jw;
-        jw = NULL;
-        if (lam_writer_commit(tmp, &err))
-            rc = err.code == LAM_ELIMIT ? cli_fail_limit(&err, 1, CLI_RAISE_OUTPUT) : cli_fail_cmd("slice", &err);
-    }
-done:
-    if (sink.destroy) sink.destroy(sink.ctx);
-    lam_writer_abort(w);
-    lam_writer_abort(jw);
-    cli_view_free(&rep.view);
-    lam_rays_free(rep.v);
-    lam_slicer_free(s);
-    lam_model_free(m);
-    lam_profile_free(prof);
-    cli_args_free(&a);
+    lam_error_clear(&j.err);
+    j.rep.path = j.a.path;
+    j.rep.vr.out = stderr;
+    cli_progress_init(&j.rep.progress, j.a.talk, !j.a.out || !strcmp(j.a.out, "-"));
+    j.rep.vr.progress = &j.rep.progress;
+    rc = open_inputs(&j);
+    if (!rc) rc = open_outputs(&j);
+    if (!rc) rc = run_plan(&j);
+    if (!rc) rc = report_run(&j);
+    if (!rc) rc = commit_outputs(&j);
+    job_free(&j);
     return rc;
 }
