@@ -297,6 +297,14 @@ static void d_destroy(void *ctx)
 
 static int d_fork(void *ctx, int moves, lam_sink_fork *out, lam_error *err);
 
+/* The callbacks a dialect's sink and its workers' share: the layers and
+ * their operations. */
+static void d_ops(dsink *s, lam_sink *out)
+{
+    *out = (lam_sink){ .ctx = s, .layer = d_layer, .layer_end = d_layer_end, .feed = d_feed, .laser = d_laser,
+                       .move = d_move, .contour = d_contour, .hatches = d_hatches, .destroy = d_destroy };
+}
+
 int lam_dialect_sink(const lam_dialect *d, lam_writer *w, lam_sink *out, lam_error *err)
 {
     memset(out, 0, sizeof *out);
@@ -305,17 +313,9 @@ int lam_dialect_sink(const lam_dialect *d, lam_writer *w, lam_sink *out, lam_err
     s->d = d;
     s->w = w;
     s->err = err;
-    out->ctx = s;
+    d_ops(s, out);
     out->begin = d_begin;
-    out->layer = d_layer;
-    out->layer_end = d_layer_end;
-    out->feed = d_feed;
-    out->laser = d_laser;
-    out->move = d_move;
-    out->contour = d_contour;
-    out->hatches = d_hatches;
     out->end = d_end;
-    out->destroy = d_destroy;
     out->fork = d_fork;
     return LAM_OK;
 }
@@ -355,15 +355,7 @@ static int fork_of(const dsink *m, int moves, lam_sink *out, lam_error *err)
     s->borrowed = 1;
     s->worker = 1;
     memcpy(s->pos, m->job.origin, sizeof s->pos);
-    out->ctx = s;
-    out->layer = d_layer;
-    out->layer_end = d_layer_end;
-    out->feed = d_feed;
-    out->laser = d_laser;
-    out->move = d_move;
-    out->contour = d_contour;
-    out->hatches = d_hatches;
-    out->destroy = d_destroy;
+    d_ops(s, out);
     return LAM_OK;
 }
 

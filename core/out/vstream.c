@@ -185,14 +185,7 @@ int lam_vstream_sink(const lam_vec_consumer *c, size_t n, lam_sink *out, lam_err
     }
     memcpy(s->c, c, n * sizeof *c);
     s->n = n;
-    out->ctx = s;
-    out->begin = vs_begin;
-    out->layer = vs_layer;
-    out->layer_end = vs_layer_end;
-    out->move = vs_move;
-    out->contour = vs_contour;
-    out->hatches = vs_hatches;
-    out->end = vs_end;
-    out->destroy = vs_destroy;
+    *out = (lam_sink){ .ctx = s, .begin = vs_begin, .layer = vs_layer, .layer_end = vs_layer_end, .move = vs_move,
+                       .contour = vs_contour, .hatches = vs_hatches, .end = vs_end, .destroy = vs_destroy };
     return LAM_OK;
 }

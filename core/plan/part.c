@@ -264,15 +264,11 @@ int lam_part_sink(const lam_part_meta *meta, lam_scan_time *time, lam_writer *w,
         r_destroy(r);
         return lam_error_nomem(err, NULL);
     }
+    *out = all;
     out->ctx = r;
     out->begin = r_begin;
     out->layer = r_layer;
     out->layer_end = r_layer_end;
-    out->feed = r_feed;
-    out->laser = r_laser;
-    out->move = r_move;
-    out->contour = r_contour;
-    out->hatches = r_hatches;
     out->end = r_end;
     out->destroy = r_destroy;
     return LAM_OK;

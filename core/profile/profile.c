@@ -962,26 +962,36 @@ void lam_profile_free(lam_profile *p)
     free(p);
 }
 
+/* A loader of a new profile: LAM_ENOMEM when there is no room for one. */
+static int loader_start(ldr *L, lam_error *err)
+{
+    lam_error_clear(err);
+    memset(L, 0, sizeof *L);
+    L->err = err;
+    return (L->p = new_profile()) ? LAM_OK : oom_err(err);
+}
+
+/* The loader's profile, named `path`, into *out after a load that gave rc. */
+static int loader_finish(ldr *L, int rc, const char *path, lam_profile **out, lam_error *err)
+{
+    if (!rc && !(L->p->path = strdup(path))) rc = oom_err(err);
+    if (rc) {
+        lam_profile_free(L->p);
+        return rc;
+    }
+    *out = L->p;
+    return LAM_OK;
+}
+
 int lam_profile_load(const char *path, lam_profile **out, lam_error *err)
 {
     lam_error own; /* err may be NULL (error.h); messages are wrapped below */
     if (!err) err = &own;
     *out = NULL;
-    lam_error scratch;
-    if (!err) err = &scratch;
-    lam_error_clear(err);
     ldr L;
-    memset(&L, 0, sizeof L);
-    L.err = err;
-    if (!(L.p = new_profile())) return oom_err(err);
-    int rc = load_file(&L, path, 1);
-    if (!rc && !(L.p->path = strdup(path))) rc = oom_err(err);
-    if (rc) {
-        lam_profile_free(L.p);
-        return rc;
-    }
-    *out = L.p;
-    return LAM_OK;
+    int rc = loader_start(&L, err);
+    if (rc) return rc;
+    return loader_finish(&L, load_file(&L, path, 1), path, out, err);
 }
 
 int lam_profile_load_buf(const char *name, const char *text, size_t len, lam_profile **out, lam_error *err)
@@ -989,31 +999,21 @@ int lam_profile_load_buf(const char *name, const char *text, size_t len, lam_pro
     lam_error own; /* err may be NULL (error.h); messages are wrapped below */
     if (!err) err = &own;
     *out = NULL;
-    lam_error scratch;
-    if (!err) err = &scratch;
-    lam_error_clear(err);
     ldr L;
-    memset(&L, 0, sizeof L);
-    L.err = err;
-    if (!(L.p = new_profile())) return oom_err(err);
+    int rc = loader_start(&L, err);
+    if (rc) return rc;
     src buf;
     memset(&buf, 0, sizeof buf);
     buf.path = name;
     buf.err = err;
     buf.len = len;
-    int rc = (buf.text = malloc(len + 1)) ? LAM_OK : oom_err(err);
+    rc = (buf.text = malloc(len + 1)) ? LAM_OK : oom_err(err);
     if (!rc) {
         memcpy(buf.text, text, len);
         buf.text[len] = '\0';
         rc = load_text(&L, &buf, name, 1);
     }
-    if (!rc && !(L.p->path = strdup(name))) rc = oom_err(err);
-    if (rc) {
-        lam_profile_free(L.p);
-        return rc;
-    }
-    *out = L.p;
-    return LAM_OK;
+    return loader_finish(&L, rc, name, out, err);
 }
 
 int lam_profile_find(const char *name_or_path, lam_profile **out, lam_error *err)
