@@ -157,6 +157,17 @@ static void key(js *s, const char *k)
     put(s, ": ");
 }
 
+/* `, "k": x` for each of n keys and numbers (the first without its comma
+ * when `first`). */
+static void nums(js *s, int first, const char *const *k, const double *x, size_t n)
+{
+    for (size_t i = 0; i < n; i++) {
+        put(s, first && i == 0 ? "" : ", ");
+        key(s, k[i]);
+        num(s, x[i]);
+    }
+}
+
 static void to_out(const js *s, double u, double v, double xyz[3])
 {
     if (s->frame_machine) {
@@ -252,14 +263,8 @@ static int j_layer(void *ctx, const lam_layer_info *li)
     line(s);
     put(s, "  {\"index\": ");
     size(s, li->index + 1);
-    put(s, ", \"z\": ");
-    num(s, li->z);
-    put(s, ", \"floor\": ");
-    num(s, li->floor);
-    put(s, ", \"ceiling\": ");
-    num(s, li->ceiling);
-    put(s, ", \"width\": ");
-    num(s, li->width);
+    static const char *const keys[] = { "z", "floor", "ceiling", "width" };
+    nums(s, 0, keys, (const double[]){ li->z, li->floor, li->ceiling, li->width }, 4);
     put(s, ",");
     line(s);
     put(s, "   \"contours\": [");
@@ -378,10 +383,8 @@ static int j_end(void *ctx)
     size(s, s->contours);
     put(s, ", \"vectors\": ");
     size(s, s->vectors);
-    put(s, ", \"deposit_length\": ");
-    num(s, s->deposit_total);
-    put(s, ", \"travel_length\": ");
-    num(s, s->travel_total);
+    static const char *const keys[] = { "deposit_length", "travel_length" };
+    nums(s, 0, keys, (const double[]){ s->deposit_total, s->travel_total }, 2);
     put(s, ", \"time\": ");
     /* a total only when every layer had its estimate */
     if (s->timed && s->timed == s->layers) time_object(s, &s->time);

@@ -755,15 +755,8 @@ static void ps_destroy(void *ctx)
 /* A sink on s with the calls of a layer (a worker's sink has no more). */
 static void layer_calls(lam_sink *out, plugin_sink *s)
 {
-    out->ctx = s;
-    out->layer = ps_layer;
-    out->layer_end = ps_layer_end;
-    out->feed = ps_feed;
-    out->laser = ps_laser;
-    out->move = ps_move;
-    out->contour = ps_contour;
-    out->hatches = ps_hatches;
-    out->destroy = ps_destroy;
+    *out = (lam_sink){ .ctx = s, .layer = ps_layer, .layer_end = ps_layer_end, .feed = ps_feed, .laser = ps_laser,
+                       .move = ps_move, .contour = ps_contour, .hatches = ps_hatches, .destroy = ps_destroy };
 }
 
 /* A worker's sink for the plugin sink m (lam_plugin_fork). */

@@ -68,17 +68,9 @@ int lam_tee_sink(const lam_sink *sinks, size_t n, lam_sink *out, lam_error *err)
     t->n = n;
     int hatches = 0;
     for (size_t i = 0; i < n; i++) hatches |= sinks[i].hatches != NULL;
-    out->ctx = t;
-    out->begin = t_begin;
-    out->layer = t_layer;
-    out->layer_end = t_layer_end;
-    out->feed = t_feed;
-    out->laser = t_laser;
-    out->move = t_move;
-    out->contour = t_contour;
-    out->end = t_end;
-    out->destroy = t_destroy;
-    out->hatches = hatches ? t_hatches : NULL; /* NULL: no sink wants them */
-    out->fork = n == 1 && sinks[0].fork ? t_fork : NULL;
+    *out = (lam_sink){ .ctx = t, .begin = t_begin, .layer = t_layer, .layer_end = t_layer_end, .feed = t_feed,
+                       .laser = t_laser, .move = t_move, .contour = t_contour, .end = t_end, .destroy = t_destroy,
+                       .hatches = hatches ? t_hatches : NULL, /* NULL: no sink wants them */
+                       .fork = n == 1 && sinks[0].fork ? t_fork : NULL };
     return LAM_OK;
 }
