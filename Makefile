@@ -308,14 +308,15 @@ INSTALL_FILES := $(INSTALL_LUA) \
   $(foreach f,$(PUBLIC_H),644:$(f):INCLUDEDIR/lamina/$(notdir $(f))) \
   644:$(BUILD)/lamina.pc:LIBDIR/pkgconfig/lamina.pc \
   644:README.md:DOCDIR/README.md 644:lua/API.md:DOCDIR/lua/API.md \
-  644:machines/README.md:DOCDIR/machines/README.md 644:docs/json.md:DOCDIR/json.md \
+  644:machines/README.md:DOCDIR/machines/README.md \
+  $(foreach f,$(wildcard docs/*.md),644:$(f):DOCDIR/docs/$(notdir $(f))) \
   $(foreach f,$(wildcard schema/*.json),644:$(f):DATADIR/lamina/schema/$(notdir $(f))) \
   $(foreach f,recipes/README.md $(wildcard recipes/*.lua),644:$(f):DOCDIR/recipes/$(notdir $(f))) \
   $(foreach f,$(wildcard recipes/parts/*),644:$(f):DOCDIR/recipes/parts/$(notdir $(f))) \
   $(foreach f,$(MAN_PAGES),644:$(f):MANDIR/man1/$(notdir $(f))) \
   644:$(BUILD)/completion/lamina:BASHCOMPDIR/lamina
 # Directories that are lamina's alone: removed by uninstall when empty.
-INSTALL_OWN_DIRS := DATADIR/lamina/schema DOCDIR/recipes/parts DOCDIR/recipes DOCDIR/lua DOCDIR/machines DOCDIR/. \
+INSTALL_OWN_DIRS := DATADIR/lamina/schema DOCDIR/recipes/parts DOCDIR/recipes DOCDIR/lua DOCDIR/machines DOCDIR/docs DOCDIR/. \
   INCLUDEDIR/lamina MACHINEDIR/. DATADIR/lamina PLUGINDIR/. LIBDIR/lamina LUA_MODDIR/lamina \
   LUA_MODDIR/lamina/machines LUA_CMODDIR/lamina/plugins LUA_CMODDIR/lamina
 
