@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "buf.h"
 #include "dialect.h"
 #include "escape.h"
 #include "fmt.h"
@@ -21,8 +22,7 @@ typedef struct js {
     lam_writer *w;           /* the JSON, or NULL */
     lam_writer *script;      /* the same for a <script> element, or NULL */
     lam_error *err;
-    char *buf;
-    size_t len, cap;
+    lam_buf b;               /* text not written yet */
     int rc;                  /* sticky: the first error */
     lam_frame frame;
     int frame_machine;
@@ -45,20 +45,7 @@ static int nomem(js *s) { return s->rc = lam_error_nomem(s->err, "writing the JS
 
 static void putn(js *s, const char *t, size_t n)
 {
-    if (s->rc) return;
-    if (s->len + n + 1 > s->cap) {
-        size_t nc = s->cap ? s->cap : 4096;
-        while (nc < s->len + n + 1) nc *= 2;
-        char *nb = realloc(s->buf, nc);
-        if (!nb) {
-            nomem(s);
-            return;
-        }
-        s->buf = nb;
-        s->cap = nc;
-    }
-    memcpy(s->buf + s->len, t, n);
-    s->len += n;
+    if (!s->rc && lam_buf_append(&s->b, t, n)) nomem(s);
 }
 
 static void put(js *s, const char *t) { putn(s, t, strlen(t)); }
@@ -79,17 +66,17 @@ static int write_script(lam_writer *w, const char *t, size_t n)
 
 static void flush(js *s)
 {
-    if (s->rc || !s->len) return;
-    if (s->w && lam_writer_write(s->w, s->buf, s->len)) s->rc = lam_writer_error(s->w, s->err);
-    if (!s->rc && s->script && write_script(s->script, s->buf, s->len)) s->rc = lam_writer_error(s->script, s->err);
-    s->len = 0;
+    if (s->rc || !s->b.len) return;
+    if (s->w && lam_writer_write(s->w, s->b.data, s->b.len)) s->rc = lam_writer_error(s->w, s->err);
+    if (!s->rc && s->script && write_script(s->script, s->b.data, s->b.len)) s->rc = lam_writer_error(s->script, s->err);
+    lam_buf_clear(&s->b);
 }
 
 /* A line ends: the text goes out when enough has gathered. */
 static void line(js *s)
 {
     put(s, "\n");
-    if (s->len >= FLUSH_AT) flush(s);
+    if (s->b.len >= FLUSH_AT) flush(s);
 }
 
 static void num(js *s, double x)
@@ -117,7 +104,7 @@ static void pt(js *s, const double p[3])
             putn(s, s->seen[i].text, s->seen[i].len);
             return;
         }
-    size_t at = s->len;
+    size_t at = s->b.len;
     put(s, "[");
     num(s, p[0]);
     put(s, ", ");
@@ -130,8 +117,8 @@ static void pt(js *s, const double p[3])
     s->next_seen = (k + 1) % 4;
     if (s->nseen < 4) s->nseen++;
     memcpy(s->seen[k].p, p, sizeof s->seen[k].p);
-    s->seen[k].len = s->len - at;
-    memcpy(s->seen[k].text, s->buf + at, s->len - at);
+    s->seen[k].len = s->b.len - at;
+    memcpy(s->seen[k].text, s->b.data + at, s->b.len - at);
 }
 
 /* A JSON string, escaped by escape.h (bytes that are not UTF-8, which a
@@ -289,7 +276,7 @@ static int j_layer(void *ctx, const lam_layer_info *li)
             to_out(s, uv[0], uv[1], p);
             if (i) put(s, ", ");
             pt(s, p);
-            if (s->len >= FLUSH_AT) flush(s);
+            if (s->b.len >= FLUSH_AT) flush(s);
         }
         put(s, "]}");
         s->contours++;
@@ -324,7 +311,7 @@ static int j_vector(void *ctx, const lam_vec *v)
         }
     put(s, "}");
     s->vectors++;
-    if (s->len >= FLUSH_AT) flush(s);
+    if (s->b.len >= FLUSH_AT) flush(s);
     return s->rc;
 }
 
@@ -398,7 +385,7 @@ static int j_end(void *ctx)
 static void j_destroy(void *ctx)
 {
     js *s = ctx;
-    free(s->buf);
+    lam_buf_free(&s->b);
     free(s);
 }
 
