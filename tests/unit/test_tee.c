@@ -120,7 +120,7 @@ int main(void)
     li.width = 0.2;
     li.ceiling = 0.2;
     if (!rc) rc = t.layer(t.ctx, &li);
-    lam_move_info q = { .deposit = 1, .xyz = { 0.1, 0.2, 0.1 } };
+    lam_move_info q = { .attrs = lam_attrs_default(), .deposit = 1, .xyz = { 0.1, 0.2, 0.1 } };
     if (!rc) rc = t.move(t.ctx, &q);
     if (!rc) rc = t.layer_end(t.ctx, &li);
     if (!rc) rc = t.end(t.ctx);
