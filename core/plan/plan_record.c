@@ -187,6 +187,7 @@ void lam_record_clear(lam_record *r)
 void lam_record_free(lam_record *r)
 {
     free(r->buf);
+    lam_rec_scratch_free(&r->sc);
     memset(r, 0, sizeof *r);
 }
 
@@ -393,17 +394,15 @@ static int mem_corrupt(void *ctx, const char *what, lam_error *err)
     return lam_error_set(err, LAM_EFORMAT, NULL, 0, 0, "a recording's byte %zu: %s", m->off, what);
 }
 
-int lam_record_replay(const lam_record *r, const lam_sink *sink)
+int lam_record_replay(lam_record *r, const lam_sink *sink)
 {
     mem m = { r->buf, r->len, 0 };
     lam_rec_source src = { &m, mem_get, mem_left, mem_corrupt };
-    lam_rec_scratch sc = { 0 };
     lam_rec_op op;
     int rc = LAM_OK;
     while (!rc && m.off < m.len) {
-        rc = lam_rec_read(&src, &sc, &op, NULL);
+        rc = lam_rec_read(&src, &r->sc, &op, NULL);
         if (!rc) rc = lam_rec_send(&op, sink);
     }
-    lam_rec_scratch_free(&sc);
     return rc;
 }

@@ -35,11 +35,18 @@
 #include "hatch.h"
 #include "plan.h"
 
+/* The decoder's scratch (zero it first; free with lam_rec_scratch_free). */
+typedef struct lam_rec_scratch {
+    double *d;
+    size_t cap;
+} lam_rec_scratch;
+
 /* Encoded records in memory. */
 typedef struct lam_record {
     unsigned char *buf;
     size_t len, cap;
     int failed;              /* out of memory while recording */
+    lam_rec_scratch sc;      /* the replay's points, kept for the next layer */
 } lam_record;
 
 /* A sink recording into r (not owned; r starts empty or cleared). It has
@@ -64,7 +71,7 @@ void lam_record_clear(lam_record *r);
 /* Send r's operations to sink in the order they came (layers too, when
  * recorded: the layer's info then has neither section nor estimate).
  * Returns the first error a callback returns. */
-int lam_record_replay(const lam_record *r, const lam_sink *sink);
+int lam_record_replay(lam_record *r, const lam_sink *sink);
 
 /* Release r's memory. */
 void lam_record_free(lam_record *r);
@@ -99,12 +106,6 @@ typedef struct lam_rec_op {
     lam_contour_info contour;/* 'C' */
     lam_hatch_info hatches;  /* 'H' */
 } lam_rec_op;
-
-/* The decoder's scratch (zero it first; free with lam_rec_scratch_free). */
-typedef struct lam_rec_scratch {
-    double *d;
-    size_t cap;
-} lam_rec_scratch;
 
 void lam_rec_scratch_free(lam_rec_scratch *sc);
 
