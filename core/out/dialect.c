@@ -18,7 +18,7 @@ typedef struct dsink {
     size_t blocks;                  /* contour blocks written */
     size_t layer_index, in_layer;   /* contours seen in the current layer */
     lam_tbuf b;
-    /* a worker's layer text (lam_dialect_fork): w is NULL, the strings are
+    /* a worker's layer text (d_fork, the sink's fork member): w is NULL, the strings are
      * the main sink's, and the layer's first separator is noted */
     int worker, borrowed, complete, has_sep;
     size_t sep_at, sep_len, layer_blocks;
@@ -323,7 +323,7 @@ int lam_dialect_sink(const lam_dialect *d, lam_writer *w, lam_sink *out, lam_err
 /* ---- layer text formatted by worker threads (issue 15) ------------------ */
 
 /* Whether the dialect's text for a layer depends on the layers before it
- * beyond what lam_dialect_put makes right: relative moves (dx dy dz) are
+ * beyond what the fork's put makes right: relative moves (dx dy dz) are
  * measured from where the text before left the stage, rounding included. */
 static int relative_moves(const lam_dialect *d)
 {
@@ -338,7 +338,7 @@ static int relative_moves(const lam_dialect *d)
     return 0;
 }
 
-/* A worker's sink formatting layers like m's (lam_dialect_fork). */
+/* A worker's sink formatting layers like m's (d_fork, the sink's fork member). */
 static int fork_of(const dsink *m, int moves, lam_sink *out, lam_error *err)
 {
     memset(out, 0, sizeof *out);
@@ -414,28 +414,6 @@ static int d_fork(void *ctx, int moves, lam_sink_fork *out, lam_error *err)
     out->put = fork_put;
     out->main = ctx;
     return LAM_OK;
-}
-
-int lam_dialect_fork(const lam_sink *main, int moves, lam_sink *out, lam_error *err)
-{
-    memset(out, 0, sizeof *out);
-    if (!main || main->begin != d_begin) return LAM_EUSAGE;
-    return fork_of(main->ctx, moves, out, err);
-}
-
-void lam_dialect_fork_start(const lam_sink *worker, lam_error *err)
-{
-    fork_start(worker->ctx, err);
-}
-
-void lam_dialect_fork_take(const lam_sink *worker, lam_dialect_text *t)
-{
-    fork_take(worker->ctx, t);
-}
-
-int lam_dialect_put(const lam_sink *main, const lam_dialect_text *t)
-{
-    return fork_put(main->ctx, t);
 }
 
 void lam_dialect_text_free(lam_dialect_text *t)

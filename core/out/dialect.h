@@ -74,34 +74,16 @@
  * to err, which must outlive the sink. */
 int lam_dialect_sink(const lam_dialect *d, lam_writer *w, lam_sink *out, lam_error *err);
 
-/* Layer text formatted by worker threads (issue 15): a worker formats a
- * whole layer (layer, its operations, layer_end) into its own buffer and
- * the writer thread appends the buffers in layer order with
- * lam_dialect_put; the bytes are those the sink writes on one thread. The
- * sink's fork member (plan.h) is these functions; they stay for tests. */
+/* Layer text formatted by worker threads (issue 15): the sink's fork
+ * member (plan.h) makes a worker's sink that formats a whole layer (layer,
+ * its operations, layer_end) into its own buffer, and the writer thread
+ * appends the buffers in layer order through the fork's put; the bytes are
+ * those the sink writes on one thread. A dialect that writes relative
+ * moves (dx dy dz) does not fork when the planner sends moves: each move's
+ * text hangs on the rounding of every move before. */
 typedef lam_layer_text lam_dialect_text; /* plan.h */
 
-/* A worker's sink formatting layers like `main`, a lam_dialect_sink after
- * its begin (its job strings are shared: main must outlive it). Returns
- * LAM_EUSAGE, making nothing, when main is not a dialect sink or, when
- * `moves` (the planner sends moves), the dialect writes relative moves,
- * whose text depends on the rounding of all the moves before. Only the
- * layer callbacks are set; destroy releases it. */
-int lam_dialect_fork(const lam_sink *main, int moves, lam_sink *out, lam_error *err);
-
-/* Start a layer's text in a worker sink; its errors (out of memory) go to
- * err until the next start. */
-void lam_dialect_fork_start(const lam_sink *worker, lam_error *err);
-
-/* Move the text formatted since the start into t, and t's old buffer into
- * the worker for reuse. */
-void lam_dialect_fork_take(const lam_sink *worker, lam_dialect_text *t);
-
-/* Write t through main as if its layer had been sent to main (the
- * separator before the program's first block dropped, blocks counted,
- * flushed at the layer's end as main would). Returns the writer's error. */
-int lam_dialect_put(const lam_sink *main, const lam_dialect_text *t);
-
+/* Free a layer's text (the buffer a fork's take filled). */
 void lam_dialect_text_free(lam_dialect_text *t);
 
 #endif

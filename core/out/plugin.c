@@ -581,7 +581,7 @@ static int load_named(const char *name, char **dirs, size_t ndirs, lam_error *er
 /* ---- the sink adapter ---- */
 
 /* Where a writer's bytes go: the output, or (w NULL: a worker's state,
- * lam_plugin_fork) a buffer holding the layer being formatted. */
+ * the fork member) a buffer holding the layer being formatted. */
 struct lamina_out {
     lam_writer *w;
     int failed;              /* a write failed (the lam_writer's error is sticky) */
@@ -759,7 +759,7 @@ static void layer_calls(lam_sink *out, plugin_sink *s)
                        .move = ps_move, .contour = ps_contour, .hatches = ps_hatches, .destroy = ps_destroy };
 }
 
-/* A worker's sink for the plugin sink m (lam_plugin_fork). */
+/* A worker's sink for the plugin sink m (ps_fork, the sink's fork member). */
 static int fork_of(const plugin_sink *m, lam_sink *out, lam_error *err)
 {
     memset(out, 0, sizeof *out);
@@ -826,28 +826,6 @@ static int ps_fork(void *ctx, int moves, lam_sink_fork *out, lam_error *err)
     out->put = fork_put;
     out->main = ctx;
     return LAM_OK;
-}
-
-int lam_plugin_fork(const lam_sink *main, lam_sink *out, lam_error *err)
-{
-    memset(out, 0, sizeof *out);
-    if (!main || main->begin != ps_begin) return LAM_EUSAGE;
-    return fork_of(main->ctx, out, err);
-}
-
-void lam_plugin_fork_start(const lam_sink *worker, lam_error *err)
-{
-    fork_start(worker->ctx, err);
-}
-
-void lam_plugin_fork_take(const lam_sink *worker, lam_dialect_text *t)
-{
-    fork_take(worker->ctx, t);
-}
-
-int lam_plugin_put(const lam_sink *main, const lam_dialect_text *t)
-{
-    return fork_put(main->ctx, t);
 }
 
 int lam_plugin_writer_sink(const char *name, lam_writer *w, lam_sink *out, lam_error *err)

@@ -4,7 +4,7 @@
  *
  * The registry is process-wide and thread-safe (one lock): any thread may
  * load plugins, list writers and create sinks; a sink itself is used by one
- * thread at a time (the sinks of lam_plugin_fork run on worker threads).
+ * thread at a time (the sinks of its fork member run on worker threads).
  * Everything a plugin registered (writer names, the sinks built on them)
  * stays valid until lam_plugins_unload. */
 #ifndef LAM_PLUGIN_HOST_H
@@ -68,21 +68,11 @@ int lam_plugin_writer_sink(const char *name, lam_writer *w, lam_sink *out, lam_e
 struct lam_dialect;
 
 /* Layers formatted by worker threads through a plugin writer that allows
- * it (lamina_writer.layer_written), as lam_dialect_fork does for text
- * dialects (dialect.h), with the same lam_dialect_text holding a layer's
- * bytes. lam_plugin_fork makes a worker's sink for the plugin sink `main`
- * after its begin (main must outlive it; destroy releases it), or returns
- * LAM_EUSAGE, making nothing, when main is not a plugin sink, its writer
- * does not allow it or refuses a second state (its begin fails). Only the
- * layer callbacks are set. lam_plugin_fork_start starts a layer (its
- * errors go to err), lam_plugin_fork_take moves the bytes since into t (t's
- * old buffer goes back to the worker), and lam_plugin_put writes them
- * through main, in layer order, and tells the writer (the writer's or the
- * output's error). The sink's fork member (plan.h) is these functions. */
-int lam_plugin_fork(const lam_sink *main, lam_sink *out, lam_error *err);
-void lam_plugin_fork_start(const lam_sink *worker, lam_error *err);
-void lam_plugin_fork_take(const lam_sink *worker, lam_layer_text *t);
-int lam_plugin_put(const lam_sink *main, const lam_layer_text *t);
+ * it (lamina_writer.layer_written): the plugin sink's fork member (plan.h)
+ * makes a worker's sink after its begin, or fails (LAM_EUSAGE, making
+ * nothing) when its writer does not allow it or refuses a second state;
+ * the fork's put writes a layer's bytes through the main sink in layer
+ * order and tells the writer. */
 
 /* The sink a machine profile writes its programs through: the dialect's
  * templates (lam_dialect_sink) when writer is NULL or "text", else the

@@ -247,8 +247,8 @@ static int put_tpl(lam_dialect *d, lam_cmd c, const char *text)
 }
 
 /* Two layers, the first with no blocks, the second with two contours,
- * sent to a dialect sink directly and through lam_dialect_fork /
- * lam_dialect_put: the same text. */
+ * sent to a dialect sink directly and through its fork (plan.h): the
+ * same text. */
 static void dialect_fork(void)
 {
     lam_dialect d;
@@ -278,17 +278,18 @@ static void dialect_fork(void)
                 s.layer_end(s.ctx, &li[l]);
             }
         } else {
-            lam_sink ws;
+            lam_sink_fork fk;
             lam_dialect_text t;
             memset(&t, 0, sizeof t);
-            ok(lam_dialect_fork(&s, 1, &ws, &err) == LAM_OK, "dialect: a worker's formatter");
+            ok(s.fork && s.fork(s.ctx, 1, &fk, &err) == LAM_OK, "dialect: a worker's formatter (its fork)");
+            lam_sink ws = fk.sink;
             for (int l = 0; l < 2; l++) {
-                lam_dialect_fork_start(&ws, &err);
+                fk.start(ws.ctx, &err);
                 ws.layer(ws.ctx, &li[l]);
                 for (int c = 0; c < 2 * l; c++) ws.contour(ws.ctx, &ci);
                 ws.layer_end(ws.ctx, &li[l]);
-                lam_dialect_fork_take(&ws, &t);
-                lam_dialect_put(&s, &t);
+                fk.take(ws.ctx, &t);
+                fk.put(fk.main, &t);
             }
             lam_dialect_text_free(&t);
             ws.destroy(ws.ctx);
@@ -306,13 +307,14 @@ static void dialect_fork(void)
     put_tpl(&d, LAM_CMD_TRAVEL, "G0 X{dx}");
     lam_writer *w;
     lam_error err;
-    lam_sink s, ws;
+    lam_sink s;
+    lam_sink_fork fk;
     lam_writer_memory(&w, &err);
     lam_dialect_sink(&d, w, &s, &err);
     s.begin(s.ctx, &job);
-    ok(lam_dialect_fork(&s, 1, &ws, &err) == LAM_EUSAGE && lam_dialect_fork(&s, 0, &ws, &err) == LAM_OK,
+    ok(s.fork(s.ctx, 1, &fk, &err) == LAM_EUSAGE && s.fork(s.ctx, 0, &fk, &err) == LAM_OK,
        "dialect: relative moves are formatted in order, unless the plan has no moves");
-    ws.destroy(ws.ctx);
+    fk.sink.destroy(fk.sink.ctx);
     s.destroy(s.ctx);
     lam_writer_abort(w);
     free(text[0]);
