@@ -102,11 +102,19 @@ PLUGIN_SO    := $(PLUGIN_NAMES:%=$(PLUGIN_OUT)/%.so)
 
 all: $(LAMINA) $(LIB) $(PLUGIN_SO) $(if $(BIND_SRC),$(LUAMOD))
 
-# cp -p keeps each header's time, so a changed header rebuilds only the
-# objects that include it (their .d files name the staged copies).
-$(INC_STAMP): $(PUBLIC_H)
-	@rm -rf $(INC_DIR) && mkdir -p $(INC_DIR)
-	cp -p $(PUBLIC_H) $(INC_DIR)/
+# Each staged header is a target of its own (cp -p keeps its time), so a
+# changed header rebuilds the objects that include it: their .d files name
+# the staged copies, which make brings up to date before it compares them
+# (a stamp alone was looked at too late: an object's header times were read
+# before the stamp copied anything, and it stayed as it was). A header no
+# longer public is removed from the staging.
+STAGED_H := $(addprefix $(INC_DIR)/,$(notdir $(PUBLIC_H)))
+staged_source = $(filter %/$(1).h,$(PUBLIC_H))
+$(INC_DIR)/%.h: $$(call staged_source,$$*)
+	@mkdir -p $(dir $@)
+	cp -p $< $@
+$(INC_STAMP): $(STAGED_H)
+	@find $(INC_DIR) -name '*.h' $(foreach h,$(notdir $(PUBLIC_H)),! -name $(h)) -delete
 	@touch $@
 
 $(BUILD)/lua/%.o: lua/%.c | $(INC_STAMP)
