@@ -164,12 +164,10 @@ static void read_vectors(lua_State *L, const char *who, size_t layer, lam_hatche
         }
         int t = LAM_KIND_CORE;
         if (lua_getfield(L, -1, "kind") != LUA_TNIL) {
-            const char *k = lua_tostring(L, -1);
-            for (t = LAM_KIND_CORE; t < LAM_REGIONS && !(k && lua_type(L, -1) == LUA_TSTRING &&
-                                                           !strcmp(k, lam_kind_name(t)));
-                 t++) {
-            }
-            if (t == LAM_REGIONS)
+            size_t klen = 0;
+            const char *k = lua_type(L, -1) == LUA_TSTRING ? lua_tolstring(L, -1, &klen) : NULL;
+            t = k ? lam_kind_find(k, klen) : -1;
+            if (t < LAM_KIND_CORE || t >= LAM_REGIONS) /* a hatch region only */
                 luaL_error(L, "%s (layer %I): vector %I: kind must be core, upskin or downskin, got %s", who,
                            (lua_Integer)layer + 1, (lua_Integer)i, lam_lua_describe(L, -1, b, sizeof b));
         }

@@ -332,4 +332,19 @@ else
   T.ok(false, "plugin_writer.yaml loads")
 end
 
+-- a recipe's hatcher names its vectors' region by vocab.h's names: a hatch
+-- region is taken, anything else is an error naming the vector and what it got
+do
+  local cli = lamina.machine("cli-ascii")
+  local two = m:slice{width = 1}
+  local function with(kind)
+    return cli:plan(two, {hatcher = function() return {{-0.5, -0.5, 0.5, 0.5, kind = kind}} end})
+  end
+  T.ok(with("downskin"):text():find("$$HATCHES/1,1,", 1, true), "hatcher: kind = downskin is planned")
+  T.raises("vector 1: kind must be core, upskin or downskin, got 'contour'", "hatcher: kind = contour",
+           with, "contour")
+  T.raises("vector 1: kind must be core, upskin or downskin, got 3", "hatcher: kind = 3", with, 3)
+  T.raises("vector 1: kind must be core, upskin or downskin, got 'cor'", "hatcher: kind = cor", with, "cor")
+end
+
 T.done()
