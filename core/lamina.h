@@ -2,7 +2,8 @@
  * `pkg-config --cflags --libs lamina`.
  *
  * A library user loads a mesh (import.h; file.h: the input size limits),
- * builds a model (model.h), slices it (slice.h; frame.h: the layer frame;
+ * builds a model (model.h: transformed on load by xform.h, repaired by
+ * repair.h, written back out by mesh_write.h), slices it (slice.h; frame.h: the layer frame;
  * layer.h, contour.h: layers of contours), may offset, fill or check the
  * layers (offset.h, winding.h: the fill rule, section.h, validate.h,
  * drc.h, rays.h), plans them for a machine profile (profile.h,
@@ -38,6 +39,9 @@
 #include "file.h"
 #include "import.h"
 #include "model.h"
+#include "xform.h"
+#include "repair.h"
+#include "mesh_write.h"
 #include "frame.h"
 #include "layer.h"
 #include "slice.h"

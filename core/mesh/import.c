@@ -8,7 +8,9 @@
 #include "file.h"
 #include "import.h"
 #include "model.h"
+#include "repair.h"
 #include "stl_weld.h"
+#include "xform.h"
 
 #include <stdint.h>
 #include <stdio.h>
@@ -92,6 +94,25 @@ static int parse_buf(const char *path, const char *data, size_t len, lam_mesh *m
 
 static unsigned threads_of(const lam_load_opts *o) { return o && o->threads > 1 ? o->threads : 1; }
 
+/* The mesh read, transformed, built and (unless told not to) repaired:
+ * the one way from a parsed mesh to a loaded model. */
+static int finish(lam_mesh *mesh, const char *path, const char *format, const lam_load_opts *o, lam_model **out,
+                  lam_error *err)
+{
+    int rc = lam_xform_apply(o ? o->xform : NULL, mesh, err);
+    if (rc) {
+        lam_mesh_free(mesh);
+        return rc;
+    }
+    if ((rc = lam_model_from_mesh(mesh, path, format, out, err))) return rc;
+    if (o && o->no_repair) return LAM_OK;
+    if ((rc = lam_model_repair(out, NULL, err))) {
+        lam_model_free(*out);
+        *out = NULL;
+    }
+    return rc;
+}
+
 int lam_model_load_opts(const char *path, const lam_load_opts *o, lam_model **out, lam_error *err)
 {
     *out = NULL;
@@ -104,7 +125,7 @@ int lam_model_load_opts(const char *path, const lam_load_opts *o, lam_model **ou
     const char *format = NULL;
     rc = parse_buf(path, data, len, &mesh, &format, threads_of(o), err);
     lam_unmap_file(data, len, mapped);
-    return rc ? rc : lam_model_from_mesh(&mesh, path, format, out, err);
+    return rc ? rc : finish(&mesh, path, format, o, out, err);
 }
 
 int lam_model_load(const char *path, lam_model **out, lam_error *err)
@@ -123,7 +144,7 @@ int lam_model_load_stdin_opts(const lam_load_opts *o, lam_model **out, lam_error
     const char *format = NULL;
     rc = parse_buf(LAM_STDIN_NAME, data, len, &mesh, &format, threads_of(o), err);
     free(data);
-    return rc ? rc : lam_model_from_mesh(&mesh, LAM_STDIN_NAME, format, out, err);
+    return rc ? rc : finish(&mesh, LAM_STDIN_NAME, format, o, out, err);
 }
 
 int lam_model_load_stdin(lam_model **out, lam_error *err)

@@ -43,6 +43,27 @@ typedef struct lam_model_stats {
     double area, volume;
 } lam_model_stats;
 
+/* What repairing a mesh on load did (repair.h). All zero when the model
+ * was loaded with no_repair or needed nothing. */
+typedef struct lam_repair_report {
+    int ran;                  /* 1 when repair was asked for (the default) */
+    double weld_tolerance;    /* the distance within which open edges' vertices were merged (model units) */
+    size_t welded;            /* vertices merged within that tolerance */
+    size_t degenerate;        /* facets removed: repeated vertices or no area */
+    size_t duplicates;        /* facets removed: the same three vertices as another */
+    size_t flipped;           /* facets whose winding was turned to agree with their shell */
+    size_t holes;             /* boundary loops filled with triangles */
+    size_t hole_edges;        /* the boundary edges those loops had */
+    size_t fill_triangles;    /* triangles added to fill them */
+    double fill_area;         /* the area those triangles cover */
+    double largest_hole;      /* the largest filled loop's fill area */
+    size_t crossing_loops;    /* loops that cross themselves (filled, reported) */
+    size_t holes_left;        /* loops not filled (see repair.h) */
+    size_t boundary_edges;    /* open edges that remain */
+    size_t nonmanifold_edges; /* edges with more than two facets that remain */
+    size_t self_intersections;/* facets crossed by an edge of another facet that remain */
+} lam_repair_report;
+
 typedef struct lam_model {
     char *path;            /* as given to lam_model_load, owned */
     const char *format;    /* static: "unigrafix", "stl-ascii", "stl-binary", "obj", "mesh" */
@@ -54,11 +75,18 @@ typedef struct lam_model {
     lam_shell *shells;
     size_t nshells;
     lam_model_stats stats;
+    lam_repair_report repair; /* what repair on load did (zero: not asked or nothing) */
 } lam_model;
 
 /* How a model is loaded (zero-initialise; a NULL pointer means all
  * defaults). */
+struct lam_xform;
 typedef struct lam_load_opts {
+    const struct lam_xform *xform; /* units, scale, rotations, placement
+                         applied to the vertices before the model is built
+                         (xform.h); NULL: as the file has them */
+    int no_repair;    /* 1: build the model from the file as it is (no
+                         repair.h pass): today's open-mesh behaviour */
     unsigned threads; /* threads that read it (0 or 1: the calling thread
                          alone); the model is the same, bit for bit, for
                          every number. A binary STL of 524,288 facets
@@ -66,7 +94,9 @@ typedef struct lam_load_opts {
 } lam_load_opts;
 
 /* Load a model file. The format is chosen by extension (.ug, .stl, .obj)
- * and confirmed by content; an unknown extension is sniffed. On success
+ * and confirmed by content; an unknown extension is sniffed. The mesh is
+ * transformed (o->xform) and repaired (repair.h) unless o->no_repair; the
+ * model's `repair` says what was done. On success
  * *out is a new model the caller frees with lam_model_free. */
 int lam_model_load(const char *path, lam_model **out, lam_error *err);
 
@@ -82,7 +112,8 @@ int lam_model_load_stdin(lam_model **out, lam_error *err);
 /* lam_model_load_stdin with options (o may be NULL). */
 int lam_model_load_stdin_opts(const lam_load_opts *o, lam_model **out, lam_error *err);
 
-/* Build a model from a mesh the caller filled. The mesh's contents move
+/* Build a model from a mesh the caller filled, as it is (no repair: see
+ * lam_model_repair in repair.h). The mesh's contents move
  * into the model (mesh is left empty) whether or not this succeeds. */
 int lam_model_from_mesh(lam_mesh *mesh, const char *path, const char *format,
                         lam_model **out, lam_error *err);

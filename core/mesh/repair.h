@@ -1,0 +1,55 @@
+/* Repair on load (issue 24): a mesh as users have it (a scan with holes, a
+ * CAD export with cracks, facets written twice or the wrong way round)
+ * made into closed shells before it is sliced, in 3D, once, instead of
+ * each layer closing its own gaps differently.
+ *
+ * lam_model_repair takes a built model (model_build.c: exact weld, edges,
+ * shells oriented by adjacency and volume) and, only when it has open or
+ * non-manifold edges, rebuilds it from a repaired copy of its mesh:
+ *   1. weld within a tolerance: vertices of open edges that lie within
+ *      weld_tolerance of another open edge's vertex become one (cracks
+ *      between unwelded copies); the tolerance is relative to the model's
+ *      size (1e-6 of its bounding box diagonal unless given);
+ *   2. facets that lost their area (a repeated vertex after the weld, or
+ *      three collinear vertices) and facets with the same three vertices
+ *      as an earlier one go;
+ *   3. the model is rebuilt (orientation per shell), and each boundary
+ *      loop (the open edges chained, walked so that the fill runs against
+ *      the shell's winding) is filled with triangles: a minimal-area
+ *      triangulation of the loop for loops of up to LAM_REPAIR_DP_MAX
+ *      vertices (planar or not: on a planar simple loop that is a
+ *      triangulation of the polygon itself), otherwise a fan from the
+ *      loop's centroid; a loop that crosses itself in its best-fit plane is
+ *      filled the same way and counted;
+ *   4. the model is rebuilt again, and what remains is counted: open and
+ *      non-manifold edges.
+ * Facets whose winding the model build turned are counted in `flipped`
+ * against the file's winding, for every model, repaired or not.
+ *
+ * Closed, manifold models are never changed, so their slices stay the
+ * same bit for bit. */
+#ifndef LAM_REPAIR_H
+#define LAM_REPAIR_H
+
+#include "error.h"
+#include "model.h"
+
+/* Loops longer than this are fanned from their centroid (the minimal-area
+ * triangulation is cubic in the loop's length). */
+#define LAM_REPAIR_DP_MAX 400
+
+typedef struct lam_repair_opts {
+    double weld_tolerance; /* model units; <= 0: 1e-6 of the bounding box diagonal */
+} lam_repair_opts;
+
+/* Repair *md in place (o may be NULL: defaults): *md may be replaced by a
+ * new model (the old one is freed); (*md)->repair says what was done.
+ * Errors: LAM_ENOMEM, LAM_EGEOM when nothing with area is left; on error
+ * *md is still a valid model (the unrepaired one). */
+int lam_model_repair(lam_model **md, const lam_repair_opts *o, lam_error *err);
+
+/* One line for messages: "filled 37 holes (223 boundary edges), 12 facets
+ * flipped" (only the actions taken; "" when none). Returns buf. */
+const char *lam_repair_summary(const lam_repair_report *r, char *buf, size_t size);
+
+#endif
