@@ -1,4 +1,5 @@
 #include "cli.h"
+#include "cli_args.h"
 
 #include "dialect.h"
 #include "fmt.h"
@@ -64,9 +65,11 @@ void cli_json_number(FILE *f, double x)
     else fputs(cli_num(buf, sizeof buf, x), f);
 }
 
-int cli_load_model(const char *path, unsigned threads, lam_model **m, lam_error *err)
+int cli_load_model(const args *a, const lam_profile *machine, lam_model **m, lam_error *err)
 {
-    lam_load_opts o = { .threads = threads ? threads : lam_default_threads(NULL) };
+    (void)machine;
+    const char *path = a->path;
+    lam_load_opts o = { .threads = a->threads ? a->threads : lam_default_threads(NULL), .no_repair = a->no_repair };
     return strcmp(path, "-") ? lam_model_load_opts(path, &o, m, err) : lam_model_load_stdin_opts(&o, m, err);
 }
 

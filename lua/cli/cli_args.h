@@ -45,7 +45,7 @@ typedef struct cli_set {
     char shown[160];         /* the option as given, for messages: "--set gap=x", "-w 0" */
 } cli_set;
 
-typedef struct args {
+typedef struct args { /* struct args: cli.h names it */
     const char *path, *out, *svg, *machine, *show, *program;
     const char *json_out;    /* slice --json FILE */
     const char *html;        /* slice --html FILE */
@@ -60,6 +60,7 @@ typedef struct args {
     const char *layers;      /* --layers as given (NULL: the whole run) */
     size_t layers_a, layers_b; /* A:B (1-based, inclusive), or with layers_split K/N */
     int layers_split;
+    int no_repair;           /* --no-repair: the mesh as the file has it (repair.h) */
 } args;
 
 /* Parse argv[1..] for command cmd, accepting the option groups in

@@ -143,7 +143,7 @@ int cmd_check(int argc, char **argv)
     lam_drc_result res;
     memset(&res, 0, sizeof res);
     if ((rc = cli_profile("check", &a, &prof, NULL))) goto done;
-    if (cli_load_model(a.path, a.threads, &m, &err)) {
+    if (cli_load_model(&a, prof, &m, &err)) {
         rc = cli_fail(&err);
         goto done;
     }

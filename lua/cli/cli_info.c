@@ -172,12 +172,11 @@ int cmd_info(int argc, char **argv)
         cli_args_free(&a);
         return rc < 0 ? EXIT_OK : rc;
     }
-    const char *path = a.path;
     int json = a.json;
     lam_error err;
     lam_error_clear(&err);
     lam_model *m;
-    if (cli_load_model(path, 0, &m, &err)) {
+    if (cli_load_model(&a, NULL, &m, &err)) {
         cli_args_free(&a);
         return cli_fail(&err);
     }

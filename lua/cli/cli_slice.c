@@ -157,7 +157,7 @@ static int open_inputs(job *j)
 {
     int rc = cli_profile("slice", &j->a, &j->prof, &j->po);
     if (rc) return rc;
-    if (cli_load_model(j->a.path, j->a.threads, &j->m, &j->err)) return cli_fail(&j->err);
+    if (cli_load_model(&j->a, j->prof, &j->m, &j->err)) return cli_fail(&j->err);
     j->a.path = j->rep.path = j->m->path; /* "<stdin>" for "-" */
     const char *outs[][2] = { { "-o", j->a.out }, { "--svg", j->a.svg }, { "--json", j->a.json_out },
                               { "--html", j->a.html } };

@@ -579,7 +579,7 @@ int cmd_validate(int argc, char **argv)
             goto done;
         }
     if ((rc = cli_profile("validate", &a, &prof, &po))) goto done;
-    if (cli_load_model(a.path, a.threads, &m, &err)) {
+    if (cli_load_model(&a, prof, &m, &err)) {
         rc = cli_fail(&err);
         goto done;
     }
