@@ -29,7 +29,7 @@ endif
 # installs only the missing ones.
 DEPS_PKGS := gcc make perl liblua5.4-dev lua5.4 libyaml-dev libembree-dev libgeos-dev libreadline8 \
              jq python3 python3-jsonschema time librsvg2-bin tmux pkg-config parallel \
-             luarocks man-db mandoc bash-completion
+             luarocks man-db mandoc bash-completion admesh
 # Packages a test can do without: installed the same way when missing, but
 # a failure only means the test that needs one skips (and says so).
 DEPS_OPTIONAL := chromium
