@@ -48,6 +48,18 @@ typedef struct lam_repair_opts {
  * *md is still a valid model (the unrepaired one). */
 int lam_model_repair(lam_model **md, const lam_repair_opts *o, lam_error *err);
 
+/* The report's fields, one row each, for every writer of it (the run's
+ * JSON, `lamina info --json`, `lamina repair --json`): X(name) with the
+ * field's name in lam_repair_report, which is also its JSON key. */
+#define LAM_REPAIR_COUNTS(X)                                                                        \
+    X(welded) X(degenerate) X(duplicates) X(flipped) X(holes) X(hole_edges) X(fill_triangles)     \
+    X(crossing_loops) X(holes_left) X(boundary_edges) X(nonmanifold_edges)
+#define LAM_REPAIR_MEASURES(X) X(weld_tolerance) X(fill_area) X(largest_hole)
+
+/* 1 when repair changed the model (anything but `ran` and the tolerance
+ * non-zero), or left it open or non-manifold. */
+int lam_repair_acted(const lam_repair_report *r);
+
 /* One line for messages: "filled 37 holes (223 boundary edges), 12 facets
  * flipped" (only the actions taken; "" when none). Returns buf. */
 const char *lam_repair_summary(const lam_repair_report *r, char *buf, size_t size);
