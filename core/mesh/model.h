@@ -30,7 +30,7 @@ typedef struct lam_shell {
     double area;
     int enclosing;       /* how many other shells enclose this one */
     int cavity;          /* enclosing is odd */
-    size_t flipped;      /* triangles whose winding differs from the file's */
+    size_t flipped;      /* triangles the file wound against the shell's majority */
 } lam_shell;
 
 typedef struct lam_model_stats {
@@ -40,8 +40,9 @@ typedef struct lam_model_stats {
     size_t degenerate_tris;    /* zero area: repeated or collinear vertices */
     size_t orientation_conflicts; /* manifold edges whose triangles could not
                                      be made consistent (non-orientable) */
-    size_t flipped_tris;       /* triangles turned against the file's winding: to agree
-                                  with their shell's majority, outward, cavities inward */
+    size_t flipped_tris;       /* triangles the file wound against their shell's majority,
+                                  turned to agree (a shell wound inward throughout is
+                                  turned outward as always, and not counted) */
     double bbox[6];
     double area, volume;
 } lam_model_stats;

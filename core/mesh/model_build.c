@@ -281,9 +281,8 @@ static int build_shells(lam_model *md, const unsigned char *hdir, lam_error *err
         free(flips);
         return oom(err);
     }
-    /* the search flips against the seed; should the seed itself be against
-     * the file's majority, the shell's outward turn (flip_shell) makes the
-     * count its complement */
+    /* the search flips against the seed; the count against the shell's
+     * majority is the smaller of that and the rest (outward_shells) */
     for (size_t s = 0; s < nshells; s++) md->shells[s].flipped = flips[s];
     free(flips);
     return LAM_OK;
@@ -356,7 +355,6 @@ static void flip_shell(lam_model *md, size_t s)
     for (uint32_t i = md->shell_first[s]; i < md->shell_first[s + 1]; i++)
         flip_tri(&md->mesh, &md->edges, md->shell_tris[i]);
     md->shells[s].volume = -md->shells[s].volume;
-    md->shells[s].flipped = md->shells[s].ntris - md->shells[s].flipped;
 }
 
 static int index_shells(lam_model *md, lam_error *err)
@@ -481,6 +479,7 @@ int lam_model_from_mesh(lam_mesh *mesh, const char *path, const char *format,
         }
         st->volume += sh->volume;
         st->area += sh->area;
+        if (sh->flipped > sh->ntris - sh->flipped) sh->flipped = sh->ntris - sh->flipped;
         st->flipped_tris += sh->flipped;
     }
     /* each coordinate is within LAM_COORD_MAX, but a sum over billions of

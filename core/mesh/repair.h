@@ -23,8 +23,11 @@
  *      filled the same way and counted;
  *   4. the model is rebuilt again, and what remains is counted: open and
  *      non-manifold edges.
- * Facets whose winding the model build turned are counted in `flipped`
- * against the file's winding, for every model, repaired or not.
+ * Facets the file wound against the majority of their shell (which the
+ * model build turns to agree) are counted in `flipped`, for every model
+ * repaired; a shell wound inward throughout is turned outward silently,
+ * as the model build always has (SPEC: the file's winding is never
+ * trusted).
  *
  * Closed, manifold models are never changed, so their slices stay the
  * same bit for bit. */
