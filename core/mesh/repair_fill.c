@@ -89,7 +89,16 @@ typedef struct filler {
     uint32_t *ring;      /* scratch: the loop's vertices */
     double *w;           /* scratch for the triangulation */
     uint16_t *k;
+    double dp_budget;    /* triangle costs the programme may still evaluate */
+    double cross_budget; /* segment pairs the crossing test may still compare */
 } filler;
+
+/* What the whole fill may spend, whatever the file: a model of a million
+ * open edges in loops of LAM_REPAIR_DP_MAX would otherwise cost 1e13
+ * steps. Past the budget, loops go to the planar triangulation or the fan
+ * (linearithmic), and crossing is no longer tested. About a second each. */
+#define DP_BUDGET 4e8
+#define CROSS_BUDGET 2e8
 
 static const double *P(const lam_mesh *m, uint32_t v) { return m->xyz + 3 * (size_t)v; }
 
@@ -192,7 +201,7 @@ static int fill_fan(filler *F, size_t n, double *area, lam_error *err)
  * longer than a few thousand vertices are not checked. */
 static int crosses_itself(const lam_mesh *m, const uint32_t *R, size_t n)
 {
-    if (n < 4 || n > 4000) return 0;
+    if (n < 4) return 0;
     double nn[3] = { 0, 0, 0 };
     for (size_t i = 0; i < n; i++) {
         const double *a = P(m, R[i]), *b = P(m, R[(i + 1) % n]);
@@ -222,11 +231,18 @@ static int fill_loop(filler *F, const loops *L, size_t j, size_t len, lam_error 
     for (size_t i = 0; i < n; i++) F->ring[i] = L->hs[L->path[j + i]];
     F->r->holes++;
     F->r->hole_edges += n;
-    F->r->crossing_loops += (size_t)crosses_itself(F->m, F->ring, n);
+    double pairs = 0.5 * (double)n * (double)n, work = (double)n * (double)n * (double)n / 6;
+    if (pairs <= F->cross_budget) {
+        F->cross_budget -= pairs;
+        F->r->crossing_loops += (size_t)crosses_itself(F->m, F->ring, n);
+    }
     double area = 0;
     size_t before = F->m->ntris;
     int rc;
-    if (n <= LAM_REPAIR_DP_MAX) rc = fill_dp(F, n, &area, err);
+    if (n <= LAM_REPAIR_DP_MAX && work <= F->dp_budget) {
+        F->dp_budget -= work;
+        rc = fill_dp(F, n, &area, err);
+    }
     else {
         size_t rl = n;
         rc = lam_mesh_add_polygon(F->m, F->ring, &rl, 1, F->face, NULL);
@@ -281,7 +297,7 @@ static int walk(filler *F, loops *L, uint32_t k, lam_error *err)
 int lam_repair_fill(lam_model *md, lam_repair_report *r, lam_error *err)
 {
     loops L;
-    filler F = { .m = &md->mesh, .r = r, .face = LAM_NO_NAME };
+    filler F = { .m = &md->mesh, .r = r, .face = LAM_NO_NAME, .dp_budget = DP_BUDGET, .cross_budget = CROSS_BUDGET };
     int rc = loops_init(md, &L, err);
     size_t dp = L.n < LAM_REPAIR_DP_MAX ? L.n : LAM_REPAIR_DP_MAX;
     if (!rc) {
