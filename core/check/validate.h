@@ -18,11 +18,28 @@
  * Per layer, the net area (solids minus holes, by the label) must match the
  * model's own section at the cut (section.h: Green's theorem over the
  * mesh's triangles), within a tolerance from the precision the points and
- * the height were written with. Not compared, and said so: layers whose
- * outlines were closed across gaps or left open, models with boundary
- * edges; one-sided (net at most the section) under the non-zero fill rule
- * when two bodies meet the plane, where the section counts their overlap
- * twice.
+ * the height were written with, and from how far the model's vertices may
+ * lie from those of the mesh the layer was made from (lam_validate_opts.
+ * moved: the repair's weld when the layers come from the mesh before
+ * repair and the model is the repaired one).
+ *
+ * Layers whose outlines were closed across gaps or left open (dropped), or
+ * may have been (lam_validate_opts.gaps_unknown), are compared too, with a
+ * tolerance that allows for the gap closing (the loss check): a bridge of
+ * length at most gap stands where the closed model's section runs between
+ * the same two ends (across the filled hole); taking that section to stay
+ * within gap / 2 of the bridge, the area between them is at most gap / 2 x
+ * the bridge's length, so the layer may differ by gap / 2 x the length
+ * bridged (gaps_closed x gap when the slicer counted its bridges, else the
+ * layer's perimeter); at least LAM_VALIDATE_LOSS_REL of the section (for
+ * fills that are not flat) and the precision tolerance. An outline dropped
+ * whole is not allowed for: losing it (a solid) or filling it (a hole) is
+ * what the check is for. area_lost says how much, signed.
+ *
+ * Not compared, and said so (area_open): models with boundary edges or
+ * orientation conflicts, whose section does not close. One-sided (net at
+ * most the section) under the non-zero fill rule when two bodies meet the
+ * plane, where the section counts their overlap twice.
  *
  * Test points: on both sides of up to four of the contour's longest edges,
  * at the edge's midpoint, offset along its normal by d. d is tied to the
@@ -105,8 +122,20 @@ typedef struct lam_layer_check {
     double net_area;         /* solids minus holes, by the label, of the points as written */
     double section_area;     /* the model's section at the cut (section.h) */
     double area_tolerance;
+    double area_lost;        /* when compared: section_area - net_area (> 0 the program
+                                lacks area, < 0 it holds area the model has not) */
+    int area_loose;          /* 1 when compared with the loss check's tolerance (above) */
+    int area_open;           /* 1 when not compared because the model's section does not
+                                close (boundary edges or orientation conflicts) */
     const char *area_why;    /* static text: why not compared, or what the comparison was */
 } lam_layer_check;
+
+/* The least a layer compared by the loss check may differ from the section
+ * without failing, as a fraction of the section (validate.h, above): a
+ * thousandth, well above the difference a filled hole's triangles make
+ * against a bridge across it (a sagitta of a gap's width), well below a
+ * dropped outline of any feature a machine builds. */
+#define LAM_VALIDATE_LOSS_REL 1e-3
 
 /* How a layer is checked. */
 typedef struct lam_validate_opts {
@@ -128,6 +157,16 @@ typedef struct lam_validate_opts {
      * smaller). */
     int passes;
     double inset, pass_distance;
+    /* The mesh the layers were made from against the model the check uses
+     * (validate.h): `moved`, how far the model's vertices may lie from the
+     * mesh's (the repair's weld tolerance when the model is a repaired copy
+     * of it; 0: the same mesh); `gap`, the gap-closing tolerance the layers
+     * were made with (0: none); `gaps_unknown`, 1 when a layer may have had
+     * gaps closed or outlines dropped without saying so (a program read
+     * back that was sliced from the mesh before repair): every layer is
+     * then compared by the loss check. */
+    double moved, gap;
+    int gaps_unknown;
 } lam_validate_opts;
 
 /* Defaults: even-odd, exact coordinates. */

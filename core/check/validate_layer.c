@@ -274,9 +274,9 @@ static const char *WHY_PARENT_FOUND = "its parent is not the smallest contour ar
 static const char *WHY_LABEL_FOUND =
     "its label is not the parity of the number of contours around it (even: solid, odd: hole)";
 
-static const char *AREA_GAPS = "not compared: outlines were closed across gaps or left open";
 static const char *AREA_OPEN = "not compared: the model has boundary edges or cannot be oriented";
 static const char *AREA_BOTH = "net area against the model's section";
+static const char *AREA_LOSS = "net area against the model's section, allowing for gap closing";
 static const char *AREA_INSET =
     "net area of the first contour pass at most the model's section (the pass lies inside it by the "
     "beam offset)";
@@ -600,6 +600,31 @@ static int check_material(layer_ctx *X, size_t ci, lam_contour_check *it)
     return LAM_OK;
 }
 
+/* The tolerance of the precision the layer was written and computed with:
+ * rounding of the areas, coordinates and height written to a quantum
+ * (each point up to quantum_uv off moves the area by at most that times
+ * the perimeters), and the model's vertices up to `moved` from the mesh
+ * the layer was made from (the section's segments move by at most that). */
+static double precision_tolerance(const layer_ctx *X, double sum_abs, double per, const lam_section_measure *sm)
+{
+    double both = per + sm->perimeter;
+    return 1e-9 * (sum_abs + fabs(sm->area)) + 2 * X->o->quantum_uv * both + X->o->quantum_h * sm->rate +
+           1e-12 * lam_rays_scale(X->v) * both + X->o->moved * both;
+}
+
+/* The loss check's tolerance (validate.h): a bridge of length at most gap
+ * differs from the closed section across the hole by at most gap / 2 times
+ * its length; the length bridged is gaps_closed x gap when the slicer
+ * counted them, else at most the layer's perimeter (the bridges are part of
+ * its outlines). */
+static double loss_tolerance(const layer_ctx *X, double precision, double per, double section)
+{
+    const lam_layer *L = X->L;
+    double g = X->o->gap > 0 ? X->o->gap : 0;
+    double bridged = X->o->gaps_unknown ? per : fmin(per, (double)L->gaps_closed * g);
+    return fmax(precision, fmax(LAM_VALIDATE_LOSS_REL * fabs(section), g / 2 * bridged));
+}
+
 /* The layer's net area against the model's own section at the cut. */
 static int check_area(layer_ctx *X, int below, lam_layer_check *out, lam_error *err)
 {
@@ -619,10 +644,6 @@ static int check_area(layer_ctx *X, int below, lam_layer_check *out, lam_error *
         }
     }
     out->area_ok = 1;
-    if (L->gaps_closed || L->nopen) {
-        out->area_why = AREA_GAPS;
-        return LAM_OK;
-    }
     lam_section_index *sec;
     int rc = lam_rays_section(X->v, X->f, &sec, err);
     if (rc) return rc;
@@ -631,12 +652,14 @@ static int check_area(layer_ctx *X, int below, lam_layer_check *out, lam_error *
     out->section_area = sm.area;
     if (!sm.closed) {
         out->area_why = AREA_OPEN;
+        out->area_open = 1;
         return LAM_OK;
     }
-    double both = per + sm.perimeter;
-    out->area_tolerance = 1e-9 * (sum_abs + fabs(sm.area)) + 2 * X->o->quantum_uv * both +
-                          X->o->quantum_h * sm.rate + 1e-12 * lam_rays_scale(X->v) * both;
+    out->area_tolerance = precision_tolerance(X, sum_abs, per, &sm);
+    out->area_loose = L->gaps_closed || L->nopen || X->o->gaps_unknown;
+    if (out->area_loose) out->area_tolerance = loss_tolerance(X, out->area_tolerance, per, sm.area);
     out->area_checked = 1;
+    out->area_lost = sm.area - out->net_area;
     if (X->passes && X->o->inset > 0) {
         out->area_why = AREA_INSET;
         out->area_ok = out->net_area <= sm.area + out->area_tolerance;
@@ -644,8 +667,8 @@ static int check_area(layer_ctx *X, int below, lam_layer_check *out, lam_error *
         out->area_why = AREA_ONE_SIDED;
         out->area_ok = out->net_area <= sm.area + out->area_tolerance;
     } else {
-        out->area_why = AREA_BOTH;
-        out->area_ok = fabs(out->net_area - sm.area) <= out->area_tolerance;
+        out->area_why = out->area_loose ? AREA_LOSS : AREA_BOTH;
+        out->area_ok = fabs(out->area_lost) <= out->area_tolerance;
     }
     return LAM_OK;
 }

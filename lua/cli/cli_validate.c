@@ -5,13 +5,23 @@
  * --program the layers are sliced here; with it they are read back from the
  * program file (program_read.h), as the machine would get them. Exit 0 when
  * everything checked agrees, 3 when anything disagrees. Contours too small
- * to place a test point in are reported as unchecked, not as failures. */
+ * to place a test point in are reported as unchecked, not as failures.
+ *
+ * The model checked against is the repaired one (repair.h): with
+ * --no-repair the layers come from the mesh as the file has it and the
+ * rays and sections from a repaired copy of it (reference_model), so a
+ * layer that lost area where an outline stayed open is compared with what
+ * the part should have there. When even the repaired model stays open its
+ * section means nothing: the areas are not compared, and the summary and a
+ * warning say so (the exit status is then that of the other checks). */
 #include "cli.h"
 #include "cli_args.h"
 #include "cli_check.h"
 #include "fmt.h"
 #include "model.h"
 #include "program_read.h"
+#include "repair.h"
+#include "repair_note.h"
 #include "size_sense.h"
 #include "validate.h"
 #include "validate_run.h"
@@ -151,6 +161,17 @@ int vreport_layer(vreport *r, lam_rays *v, const lam_layer *L, const lam_frame *
     return LAM_OK;
 }
 
+/* "  net area 0 (solids minus holes) but the model's section has 314.1: off
+ * by -314.1 (lost 314.1, 100% of the section), tolerance ... (why)" */
+static void text_area(FILE *out, const lam_layer_check *c)
+{
+    fprintf(out, "  net area %.10g (solids minus holes) but the model's section has %.10g: off by %.3g (", c->net_area,
+            c->section_area, -c->area_lost);
+    fprintf(out, c->area_lost >= 0 ? "lost %.3g" : "%.3g more than the model has", fabs(c->area_lost));
+    if (c->section_area > 0) fprintf(out, ", %.3g%% of the section", 100 * fabs(c->area_lost) / c->section_area);
+    fprintf(out, "), tolerance %.3g (%s)\n", c->area_tolerance, c->area_why);
+}
+
 void vreport_check(vreport *r, const lam_layer *L, const lam_layer_check *c, const vsource *src)
 {
     r->layers++;
@@ -171,7 +192,10 @@ void vreport_check(vreport *r, const lam_layer *L, const lam_layer_check *c, con
         cli_json_number(r->out, c->area_checked ? c->section_area : NAN);
         fputs(",\"area_tolerance\":", r->out);
         cli_json_number(r->out, c->area_checked ? c->area_tolerance : NAN);
-        fprintf(r->out, ",\"area_ok\":%s,\"area\":", c->area_ok ? "true" : "false");
+        fputs(",\"area_lost\":", r->out);
+        cli_json_number(r->out, c->area_checked ? c->area_lost : NAN);
+        fprintf(r->out, ",\"area_loss_check\":%s,\"area_ok\":%s,\"area\":", c->area_loose ? "true" : "false",
+                c->area_ok ? "true" : "false");
         cli_json_string(r->out, c->area_why ? c->area_why : "");
         fputs(",\"disagreements\":[", r->out);
         int firstd = 1;
@@ -192,27 +216,210 @@ void vreport_check(vreport *r, const lam_layer *L, const lam_layer_check *c, con
         }
         for (size_t i = 0; i < c->nitems; i++)
             if (c->items[i].ok <= 0) text_contour(r->out, L, &c->items[i], src);
-        if (!c->area_ok)
-            fprintf(r->out, "  net area %.10g (solids minus holes) but the model's section has %.10g: off by %.3g, "
-                            "tolerance %.3g (%s)\n",
-                    c->net_area, c->section_area, c->net_area - c->section_area, c->area_tolerance, c->area_why);
+        if (!c->area_ok) text_area(r->out, c);
     }
 }
 
-int vreport_finish(vreport *r, const char *what)
+
+/* What validate adds up over its layers beyond vreport's counts: the
+ * area lost or added on the layers that differ, and the layers whose area
+ * could not be compared because the model stays open. */
+typedef struct vareas {
+    const lam_model *ref;    /* the model checked against */
+    size_t open;             /* layers not compared: its section does not close */
+    size_t loss_checked;     /* layers compared by the loss check (validate.h) */
+    size_t lost_layers, added_layers;  /* differing layers lacking area, holding more */
+    double lost, lost_section;         /* over lost_layers: the area lacking, their sections */
+    double added;                      /* over added_layers: the area beyond the section */
+} vareas;
+
+static void vareas_add(vareas *t, const lam_layer_check *c)
+{
+    t->open += c->area_open;
+    t->loss_checked += c->area_checked && c->area_loose;
+    if (c->area_ok) return;
+    if (c->area_lost > 0) {
+        t->lost_layers++;
+        t->lost += c->area_lost;
+        t->lost_section += c->section_area;
+    } else {
+        t->added_layers++;
+        t->added -= c->area_lost;
+    }
+}
+
+/* Why the areas were not compared, for the summary, the JSON and the
+ * warning: "the model stays open (223 boundary edges after repair)". */
+static void open_why(char *buf, size_t size, const lam_model *ref)
+{
+    const lam_model_stats *st = &ref->stats;
+    int n = snprintf(buf, size, "the model stays open (%zu boundary edge%s", st->boundary_edges,
+                     st->boundary_edges == 1 ? "" : "s");
+    if (n > 0 && (size_t)n < size && st->orientation_conflicts)
+        n += snprintf(buf + n, size - n, ", %zu edge%s that cannot be oriented", st->orientation_conflicts,
+                      st->orientation_conflicts == 1 ? "" : "s");
+    if (n > 0 && (size_t)n < size) snprintf(buf + n, size - n, "%s)", ref->repair.ran ? " after repair" : ", not repaired");
+}
+
+static void finish_json(vreport *r, const vareas *t)
+{
+    fprintf(r->out, "],\"checked\":%zu,\"confirmed\":%zu,\"disagreeing\":%zu,\"unchecked\":%zu,"
+                    "\"areas_compared\":%zu,\"areas_differing\":%zu",
+            r->checked, r->confirmed, r->disagreeing, r->unchecked, r->areas_compared, r->areas_differ);
+    if (!t) return;
+    fprintf(r->out, ",\"areas_loss_checked\":%zu,\"areas_lost\":%zu,\"area_lost\":", t->loss_checked,
+            t->lost_layers);
+    cli_json_number(r->out, t->lost);
+    fprintf(r->out, ",\"areas_added\":%zu,\"area_added\":", t->added_layers);
+    cli_json_number(r->out, t->added);
+    fprintf(r->out, ",\"areas_not_compared\":%zu,\"areas_not_compared_why\":", t->open);
+    if (t->open) {
+        char why[200];
+        open_why(why, sizeof why, t->ref);
+        cli_json_string(r->out, why);
+    } else {
+        fputs("null", r->out);
+    }
+}
+
+/* The text summary's area part: "; net area against the section in 40
+ * layers (12 allowing for gap closing), 3 differ: 942 lost (100% of their
+ * sections)", or that it was not compared. */
+static void finish_text_areas(vreport *r, const vareas *t)
+{
+    char why[200] = "";
+    if (t && t->open) open_why(why, sizeof why, t->ref);
+    if (t && t->open && !r->areas_compared) {
+        fprintf(r->out, "; net area not compared: %s\n", why);
+    } else {
+        fprintf(r->out, "; net area against the section in %zu layer%s", r->areas_compared,
+                r->areas_compared == 1 ? "" : "s");
+        if (t && t->loss_checked) fprintf(r->out, " (%zu allowing for gap closing)", t->loss_checked);
+        fprintf(r->out, ", %zu differ%s", r->areas_differ, r->areas_differ == 1 ? "s" : "");
+        if (t && t->lost_layers)
+            fprintf(r->out, ": %.6g lost in %zu layer%s (%.3g%% of their sections)", t->lost, t->lost_layers,
+                    t->lost_layers == 1 ? "" : "s", t->lost_section > 0 ? 100 * t->lost / t->lost_section : 100.0);
+        if (t && t->added_layers)
+            fprintf(r->out, "%s%.6g more than the model has in %zu layer%s", t->lost_layers ? ", " : ": ", t->added,
+                    t->added_layers, t->added_layers == 1 ? "" : "s");
+        if (t && t->open) fprintf(r->out, "; not compared in %zu layer%s: %s", t->open, t->open == 1 ? "" : "s", why);
+        fputc('\n', r->out);
+    }
+}
+
+/* The report's last line (text) or closing fields (JSON), and the exit
+ * status; t (NULL for slice --validate) adds validate's area totals. */
+static int report_finish(vreport *r, const char *what, const vareas *t)
 {
     if (r->json) {
-        fprintf(r->out, "],\"checked\":%zu,\"confirmed\":%zu,\"disagreeing\":%zu,\"unchecked\":%zu,"
-                        "\"areas_compared\":%zu,\"areas_differing\":%zu",
-                r->checked, r->confirmed, r->disagreeing, r->unchecked, r->areas_compared, r->areas_differ);
+        finish_json(r, t);
     } else {
         fprintf(r->out, "%s: %zu layers, %zu contours checked, %zu confirmed, %zu disagreeing", what, r->layers,
                 r->checked, r->confirmed, r->disagreeing);
         if (r->unchecked) fprintf(r->out, ", %zu too small to check", r->unchecked);
-        fprintf(r->out, "; net area against the section in %zu layer%s, %zu differ%s\n", r->areas_compared,
-                r->areas_compared == 1 ? "" : "s", r->areas_differ, r->areas_differ == 1 ? "s" : "");
+        finish_text_areas(r, t);
+    }
+    /* an area that could not be verified is no failure of the program, but
+     * must not pass unseen: a warning on stderr too, whatever -q says */
+    if (t && t->open) {
+        char why[200];
+        open_why(why, sizeof why, t->ref);
+        fprintf(stderr, "lamina: warning: %s: net area not compared on %zu layer%s: %s; the program's area is not "
+                        "verified\n", t->ref->path, t->open, t->open == 1 ? "" : "s", why);
     }
     return r->disagreeing || r->areas_differ ? EXIT_CHECK : EXIT_OK;
+}
+
+int vreport_finish(vreport *r, const char *what) { return report_finish(r, what, NULL); }
+
+/* The model as loaded (the layers are made from it) and the one they are
+ * checked against. */
+typedef struct vmodels {
+    lam_model *m;
+    lam_model *ref;          /* m, or a repaired copy of it (owned) */
+    vareas areas;
+} vmodels;
+
+/* A copy of m repaired (repair.h) into *out: its mesh as loaded (the load
+ * options' transform applied), rebuilt and repaired, as loading it without
+ * --no-repair would have made it. LAM_OK with *out NULL when repair
+ * failed short of memory (err says why). */
+static int repaired_copy(const lam_model *m, lam_model **out, lam_error *err)
+{
+    *out = NULL;
+    lam_mesh mesh;
+    lam_mesh_init(&mesh);
+    int rc = lam_mesh_reserve(&mesh, m->mesh.nverts, m->mesh.ntris, err);
+    if (rc) return rc;
+    memcpy(mesh.xyz, m->mesh.xyz, 3 * m->mesh.nverts * sizeof *mesh.xyz);
+    memcpy(mesh.tris, m->mesh.tris, 3 * m->mesh.ntris * sizeof *mesh.tris);
+    mesh.nverts = m->mesh.nverts;
+    mesh.ntris = m->mesh.ntris;
+    if ((rc = lam_model_from_mesh(&mesh, m->path, m->format, out, err))) return rc;
+    if ((rc = lam_model_repair(out, NULL, err))) {
+        lam_model_free(*out);
+        *out = NULL;
+    }
+    return rc == LAM_ENOMEM ? rc : LAM_OK;
+}
+
+/* vm->ref: the repaired model. Loaded with --no-repair, m is the mesh as
+ * the file has it; when repair would change it (open or non-manifold
+ * edges: repair.h leaves other models alone) the reference is a repaired
+ * copy, so the rays and the sections say what the part should be where
+ * m's outlines stay open. A repair that fails leaves m as the reference
+ * (said on stderr; its areas are then not compared when it is open). */
+static int reference_model(const args *a, vmodels *vm, lam_error *err)
+{
+    lam_model *m = vm->m;
+    vm->ref = m;
+    vm->areas.ref = m;
+    if (!a->no_repair || (!m->stats.boundary_edges && !m->stats.nonmanifold_edges)) return LAM_OK;
+    lam_error why;
+    lam_error_clear(&why);
+    lam_model *c;
+    int rc = repaired_copy(m, &c, &why);
+    if (rc) {
+        *err = why;
+        return rc;
+    }
+    if (!c) {
+        char buf[1024];
+        fprintf(stderr, "lamina: warning: %s: repairing a copy to check against failed (%s); checked against the "
+                        "mesh as it is\n", m->path, lam_error_format(&why, buf, sizeof buf));
+        return LAM_OK;
+    }
+    vm->ref = c;
+    vm->areas.ref = c;
+    if (a->talk >= 0) {
+        char line[512];
+        lam_repair_summary(&c->repair, line, sizeof line);
+        fprintf(stderr, "lamina: %s: sliced as the file has it (--no-repair), checked against a repaired copy%s%s\n",
+                m->path, line[0] ? ": " : "", line);
+    }
+    return LAM_OK;
+}
+
+/* The checks' options common to every layer: the fill rule, and what the
+ * reference is against the mesh sliced (validate.h) with the gap its
+ * outlines were closed with. */
+static void base_opts(const args *a, const vmodels *vm, double gap, lam_validate_opts *o)
+{
+    lam_validate_opts_init(o);
+    o->fill_nonzero = a->so.fill_nonzero;
+    o->gap = gap;
+    const lam_repair_report *rr = &vm->ref->repair;
+    o->moved = vm->ref != vm->m && rr->welded ? rr->weld_tolerance : 0;
+}
+
+/* The gap-closing tolerance of the slicing the options give, resolved as
+ * lam_slicer_new resolves the automatic one (the model's diagonal). */
+static double run_gap(const args *a, const lam_model *m)
+{
+    if (a->so.gap >= 0) return a->so.gap;
+    const double *b = m->stats.bbox;
+    double d = sqrt((b[3] - b[0]) * (b[3] - b[0]) + (b[4] - b[1]) * (b[4] - b[1]) + (b[5] - b[2]) * (b[5] - b[2]));
+    return lam_default_gap(isfinite(d) ? d : 0, a->so.gap_limit);
 }
 
 /* The layers of a program read back, each checked as it is written: the
@@ -225,6 +432,7 @@ typedef struct pjob {
     int frame_machine, below;
     lam_validate_opts vo;
     vreport *r;
+    vareas *areas;
 } pjob;
 
 static int program_layer(void *ctx, unsigned worker, lam_rays *v, size_t i, lam_vlayer *out, lam_error *err)
@@ -267,6 +475,7 @@ static int program_report(void *ctx, size_t i, const lam_vlayer *l, lam_layer_ch
     const lam_program_layer *pl = &j->p->layers[i];
     vsource src = { j->a->program, pl->n ? j->p->contours + pl->first : NULL };
     vreport_check(j->r, l->L, chk, &src);
+    vareas_add(j->areas, chk);
     return LAM_OK;
 }
 
@@ -418,9 +627,10 @@ static int program_passes(const lam_plan_opts *po, const lam_program *p, lam_val
     return LAM_OK;
 }
 
-static int validate_program(const args *a, const lam_profile *prof, const lam_plan_opts *po, const lam_model *m,
+static int validate_program(const args *a, const lam_profile *prof, const lam_plan_opts *po, vmodels *vm,
                             lam_rays *v, vreport *r, int *uncovered, lam_error *err)
 {
+    const lam_model *m = vm->m;
     lam_program *p = NULL;
     int rc = lam_program_read(a->program, &p, err);
     /* the report sent to the program (> or >>) is said first: the
@@ -438,6 +648,7 @@ static int validate_program(const args *a, const lam_profile *prof, const lam_pl
     j.a = a;
     j.p = p;
     j.r = r;
+    j.areas = &vm->areas;
     /* a run's JSON says its own axis and frame (-a and --frame are for
      * programs that do not) */
     j.f = p->has_frame ? &p->frame : &a->so.frame;
@@ -451,8 +662,10 @@ static int validate_program(const args *a, const lam_profile *prof, const lam_pl
         lam_program_free(p);
         return rc;
     }
-    lam_validate_opts_init(&j.vo);
-    j.vo.fill_nonzero = a->so.fill_nonzero;
+    base_opts(a, vm, run_gap(a, m), &j.vo);
+    /* sliced from the mesh before repair, any layer may have had gaps
+     * bridged or outlines dropped: the program does not say which */
+    j.vo.gaps_unknown = vm->ref != vm->m;
     j.vo.quantum_uv = p->quantum_xy;
     j.vo.quantum_h = p->quantum_z;
     if ((rc = program_passes(po, p, &j.vo, err))) {
@@ -490,6 +703,7 @@ static int validate_program(const args *a, const lam_profile *prof, const lam_pl
  * (validate_run.h), this thread reports them in order. */
 typedef struct sjob {
     vreport *r;
+    vareas *areas;
     size_t open;             /* outlines left open, over the layers reported */
 } sjob;
 
@@ -500,14 +714,16 @@ static int slice_report(void *ctx, size_t i, const lam_vlayer *l, lam_layer_chec
     cli_progress_step(j->r->progress, l->L->index + 1);
     j->open += l->L->nopen;
     vreport_check(j->r, l->L, chk, NULL);
+    vareas_add(j->areas, chk);
     return LAM_OK;
 }
 
 /* lamina validate without --program: the model sliced and every layer
  * checked (rays v), reported through r. Returns the exit code. */
-static int validate_slices(args *a, const lam_profile *prof, lam_model *m, lam_rays *v, vreport *r,
+static int validate_slices(args *a, const lam_profile *prof, vmodels *vm, lam_rays *v, vreport *r,
                            cli_progress *progress)
 {
+    lam_model *m = vm->m;
     lam_error err;
     lam_error_clear(&err);
     lam_slicer *s = NULL;
@@ -525,9 +741,8 @@ static int validate_slices(args *a, const lam_profile *prof, lam_model *m, lam_r
     cli_size_sense(a->path, a->machine ? prof : NULL, m, s, NULL);
     cli_progress_begin(progress, "validating", a->path, lam_slicer_count(s));
     lam_validate_opts vo;
-    lam_validate_opts_init(&vo);
-    vo.fill_nonzero = a->so.fill_nonzero;
-    sjob sj = { r, 0 };
+    base_opts(a, vm, lam_slicer_gap(s), &vo);
+    sjob sj = { r, &vm->areas, 0 };
     int vrc = lam_validate_slicer(s, v, &vo, a->threads, slice_report, &sj, &err);
     cli_progress_end(progress);
     if (vrc) {
@@ -535,7 +750,7 @@ static int validate_slices(args *a, const lam_profile *prof, lam_model *m, lam_r
         goto out;
     }
     size_t open = sj.open;
-    rc = vreport_finish(r, a->path);
+    rc = report_finish(r, a->path, &vm->areas);
     if (r->json) printf(",\"open_outlines\":%zu}\n", open);
     if (open && !a->allow_open) {
         fprintf(stderr, "lamina: %s: %zu outline%s stayed open (gap tolerance %g); use --gap or --allow-open\n", a->path,
@@ -559,7 +774,8 @@ int cmd_validate(int argc, char **argv)
     lam_error err;
     lam_error_clear(&err);
     lam_profile *prof = NULL;
-    lam_model *m = NULL;
+    vmodels vm;
+    memset(&vm, 0, sizeof vm);
     lam_rays *v = NULL;
     vreport r;
     memset(&r, 0, sizeof r);
@@ -579,19 +795,20 @@ int cmd_validate(int argc, char **argv)
             goto done;
         }
     if ((rc = cli_profile("validate", &a, &prof, &po))) goto done;
-    if (cli_load_model(&a, prof, &m, &err)) {
+    if (cli_load_model(&a, prof, &vm.m, &err)) {
         rc = cli_fail(&err);
         goto done;
     }
-    a.path = m->path; /* "<stdin>" for "-" */
-    if (lam_rays_new(m, &v, &err)) {
+    a.path = vm.m->path; /* "<stdin>" for "-" */
+    cli_repair_note(vm.m, a.talk < 0);
+    if (reference_model(&a, &vm, &err) || lam_rays_new(vm.ref, &v, &err)) {
         rc = cli_fail(&err);
         goto done;
     }
     cli_progress_stage(&progress, "reading the model and preparing the rays");
     if (a.program) {
         int uncovered = 0;
-        int vrc = validate_program(&a, prof, &po, m, v, &r, &uncovered, &err);
+        int vrc = validate_program(&a, prof, &po, &vm, v, &r, &uncovered, &err);
         cli_progress_end(&progress);
         if (vrc) {
             rc = err.code == LAM_EUSAGE ? cli_usage("validate", "%s", err.msg) : cli_fail(&err);
@@ -599,15 +816,16 @@ int cmd_validate(int argc, char **argv)
             if (uncovered) rc = EXIT_CHECK;
             goto done;
         }
-        rc = vreport_finish(&r, a.program);
+        rc = report_finish(&r, a.program, &vm.areas);
         if (r.json) fputs("}\n", stdout);
         goto done;
     }
-    rc = validate_slices(&a, prof, m, v, &r, &progress);
+    rc = validate_slices(&a, prof, &vm, v, &r, &progress);
 done:
     fflush(stdout);
     lam_rays_free(v);
-    lam_model_free(m);
+    if (vm.ref != vm.m) lam_model_free(vm.ref);
+    lam_model_free(vm.m);
     lam_profile_free(prof);
     cli_args_free(&a);
     return rc;
