@@ -21,7 +21,6 @@
 #include "model.h"
 #include "program_read.h"
 #include "repair.h"
-#include "repair_note.h"
 #include "size_sense.h"
 #include "validate.h"
 #include "validate_run.h"
@@ -800,7 +799,6 @@ int cmd_validate(int argc, char **argv)
         goto done;
     }
     a.path = vm.m->path; /* "<stdin>" for "-" */
-    cli_repair_note(vm.m, a.talk < 0);
     if (reference_model(&a, &vm, &err) || lam_rays_new(vm.ref, &v, &err)) {
         rc = cli_fail(&err);
         goto done;
