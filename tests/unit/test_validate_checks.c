@@ -424,6 +424,111 @@ static void test_what_is_written(void)
     lam_model_free(m);
 }
 
+/* ---- the loss check (validate.h) -------------------------------------------------- */
+
+/* Layers whose outlines were closed across gaps or dropped are compared
+ * with the gap's allowance, not skipped; the vertices moved by repair's
+ * weld widen the exact comparison by that much; a model whose section does
+ * not close is said so (area_open) instead. */
+static void test_loss_check(void)
+{
+    lam_model *m;
+    lam_rays *v;
+    if (open_validator(&m, &v)) return;
+    hand h;
+    lam_layer_check c;
+    lam_validate_opts o;
+    lam_validate_opts_init(&o);
+    o.gap = 0.5;
+
+    /* the square's side at x = 1 bridged 0.04 inside (as a bridge across a
+     * hole in the surface might be): 2 x 0.04 = 0.08 of area gone */
+    hand_layer(&h);
+    h.uv[2] = h.uv[4] = 0.96;
+    if (!check_layer(v, &h.L, &o, &c)) {
+        ok(c.area_checked && !c.area_ok && !c.area_loose && strstr(c.area_why, "against"),
+           "no gap closed: 0.08 off the section is a difference (tolerance %g)", c.area_tolerance);
+        lam_layer_check_free(&c);
+    }
+    h.L.gaps_closed = 1;
+    if (!check_layer(v, &h.L, &o, &c)) {
+        ok(c.area_checked && c.area_ok && c.area_loose && strstr(c.area_why, "gap closing"),
+           "one gap of 0.5 bridged: within its allowance (gap / 2 x gap = %g)", c.area_tolerance);
+        is_num(c.area_tolerance, 0.125, 1e-12, "... the allowance is gap^2 / 2 for one bridge");
+        is_num(c.area_lost, 0.08, 1e-12, "... and the area lost is said: 3 - 2.92");
+        lam_layer_check_free(&c);
+    }
+    o.gap = 0.2;
+    if (!check_layer(v, &h.L, &o, &c)) {
+        ok(c.area_checked && !c.area_ok && c.area_loose, "... with a gap of 0.2 (allowance %g) it differs",
+           c.area_tolerance);
+        lam_layer_check_free(&c);
+    }
+    /* read back, the bridges unknown: the allowance is gap / 2 x the layer's
+     * perimeter (the square 7.92, the hole 4) */
+    h.L.gaps_closed = 0;
+    o.gaps_unknown = 1;
+    if (!check_layer(v, &h.L, &o, &c)) {
+        ok(c.area_ok && c.area_loose, "gaps unknown (a program read back): within gap / 2 x perimeter");
+        is_num(c.area_tolerance, 0.1 * 11.92, 1e-9, "... 0.1 x 11.92");
+        lam_layer_check_free(&c);
+    }
+    o.gaps_unknown = 0;
+
+    /* an outline dropped open: the hole gone, so the layer holds 1 more
+     * than the model; the least allowance is 1e-3 of the section */
+    hand_layer(&h);
+    h.L.ncontours = 1;
+    h.L.npoints = 4;
+    h.L.nopen = 1;
+    o.gap = 0;
+    if (!check_layer(v, &h.L, &o, &c)) {
+        ok(c.area_checked && !c.area_ok && c.area_loose, "the hole dropped open: the layer differs");
+        is_num(c.area_lost, -1, 1e-12, "... by 1 more than the model has (area_lost -1)");
+        is_num(c.area_tolerance, LAM_VALIDATE_LOSS_REL * 3, 1e-12, "... against 1e-3 of the section");
+        lam_layer_check_free(&c);
+    }
+
+    /* the square's corner 1e-4 off, as repair's weld may move a vertex: a
+     * difference unless the check is told the vertices moved that much */
+    hand_layer(&h);
+    h.uv[4] = 1 + 1e-4;
+    o.gap = 0.05;
+    if (!check_layer(v, &h.L, &o, &c)) {
+        ok(!c.area_ok && !c.area_loose, "a vertex 1e-4 off: the area differs exactly compared");
+        lam_layer_check_free(&c);
+    }
+    o.moved = 1e-4;
+    if (!check_layer(v, &h.L, &o, &c)) {
+        ok(c.area_ok && !c.area_loose, "... and agrees with moved = 1e-4 (tolerance %g)", c.area_tolerance);
+        lam_layer_check_free(&c);
+    }
+    lam_rays_free(v);
+    lam_model_free(m);
+
+    /* a box without its top: its section means nothing, and says so */
+    lam_mesh mesh;
+    lam_mesh_init(&mesh);
+    add_box(&mesh, -1, -1, 0, 1, 1, 2, 0, 1);
+    lam_error err;
+    m = build_model_quiet(&mesh, "open box");
+    if (!m || lam_rays_new(m, &v, &err)) {
+        ok(0, "validator for a box without its top");
+        lam_model_free(m);
+        return;
+    }
+    hand_layer(&h);
+    h.L.ncontours = 1;
+    h.L.npoints = 4;
+    if (!check_layer(v, &h.L, NULL, &c)) {
+        ok(!c.area_checked && c.area_ok && c.area_open && strstr(c.area_why, "boundary edges"),
+           "an open box: the area not compared, area_open ('%s')", c.area_why);
+        lam_layer_check_free(&c);
+    }
+    lam_rays_free(v);
+    lam_model_free(m);
+}
+
 /* ---- the model's own section ----------------------------------------------------------- */
 
 /* A closed UV sphere's sections against the polygon each ring makes: the
@@ -588,6 +693,7 @@ int main(void)
 {
     test_faces_near_the_cut();
     test_what_is_written();
+    test_loss_check();
     test_section_area();
     test_passes();
     return done_testing();
