@@ -119,6 +119,16 @@ def hole_segment(segs, w):
         total += abs(twice + cross_w(q, x, w)) / 2
     return total if not after else float('nan')  # a closed loop of removed facets: not a hole's chain
 
+def hollow():
+    """A sphere r 10 with a cavity r 5 (wound inward), the cavity's facets
+    within 40 degrees of +x removed: the cavity's outline drops where the
+    plane crosses that hole, and the layer is solid where the part is not."""
+    VO, TO = sphere((0, 0, 0), 10, 48, 24)
+    VI, TI = sphere((0, 0, 0), 5, 48, 24)
+    TI = [(a, c, b) for a, b, c in TI]
+    keep, gone = punched(VI, TI, (0, 0, 0), (1, 0, 0), 40)
+    return VO, TO, VI, TI, keep, gone
+
 def main():
     if sys.argv[1] == 'write':
         d = sys.argv[2]
@@ -126,6 +136,17 @@ def main():
         write_stl(os.path.join(d, 'closed.stl'), [(VA, TA), (VB, TB)])
         write_stl(os.path.join(d, 'open.stl'), [(VA, keep), (VB, TB)])
         write_stl(os.path.join(d, 'moebius.stl'), [(VB, TB), moebius()])
+        VO, TO, VI, TI, keep, gone = hollow()
+        write_stl(os.path.join(d, 'hollow.stl'), [(VO, TO), (VI, keep)])
+        return
+    if sys.argv[1] == 'hollow':  # index h inner(h) seg(h) in_hole, along z
+        VO, TO, VI, TI, keep, gone = hollow()
+        w = [0, 0, 1]
+        hs = [VI[k][2] for t in gone for k in t]
+        for layer in json.load(sys.stdin)['layers']:
+            h = layer['z']
+            print(layer['index'], repr(h), repr(shoelace(segments(VI, TI, w, h), w)),
+                  repr(hole_segment(segments(VI, gone, w, h), w)), int(min(hs) < h < max(hs)))
         return
     axis = [float(x) for x in {'z': '0,0,1'}.get(sys.argv[3], sys.argv[3]).split(',')]
     n = math.sqrt(sum(x * x for x in axis))
@@ -238,6 +259,48 @@ is "$(jq '.areas_loss_checked == (.layers | length)' <<<"$OUT")" true "... every
 run "$LAMINA" validate "$open" -w 0.5 -m cli-ascii --program "$TMP/repaired.cli"
 is "$RC" 0 "the program sliced from the repaired model passes"
 like "$OUT" ' 0 disagreeing; net area against the section in 40 layers, 0 differ$' "... every area compared, none differ"
+
+# The same on any number of threads, and from standard input.
+"$LAMINA" validate "$open" -a 1,1,1 -w 0.5 --allow-open --no-repair --json -j 1 >"$TMP/j1.json" 2>/dev/null
+"$LAMINA" validate "$open" -a 1,1,1 -w 0.5 --allow-open --no-repair --json -j 3 >"$TMP/j3.json" 2>/dev/null
+cmp -s "$TMP/j1.json" "$TMP/j3.json"
+ok $? "the open spheres along 1,1,1: -j 3 reports what -j 1 does, byte for byte"
+run "$LAMINA" validate - -a 1,1,1 -w 0.5 --allow-open --no-repair --json <"$open"
+is "$RC" 3 "... from standard input: exit 3"
+is "$(jq -c '[.areas_lost, .area_lost]' <<<"$OUT")" "$(jq -c '[.areas_lost, .area_lost]' "$TMP/j1.json")" \
+    "... the same layers and area lost as from the file"
+
+# A cavity punched: where its outline is dropped the layer is solid across
+# the void, so the program holds more than the model: the cavity's section
+# less what the fill takes off it (the test's own, as above).
+hollow="$D/hollow.stl"
+run "$LAMINA" validate "$hollow" -w 0.5 --allow-open --no-repair --json
+is "$RC" 3 "a hollow sphere, its cavity punched, --allow-open --no-repair: exit 3"
+printf '%s' "$OUT" >"$TMP/hollow.json"
+python3 "$TMP/spheres.py" hollow <"$TMP/hollow.json" >"$TMP/hollow.txt"
+cat >"$TMP/judge_hollow.py" <<'EOF'
+import json, sys
+run = json.load(open(sys.argv[1]))
+ref = {int(l.split()[0]): [float(x) for x in l.split()[1:]] for l in open(sys.argv[2])}
+bad, n = [], 0
+for L in run['layers']:
+    h, inner, seg, inside = ref[L['index']]
+    if L['area_ok']:
+        continue
+    n += 1
+    want = -(inner - seg)
+    if not inside or not abs(L['area_lost'] - want) <= max(0.01 * inner, seg):
+        bad.append('layer %d (h=%g): area_lost %r, the test expects %r' % (L['index'] + 1, h, L['area_lost'], want))
+if not n or run['areas_added'] != n or run['areas_lost'] != 0:
+    bad.append('%d layers reported, %r added, %r lost' % (n, run['areas_added'], run['areas_lost']))
+print('\n'.join(bad) if bad else 'ok %d' % n)
+EOF
+verdict=$(python3 "$TMP/judge_hollow.py" "$TMP/hollow.json" "$TMP/hollow.txt")
+like "$verdict" '^ok [0-9]+$' "... each layer reported crosses the hole and holds the cavity's section more than the model"
+[ "${verdict#ok}" = "$verdict" ] && echo "$verdict" | head -5 | sed 's/^/# /'
+run "$LAMINA" validate "$hollow" -w 0.5 --allow-open --no-repair -q
+like "$OUT" 'off by [0-9.e+]+ \([0-9.e+]+ more than the model has, [0-9.]+% of the section\)' "... text: more than the model has"
+like "$OUT" '[0-9]+ differ: [0-9.e+]+ more than the model has in [0-9]+ layers$' "... and the summary says how much more"
 
 # Repair cannot close a Moebius band (one side, one edge): its section means
 # nothing, so no area is compared, and validate says so on stdout, in the
