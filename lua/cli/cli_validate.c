@@ -225,7 +225,6 @@ void vreport_check(vreport *r, const lam_layer *L, const lam_layer_check *c, con
     }
 }
 
-
 /* What validate adds up over its layers beyond vreport's counts: the
  * area lost or added on the layers that differ, and the layers whose area
  * could not be compared because the model stays open. */
@@ -347,15 +346,18 @@ typedef struct vmodels {
 
 /* A copy of m repaired (repair.h) into *out: its mesh as loaded (the load
  * options' transform applied), rebuilt and repaired, as loading it without
- * --no-repair would have made it. LAM_OK with *out NULL when repair
- * failed short of memory (err says why). */
+ * --no-repair would have made it. LAM_ENOMEM, or LAM_OK with *out NULL
+ * when the repair failed otherwise (err says why). */
 static int repaired_copy(const lam_model *m, lam_model **out, lam_error *err)
 {
     *out = NULL;
     lam_mesh mesh;
     lam_mesh_init(&mesh);
     int rc = lam_mesh_reserve(&mesh, m->mesh.nverts, m->mesh.ntris, err);
-    if (rc) return rc;
+    if (rc) {
+        lam_mesh_free(&mesh);
+        return rc;
+    }
     memcpy(mesh.xyz, m->mesh.xyz, 3 * m->mesh.nverts * sizeof *mesh.xyz);
     memcpy(mesh.tris, m->mesh.tris, 3 * m->mesh.ntris * sizeof *mesh.tris);
     mesh.nverts = m->mesh.nverts;
