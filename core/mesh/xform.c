@@ -42,7 +42,8 @@ double lam_unit_mm(const char *unit) { return lam_key_unit_mm(unit); }
 
 void lam_xform_scale_by(lam_xform *x, double factor)
 {
-    for (int k = 0; k < 3; k++) x->scale[k] = scale_of(x, k) * factor;
+    double f[3] = { scale_of(x, 0), scale_of(x, 1), scale_of(x, 2) }; /* before the first is written */
+    for (int k = 0; k < 3; k++) x->scale[k] = f[k] * factor;
 }
 
 /* ---- parsing ------------------------------------------------------------- */
