@@ -218,4 +218,44 @@ like "$OUT" "^false\t.*unknown option 'rotat' \(did you mean 'rotate'\? options:
 like "$OUT" "^false\t.*machine: unknown machine 'no-such-machine'" "an unknown machine"
 like "$OUT" "^false\t.*repair must be true or false" "repair = \"no\""
 
+# ---- the recipes take the load options -------------------------------------------
+ROOT=$(cd "$TESTS/.." && pwd)
+for r in default adaptive aligned best_axis scan_orders hatching; do
+    run "$LAMINA" run "$ROOT/recipes/$r.lua" --rotate q:90 --out "$TMP/r-out"
+    [ "$r" = default ] || run "$LAMINA" run "$ROOT/recipes/$r.lua" --rotate q:90
+    like "$RC $ERR" "^2 lamina: $r\.lua: rotate 'q:90': the axis must be x, y or z
+usage: lamina run recipes/$r\.lua .*--rotate" "$r --rotate q:90: a usage error, exit 2"
+    run "$LAMINA" run "$ROOT/recipes/$r.lua" --help
+    like "$OUT" "--units U.*--place plate.*--no-repair" "$r --help names the load options"
+done
+run "$LAMINA" run "$ROOT/recipes/adaptive.lua" --units m --rotate x:90 --place plate "$S"
+is "$RC" 0 "adaptive.lua --units m --rotate x:90 --place plate"
+like "$OUT" "span 0 \.\. 10$" "... its span along z: the 0.01 m of y, in mm, from the plate"
+run "$LAMINA" run "$ROOT/recipes/aligned.lua" --scale 1,1,2 --translate 0,0,1 "$B"
+like "$OUT" "^flat heights: 2: -39 -23$" "aligned.lua --scale 1,1,2 --translate 0,0,1: the faces at -39 and -23"
+run "$LAMINA" run "$ROOT/recipes/default.lua" --out "$TMP/d-out" "$B"
+like "$OUT" "creol-ladrp +100 layers" "default.lua on the 8 mm box: creol-ladrp (cm) takes it as 8 cm, 100 layers of 0.08"
+run "$LAMINA" run "$ROOT/recipes/default.lua" --units mm --out "$TMP/d-out" "$B"
+like "$OUT" "creol-ladrp +10 layers" "... with --units mm, 0.8 cm: 10 layers"
+like "$OUT" "sls-contours +32 layers" "... and sls-contours (mm) 8 mm: 32 layers of 0.25"
+# an open mesh: a box without its top, which the slicer closes layer by layer
+python3 - "$TMP/cup.stl" <<'PY'
+import sys
+c = [(x, y, z) for z in (0, 1) for y in (0, 1) for x in (0, 1)]
+with open(sys.argv[1], "w") as f:
+    f.write("solid cup\n")
+    for a, b, cc, d in [(0, 2, 3, 1), (0, 1, 5, 4), (2, 6, 7, 3), (0, 4, 6, 2), (1, 3, 7, 5)]:
+        for t in ((a, b, cc), (a, cc, d)):
+            f.write("facet normal 0 0 0\nouter loop\n" + "".join("vertex %d %d %d\n" % c[v] for v in t) + "endloop\nendfacet\n")
+    f.write("endsolid cup\n")
+PY
+run "$LAMINA" run "$ROOT/recipes/adaptive.lua" --no-repair "$TMP/cup.stl"
+like "$RC $ERR" "\A1 lamina: adaptive\.lua: [^\n]*cup\.stl: the mesh is not closed \(4 boundary edges, --no-repair\); --allow-open slices it[^\n]*\z" \
+    "adaptive.lua on an open mesh: a message on one line, exit 1"
+run "$LAMINA" run "$ROOT/recipes/adaptive.lua" --no-repair --allow-open "$TMP/cup.stl"
+is "$RC" 0 "... and with --allow-open it runs"
+printf 'solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid t\n' >"$TMP/flat.stl"
+run "$LAMINA" run "$ROOT/recipes/adaptive.lua" --allow-open "$TMP/flat.stl"
+like "$RC $ERR" "\A1 lamina: adaptive\.lua: [^\n]*flat\.stl has no extent along z[^\n]*\z" "a flat model: a message, no traceback"
+
 done_testing
