@@ -26,7 +26,7 @@ static const char usage_text[] =
     "fills holes) and write the repaired mesh to FILE: binary STL, or Wavefront OBJ\n"
     "for a name ending in .obj. One line on standard error says what was repaired;\n"
     "a warning says what remains open. Exit 3 when the mesh written is still open.\n"
-    "  -o, --output     the repaired mesh (- : standard output, when it is not a terminal)\n"
+    "  -o, --output     the repaired mesh (-: standard output, when it is not a terminal)\n"
     "      --json       the repair report as one JSON object on standard output\n"
     "  -q, --quiet      no summary line; warnings and errors only\n"
     "  -v, --verbose    also the mesh's counts before and after repair\n"
@@ -34,7 +34,8 @@ static const char usage_text[] =
     "      --scale      scale factor, or one per axis\n"
     "      --rotate     rotate about x, y or z by DEG degrees (repeatable, in order)\n"
     "      --translate  move by X,Y,Z after scaling and rotating\n"
-    "      --place      plate: the lowest point on z = 0, centred on the origin\n"
+    "      --place      put the model on the plate: its lowest point on z = 0, centred on\n"
+    "                   the origin\n"
     "      --no-repair  write the mesh as the file has it (welded and oriented only)\n"
     "MODEL - reads standard input. Values: --name=VALUE or --name VALUE; -- ends the options.\n";
 
