@@ -10,6 +10,7 @@
 D="$TMP/with space"
 mkdir -p "$D"
 j() { jq -r "$1" <<<"$OUT"; }
+qm() { printf '%s' "$1" | perl -pe 's/(\W)/\\$1/g'; } # a path as a regex that matches it alone
 
 # cube.py OUT [skip FACE] [flip N]: a 10 mm cube as ASCII STL, 12 facets
 # wound outward; face FACE (0..5: -z +z -y +y -x +x) left out, the first N
@@ -173,7 +174,7 @@ printf 'solid bad\nfacet normal 0 0 0\nouter loop\nvertex 1 2\nvertex 0 0 0\nver
 ls_before=$(ls -a "$D")
 run "$LAMINA" repair "$D/bad.stl" -o "$D/bad-out.stl"
 is "$RC" 1 "a malformed STL: exit 1"
-like "$ERR" "^lamina: \\Q$D/bad.stl\\E:\\d+:\\d+: expected the vertex z coordinate" "the error names file:line:column and what is wrong"
+like "$ERR" "^lamina: $(qm "$D/bad.stl"):\\d+:\\d+: expected the vertex z coordinate" "the error names file:line:column and what is wrong"
 is "$(ls -a "$D")" "$ls_before" "no output file, no temporary"
 run "$LAMINA" repair "$D/missing.stl" -o "$D/bad-out.stl"
 is "$RC" 1 "a missing model: exit 1"
@@ -204,7 +205,7 @@ is "$(j .after.triangles) $(j .after.vertices) $(j .after.boundary_edges) $(j .a
 is "$(j .welded) $(j .degenerate) $(j .duplicates) $(j .flipped)" "0 0 0 0" "nothing welded, removed or flipped"
 like "$(j .summary)" '^filled 1 hole \(4 boundary edges\)' "the summary"
 is "$RC" 0 "a hole repair filled: exit 0"
-like "$ERR" "^lamina: \\Q$D/open.stl\\E: filled 1 hole" "stderr: what was repaired"
+like "$ERR" "^lamina: $(qm "$D/open.stl"): filled 1 hole" "stderr: what was repaired"
 is "$(python3 "$TMP/stlcheck.py" "$D/open-out.stl")" "12 0" "the output: 12 facets, unit outward normals"
 is "$(admesh_report "$D/open-out.stl" | tr '\n' ' ' | sed 's/ $//')" "$closed_admesh" "admesh: no open edges, one part, volume 1000"
 
