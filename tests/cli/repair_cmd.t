@@ -182,6 +182,11 @@ is "$RC" 1 "a missing model: exit 1"
 run "$LAMINA" repair "$D/cube.stl" -o "$D/no such dir/out.stl"
 is "$RC" 1 "an output in a missing directory: exit 1"
 like "$ERR" 'no such dir' "and names it"
+if [ -w /dev/full ]; then
+    run "$LAMINA" repair "$D/cube.stl" -o /dev/full
+    is "$RC" 1 "-o /dev/full: exit 1"
+    like "$ERR" '/dev/full: cannot write output: No space left on device' "the write error, with the reason"
+fi
 
 # ---- a cube missing its top face: the JSON report ----------------------------------------
 python3 "$TMP/cube.py" "$D/open.stl" skip 1
