@@ -30,6 +30,7 @@ typedef struct lam_shell {
     double area;
     int enclosing;       /* how many other shells enclose this one */
     int cavity;          /* enclosing is odd */
+    size_t flipped;      /* triangles the file wound against the shell's majority */
 } lam_shell;
 
 typedef struct lam_model_stats {
@@ -39,6 +40,9 @@ typedef struct lam_model_stats {
     size_t degenerate_tris;    /* zero area: repeated or collinear vertices */
     size_t orientation_conflicts; /* manifold edges whose triangles could not
                                      be made consistent (non-orientable) */
+    size_t flipped_tris;       /* triangles the file wound against their shell's majority,
+                                  turned to agree (a shell wound inward throughout is
+                                  turned outward as always, and not counted) */
     double bbox[6];
     double area, volume;
 } lam_model_stats;
@@ -61,7 +65,9 @@ typedef struct lam_repair_report {
     size_t holes_left;        /* loops not filled (see repair.h) */
     size_t boundary_edges;    /* open edges that remain */
     size_t nonmanifold_edges; /* edges with more than two facets that remain */
-    size_t self_intersections;/* facets crossed by an edge of another facet that remain */
+    size_t crossing_edges;    /* edges through a facet not their own: self-intersections that
+                                 remain (counted when repair changed the model) */
+    int crossings_unknown;    /* 1 when they could not be counted (Embree could not be loaded) */
 } lam_repair_report;
 
 typedef struct lam_model {

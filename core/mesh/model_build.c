@@ -232,9 +232,19 @@ static int build_shells(lam_model *md, const unsigned char *hdir, lam_error *err
         return md->shells ? LAM_OK : oom(err);
     }
     for (size_t t = 0; t < nt; t++) md->tri_shell[t] = NONE;
-    size_t nshells = 0, conflicts = 0;
+    size_t nshells = 0, conflicts = 0, cap = 0, *flips = NULL;
     for (size_t seed = 0; seed < nt; seed++) {
         if (md->tri_shell[seed] != NONE) continue;
+        if (nshells == cap) {
+            size_t *g = realloc(flips, (cap = cap ? 2 * cap : 64) * sizeof *g);
+            if (!g) {
+                free(flips);
+                free(queue);
+                return oom(err);
+            }
+            flips = g;
+        }
+        flips[nshells] = 0;
         size_t head = 0, tail = 0;
         queue[tail++] = (uint32_t)seed;
         md->tri_shell[seed] = (uint32_t)nshells;
@@ -252,7 +262,7 @@ static int build_shells(lam_model *md, const unsigned char *hdir, lam_error *err
                 const uint32_t *uv = m->tris + 3 * (size_t)u;
                 int same_dir = tri_has_directed(uv, a, b);
                 if (md->tri_shell[u] == NONE) {
-                    if (same_dir) flip_tri(m, e, u);
+                    if (same_dir) flip_tri(m, e, u), flips[nshells]++;
                     md->tri_shell[u] = (uint32_t)nshells;
                     queue[tail++] = u;
                 } else if (same_dir && md->tri_shell[u] == md->tri_shell[t]) {
@@ -267,7 +277,14 @@ static int build_shells(lam_model *md, const unsigned char *hdir, lam_error *err
     md->stats.orientation_conflicts = conflicts / 2;
     md->nshells = nshells;
     md->shells = calloc(nshells ? nshells : 1, sizeof *md->shells);
-    if (!md->shells) return oom(err);
+    if (!md->shells) {
+        free(flips);
+        return oom(err);
+    }
+    /* the search flips against the seed; the count against the shell's
+     * majority is the smaller of that and the rest (outward_shells) */
+    for (size_t s = 0; s < nshells; s++) md->shells[s].flipped = flips[s];
+    free(flips);
     return LAM_OK;
 }
 
@@ -462,6 +479,8 @@ int lam_model_from_mesh(lam_mesh *mesh, const char *path, const char *format,
         }
         st->volume += sh->volume;
         st->area += sh->area;
+        if (sh->flipped > sh->ntris - sh->flipped) sh->flipped = sh->ntris - sh->flipped;
+        st->flipped_tris += sh->flipped;
     }
     /* each coordinate is within LAM_COORD_MAX, but a sum over billions of
      * such triangles could still overflow */

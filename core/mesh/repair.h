@@ -20,11 +20,19 @@
  *      vertices (planar or not: on a planar simple loop that is a
  *      triangulation of the polygon itself), otherwise a fan from the
  *      loop's centroid; a loop that crosses itself in its best-fit plane is
- *      filled the same way and counted;
+ *      filled the same way and counted. The programme and the crossing
+ *      test have a budget for the whole model (repair_fill.c), so that no
+ *      file makes the fill run unbounded: past it, loops are triangulated
+ *      in their plane (GEOS) or fanned;
  *   4. the model is rebuilt again, and what remains is counted: open and
- *      non-manifold edges.
- * Facets whose winding the model build turned are counted in `flipped`
- * against the file's winding, for every model, repaired or not.
+ *      non-manifold edges, and edges that pass through a facet not their
+ *      own (self-intersections: a fill through another part of the
+ *      surface, or the file's own; Embree segment queries, rays.h).
+ * Facets the file wound against the majority of their shell (which the
+ * model build turns to agree) are counted in `flipped`, for every model
+ * repaired; a shell wound inward throughout is turned outward silently,
+ * as the model build always has (SPEC: the file's winding is never
+ * trusted).
  *
  * Closed, manifold models are never changed, so their slices stay the
  * same bit for bit. */
@@ -47,6 +55,18 @@ typedef struct lam_repair_opts {
  * Errors: LAM_ENOMEM, LAM_EGEOM when nothing with area is left; on error
  * *md is still a valid model (the unrepaired one). */
 int lam_model_repair(lam_model **md, const lam_repair_opts *o, lam_error *err);
+
+/* The report's fields, one row each, for every writer of it (the run's
+ * JSON, `lamina info --json`, `lamina repair --json`): X(name) with the
+ * field's name in lam_repair_report, which is also its JSON key. */
+#define LAM_REPAIR_COUNTS(X)                                                                        \
+    X(welded) X(degenerate) X(duplicates) X(flipped) X(holes) X(hole_edges) X(fill_triangles)     \
+    X(crossing_loops) X(holes_left) X(boundary_edges) X(nonmanifold_edges) X(crossing_edges)
+#define LAM_REPAIR_MEASURES(X) X(weld_tolerance) X(fill_area) X(largest_hole)
+
+/* 1 when repair changed the model (anything but `ran` and the tolerance
+ * non-zero), or left it open or non-manifold. */
+int lam_repair_acted(const lam_repair_report *r);
 
 /* One line for messages: "filled 37 holes (223 boundary edges), 12 facets
  * flipped" (only the actions taken; "" when none). Returns buf. */

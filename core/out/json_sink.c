@@ -11,6 +11,7 @@
 #include "escape.h"
 #include "fmt.h"
 #include "hatch.h"
+#include "repair.h"
 #include "slice.h"
 #include "vstream.h"
 
@@ -146,6 +147,24 @@ static void key(js *s, const char *k)
 
 /* `, "k": x` for each of n keys and numbers (the first without its comma
  * when `first`). */
+/* What repair on load did (repair.h's rows), when it did anything. */
+static void repair_obj(js *s, const lam_repair_report *r)
+{
+    put(s, ",");
+    line(s);
+    put(s, "  ");
+    key(s, "repair");
+    put(s, "{");
+    const char *sep = "";
+#define COUNT(f) put(s, sep), key(s, #f), size(s, r->f), sep = ", ";
+    LAM_REPAIR_COUNTS(COUNT)
+#undef COUNT
+#define MEASURE(f) put(s, ", "), key(s, #f), num(s, r->f);
+    LAM_REPAIR_MEASURES(MEASURE)
+#undef MEASURE
+    put(s, "}");
+}
+
 static void nums(js *s, int first, const char *const *k, const double *x, size_t n)
 {
     for (size_t i = 0; i < n; i++) {
@@ -236,6 +255,7 @@ static int j_begin(void *ctx, const lam_job_info *job)
     put(s, ", ");
     key(s, "bead");
     num(s, job->bead);
+    if (job->repair) repair_obj(s, job->repair);
     put(s, "},");
     line(s);
     put(s, " \"layers\": [");

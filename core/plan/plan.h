@@ -36,6 +36,8 @@ typedef struct lam_job_info {
     const char *model;       /* the model's path as given (for headers), or NULL */
     const struct lam_frame *frame; /* the layer frame (u, v, w: w the slicing axis), or NULL */
     int frame_machine;       /* coordinates are in the layer frame (u, v, w) */
+    const struct lam_repair_report *repair; /* what repair on load did to the model
+                                when it did anything (lam_repair_acted), else NULL */
 } lam_job_info;
 
 /* The part's name for a job from a model's path: the file's name without

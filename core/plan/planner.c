@@ -1,6 +1,7 @@
 /* Planning options, job labels and the job header of a slicing run
  * (lam_plan_run itself: plan_run.c). */
 #include "planner.h"
+#include "repair.h"
 #include "fmt.h"
 
 #include "profile.h"
@@ -118,4 +119,5 @@ void lam_plan_job(const lam_slicer *s, const lam_model *m, const lam_plan_opts *
     size_t layers = lam_slicer_count(s);
     lam_job_init(job, o, layers, bb, layers ? lam_slicer_cut(s, 0) : 0, lam_slicer_frame(s), label,
                  m ? m->path : NULL);
+    if (m && m->repair.ran && lam_repair_acted(&m->repair)) job->repair = &m->repair;
 }

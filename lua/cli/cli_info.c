@@ -4,6 +4,8 @@
  * layers and program bytes estimated before anything is sliced
  * (lam_plan_estimate), then the command's peak memory. */
 #include "cli.h"
+#include "repair.h"
+#include "repair_note.h"
 #include "cli_args.h"
 #include "model.h"
 #include "fmt.h"
@@ -108,7 +110,9 @@ static void print_json(const lam_model *m, const char *w[4], int nw, const sizes
         if (i) fputc(',', o);
         cli_json_string(o, w[i]);
     }
-    fprintf(o, "],\"memory\":{\"model\":%zu,\"mesh\":%zu,\"edges\":%zu,\"shells\":%zu,\"peak\":%zu}", z->model,
+    fputs("],\"repair\":", o);
+    cli_repair_json(o, &m->repair);
+    fprintf(o, ",\"memory\":{\"model\":%zu,\"mesh\":%zu,\"edges\":%zu,\"shells\":%zu,\"peak\":%zu}", z->model,
             z->parts[0], z->parts[1], z->parts[2], z->peak);
     fputs(",\"run\":", o);
     if (z->sliced) {
@@ -145,6 +149,14 @@ static void print_text(const lam_model *m, const sizes *z)
     printf("degenerate triangles  %zu\n", s->degenerate_tris);
     printf("orientation conflicts %zu\n", s->orientation_conflicts);
     printf("wires                 %zu\n", s->wires);
+    char line[512];
+    const lam_repair_report *r = &m->repair;
+    printf("repair                %s\n", !r->ran ? "off (--no-repair)"
+                                      : lam_repair_acted(r) ? lam_repair_summary(r, line, sizeof line)
+                                                           : "nothing to repair");
+    if (r->ran && (r->boundary_edges || r->nonmanifold_edges || r->crossing_edges))
+        printf("after repair          %zu open edges, %zu non-manifold edges, %zu edges through other facets\n",
+               r->boundary_edges, r->nonmanifold_edges, r->crossing_edges);
     printf("model memory          %s (mesh %s, edges %s, shells %s)\n", lam_fmt_bytes(a, sizeof a, (double)z->model),
            lam_fmt_bytes(b, sizeof b, (double)z->parts[0]), lam_fmt_bytes(c, sizeof c, (double)z->parts[1]),
            lam_fmt_bytes(d, sizeof d, (double)z->parts[2]));
@@ -191,6 +203,7 @@ int cmd_info(int argc, char **argv)
     int nw;
     warnings(&m->stats, w, &nw);
     for (int i = 0; i < nw; i++) fprintf(stderr, "lamina: warning: %s: %s\n", m->path, w[i]);
+    cli_repair_note(m, 0);
     if (json) print_json(m, w, nw, &z);
     else print_text(m, &z);
     lam_model_free(m);

@@ -5,6 +5,7 @@
  * twin of machines/sls-contours.yaml). Everything is written through atomic
  * writers: a run that fails leaves no output file. */
 #include "cli.h"
+#include "repair_note.h"
 #include "cli_args.h"
 #include "cli_check.h"
 #include "cli_estimate.h"
@@ -159,6 +160,7 @@ static int open_inputs(job *j)
     if (rc) return rc;
     if (cli_load_model(&j->a, j->prof, &j->m, &j->err)) return cli_fail(&j->err);
     j->a.path = j->rep.path = j->m->path; /* "<stdin>" for "-" */
+    cli_repair_note(j->m, j->a.talk < 0);
     const char *outs[][2] = { { "-o", j->a.out }, { "--svg", j->a.svg }, { "--json", j->a.json_out },
                               { "--html", j->a.html } };
     for (size_t i = 0; i < sizeof outs / sizeof *outs; i++)
