@@ -11,6 +11,7 @@
 #include "mesh_write.h"
 #include "model.h"
 #include "repair.h"
+#include "repair_note.h"
 #include "writer.h"
 
 #include <stdlib.h>
@@ -99,10 +100,11 @@ static void json_counts(FILE *o, const lam_model_stats *s)
     fputc('}', o);
 }
 
-/* The report as one JSON object (docs/repair.md lists the fields). */
+/* The report as one JSON object (docs/repair.md lists the fields): the
+ * repair report as the run's JSON and `info --json` have it, and the
+ * mesh's counts before and after. */
 static void print_json(const lam_model *m, const lam_model_stats *before, const char *out, const char *summary)
 {
-    const lam_repair_report *r = &m->repair;
     FILE *o = stdout;
     fputs("{\"model\":", o);
     cli_json_string(o, m->path);
@@ -110,19 +112,10 @@ static void print_json(const lam_model *m, const lam_model_stats *before, const 
     cli_json_string(o, m->format);
     fputs(",\"output\":", o);
     cli_json_string(o, strcmp(out, "-") ? out : "<stdout>");
-    fprintf(o, ",\"output_format\":\"%s\",\"ran\":%s,\"weld_tolerance\":",
-            lam_mesh_format_for(out) == LAM_MESH_OBJ ? "obj" : "stl-binary", r->ran ? "true" : "false");
-    cli_json_number(o, r->weld_tolerance);
-    fprintf(o, ",\"welded\":%zu,\"degenerate\":%zu,\"duplicates\":%zu,\"flipped\":%zu,\"holes\":%zu,"
-               "\"hole_edges\":%zu,\"fill_triangles\":%zu,\"fill_area\":",
-            r->welded, r->degenerate, r->duplicates, r->flipped, r->holes, r->hole_edges, r->fill_triangles);
-    cli_json_number(o, r->fill_area);
-    fputs(",\"largest_hole\":", o);
-    cli_json_number(o, r->largest_hole);
-    fprintf(o, ",\"crossing_loops\":%zu,\"holes_left\":%zu,\"boundary_edges\":%zu,\"nonmanifold_edges\":%zu,"
-               "\"self_intersections\":%zu,\"closed\":%s,\"summary\":",
-            r->crossing_loops, r->holes_left, m->stats.boundary_edges, m->stats.nonmanifold_edges,
-            r->self_intersections, m->stats.boundary_edges ? "false" : "true");
+    fprintf(o, ",\"output_format\":\"%s\",\"repair\":",
+            lam_mesh_format_for(out) == LAM_MESH_OBJ ? "obj" : "stl-binary");
+    cli_repair_json(o, &m->repair);
+    fprintf(o, ",\"closed\":%s,\"summary\":", m->stats.boundary_edges ? "false" : "true");
     cli_json_string(o, summary);
     fputs(",\"before\":", o);
     json_counts(o, before);
@@ -131,33 +124,31 @@ static void print_json(const lam_model *m, const lam_model_stats *before, const 
     fputs("}\n", o);
 }
 
-/* The summary line (a note: not with -q), the counts (-v), and what
- * remains as warnings (always). */
-static void print_text(const args *a, const lam_model *m, const lam_model_stats *before, const char *summary)
+/* What was done (a note: not with -q; "nothing to repair" too, which the
+ * other commands leave unsaid), the counts (-v), and what remains
+ * (warnings, always): the words of every command (repair_note.h). */
+static void print_text(const args *a, const lam_model *m, const lam_model_stats *before)
 {
     const lam_repair_report *r = &m->repair;
     const lam_model_stats *s = &m->stats;
-    if (a->talk >= 0)
-        fprintf(stderr, "lamina: %s: %s\n", m->path,
-                a->no_repair ? "not repaired (--no-repair)" : *summary ? summary : "nothing to repair");
+    int quiet = a->talk < 0;
+    if (!r->ran) {
+        if (!quiet) fprintf(stderr, "lamina: %s: not repaired (--no-repair)\n", m->path);
+        if (s->boundary_edges || s->nonmanifold_edges)
+            fprintf(stderr, "lamina: warning: %s: %zu open edge%s and %zu non-manifold edge%s (not repaired: "
+                            "--no-repair)\n",
+                    m->path, s->boundary_edges, s->boundary_edges == 1 ? "" : "s", s->nonmanifold_edges,
+                    s->nonmanifold_edges == 1 ? "" : "s");
+    } else {
+        if (!quiet && !lam_repair_acted(r)) fprintf(stderr, "lamina: %s: nothing to repair\n", m->path);
+        cli_repair_note(m, quiet);
+    }
     if (a->talk > 0)
         fprintf(stderr,
                 "lamina: %s: before: %zu triangles, %zu vertices, %zu open edges; "
                 "after: %zu triangles, %zu vertices, %zu open edges\n",
                 m->path, before->triangles, before->vertices, before->boundary_edges, s->triangles, s->vertices,
                 s->boundary_edges);
-    if (s->boundary_edges) {
-        char left[64] = "";
-        if (r->holes_left) snprintf(left, sizeof left, " (%zu hole%s not filled)", r->holes_left, r->holes_left == 1 ? "" : "s");
-        fprintf(stderr, "lamina: warning: %s: %zu open edge%s remain%s%s: the mesh written is not closed\n", m->path,
-                s->boundary_edges, s->boundary_edges == 1 ? "" : "s", s->boundary_edges == 1 ? "s" : "", left);
-    }
-    if (s->nonmanifold_edges)
-        fprintf(stderr, "lamina: warning: %s: %zu non-manifold edge%s remain%s (more than two facets)\n", m->path,
-                s->nonmanifold_edges, s->nonmanifold_edges == 1 ? "" : "s", s->nonmanifold_edges == 1 ? "s" : "");
-    if (r->self_intersections)
-        fprintf(stderr, "lamina: warning: %s: %zu facet%s crossed by another facet remain%s\n", m->path,
-                r->self_intersections, r->self_intersections == 1 ? "" : "s", r->self_intersections == 1 ? "s" : "");
 }
 
 /* Load (load options, no repair yet: the counts before), repair unless
@@ -214,7 +205,7 @@ static int repair(args *a, const char *out)
     }
     char summary[512];
     lam_repair_summary(&m->repair, summary, sizeof summary);
-    print_text(a, m, &before, summary);
+    print_text(a, m, &before);
     rc = write_out(m, out);
     if (!rc && a->json) print_json(m, &before, out, summary);
     if (!rc && m->stats.boundary_edges) rc = EXIT_CHECK;

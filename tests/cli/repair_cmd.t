@@ -192,45 +192,54 @@ fi
 python3 "$TMP/cube.py" "$D/open.stl" skip 1
 run "$LAMINA" repair "$D/open.stl" -o "$D/open-out.stl" --json
 jq -e . >/dev/null <<<"$OUT"; ok $? "--json: one valid JSON object"
-is "$(jq -r 'keys_unsorted | join(" ")' <<<"$OUT")" \
-    "model format output output_format ran weld_tolerance welded degenerate duplicates flipped holes hole_edges fill_triangles fill_area largest_hole crossing_loops holes_left boundary_edges nonmanifold_edges self_intersections closed summary before after" \
-    "--json: every field of the repair report, then the counts"
+is "$(jq -r 'keys_unsorted | join(" ")' <<<"$OUT")" "model format output output_format repair closed summary before after" \
+    "--json: the model, the output, the repair report, the counts before and after"
+is "$(jq -r '.repair | keys_unsorted | join(" ")' <<<"$OUT")" \
+    "ran welded degenerate duplicates flipped holes hole_edges fill_triangles crossing_loops holes_left boundary_edges nonmanifold_edges crossing_edges weld_tolerance fill_area largest_hole" \
+    "repair: every field of the repair report (as info --json and the run's JSON have it)"
 is "$(jq -r '.before | keys_unsorted | join(" ")' <<<"$OUT")" "triangles vertices shells boundary_edges nonmanifold_edges area volume" \
     "before: the mesh's counts"
-is "$(j .model) $(j .output) $(j .output_format) $(j .format) $(j .ran)" "$D/open.stl $D/open-out.stl stl-binary stl-ascii true" \
+is "$(j .model) $(j .output) $(j .output_format) $(j .format) $(j .repair.ran)" "$D/open.stl $D/open-out.stl stl-binary stl-ascii true" \
     "the model, the output and their formats"
-is "$(j .before.triangles) $(j .before.vertices) $(j .before.boundary_edges)" "10 8 4" "before: 10 triangles, 8 vertices, 4 open edges"
-# what the repair must do (fails on a placeholder repair)
-is "$(j .holes) $(j .hole_edges) $(j .fill_triangles) $(j .holes_left) $(j .crossing_loops)" "1 4 2 0 0" \
-    "one hole of 4 edges filled with 2 triangles"
-is "$(j .fill_area) $(j .largest_hole)" "100 100" "the fill covers the missing face: 100 mm2"
-is "$(j .boundary_edges) $(j .nonmanifold_edges) $(j .closed)" "0 0 true" "nothing open remains"
-is "$(j .after.triangles) $(j .after.vertices) $(j .after.boundary_edges) $(j .after.volume)" "12 8 0 1000" \
-    "after: 12 triangles, closed, volume 1000"
-is "$(j .welded) $(j .degenerate) $(j .duplicates) $(j .flipped)" "0 0 0 0" "nothing welded, removed or flipped"
-like "$(j .summary)" '^filled 1 hole \(4 boundary edges\)' "the summary"
+is "$(j .before.triangles) $(j .before.vertices) $(j .before.boundary_edges) $(j .before.volume)" "10 8 4 666.6666666666666" \
+    "before: 10 triangles, 8 vertices, 4 open edges"
+is "$(j .repair.holes) $(j .repair.hole_edges) $(j .repair.fill_triangles) $(j .repair.holes_left) $(j .repair.crossing_loops)" \
+    "1 4 2 0 0" "one hole of 4 edges filled with 2 triangles"
+is "$(j .repair.fill_area) $(j .repair.largest_hole)" "100 100" "the fill covers the missing face: 100 mm2"
+python3 -c 'import math, sys; sys.exit(abs(float(sys.argv[1]) - 1e-6 * math.sqrt(300)) > 1e-15)' "$(j .repair.weld_tolerance)"
+ok $? "weld tolerance 1e-6 of the diagonal, 10 sqrt(3) ($(j .repair.weld_tolerance))"
+is "$(j .repair.boundary_edges) $(j .repair.nonmanifold_edges) $(j .repair.crossing_edges) $(j .closed)" "0 0 0 true" \
+    "nothing open or crossing remains"
+is "$(j .after.triangles) $(j .after.vertices) $(j .after.boundary_edges) $(j .after.area) $(j .after.volume)" "12 8 0 600 1000" \
+    "after: 12 triangles, closed, area 600, volume 1000"
+is "$(j .repair.welded) $(j .repair.degenerate) $(j .repair.duplicates) $(j .repair.flipped)" "0 0 0 0" \
+    "nothing welded, removed or flipped"
+is "$(j .summary)" "filled 1 hole (4 boundary edges)" "the summary"
 is "$RC" 0 "a hole repair filled: exit 0"
-like "$ERR" "^lamina: $(qm "$D/open.stl"): filled 1 hole" "stderr: what was repaired"
+is "$ERR" "lamina: $D/open.stl: repaired: filled 1 hole (4 boundary edges)" "stderr: what was repaired, nothing else"
 is "$(python3 "$TMP/stlcheck.py" "$D/open-out.stl")" "12 0" "the output: 12 facets, unit outward normals"
 is "$(admesh_report "$D/open-out.stl" | tr '\n' ' ' | sed 's/ $//')" "$closed_admesh" "admesh: no open edges, one part, volume 1000"
 
 # facets wound inward: flipped, counted, written outward
 python3 "$TMP/cube.py" "$D/flipped.stl" flip 3
 run "$LAMINA" repair "$D/flipped.stl" -o "$D/flipped-out.stl" --json
-is "$RC $(j .flipped) $(j .closed)" "0 3 true" "3 facets wound inward: flipped (3), closed"
+is "$RC $(j .repair.flipped) $(j .closed)" "0 3 true" "3 facets wound inward: flipped (3), closed"
+is "$ERR" "lamina: $D/flipped.stl: repaired: 3 facets flipped" "stderr: the flips"
 is "$(python3 "$TMP/stlcheck.py" "$D/flipped-out.stl")" "12 0" "written outward"
 is "$(admesh_report "$D/flipped-out.stl" | tr '\n' ' ' | sed 's/ $//')" "$closed_admesh" "admesh: nothing reversed"
 
 # --no-repair: written as read, still open: exit 3 with the file written
 run "$LAMINA" repair "$D/open.stl" -o "$D/open-raw.stl" --no-repair --json
 is "$RC" 3 "--no-repair on an open cube: exit 3"
-is "$(j .ran) $(j .holes) $(j .boundary_edges) $(j .closed)" "false 0 4 false" "--no-repair: nothing done, 4 open edges"
-like "$ERR" 'warning: .*4 open edges remain' "a warning says what remains open"
+is "$(j .repair.ran) $(j .repair.holes) $(j .after.boundary_edges) $(j .closed)" "false 0 4 false" \
+    "--no-repair: nothing done, 4 open edges"
+like "$ERR" 'not repaired \(--no-repair\)' "stderr: not repaired"
+like "$ERR" 'warning: .*4 open edges' "a warning says what remains open"
 is "$(python3 "$TMP/stlcheck.py" "$D/open-raw.stl" 2>&1 | cut -d' ' -f1)" "10" "the file is written all the same: 10 facets"
 is "$(admesh_report "$D/open-raw.stl" | grep -E '^(open1|facets)=' | tr '\n' ' ')" "facets=10 open1=4 " \
     "admesh sees the 4 facets with an open edge"
 run "$LAMINA" repair -q "$D/open.stl" -o "$D/open-raw.stl" --no-repair
 is "$RC" 3 "-q: the same exit"
-like "$ERR" '\A[^\n]*warning: [^\n]*open edges remain[^\n]*\n?\z' "-q: only the warning"
+like "$ERR" '\A[^\n]*warning: [^\n]*4 open edges[^\n]*\n?\z' "-q: only the warning"
 
 done_testing
