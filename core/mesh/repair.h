@@ -19,7 +19,9 @@
  *      triangulation of the loop for loops of up to LAM_REPAIR_DP_MAX
  *      vertices (planar or not: on a planar simple loop that is a
  *      triangulation of the polygon itself), otherwise a fan from the
- *      loop's centroid; a loop that crosses itself in its best-fit plane is
+ *      loop's centroid (a lone facet's loop is left open and counted in
+ *      holes_left: filled, it would be a two-sided sliver of no volume);
+ *      a loop that crosses itself in its best-fit plane is
  *      filled the same way and counted. The programme and the crossing
  *      test have a budget for the whole model (repair_fill.c), so that no
  *      file makes the fill run unbounded: past it, loops are triangulated
