@@ -228,6 +228,19 @@ is "$ERR" "lamina: $D/flipped.stl: repaired: 3 facets flipped" "stderr: the flip
 is "$(python3 "$TMP/stlcheck.py" "$D/flipped-out.stl")" "12 0" "written outward"
 is "$(admesh_report "$D/flipped-out.stl" | tr '\n' ' ' | sed 's/ $//')" "$closed_admesh" "admesh: nothing reversed"
 
+# a lone facet: repair leaves its loop open (filled, it would be a sliver
+# of no volume): the file is written all the same, exit 3
+printf 'solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid t\n' >"$D/lone.stl"
+run "$LAMINA" repair "$D/lone.stl" -o "$D/lone-out.stl" --json
+is "$RC" 3 "a lone facet: exit 3 (still open)"
+is "$(j .repair.holes_left) $(j .repair.boundary_edges) $(j .closed) $(j .after.triangles)" "1 3 false 1" \
+    "one loop left open, 3 open edges"
+like "$ERR" 'warning: .*3 open edges' "a warning says what remains open"
+[ "$(wc -c <"$D/lone-out.stl")" -eq 134 ]; ok $? "the file is written: one facet, 134 bytes"
+# (admesh takes a file of under 284 bytes for empty: the count is read here)
+is "$(python3 -c 'import struct, sys; print(struct.unpack_from("<I", open(sys.argv[1], "rb").read(), 80)[0])' "$D/lone-out.stl")" 1 \
+    "its count says one facet"
+
 # --no-repair: written as read, still open: exit 3 with the file written
 run "$LAMINA" repair "$D/open.stl" -o "$D/open-raw.stl" --no-repair --json
 is "$RC" 3 "--no-repair on an open cube: exit 3"
