@@ -18,26 +18,21 @@
 #include <string.h>
 #include <unistd.h>
 
+/* The model options (--units, --scale, --rotate, --place, --translate,
+ * --no-repair) are OPT_MODEL's: the shared parser prints their table after
+ * this text. */
 static const char usage_text[] =
-    "usage: lamina repair MODEL -o FILE [--json] [-q | -v] [--units mm|cm|m|in]\n"
-    "                         [--scale F|FX,FY,FZ] [--rotate AXIS:DEG ...] [--translate X,Y,Z]\n"
-    "                         [--place plate] [--no-repair]\n"
+    "usage: lamina repair MODEL -o FILE [--json] [-q | -v] [model options]\n"
     "Load a .ug, .stl or .obj model as 'lamina slice' loads it and repairs it (welds\n"
     "cracks, drops degenerate and duplicate facets, orients the facets of each shell,\n"
     "fills holes) and write the repaired mesh to FILE: binary STL, or Wavefront OBJ\n"
     "for a name ending in .obj. One line on standard error says what was repaired;\n"
     "a warning says what remains open. Exit 3 when the mesh written is still open.\n"
+    "Without a machine profile, --units converts to millimetres.\n"
     "  -o, --output     the repaired mesh (-: standard output, when it is not a terminal)\n"
     "      --json       the repair report as one JSON object on standard output\n"
     "  -q, --quiet      no summary line; warnings and errors only\n"
     "  -v, --verbose    also the mesh's counts before and after repair\n"
-    "      --units      the model's units, converted to millimetres\n"
-    "      --scale      scale factor, or one per axis\n"
-    "      --rotate     rotate about x, y or z by DEG degrees (repeatable, in order)\n"
-    "      --translate  move by X,Y,Z after scaling and rotating\n"
-    "      --place      put the model on the plate: its lowest point on z = 0, centred on\n"
-    "                   the origin\n"
-    "      --no-repair  write the mesh as the file has it (welded and oriented only)\n"
     "MODEL - reads standard input. Values: --name=VALUE or --name VALUE; -- ends the options.\n";
 
 /* -o is taken out of the arguments before the shared parser sees them:
