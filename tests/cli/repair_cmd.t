@@ -113,6 +113,16 @@ is "$(j .format) $(j .closed) $(j .volume) $(j .triangles) $(j .vertices)" "obj 
 ref=$("$LAMINA" info --json "$D/cube.stl" | jq -c '{volume, area, bbox, shells}')
 is "$(jq -c '{volume, area, bbox, shells}' <<<"$OUT")" "$ref" "OBJ: the same volume, area and bounding box as the input"
 
+# ---- the model options: the mesh the other commands would slice ------------------------
+run "$LAMINA" repair "$D/cube.stl" --units cm --place plate -o "$D/placed.obj"
+is "$RC" 0 "--units cm --place plate: exit 0"
+run "$LAMINA" info --json "$D/placed.obj"
+is "$(jq -c '[.bbox.min, .bbox.max, .volume]' <<<"$OUT")" '[[-50,-50,0],[50,50,100],1000000]' \
+    "--units cm --place plate: written in millimetres, on the plate, centred"
+run "$LAMINA" repair "$D/cube.stl" --units furlong -o "$D/placed.stl"
+is "$RC" 2 "an unknown unit: usage error"
+[ ! -e "$D/placed.stl" ]; ok $? "and nothing written"
+
 # ---- standard streams -------------------------------------------------------------
 "$LAMINA" repair "$D/cube.stl" -o - 2>/dev/null | cat >"$D/piped.stl"
 cmp -s "$D/out.stl" "$D/piped.stl"; ok $? "-o - to a pipe: the same bytes as the file"
