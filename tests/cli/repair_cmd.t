@@ -99,6 +99,9 @@ is "$(j .format) $(j .closed) $(j .volume) $(j .triangles)" "stl-binary true 100
 run "$LAMINA" repair -v "$D/cube.stl" --output="$D/out2.stl"
 like "$ERR" 'before: 12 triangles, 8 vertices, 0 open edges; after: 12 triangles, 8 vertices, 0 open edges' "-v: counts before and after"
 cmp -s "$D/out.stl" "$D/out2.stl"; ok $? "--output=FILE: the same bytes"
+rm -f "$D/out2.stl"
+run "$LAMINA" repair --output "$D/out2.stl" -q "$D/cube.stl"
+cmp -s "$D/out.stl" "$D/out2.stl"; ok $? "--output FILE before the model: the same bytes"
 run "$LAMINA" repair -q "$D/cube.stl" -o"$D/out2.stl"
 is "$RC $ERR" "0 " "-q: no summary line"
 
