@@ -208,7 +208,7 @@ jq -e . >/dev/null <<<"$OUT"; ok $? "--json: one valid JSON object"
 is "$(jq -r 'keys_unsorted | join(" ")' <<<"$OUT")" "model format output output_format repair closed summary before after" \
     "--json: the model, the output, the repair report, the counts before and after"
 is "$(jq -r '.repair | keys_unsorted | join(" ")' <<<"$OUT")" \
-    "ran welded degenerate duplicates flipped holes hole_edges fill_triangles crossing_loops holes_left boundary_edges nonmanifold_edges crossing_edges weld_tolerance fill_area largest_hole" \
+    "ran welded degenerate duplicates flipped holes hole_edges fill_triangles crossing_loops holes_left boundary_edges nonmanifold_edges crossing_edges weld_tolerance fill_area largest_hole crossings_unknown" \
     "repair: every field of the repair report (as info --json and the run's JSON have it)"
 is "$(jq -r '.before | keys_unsorted | join(" ")' <<<"$OUT")" "triangles vertices shells boundary_edges nonmanifold_edges area volume" \
     "before: the mesh's counts"
