@@ -19,7 +19,9 @@
  *      triangulation of the loop for loops of up to LAM_REPAIR_DP_MAX
  *      vertices (planar or not: on a planar simple loop that is a
  *      triangulation of the polygon itself), otherwise a fan from the
- *      loop's centroid; a loop that crosses itself in its best-fit plane is
+ *      loop's centroid (a lone facet's loop is left open and counted in
+ *      holes_left: filled, it would be a two-sided sliver of no volume);
+ *      a loop that crosses itself in its best-fit plane is
  *      filled the same way and counted. The programme and the crossing
  *      test have a budget for the whole model (repair_fill.c), so that no
  *      file makes the fill run unbounded: past it, loops are triangulated
@@ -53,7 +55,7 @@ typedef struct lam_repair_opts {
 /* Repair *md in place (o may be NULL: defaults): *md may be replaced by a
  * new model (the old one is freed); (*md)->repair says what was done.
  * Errors: LAM_ENOMEM, LAM_EGEOM when nothing with area is left; on error
- * *md is still a valid model (the unrepaired one). */
+ * the model is freed and *md is NULL. */
 int lam_model_repair(lam_model **md, const lam_repair_opts *o, lam_error *err);
 
 /* The report's fields, one row each, for every writer of it (the run's
