@@ -415,7 +415,7 @@ static int touches(const lam_mesh *m, uint32_t t, uint32_t a, uint32_t b)
     return 0;
 }
 
-int lam_rays_crossed_edges(lam_rays *v, size_t *count, lam_error *err)
+int lam_rays_crossed_edges(lam_rays *v, size_t *count, unsigned char *crossed, lam_error *err)
 {
     const lam_model *md = v->m;
     const lam_mesh *m = &md->mesh;
@@ -433,6 +433,11 @@ int lam_rays_crossed_edges(lam_rays *v, size_t *count, lam_error *err)
         for (size_t i = 0; i < v->nhits; i++)
             if (v->hits[i].t > 0 && v->hits[i].t < 1 && !touches(m, v->hits[i].prim, a, b)) {
                 (*count)++;
+                if (crossed) {
+                    crossed[v->hits[i].prim] = 1;
+                    for (uint32_t j = md->edges.first[e]; j < md->edges.first[e + 1]; j++)
+                        crossed[md->edges.tris[j]] = 1;
+                }
                 break;
             }
     }

@@ -228,19 +228,122 @@ static void count_left(const lam_model *md, lam_repair_report *r)
 }
 
 /* The self-intersections that remain, counted as the edges crossing a
- * facet (rays.h). Without Embree (it could not be loaded) the count is
- * unknown and said so; only running out of memory is an error. */
-static int crossings(const lam_model *md, lam_repair_report *r, lam_error *err)
+ * facet (rays.h), and (crossed, may be NULL) the triangles involved.
+ * Without Embree (it could not be loaded) the count is unknown and said
+ * so; only running out of memory is an error. */
+static int crossings(const lam_model *md, lam_repair_report *r, unsigned char *crossed, lam_error *err)
 {
     lam_rays *v;
     lam_error e2;
+    r->crossing_edges = 0;
     int rc = lam_rays_new(md, &v, &e2);
     if (rc) {
         r->crossings_unknown = 1;
         return rc == LAM_ENOMEM ? lam_error_nomem(err, "repairing the model") : LAM_OK;
     }
-    rc = lam_rays_crossed_edges(v, &r->crossing_edges, err);
+    rc = lam_rays_crossed_edges(v, &r->crossing_edges, crossed, err);
     lam_rays_free(v);
+    return rc;
+}
+
+/* A copy of m's arrays (the filled mesh, built into a model while m is
+ * kept to be filled again). */
+static int mesh_copy(const lam_mesh *m, lam_mesh *out, lam_error *err)
+{
+    lam_mesh_init(out);
+    out->xyz = malloc(3 * m->nverts * sizeof *out->xyz + 1);
+    out->tris = malloc(3 * m->ntris * sizeof *out->tris + 1);
+    out->tri_face = m->tri_face ? malloc(m->ntris * sizeof *out->tri_face + 1) : NULL;
+    out->faces = malloc(m->nfaces * sizeof *out->faces + 1);
+    out->wires = malloc(2 * m->nwire_segs * sizeof *out->wires + 1);
+    out->strings = malloc(m->strings_len + 1);
+    if (!out->xyz || !out->tris || (m->tri_face && !out->tri_face) || !out->faces || !out->wires || !out->strings) {
+        lam_mesh_free(out);
+        return lam_error_nomem(err, "repairing the model");
+    }
+    memcpy(out->xyz, m->xyz, 3 * m->nverts * sizeof *out->xyz);
+    memcpy(out->tris, m->tris, 3 * m->ntris * sizeof *out->tris);
+    if (m->tri_face) memcpy(out->tri_face, m->tri_face, m->ntris * sizeof *out->tri_face);
+    memcpy(out->faces, m->faces, m->nfaces * sizeof *out->faces);
+    memcpy(out->wires, m->wires, 2 * m->nwire_segs * sizeof *out->wires);
+    memcpy(out->strings, m->strings, m->strings_len);
+    out->nverts = out->cap_verts = m->nverts;
+    out->ntris = out->cap_tris = m->ntris;
+    out->nfaces = out->cap_faces = m->nfaces;
+    out->nwire_segs = out->cap_wire_segs = m->nwire_segs;
+    out->nwires = m->nwires;
+    out->strings_len = out->strings_cap = m->strings_len;
+    out->welded = m->welded;
+    return LAM_OK;
+}
+
+/* One fill of md (which is kept: its mesh is truncated back after) into
+ * the model *out, with the crossings counted and, per loop, whether its
+ * fill crosses the surface (bad[k]). */
+static int fill_once(lam_model *md, lam_fill_plan *plan, lam_repair_report *r, unsigned char **badp,
+                     lam_model **out, lam_error *err)
+{
+    lam_mesh *m = &md->mesh;
+    size_t nv = m->nverts, nt = m->ntris, nf = m->nfaces, ns = m->strings_len;
+    int rc = lam_repair_fill(md, plan, r, err);
+    lam_mesh filled;
+    if (!rc) rc = mesh_copy(m, &filled, err);
+    m->nverts = nv, m->ntris = nt, m->nfaces = nf, m->strings_len = ns;
+    if (rc) return rc;
+    if ((rc = lam_model_from_mesh(&filled, md->path, md->format, out, err))) return rc;
+    unsigned char *crossed = calloc((*out)->mesh.ntris + 1, 1);
+    unsigned char *bad = realloc(*badp, plan->nloops + 1);
+    if (bad) *badp = bad;
+    if (!crossed || !bad) {
+        free(crossed);
+        return lam_error_nomem(err, "repairing the model");
+    }
+    rc = crossings(*out, r, crossed, err);
+    /* the build keeps the triangles' order (nothing in a fill collapses):
+     * the plan's ranges are the model's */
+    int same = (*out)->mesh.ntris == plan->first[plan->nloops];
+    for (size_t k = 0; k < plan->nloops; k++) {
+        bad[k] = 0;
+        for (size_t t = plan->first[k]; same && t < plan->first[k + 1] && !bad[k]; t++) bad[k] = crossed[t];
+    }
+    free(crossed);
+    return rc;
+}
+
+/* Step 3 with its check: fill every loop; where a loop's fill crosses the
+ * surface (the least-area fill of a scan's hole can fold through the rim's
+ * other side), fill that loop again the next way (LAM_FILL_PLANE, then
+ * LAM_FILL_FAN), at most twice. The fill kept is the last one, its
+ * crossings counted. */
+static int fill_checked(lam_model *md, lam_repair_report *r, lam_model **out, lam_error *err)
+{
+    lam_fill_plan plan;
+    memset(&plan, 0, sizeof plan);
+    lam_repair_report r0 = *r;
+    unsigned char *bad = NULL;
+    int rc = LAM_OK;
+    *out = NULL;
+    for (int round = 0; round < 3 && !rc; round++) {
+        *r = r0;
+        lam_model_free(*out);
+        *out = NULL;
+        if ((rc = fill_once(md, &plan, r, &bad, out, err))) break;
+        int again = 0;
+        if (!plan.method) {
+            plan.method = calloc(plan.nloops + 1, 1);
+            plan.nmethod = plan.method ? plan.nloops : 0;
+        }
+        for (size_t k = 0; k < plan.nloops && k < plan.nmethod; k++)
+            if (bad[k] && plan.method[k] < LAM_FILL_FAN) plan.method[k]++, again = 1;
+        if (!again) break;
+    }
+    free(bad);
+    free(plan.method);
+    free(plan.first);
+    if (rc) {
+        lam_model_free(*out);
+        *out = NULL;
+    }
     return rc;
 }
 
@@ -263,24 +366,18 @@ int lam_model_repair(lam_model **mdp, const lam_repair_opts *o, lam_error *err)
     else lam_model_free(md), *mdp = NULL;
     if (rc) return rc;
     md = *mdp;
-    if (md->stats.boundary_edges) {
-        if ((rc = lam_repair_fill(md, &r, err))) {
-            lam_model_free(md);
-            *mdp = NULL;
-            return rc;
-        }
-        if ((rc = rebuild(md, mdp, err))) return rc;
-        md = *mdp;
+    lam_model *filled = NULL;
+    if (md->stats.boundary_edges) rc = fill_checked(md, &r, &filled, err);
+    else rc = crossings(md, &r, NULL, err);
+    if (rc || filled) {
+        lam_model_free(md);
+        *mdp = md = filled;
     }
+    if (rc) return rc;
     /* flips the second build made count too: a facet the weld joined to
      * its shell the other way round */
     r.flipped += md->stats.flipped_tris;
     count_left(md, &r);
-    if ((rc = crossings(md, &r, err))) {
-        lam_model_free(md);
-        *mdp = NULL;
-        return rc;
-    }
     md->repair = r;
     return LAM_OK;
 }

@@ -26,6 +26,10 @@
  *      test have a budget for the whole model (repair_fill.c), so that no
  *      file makes the fill run unbounded: past it, loops are triangulated
  *      in their plane (GEOS) or fanned;
+ *      A loop whose fill crosses the rest of the surface (the least-area
+ *      fill of a scan's hole can fold through the rim's far side: one of
+ *      the Stanford bunny's five) is filled again the next way, in its
+ *      plane, then as a fan (at most two more fills of the model);
  *   4. the model is rebuilt again, and what remains is counted: open and
  *      non-manifold edges, and edges that pass through a facet not their
  *      own (self-intersections: a fill through another part of the

@@ -94,6 +94,7 @@ typedef struct filler {
     uint32_t *ring;      /* scratch: the loop's vertices */
     double *w;           /* scratch for the triangulation */
     uint16_t *k;
+    lam_fill_plan *plan;
     double dp_budget;    /* triangle costs the programme may still evaluate */
     double cross_budget; /* segment pairs the crossing test may still compare */
 } filler;
@@ -229,9 +230,45 @@ static int crosses_itself(const lam_mesh *m, const uint32_t *R, size_t n)
     return 0;
 }
 
+/* The loop's polygon in its plane (GEOS), else the fan. */
+static int fill_plane(filler *F, size_t n, double *area, lam_error *err)
+{
+    size_t before = F->m->ntris, rl = n;
+    int rc = lam_mesh_add_polygon(F->m, F->ring, &rl, 1, F->face, NULL);
+    if (rc) {
+        F->m->ntris = before;
+        return rc == LAM_ENOMEM ? oom(err) : fill_fan(F, n, area, err);
+    }
+    for (size_t t = before; t < F->m->ntris; t++) {
+        const uint32_t *v = F->m->tris + 3 * t;
+        *area += tri_area(F->m, v[0], v[1], v[2]);
+    }
+    F->r->fill_triangles += F->m->ntris - before;
+    return LAM_OK;
+}
+
+/* Note loop k's first triangle (the plan's record of what it made). */
+static int plan_loop(lam_fill_plan *P, size_t first, lam_error *err)
+{
+    if (P->nloops + 2 > P->cap) {
+        size_t cap = P->cap ? 2 * P->cap : 64;
+        size_t *g = realloc(P->first, cap * sizeof *g);
+        if (!g) return oom(err);
+        P->first = g;
+        P->cap = cap;
+    }
+    P->first[P->nloops++] = first;
+    P->first[P->nloops] = first;
+    return LAM_OK;
+}
+
 /* Fill the loop of the walk's half-edges path[j..len). */
 static int fill_loop(filler *F, const loops *L, size_t j, size_t len, lam_error *err)
 {
+    size_t k = F->plan->nloops;
+    int rc = plan_loop(F->plan, F->m->ntris, err);
+    if (rc) return rc;
+    int method = k < F->plan->nmethod ? F->plan->method[k] : LAM_FILL_DP;
     size_t n = len - j;
     uint32_t t0 = L->tri[L->path[j]];
     if (n == 3 && F->md->shells[F->md->tri_shell[t0]].ntris == 1) {
@@ -249,26 +286,15 @@ static int fill_loop(filler *F, const loops *L, size_t j, size_t len, lam_error 
         F->r->crossing_loops += (size_t)crosses_itself(F->m, F->ring, n);
     }
     double area = 0;
-    size_t before = F->m->ntris;
-    int rc;
-    if (n <= LAM_REPAIR_DP_MAX && work <= F->dp_budget) {
+    if (method == LAM_FILL_DP && n <= LAM_REPAIR_DP_MAX && work <= F->dp_budget) {
         F->dp_budget -= work;
         rc = fill_dp(F, n, &area, err);
+    } else if (method != LAM_FILL_FAN) {
+        rc = fill_plane(F, n, &area, err);
+    } else {
+        rc = fill_fan(F, n, &area, err);
     }
-    else {
-        size_t rl = n;
-        rc = lam_mesh_add_polygon(F->m, F->ring, &rl, 1, F->face, NULL);
-        if (!rc) {
-            for (size_t t = before; t < F->m->ntris; t++) {
-                const uint32_t *v = F->m->tris + 3 * t;
-                area += tri_area(F->m, v[0], v[1], v[2]);
-            }
-            F->r->fill_triangles += F->m->ntris - before;
-        } else {
-            F->m->ntris = before;
-            rc = rc == LAM_ENOMEM ? oom(err) : fill_fan(F, n, &area, err);
-        }
-    }
+    F->plan->first[F->plan->nloops] = F->m->ntris;
     F->r->fill_area += area;
     if (area > F->r->largest_hole) F->r->largest_hole = area;
     return rc;
@@ -306,10 +332,11 @@ static int walk(filler *F, loops *L, uint32_t k, lam_error *err)
     return LAM_OK;
 }
 
-int lam_repair_fill(lam_model *md, lam_repair_report *r, lam_error *err)
+int lam_repair_fill(lam_model *md, lam_fill_plan *plan, lam_repair_report *r, lam_error *err)
 {
     loops L;
-    filler F = { .md = md, .m = &md->mesh, .r = r, .face = LAM_NO_NAME, .dp_budget = DP_BUDGET, .cross_budget = CROSS_BUDGET };
+    plan->nloops = 0;
+    filler F = { .md = md, .plan = plan, .m = &md->mesh, .r = r, .face = LAM_NO_NAME, .dp_budget = DP_BUDGET, .cross_budget = CROSS_BUDGET };
     int rc = loops_init(md, &L, err);
     size_t dp = L.n < LAM_REPAIR_DP_MAX ? L.n : LAM_REPAIR_DP_MAX;
     if (!rc) {
