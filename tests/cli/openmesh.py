@@ -23,9 +23,9 @@ Pure Python 3, deterministic (seeded), none of lamina's code:
   openmesh.py edges STL        facets, vertices, boundary and non-manifold
                                edges (exact weld), as JSON
   openmesh.py extent STL AXIS  the mesh's extent along AXIS (x|y|z|dx,dy,dz)
-  openmesh.py ply2stl IN.ply OUT.stl
+  openmesh.py ply2stl IN.ply OUT.stl|OUT.obj
       an ASCII PLY (x y z first, faces as lists) as binary STL (triangles;
-      polygons fanned)
+      polygons fanned) or as OBJ (the PLY's coordinate text kept)
 
 The section: each facet of an outward-wound closed mesh crossing the
 plane dot(p, d) = h gives a segment, directed d x n (material on its
@@ -173,8 +173,24 @@ def write_stl_binary(path, tris):
             ln = norm(n) or 1.0
             f.write(struct.pack("<12fH", n[0] / ln, n[1] / ln, n[2] / ln, *t[0], *t[1], *t[2], 0))
 
+def read_obj(path):
+    vs, tris = [], []
+    with open(path) as f:
+        for line in f:
+            w = line.split()
+            if w and w[0] == "v":
+                vs.append((float(w[1]), float(w[2]), float(w[3])))
+            elif w and w[0] == "f":
+                ids = [int(x.split("/")[0]) for x in w[1:]]
+                ids = [i - 1 if i > 0 else len(vs) + i for i in ids]
+                tris += [(vs[ids[0]], vs[ids[k]], vs[ids[k + 1]]) for k in range(1, len(ids) - 1)]
+    return tris
+
 def read_stl(path):
-    """List of triangles (three (x, y, z) tuples), ASCII or binary."""
+    """List of triangles (three (x, y, z) tuples): STL, ASCII or binary, or
+    OBJ (by its name)."""
+    if path.endswith(".obj"):
+        return read_obj(path)
     with open(path, "rb") as f:
         data = f.read()
     if len(data) >= 84:
@@ -217,36 +233,54 @@ def edge_counts(tris):
 def section_area(tris, d, h):
     """Exact area of the section of the closed, outward-wound mesh tris in
     the plane dot(p, d) = h (d a unit vector)."""
-    # a right-handed frame (u, v, d) of the plane, its origin on the plane
-    # near the mesh (small coordinates: little cancellation)
+    return sections(tris, d, [h])[0]
+
+def sections(tris, d, hs):
+    """section_area at each height of hs; a facet is visited only at the
+    heights within its span (a scan of 70,000 facets at 300 heights)."""
+    import bisect
+    order = sorted(range(len(hs)), key=lambda k: hs[k])
+    sorted_h = [hs[k] for k in order]
+    out = [0.0] * len(hs)
+    u, v = _frame(d)
+    for t in tris:
+        s = [dot(p, d) for p in t]
+        lo = bisect.bisect_right(sorted_h, min(s))  # heights above the lowest vertex
+        hi = bisect.bisect_right(sorted_h, max(s))  # ... and at most the highest
+        for k in range(lo, hi):
+            out[order[k]] += _segment_term(t, d, sorted_h[k], u, v)
+    return out
+
+def _frame(d):
+    # a right-handed frame (u, v, d) of the planes
     helper = (1.0, 0.0, 0.0) if abs(d[0]) < 0.9 else (0.0, 1.0, 0.0)
     u = unit(cross(helper, d))
-    v = cross(d, u)
-    total = 0.0
-    for t in tris:
-        s = [dot(p, d) - h for p in t]
-        above = [x >= 0 for x in s]
-        if all(above) or not any(above):
-            continue
-        pts = []
-        for k in range(3):
-            a, b = k, (k + 1) % 3
-            if above[a] != above[b]:
-                # the same point for both facets of the edge: computed from
-                # its endpoints in a fixed order
-                pa, pb, sa, sb = t[a], t[b], s[a], s[b]
-                if pa > pb:
-                    pa, pb, sa, sb = pb, pa, sb, sa
-                f = sa / (sa - sb)
-                q = (pa[0] + f * (pb[0] - pa[0]), pa[1] + f * (pb[1] - pa[1]), pa[2] + f * (pb[2] - pa[2]))
-                pts.append(q)
-        p, q = pts
-        n = cross(sub(t[1], t[0]), sub(t[2], t[0]))
-        if dot(sub(q, p), cross(d, n)) < 0:
-            p, q = q, p
-        pu, pv, qu, qv = dot(p, u), dot(p, v), dot(q, u), dot(q, v)
-        total += 0.5 * (pu * qv - qu * pv)
-    return total
+    return u, cross(d, u)
+
+def _segment_term(t, d, h, u, v):
+    """The shoelace term, in the plane's frame (u, v), of the segment facet
+    t cuts from the plane dot(p, d) = h (0 when it does not cross it)."""
+    s = [dot(p, d) - h for p in t]
+    above = [x >= 0 for x in s]
+    if all(above) or not any(above):
+        return 0.0
+    pts = []
+    for k in range(3):
+        a, b = k, (k + 1) % 3
+        if above[a] != above[b]:
+            # the same point for both facets of the edge: computed from its
+            # endpoints in a fixed order
+            pa, pb, sa, sb = t[a], t[b], s[a], s[b]
+            if pa > pb:
+                pa, pb, sa, sb = pb, pa, sb, sa
+            f = sa / (sa - sb)
+            pts.append((pa[0] + f * (pb[0] - pa[0]), pa[1] + f * (pb[1] - pa[1]), pa[2] + f * (pb[2] - pa[2])))
+    p, q = pts
+    n = cross(sub(t[1], t[0]), sub(t[2], t[0]))
+    if dot(sub(q, p), cross(d, n)) < 0:
+        p, q = q, p
+    pu, pv, qu, qv = dot(p, u), dot(p, v), dot(q, u), dot(q, v)
+    return 0.5 * (pu * qv - qu * pv)
 
 def shoelace(pts):
     s = 0.0
@@ -288,7 +322,9 @@ def check_run(closed_path, run_path, tol_area, scale=1.0, removed_path=None):
     failures, worst = [], (0.0, 0, 0.0, 0.0)
     if not run["layers"]:
         failures.append("the run has no layers")
-    for layer in run["layers"]:
+    d = unit(w)
+    secs = sections(tris, d, [layer["z"] + dot(o, w) for layer in run["layers"]])
+    for layer, sec in zip(run["layers"], secs):
         z = layer["z"]
         net, off = 0.0, 0.0
         for c in layer["contours"]:
@@ -296,10 +332,8 @@ def check_run(closed_path, run_path, tol_area, scale=1.0, removed_path=None):
             off = max([off] + [abs(dot(r, w) - z) for r in rel])
             a = abs(shoelace([(dot(r, u), dot(r, v)) for r in rel]))
             net += a if c["solid"] else -a
-        sec = section_area(tris, unit(w), z + dot(o, w))
         diff = net - sec
         # the filled holes' own area: of each patch the plane crosses
-        d = unit(w)
         h = z + dot(o, w)
         crossed = sum(a for g, a in patches
                       if min(dot(p, d) for t in g for p in t) < h < max(dot(p, d) for t in g for p in t))
@@ -450,7 +484,9 @@ def generate(outdir):
 
 # ---------------------------------------------------------------- PLY
 
-def ply_to_stl(src, dst):
+def read_ply(src):
+    """An ASCII PLY's vertex coordinates (as written: the text of x y z)
+    and its faces (index lists)."""
     with open(src) as f:
         lines = iter(f.read().splitlines())
     assert next(lines).strip() == "ply"
@@ -467,18 +503,33 @@ def ply_to_stl(src, dst):
             nf = int(w[2])
         elif w[:1] == ["end_header"]:
             break
-    vs = []
-    for _ in range(nv):
-        w = next(lines).split()
-        vs.append((float(w[0]), float(w[1]), float(w[2])))
-    tris = []
+    vs = [next(lines).split()[:3] for _ in range(nv)]
+    faces = []
     for _ in range(nf):
         w = [int(x) for x in next(lines).split()]
-        ids = w[1:1 + w[0]]
-        for k in range(1, len(ids) - 1):
-            tris.append((vs[ids[0]], vs[ids[k]], vs[ids[k + 1]]))
-    write_stl_binary(dst, tris)
-    print(json.dumps({"vertices": nv, "faces": nf, "triangles": len(tris)}))
+        faces.append(w[1:1 + w[0]])
+    return vs, faces
+
+def ply_convert(src, dst):
+    """To binary STL (triangles; polygons fanned) or, for .obj, to OBJ with
+    the PLY's coordinates character for character (vertices no face uses
+    left out)."""
+    vs, faces = read_ply(src)
+    used = sorted({i for f in faces for i in f})
+    if dst.endswith(".obj"):
+        new = {old: k + 1 for k, old in enumerate(used)}
+        with open(dst, "w") as f:
+            f.write("# %s: %d vertices, %d faces\n" % (os.path.basename(src), len(used), len(faces)))
+            for i in used:
+                f.write("v %s %s %s\n" % tuple(vs[i]))
+            for face in faces:
+                f.write("f %s\n" % " ".join(str(new[i]) for i in face))
+    else:
+        pos = [tuple(float(c) for c in v) for v in vs]
+        tris = [(pos[f[0]], pos[f[k]], pos[f[k + 1]]) for f in faces for k in range(1, len(f) - 1)]
+        write_stl_binary(dst, tris)
+    print(json.dumps({"vertices": len(vs), "used_vertices": len(used), "faces": len(faces),
+                      "triangles": sum(len(f) - 2 for f in faces)}))
 
 # ---------------------------------------------------------------- main
 
@@ -509,7 +560,7 @@ def main(argv):
         print(repr(max(hs) - min(hs)))
         return 0
     if len(argv) == 4 and argv[1] == "ply2stl":
-        ply_to_stl(argv[2], argv[3])
+        ply_convert(argv[2], argv[3])
         return 0
     sys.stderr.write(__doc__)
     return 2
