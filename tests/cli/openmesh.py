@@ -21,8 +21,10 @@ Pure Python 3, deterministic (seeded), none of lamina's code:
       lies off its plane. Prints one line per failing layer and a summary;
       exit 1 on any failure.
   openmesh.py edges STL        facets, vertices, boundary and non-manifold
-                               edges (exact weld), as JSON
-  openmesh.py extent STL AXIS  the mesh's extent along AXIS (x|y|z|dx,dy,dz)
+                               edges (exact weld) and the boundary's
+                               connected pieces (loops), as JSON
+  openmesh.py extent STL AXIS  the mesh's lowest and highest point and extent
+                               along AXIS (x|y|z|dx,dy,dz), as JSON
   openmesh.py ply2stl IN.ply OUT.stl|OUT.obj
       an ASCII PLY (x y z first, faces as lists) as binary STL (triangles;
       polygons fanned) or as OBJ (the PLY's coordinate text kept)
@@ -224,7 +226,18 @@ def edge_counts(tris):
             a, b = ids[k], ids[(k + 1) % 3]
             key = (a, b) if a < b else (b, a)
             edges[key] = edges.get(key, 0) + 1
+    # boundary loops: the open edges' connected pieces
+    parent = {}
+    def find(k):
+        while parent.setdefault(k, k) != k:
+            parent[k] = parent[parent[k]]
+            k = parent[k]
+        return k
+    for (a, b), c in edges.items():
+        if c == 1:
+            parent[find(a)] = find(b)
     return {"facets": len(tris), "vertices": len(index),
+            "boundary_loops": len({find(k) for k in list(parent)}),
             "boundary_edges": sum(1 for c in edges.values() if c == 1),
             "nonmanifold_edges": sum(1 for c in edges.values() if c > 2)}
 
@@ -557,7 +570,7 @@ def main(argv):
     if len(argv) == 4 and argv[1] == "extent":
         d = parse_axis(argv[3])
         hs = [dot(p, d) for t in read_stl(argv[2]) for p in t]
-        print(repr(max(hs) - min(hs)))
+        print(json.dumps({"min": min(hs), "max": max(hs), "extent": max(hs) - min(hs)}))
         return 0
     if len(argv) == 4 and argv[1] == "ply2stl":
         ply_convert(argv[2], argv[3])
