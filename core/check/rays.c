@@ -379,7 +379,7 @@ static int tri_plane(const lam_rays *v, uint32_t t, const double p[3], double n[
 /* Cast one ray from o along d, gathering every hit into v->hits (the
  * filter rejects each hit so traversal goes on). Non-zero when the hit list
  * could not grow. */
-static int trace(lam_rays *v, const float o[3], const float d[3])
+static int trace_to(lam_rays *v, const float o[3], const float d[3], float tfar)
 {
     struct RTCRayHit rh;
     memset(&rh, 0, sizeof rh);
@@ -390,7 +390,7 @@ static int trace(lam_rays *v, const float o[3], const float d[3])
     rh.ray.dir_y = d[1];
     rh.ray.dir_z = d[2];
     rh.ray.tnear = 0;
-    rh.ray.tfar = INFINITY;
+    rh.ray.tfar = tfar;
     rh.ray.mask = UINT32_MAX;
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
@@ -402,6 +402,41 @@ static int trace(lam_rays *v, const float o[3], const float d[3])
     rtcIntersect1(v->scene, &c.rtc, &rh);
     v->st.rays++;
     return v->nomem;
+}
+
+static int trace(lam_rays *v, const float o[3], const float d[3]) { return trace_to(v, o, d, INFINITY); }
+
+/* Does triangle t have vertex a or b? */
+static int touches(const lam_mesh *m, uint32_t t, uint32_t a, uint32_t b)
+{
+    const uint32_t *tv = m->tris + 3 * (size_t)t;
+    for (int k = 0; k < 3; k++)
+        if (tv[k] == a || tv[k] == b) return 1;
+    return 0;
+}
+
+int lam_rays_crossed_edges(lam_rays *v, size_t *count, lam_error *err)
+{
+    const lam_model *md = v->m;
+    const lam_mesh *m = &md->mesh;
+    *count = 0;
+    for (size_t e = 0; e < md->edges.n; e++) {
+        uint32_t a = md->edges.v[2 * e], b = md->edges.v[2 * e + 1];
+        float o[3], d[3];
+        for (int j = 0; j < 3; j++) {
+            o[j] = (float)((m->xyz[3 * (size_t)a + j] - v->center[j]) / v->unit);
+            d[j] = (float)((m->xyz[3 * (size_t)b + j] - v->center[j]) / v->unit) - o[j];
+        }
+        /* the segment a -> b is t in [0, 1]; hits on the triangles at its
+         * ends are theirs (they share a or b), any other is a crossing */
+        if (trace_to(v, o, d, 1.0f)) return nomem(err);
+        for (size_t i = 0; i < v->nhits; i++)
+            if (v->hits[i].t > 0 && v->hits[i].t < 1 && !touches(m, v->hits[i].prim, a, b)) {
+                (*count)++;
+                break;
+            }
+    }
+    return LAM_OK;
 }
 
 /* A point of a section: (u, v) at height h along the frame's w, taken just

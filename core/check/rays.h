@@ -108,6 +108,13 @@ const double *lam_rays_direction(size_t k);
 int lam_rays_cast(lam_rays *v, const double p[3], const double d[3], double tmin, double *t, uint32_t *tri,
                   lam_error *err);
 
+/* How many of the model's edges pass through a triangle that has neither
+ * of their ends (the surface intersects itself there), in *count. One
+ * segment query an edge, in float32 (rays.h): an edge that only grazes a
+ * triangle within lam_rays_tolerance may count or not. Errors:
+ * LAM_ENOMEM. */
+int lam_rays_crossed_edges(lam_rays *v, size_t *count, lam_error *err);
+
 typedef struct lam_rays_stats {
     size_t points;      /* winding queries (including surface retries) */
     size_t rays;        /* rays cast */

@@ -5,6 +5,7 @@
  * the filling of the holes that remain (repair_fill.c). */
 #include "repair.h"
 #include "repair_internal.h"
+#include "rays.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -226,6 +227,23 @@ static void count_left(const lam_model *md, lam_repair_report *r)
     r->nonmanifold_edges = md->stats.nonmanifold_edges;
 }
 
+/* The self-intersections that remain, counted as the edges crossing a
+ * facet (rays.h). Without Embree (it could not be loaded) the count is
+ * unknown and said so; only running out of memory is an error. */
+static int crossings(const lam_model *md, lam_repair_report *r, lam_error *err)
+{
+    lam_rays *v;
+    lam_error e2;
+    int rc = lam_rays_new(md, &v, &e2);
+    if (rc) {
+        r->crossings_unknown = 1;
+        return rc == LAM_ENOMEM ? lam_error_nomem(err, "repairing the model") : LAM_OK;
+    }
+    rc = lam_rays_crossed_edges(v, &r->crossing_edges, err);
+    lam_rays_free(v);
+    return rc;
+}
+
 int lam_model_repair(lam_model **mdp, const lam_repair_opts *o, lam_error *err)
 {
     lam_model *md = *mdp;
@@ -258,6 +276,11 @@ int lam_model_repair(lam_model **mdp, const lam_repair_opts *o, lam_error *err)
      * its shell the other way round */
     r.flipped += md->stats.flipped_tris;
     count_left(md, &r);
+    if ((rc = crossings(md, &r, err))) {
+        lam_model_free(md);
+        *mdp = NULL;
+        return rc;
+    }
     md->repair = r;
     return LAM_OK;
 }

@@ -19,10 +19,17 @@
  *      triangulation of the loop for loops of up to LAM_REPAIR_DP_MAX
  *      vertices (planar or not: on a planar simple loop that is a
  *      triangulation of the polygon itself), otherwise a fan from the
- *      loop's centroid; a loop that crosses itself in its best-fit plane is
- *      filled the same way and counted;
+ *      loop's centroid (a lone facet's loop is left open and counted in
+ *      holes_left: filled, it would be a two-sided sliver of no volume);
+ *      a loop that crosses itself in its best-fit plane is
+ *      filled the same way and counted. The programme and the crossing
+ *      test have a budget for the whole model (repair_fill.c), so that no
+ *      file makes the fill run unbounded: past it, loops are triangulated
+ *      in their plane (GEOS) or fanned;
  *   4. the model is rebuilt again, and what remains is counted: open and
- *      non-manifold edges.
+ *      non-manifold edges, and edges that pass through a facet not their
+ *      own (self-intersections: a fill through another part of the
+ *      surface, or the file's own; Embree segment queries, rays.h).
  * Facets the file wound against the majority of their shell (which the
  * model build turns to agree) are counted in `flipped`, for every model
  * repaired; a shell wound inward throughout is turned outward silently,
@@ -56,7 +63,7 @@ int lam_model_repair(lam_model **md, const lam_repair_opts *o, lam_error *err);
  * field's name in lam_repair_report, which is also its JSON key. */
 #define LAM_REPAIR_COUNTS(X)                                                                        \
     X(welded) X(degenerate) X(duplicates) X(flipped) X(holes) X(hole_edges) X(fill_triangles)     \
-    X(crossing_loops) X(holes_left) X(boundary_edges) X(nonmanifold_edges)
+    X(crossing_loops) X(holes_left) X(boundary_edges) X(nonmanifold_edges) X(crossing_edges)
 #define LAM_REPAIR_MEASURES(X) X(weld_tolerance) X(fill_area) X(largest_hole)
 
 /* 1 when repair changed the model (anything but `ran` and the tolerance

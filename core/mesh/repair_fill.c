@@ -22,6 +22,7 @@ static int oom(lam_error *err) { return lam_error_nomem(err, "filling the model'
 
 typedef struct loops {
     uint32_t *hs, *he;   /* per open half-edge (reversed): start and end vertex */
+    uint32_t *tri;       /* and the triangle it borders */
     uint32_t *first;     /* per vertex + 1: CSR of the half-edges starting there */
     uint32_t *out;       /* half-edge ids by start vertex */
     unsigned char *used;
@@ -34,6 +35,7 @@ static void loops_free(loops *L)
 {
     free(L->hs);
     free(L->he);
+    free(L->tri);
     free(L->first);
     free(L->out);
     free(L->used);
@@ -50,12 +52,13 @@ static int loops_init(const lam_model *md, loops *L, lam_error *err)
     size_t n = md->stats.boundary_edges, nv = m->nverts;
     L->hs = malloc((n + 1) * sizeof *L->hs);
     L->he = malloc((n + 1) * sizeof *L->he);
+    L->tri = malloc((n + 1) * sizeof *L->tri);
     L->first = calloc(nv + 2, sizeof *L->first);
     L->out = malloc((n + 1) * sizeof *L->out);
     L->used = calloc(n + 1, 1);
     L->at = malloc((nv + 1) * sizeof *L->at);
     L->path = malloc((n + 1) * sizeof *L->path);
-    if (!L->hs || !L->he || !L->first || !L->out || !L->used || !L->at || !L->path) return oom(err);
+    if (!L->hs || !L->he || !L->tri || !L->first || !L->out || !L->used || !L->at || !L->path) return oom(err);
     for (size_t i = 0; i < e->n && L->n < n; i++) {
         if (e->first[i + 1] - e->first[i] != 1) continue;
         const uint32_t *tv = m->tris + 3 * (size_t)e->tris[e->first[i]];
@@ -63,6 +66,7 @@ static int loops_init(const lam_model *md, loops *L, lam_error *err)
         int forward = (tv[0] == a && tv[1] == b) || (tv[1] == a && tv[2] == b) || (tv[2] == a && tv[0] == b);
         L->hs[L->n] = forward ? b : a;
         L->he[L->n] = forward ? a : b;
+        L->tri[L->n] = e->tris[e->first[i]];
         L->n++;
     }
     for (size_t k = 0; k < L->n; k++) L->first[L->hs[k] + 1]++;
@@ -83,13 +87,23 @@ static uint32_t next_unused(const loops *L, uint32_t v)
 }
 
 typedef struct filler {
+    const lam_model *md; /* the model as built: its shells */
     lam_mesh *m;
     lam_repair_report *r;
     uint32_t face;       /* the face record fill triangles belong to, or LAM_NO_NAME */
     uint32_t *ring;      /* scratch: the loop's vertices */
     double *w;           /* scratch for the triangulation */
     uint16_t *k;
+    double dp_budget;    /* triangle costs the programme may still evaluate */
+    double cross_budget; /* segment pairs the crossing test may still compare */
 } filler;
+
+/* What the whole fill may spend, whatever the file: a model of a million
+ * open edges in loops of LAM_REPAIR_DP_MAX would otherwise cost 1e13
+ * steps. Past the budget, loops go to the planar triangulation or the fan
+ * (linearithmic), and crossing is no longer tested. About a second each. */
+#define DP_BUDGET 4e8
+#define CROSS_BUDGET 2e8
 
 static const double *P(const lam_mesh *m, uint32_t v) { return m->xyz + 3 * (size_t)v; }
 
@@ -192,7 +206,7 @@ static int fill_fan(filler *F, size_t n, double *area, lam_error *err)
  * longer than a few thousand vertices are not checked. */
 static int crosses_itself(const lam_mesh *m, const uint32_t *R, size_t n)
 {
-    if (n < 4 || n > 4000) return 0;
+    if (n < 4) return 0;
     double nn[3] = { 0, 0, 0 };
     for (size_t i = 0; i < n; i++) {
         const double *a = P(m, R[i]), *b = P(m, R[(i + 1) % n]);
@@ -219,14 +233,28 @@ static int crosses_itself(const lam_mesh *m, const uint32_t *R, size_t n)
 static int fill_loop(filler *F, const loops *L, size_t j, size_t len, lam_error *err)
 {
     size_t n = len - j;
+    uint32_t t0 = L->tri[L->path[j]];
+    if (n == 3 && F->md->shells[F->md->tri_shell[t0]].ntris == 1) {
+        /* a lone facet: filled, it would be a two-sided sliver of no
+         * volume (a triangle soup would double); it stays open */
+        F->r->holes_left++;
+        return LAM_OK;
+    }
     for (size_t i = 0; i < n; i++) F->ring[i] = L->hs[L->path[j + i]];
     F->r->holes++;
     F->r->hole_edges += n;
-    F->r->crossing_loops += (size_t)crosses_itself(F->m, F->ring, n);
+    double pairs = 0.5 * (double)n * (double)n, work = (double)n * (double)n * (double)n / 6;
+    if (pairs <= F->cross_budget) {
+        F->cross_budget -= pairs;
+        F->r->crossing_loops += (size_t)crosses_itself(F->m, F->ring, n);
+    }
     double area = 0;
     size_t before = F->m->ntris;
     int rc;
-    if (n <= LAM_REPAIR_DP_MAX) rc = fill_dp(F, n, &area, err);
+    if (n <= LAM_REPAIR_DP_MAX && work <= F->dp_budget) {
+        F->dp_budget -= work;
+        rc = fill_dp(F, n, &area, err);
+    }
     else {
         size_t rl = n;
         rc = lam_mesh_add_polygon(F->m, F->ring, &rl, 1, F->face, NULL);
@@ -281,7 +309,7 @@ static int walk(filler *F, loops *L, uint32_t k, lam_error *err)
 int lam_repair_fill(lam_model *md, lam_repair_report *r, lam_error *err)
 {
     loops L;
-    filler F = { .m = &md->mesh, .r = r, .face = LAM_NO_NAME };
+    filler F = { .md = md, .m = &md->mesh, .r = r, .face = LAM_NO_NAME, .dp_budget = DP_BUDGET, .cross_budget = CROSS_BUDGET };
     int rc = loops_init(md, &L, err);
     size_t dp = L.n < LAM_REPAIR_DP_MAX ? L.n : LAM_REPAIR_DP_MAX;
     if (!rc) {

@@ -4,6 +4,7 @@
  * with violations. --svg draws the layers (the machine's slicing) with the
  * violations ringed on the layers whose slab holds them. */
 #include "cli.h"
+#include "repair_note.h"
 #include "cli_args.h"
 #include "drc.h"
 #include "fmt.h"

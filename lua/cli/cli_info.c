@@ -154,9 +154,9 @@ static void print_text(const lam_model *m, const sizes *z)
     printf("repair                %s\n", !r->ran ? "off (--no-repair)"
                                       : lam_repair_acted(r) ? lam_repair_summary(r, line, sizeof line)
                                                            : "nothing to repair");
-    if (r->ran && (r->boundary_edges || r->nonmanifold_edges))
-        printf("after repair          %zu open edges, %zu non-manifold edges\n", r->boundary_edges,
-               r->nonmanifold_edges);
+    if (r->ran && (r->boundary_edges || r->nonmanifold_edges || r->crossing_edges))
+        printf("after repair          %zu open edges, %zu non-manifold edges, %zu edges through other facets\n",
+               r->boundary_edges, r->nonmanifold_edges, r->crossing_edges);
     printf("model memory          %s (mesh %s, edges %s, shells %s)\n", lam_fmt_bytes(a, sizeof a, (double)z->model),
            lam_fmt_bytes(b, sizeof b, (double)z->parts[0]), lam_fmt_bytes(c, sizeof c, (double)z->parts[1]),
            lam_fmt_bytes(d, sizeof d, (double)z->parts[2]));

@@ -14,6 +14,11 @@ void cli_repair_note(const lam_model *m, int quiet)
         fprintf(stderr, "lamina: warning: %s: after repair %zu open edge%s and %zu non-manifold edge%s remain\n",
                 m->path, r->boundary_edges, r->boundary_edges == 1 ? "" : "s", r->nonmanifold_edges,
                 r->nonmanifold_edges == 1 ? "" : "s");
+    if (r->crossing_edges)
+        fprintf(stderr,
+                "lamina: warning: %s: after repair the surface crosses itself (%zu edge%s through other facets); "
+                "--fill nonzero slices overlapping parts as one\n",
+                m->path, r->crossing_edges, r->crossing_edges == 1 ? "" : "s");
 }
 
 void cli_repair_json(FILE *o, const lam_repair_report *r)

@@ -82,10 +82,10 @@ cmp -s "$TMP/n.sls" "$TMP/a.sls"; ok $? "the program is byte-identical with and 
 run "$LAMINA" slice "$M/thesis_cube_hole.ug" -w 0.25 --json -
 like "$RC $ERR" "^2 .*the program \(without -o\) and --json - both write to standard output" "--json - without -o: usage error"
 run "$LAMINA" slice "$M/thesis_cube_hole.ug" -w 0.25 --json "$TMP/nodir/x.json" -o "$TMP/x.sls"
-like "$RC $ERR" "^1 lamina: .*nodir/x.json" "--json into a missing directory: exit 1"
+like "$RC $ERR" "(?s)^1 lamina: .*nodir/x.json" "--json into a missing directory: exit 1"
 [ ! -e "$TMP/x.sls" ]; ok $? "... and no program is left"
 run "$LAMINA" slice "$M/thesis_cube_hole.ug" -w 0.25 --json "$M/thesis_cube_hole.ug"
-like "$RC $ERR" "^2 lamina slice: --json .* is an input of this command" "--json onto the model: refused"
+like "$RC $ERR" "(?s)^2 lamina.*^lamina slice: --json .* is an input of this command" "--json onto the model: refused"
 
 # ---- read back: validate --program run.json -----------------------------------
 run "$LAMINA" validate "$TMP/torus.stl" --program "$TMP/d.json"

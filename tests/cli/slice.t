@@ -150,7 +150,7 @@ ok "$([ -L "$TMP/link.sls" ]; echo $?)" "the link is still a link"
 ok "$(cmp -s "$TMP/plain.sls" "$TMP/real.sls"; echo $?)" "the file it names holds the program"
 mkdir "$TMP/adir"
 run "$LAMINA" slice "$M/thesis_cube_hole.ug" -w 1 --cut floor -o "$TMP/adir"
-like "$RC $ERR" "^1 .*adir: cannot write output: is a directory" "-o DIRECTORY: exit 1, said so"
+like "$RC $ERR" "(?s)^1 .*adir: cannot write output: is a directory" "-o DIRECTORY: exit 1, said so"
 
 # Every profile key from the command line (--set), the options as its
 # aliases, GNU conventions.

@@ -161,8 +161,29 @@ static void pinch(void)
     lam_model_free(md);
 }
 
+/* A box without its floor pushed through a closed box: the fill closes
+ * it, and the edges where the surfaces cross are counted. */
+static void crossing(void)
+{
+    lam_mesh m;
+    lam_mesh_init(&m);
+    add_box(&m, 0, 0, 0, 2, 2, 2, 0, 0);
+    add_box(&m, 1, 0.5, 0.5, 3, 1.5, 1.5, 0, -1);
+    lam_model *md = repaired(&m, "two boxes through each other");
+    closed(md, "two boxes through each other");
+    ok(md->repair.crossings_unknown || md->repair.crossing_edges >= 4, "edges through the other box counted (%zu)",
+       md->repair.crossing_edges);
+    lam_model_free(md);
+    lam_mesh_init(&m);
+    add_box(&m, 0, 0, 0, 2, 2, 2, 0, 0);
+    md = repaired(&m, "box without its floor");
+    is_int(md->repair.crossing_edges, 0, "a box alone crosses nothing");
+    lam_model_free(md);
+}
+
 int main(void)
 {
+    crossing();
     boxes();
     crack();
     cap(32, "small cap");
