@@ -432,6 +432,16 @@ def case_sphere_flipped():
     broken = tris_of(vs, [(a, c, b) if k in flip else (a, b, c) for k, (a, b, c) in enumerate(fs)])
     return vs, fs, broken, {"flipped": len(flip), "removed_area": 0.0}
 
+def case_sphere_flipped_most():
+    """60% of the facets flipped: the shell's majority is wound inward, so
+    repair.h counts the 40% the file wound outward (the minority) and turns
+    the shell outward as a whole."""
+    vs, fs, _ = sphere()
+    rng = random.Random(2404)
+    flip = set(rng.sample(range(len(fs)), len(fs) * 3 // 5))
+    broken = tris_of(vs, [(a, c, b) if k in flip else (a, b, c) for k, (a, b, c) in enumerate(fs)])
+    return vs, fs, broken, {"flipped": len(fs) - len(flip), "removed_area": 0.0}
+
 def case_torus_duplicates():
     vs, fs, _, _ = torus()
     rng = random.Random(2402)
@@ -474,6 +484,7 @@ CASES = {
     "torus_holes": case_torus_holes,
     "cube_open": case_cube_open,
     "sphere_flipped": case_sphere_flipped,
+    "sphere_flipped_most": case_sphere_flipped_most,
     "torus_duplicates": case_torus_duplicates,
     "torus_crack": case_torus_crack,
 }
