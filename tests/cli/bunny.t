@@ -16,6 +16,9 @@ run "${OM[@]}" edges "$B"
 is "$(jq -c '[.facets, .vertices, .boundary_edges, .boundary_loops, .nonmanifold_edges]' <<<"$OUT")" \
     "[69451,34834,223,5,0]" "bun_zipper: 69,451 triangles, 34,834 vertices used, 223 boundary edges in 5 loops, manifold"
 loops=$(jq .boundary_loops <<<"$OUT")
+run "$LAMINA" info --json "$B"
+is "$(jq -c '.repair | [.holes, .hole_edges, .holes_left, .boundary_edges, .nonmanifold_edges, .welded, .duplicates, .degenerate]' <<<"$OUT")" \
+    "[$loops,223,0,0,0,0,0,0]" "info: each of the $loops loops filled, closing the 223 boundary edges; nothing else to do"
 
 # ---- the repaired mesh, in the file's units (metres), for the reference sections
 R="$TMP/bunny repaired.stl"
