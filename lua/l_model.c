@@ -3,6 +3,8 @@
  * it (model:slice lives in l_layer.c). */
 #include "l_common.h"
 
+#include "xform.h"
+
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -21,7 +23,151 @@ void lam_lua_model_free(lua_State *L, lmodel *u)
     lam_lua_discharge(L, &u->charged);
 }
 
-/* lamina.load(path) -> model | nil, message
+/* ---- lamina.load's options: the command line's load options ------------- */
+
+static const char *const load_keys[] = { "units", "scale", "rotate", "translate", "place", "repair", "machine", NULL };
+
+/* text through one of xform.h's parsers; a bad one raises, naming key and text */
+static void parse_text(lua_State *L, lam_xform *x, const char *key, const char *text,
+                       int (*parse)(lam_xform *, const char *, lam_error *))
+{
+    lam_error err;
+    lam_error_clear(&err);
+    char b[64];
+    lua_pushstring(L, text);
+    if (parse(x, text, &err)) lam_lua_opterror(L, 2, "%s %s: %s", key, lam_lua_describe(L, -1, b, sizeof b), err.msg);
+    lua_pop(L, 1);
+}
+
+/* A number (or text of numbers) at the top: appended to buf as "a,b,c" */
+static void add_number(lua_State *L, const char *key, char *buf, size_t size)
+{
+    char b[64];
+    if (lua_type(L, -1) != LUA_TNUMBER)
+        lam_lua_opterror(L, 2, "%s must hold numbers, got %s", key, lam_lua_describe(L, -1, b, sizeof b));
+    size_t n = strlen(buf);
+    snprintf(buf + n, size - n, "%s%.17g", n ? "," : "", (double)lua_tonumber(L, -1));
+}
+
+/* scale (a number, {fx, fy, fz} or text) and translate ({x, y, z} or text) */
+static void numbers_opt(lua_State *L, lam_xform *x, const char *key, int one,
+                        int (*parse)(lam_xform *, const char *, lam_error *))
+{
+    char text[256] = "", b[64];
+    int ty = lua_getfield(L, 2, key);
+    if (ty == LUA_TNIL) {
+        lua_pop(L, 1);
+        return;
+    }
+    if (ty == LUA_TSTRING) {
+        parse_text(L, x, key, lua_tostring(L, -1), parse);
+    } else if (ty == LUA_TNUMBER && one) {
+        add_number(L, key, text, sizeof text);
+        parse_text(L, x, key, text, parse);
+    } else if (ty == LUA_TTABLE) {
+        lua_Integer n = (lua_Integer)lua_rawlen(L, -1);
+        if (n != 3) lam_lua_opterror(L, 2, "%s must be a list of 3 numbers, got %d", key, (int)n);
+        for (int k = 1; k <= 3; k++) {
+            lua_rawgeti(L, -1, k);
+            add_number(L, key, text, sizeof text);
+            lua_pop(L, 1);
+        }
+        parse_text(L, x, key, text, parse);
+    } else {
+        lam_lua_opterror(L, 2, "%s must be %s, got %s", key, one ? "a number, {fx, fy, fz} or text" : "{x, y, z} or text",
+                         lam_lua_describe(L, -1, b, sizeof b));
+    }
+    lua_pop(L, 1);
+}
+
+/* rotate: "x:90" (or "x:90,z:45") or a list of them, applied in order */
+static void rotate_opt(lua_State *L, lam_xform *x)
+{
+    char b[64];
+    int ty = lua_getfield(L, 2, "rotate");
+    if (ty == LUA_TSTRING) {
+        parse_text(L, x, "rotate", lua_tostring(L, -1), lam_xform_parse_rotate);
+    } else if (ty == LUA_TTABLE) {
+        lua_Integer n = (lua_Integer)lua_rawlen(L, -1);
+        for (lua_Integer i = 1; i <= n; i++) {
+            if (lua_rawgeti(L, -1, i) != LUA_TSTRING)
+                lam_lua_opterror(L, 2, "rotate[%d] must be text such as \"x:90\", got %s", (int)i,
+                                 lam_lua_describe(L, -1, b, sizeof b));
+            parse_text(L, x, "rotate", lua_tostring(L, -1), lam_xform_parse_rotate);
+            lua_pop(L, 1);
+        }
+    } else if (ty != LUA_TNIL) {
+        lam_lua_opterror(L, 2, "rotate must be text such as \"x:90\" or a list of them, got %s",
+                         lam_lua_describe(L, -1, b, sizeof b));
+    }
+    lua_pop(L, 1);
+}
+
+/* The mm of the target machine's unit: machine= (an object or a name, as
+ * lamina.machine takes it), else mm */
+static double machine_mm(lua_State *L)
+{
+    char b[64];
+    int ty = lua_getfield(L, 2, "machine");
+    double mm = 1;
+    if (ty == LUA_TSTRING) {
+        lua_pushcfunction(L, lam_lua_machine);
+        lua_pushvalue(L, -2);
+        lua_call(L, 1, 2);
+        if (lua_isnil(L, -2)) lam_lua_opterror(L, 2, "machine: %s", lua_tostring(L, -1));
+        lua_pop(L, 1);
+        mm = lam_profile_unit_mm(&lam_lua_checkmachine(L, -1)->p);
+        lua_pop(L, 1);
+    } else if (ty != LUA_TNIL) {
+        if (!LAM_TESTUD(L, -1, lmachine, LAM_MACHINE, LAM_TAG_MACHINE))
+            lam_lua_opterror(L, 2, "machine must be a lamina.machine or a machine's name, got %s",
+                             lam_lua_describe(L, -1, b, sizeof b));
+        mm = lam_profile_unit_mm(&lam_lua_checkmachine(L, -1)->p);
+    }
+    lua_pop(L, 1);
+    return mm;
+}
+
+/* The options table at argument 2 (absent or nil: the defaults) into x */
+static void load_opts(lua_State *L, lam_xform *x, int *no_repair)
+{
+    lam_xform_init(x);
+    *no_repair = 0;
+    if (lua_isnoneornil(L, 2)) return;
+    luaL_checktype(L, 2, LUA_TTABLE);
+    lam_lua_checkkeys(L, 2, 2, load_keys);
+    char b[64];
+    const char *units = NULL;
+    if (lua_getfield(L, 2, "units") != LUA_TNIL) {
+        units = lua_type(L, -1) == LUA_TSTRING ? lua_tostring(L, -1) : NULL;
+        if (!units || !(lam_unit_mm(units) > 0))
+            lam_lua_opterror(L, 2, "units must be mm, cm, m, um, in or ft, got %s", lam_lua_describe(L, -1, b, sizeof b));
+    }
+    lua_pop(L, 1);
+    double mm = machine_mm(L);
+    if (units) {
+        if (!(mm > 0)) lam_lua_opterror(L, 2, "units: the machine's units are unknown");
+        lam_xform_scale_by(x, lam_unit_mm(units) / mm);
+    }
+    numbers_opt(L, x, "scale", 1, lam_xform_parse_scale);
+    rotate_opt(L, x);
+    numbers_opt(L, x, "translate", 0, lam_xform_parse_translate);
+    if (lua_getfield(L, 2, "place") != LUA_TNIL) {
+        if (lua_type(L, -1) != LUA_TSTRING)
+            lam_lua_opterror(L, 2, "place must be \"plate\" or \"none\", got %s", lam_lua_describe(L, -1, b, sizeof b));
+        parse_text(L, x, "place", lua_tostring(L, -1), lam_xform_parse_place);
+    }
+    lua_pop(L, 1);
+    int repair = 1;
+    lam_lua_boolfield(L, 2, 2, "repair", &repair);
+    *no_repair = !repair;
+}
+
+/* lamina.load(path [, opts]) -> model | nil, message
+ * opts: the command line's load options (units=, scale=, rotate=,
+ * translate=, place=, repair=false for --no-repair, machine= for the units
+ * to convert into); a bad option raises, a file that does not load
+ * returns nil and the message.
  * In a sandbox with a memory limit the model is charged to it: a file
  * larger than the room left is refused before it is read (a model file is
  * read whole, core/base/file.h; the model then takes 0.3x an ASCII STL with
@@ -31,6 +177,9 @@ void lam_lua_model_free(lua_State *L, lmodel *u)
 int lam_lua_load(lua_State *L)
 {
     const char *path = luaL_checkstring(L, 1);
+    lam_xform x;
+    int no_repair;
+    load_opts(L, &x, &no_repair); /* before anything is allocated: it may raise */
     int n = lam_lua_denied(L, path, 0);
     if (n) return n;
     lmodel *u = lua_newuserdatauv(L, sizeof *u, 0);
@@ -44,7 +193,8 @@ int lam_lua_load(lua_State *L)
     lam_lua_discharge(L, &room); /* a check only: the model is charged as it is, below */
     lam_error err;
     lam_error_clear(&err);
-    if (lam_model_load(path, &u->m, &err)) return lam_lua_fail(L, &err);
+    lam_load_opts o = { .xform = &x, .no_repair = no_repair };
+    if (lam_model_load_opts(path, &o, &u->m, &err)) return lam_lua_fail(L, &err);
     size_t bytes = sizeof *u->m + lam_model_bytes(u->m, NULL);
     if (!lam_lua_charge(L, &u->charged, bytes)) {
         lam_lua_model_free(L, u);

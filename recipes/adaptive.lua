@@ -14,31 +14,59 @@
 -- --axis: x, y, z (default), -z, ... or a direction dx,dy,dz. --list prints
 -- every layer: index, floor, ceiling, width. --allow-open slices a mesh that
 -- is not closed, dropping the outlines that stay open (counted and said);
--- without it such a mesh stops the recipe with the slicer's message.
+-- without it such a mesh (one that repair on load did not close: model.closed
+-- false) stops the recipe with a message and exit 1: the slicer's when an
+-- outline stays open, else the count of open edges.
+-- Load options (as `lamina slice` takes them; docs/cli.md): --units U (the
+-- model's units, converted to mm), --scale F|FX,FY,FZ, --rotate
+-- A:D[,A:D...], --translate X,Y,Z, --place plate, --no-repair.
 local args = require "lamina.args"
 local axes = require "lamina.axes"
 local adaptive = require "lamina.adaptive"
 
 local o, fail, die, need = args.parse(arg, {
   usage = "lamina run recipes/adaptive.lua [--cusp H] [--min W] [--max W] [--axis A]"
-    .. " [--list] [--allow-open] [MODEL]",
-  options = { cusp = 0.05, min = 0.02, max = 0.5, axis = "z", list = false, allow_open = false,
+    .. " [--list] [--allow-open] [MODEL]"
+    .. " [--units U] [--scale F] [--rotate A:D] [--translate X,Y,Z] [--place plate] [--no-repair]",
+  options = { units = "", scale = "", rotate = "", translate = "", place = "", no_repair = false,
+              cusp = 0.05, min = 0.02, max = 0.5, axis = "z", list = false, allow_open = false,
               model = args.beside(arg, "parts/sphere.obj") },
   positive = { "cusp", "min", "max" },
   positional = { "model" },
 })
+-- the load options, as `lamina slice` takes them (docs/cli.md, "Units and
+-- placement on load"); "" is an option not given. A bad value is a usage
+-- error (exit 2), a file that does not load a message (exit 1).
+local function load(path, machine)
+  local function given(v) if v ~= "" then return v end end
+  local ok, model, err = pcall(lamina.load, path, {
+    units = given(o.units), scale = given(o.scale), rotate = given(o.rotate), translate = given(o.translate),
+    place = given(o.place), repair = not o.no_repair, machine = machine })
+  if not ok then fail("%s", tostring(model):match("%((.*)%)$") or tostring(model)) end
+  if not model then die("%s", err) end
+  return model
+end
 if o.min > o.max then fail("--min (%g) is greater than --max (%g)", o.min, o.max) end
 local axis, why = axes.parse(o.axis)
 if not axis then fail("--axis: %s", why) end
-local model, err = lamina.load(o.model)
-if not model then die("%s", err) end
+local model = load(o.model)
 
 local facets = axes.facets(model, axis)
+if #model == 0 or not (facets.hi > facets.lo) then
+  die("%s has no extent along %s (%d triangles): no layer to make", o.model, axis.name, #model)
+end
 local widths = adaptive.cusp_widths(facets, o)
 local planes = adaptive.planes(facets.lo, widths)
 local worst = adaptive.worst_cusp(facets, planes)
-local layers = need(model:slice{axis = axis.slice, widths = widths, allow_open = o.allow_open})
-assert(#layers == #widths)
+-- an open mesh (one that repair on load did not close, or --no-repair):
+-- the slicer's message when a layer's outline stays open, else this one;
+-- either way a message and exit 1, not a run on a part that is not solid
+local open_mesh = ("the mesh is not closed (%d boundary edges%s); --allow-open slices it, dropping the"
+  .. " outlines that stay open"):format(model.boundary_edges, o.no_repair and ", --no-repair" or "")
+local layers, serr = model:slice{axis = axis.slice, widths = widths, allow_open = o.allow_open}
+if not layers then die("%s%s", serr, model.closed and "" or "; " .. open_mesh) end
+if not model.closed and not o.allow_open then die("%s: %s", o.model, open_mesh) end
+if #layers ~= #widths then die("%s: %d layers for %d widths", o.model, #layers, #widths) end
 local open, open_layers = 0, 0
 for _, l in ipairs(layers) do
   open = open + (l.open or 0)

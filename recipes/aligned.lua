@@ -10,22 +10,38 @@
 -- defaults to recipes/parts/terrace.ug; --axis is x, y, z (default),
 -- -z, ... or dx,dy,dz. Prints the flat heights and the planes, and slices
 -- with them to check that every flat height is a layer floor or ceiling.
+-- Load options (as `lamina slice` takes them; docs/cli.md): --units U (the
+-- model's units, converted to mm), --scale F|FX,FY,FZ, --rotate
+-- A:D[,A:D...], --translate X,Y,Z, --place plate, --no-repair.
 local args = require "lamina.args"
 local axes = require "lamina.axes"
 local adaptive = require "lamina.adaptive"
 
 local o, fail, die, need = args.parse(arg, {
-  usage = "lamina run recipes/aligned.lua [--min W] [--max W] [--axis A] [MODEL]",
-  options = { min = 0.1, max = 0.5, axis = "z",
+  usage = "lamina run recipes/aligned.lua [--min W] [--max W] [--axis A] [MODEL]"
+    .. " [--units U] [--scale F] [--rotate A:D] [--translate X,Y,Z] [--place plate] [--no-repair]",
+  options = { units = "", scale = "", rotate = "", translate = "", place = "", no_repair = false,
+              min = 0.1, max = 0.5, axis = "z",
               model = args.beside(arg, "parts/terrace.ug") },
   positive = { "min", "max" },
   positional = { "model" },
 })
+-- the load options, as `lamina slice` takes them (docs/cli.md, "Units and
+-- placement on load"); "" is an option not given. A bad value is a usage
+-- error (exit 2), a file that does not load a message (exit 1).
+local function load(path, machine)
+  local function given(v) if v ~= "" then return v end end
+  local ok, model, err = pcall(lamina.load, path, {
+    units = given(o.units), scale = given(o.scale), rotate = given(o.rotate), translate = given(o.translate),
+    place = given(o.place), repair = not o.no_repair, machine = machine })
+  if not ok then fail("%s", tostring(model):match("%((.*)%)$") or tostring(model)) end
+  if not model then die("%s", err) end
+  return model
+end
 if o.min > o.max then fail("--min (%g) is greater than --max (%g)", o.min, o.max) end
 local axis, why = axes.parse(o.axis)
 if not axis then fail("--axis: %s", why) end
-local model, err = lamina.load(o.model)
-if not model then die("%s", err) end
+local model = load(o.model)
 
 local facets = axes.facets(model, axis)
 local flats = adaptive.flat_heights(facets)

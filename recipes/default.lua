@@ -10,17 +10,33 @@
 --   NAME.sls     the SLS program
 --   NAME.svg     a contact sheet of the SLS layers (lamina.preview)
 -- and prints the layers, contours, program sizes and paths.
+-- Load options (as `lamina slice` takes them; docs/cli.md): --units U (the
+-- model's units, converted to each machine's units), --scale F|FX,FY,FZ, --rotate
+-- A:D[,A:D...], --translate X,Y,Z, --place plate, --no-repair.
 local args = require "lamina.args"
 
-local o, _, die, need = args.parse(arg, {
-  usage = "lamina run recipes/default.lua [--out DIR] [--sls-width W] [MODEL]",
-  options = { out = "out", sls_width = 0.25,
+local o, fail, die, need = args.parse(arg, {
+  usage = "lamina run recipes/default.lua [--out DIR] [--sls-width W] [MODEL]"
+    .. " [--units U] [--scale F] [--rotate A:D] [--translate X,Y,Z] [--place plate] [--no-repair]",
+  options = { units = "", scale = "", rotate = "", translate = "", place = "", no_repair = false,
+              out = "out", sls_width = 0.25,
               model = args.beside(arg, "parts/thesis_cube_hole.ug") },
   positive = { "sls_width" },
   positional = { "model" },
 })
-local model, err = lamina.load(o.model)
-if not model then die("%s", err) end
+-- the load options, as `lamina slice` takes them (docs/cli.md, "Units and
+-- placement on load"); "" is an option not given. A bad value is a usage
+-- error (exit 2), a file that does not load a message (exit 1).
+local function load(path, machine)
+  local function given(v) if v ~= "" then return v end end
+  local ok, model, err = pcall(lamina.load, path, {
+    units = given(o.units), scale = given(o.scale), rotate = given(o.rotate), translate = given(o.translate),
+    place = given(o.place), repair = not o.no_repair, machine = machine })
+  if not ok then fail("%s", tostring(model):match("%((.*)%)$") or tostring(model)) end
+  if not model then die("%s", err) end
+  return model
+end
+local model = load(o.model)
 local name = o.model:match("([^/]+)$"):gsub("%.[^.]*$", "")
 need(lamina.mkdir(o.out))
 
@@ -29,7 +45,9 @@ print(("%s: %d triangles, %d shells, volume %.6g"):format(
 local function job(profile, slicing, ext)
   local machine = need(lamina.machine(profile))
   slicing.machine = machine
-  local layers = need(model:slice(slicing))
+  -- --units converts into each machine's units (creol-ladrp's are cm)
+  local m = o.units ~= "" and load(o.model, machine) or model
+  local layers = need(m:slice(slicing))
   local plan = need(machine:plan(layers))
   local path = ("%s/%s.%s"):format(o.out, name, ext)
   need(plan:write(path))

@@ -13,14 +13,31 @@
 -- number of hatch vectors, their total length, the jump length (between
 -- vectors and contour passes) and the
 -- estimated build time (exposure + jumps + recoating; the machine's speeds).
+-- Load options (as `lamina slice` takes them; docs/cli.md): --units U (the
+-- model's units, converted to the machine's units), --scale F|FX,FY,FZ, --rotate
+-- A:D[,A:D...], --translate X,Y,Z, --place plate, --no-repair.
 local args = require "lamina.args"
 
 local o, fail, die, need = args.parse(arg, {
-  usage = "lamina run recipes/hatching.lua [--machine NAME] [--width W] [--distance H] [--skins N] [MODEL]",
-  options = { machine = "lpbf-cli", width = 1, distance = 0, skins = -1,
+  usage = "lamina run recipes/hatching.lua [--machine NAME] [--width W] [--distance H] [--skins N] [MODEL]"
+    .. " [--units U] [--scale F] [--rotate A:D] [--translate X,Y,Z] [--place plate] [--no-repair]",
+  options = { units = "", scale = "", rotate = "", translate = "", place = "", no_repair = false,
+              machine = "lpbf-cli", width = 1, distance = 0, skins = -1,
               model = args.beside(arg, "parts/frame_island.ug") },
   positional = { "model" },
 })
+-- the load options, as `lamina slice` takes them (docs/cli.md, "Units and
+-- placement on load"); "" is an option not given. A bad value is a usage
+-- error (exit 2), a file that does not load a message (exit 1).
+local function load(path, machine)
+  local function given(v) if v ~= "" then return v end end
+  local ok, model, err = pcall(lamina.load, path, {
+    units = given(o.units), scale = given(o.scale), rotate = given(o.rotate), translate = given(o.translate),
+    place = given(o.place), repair = not o.no_repair, machine = machine })
+  if not ok then fail("%s", tostring(model):match("%((.*)%)$") or tostring(model)) end
+  if not model then die("%s", err) end
+  return model
+end
 local machine, err = lamina.machine(o.machine)
 if not machine then die("%s", err) end
 if machine.process ~= "sls" then fail("%s is an %s machine, not sls", o.machine, machine.process) end
@@ -29,8 +46,7 @@ if o.distance < 0 then fail("--distance must be 0 (the machine's) or more, got %
 if o.skins < -1 or o.skins ~= math.floor(o.skins) then
   fail("--skins must be -1 (the machine's) or a whole number of layers, got %g", o.skins)
 end
-local model, merr = lamina.load(o.model)
-if not model then die("%s", merr) end
+local model = load(o.model, machine)
 local layers = need(model:slice{machine = machine, width = o.width > 0 and o.width or nil})
 local h = o.distance > 0 and o.distance or machine.hatch_distance
 local skins = o.skins >= 0 and math.tointeger(o.skins) or machine.skin_layers

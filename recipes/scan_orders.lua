@@ -11,21 +11,37 @@
 -- Prints the travel (moves with the laser off), the deposit length and
 -- moves, and the travel against the plain boustrophedon (0 degrees, whole
 -- lines).
+-- Load options (as `lamina slice` takes them; docs/cli.md): --units U (the
+-- model's units, converted to the machine's units), --scale F|FX,FY,FZ, --rotate
+-- A:D[,A:D...], --translate X,Y,Z, --place plate, --no-repair.
 local args = require "lamina.args"
 
 local o, fail, die, need = args.parse(arg, {
-  usage = "lamina run recipes/scan_orders.lua [--machine NAME] [--width W] [MODEL]",
-  options = { machine = "creol-ladrp", width = 0, model = args.beside(arg, "parts/pillars.ug") },
+  usage = "lamina run recipes/scan_orders.lua [--machine NAME] [--width W] [MODEL]"
+    .. " [--units U] [--scale F] [--rotate A:D] [--translate X,Y,Z] [--place plate] [--no-repair]",
+  options = { units = "", scale = "", rotate = "", translate = "", place = "", no_repair = false,
+              machine = "creol-ladrp", width = 0, model = args.beside(arg, "parts/pillars.ug") },
   positional = { "model" },
 })
+-- the load options, as `lamina slice` takes them (docs/cli.md, "Units and
+-- placement on load"); "" is an option not given. A bad value is a usage
+-- error (exit 2), a file that does not load a message (exit 1).
+local function load(path, machine)
+  local function given(v) if v ~= "" then return v end end
+  local ok, model, err = pcall(lamina.load, path, {
+    units = given(o.units), scale = given(o.scale), rotate = given(o.rotate), translate = given(o.translate),
+    place = given(o.place), repair = not o.no_repair, machine = machine })
+  if not ok then fail("%s", tostring(model):match("%((.*)%)$") or tostring(model)) end
+  if not model then die("%s", err) end
+  return model
+end
 local machine, err = lamina.machine(o.machine)
 if not machine then die("%s", err) end
 if machine.process ~= "ladrp" then
   fail("%s is an %s machine, not ladrp", o.machine, machine.process)
 end
 if o.width < 0 then fail("--width must be 0 (the machine's) or more, got %g", o.width) end
-local model, merr = lamina.load(o.model)
-if not model then die("%s", merr) end
+local model = load(o.model, machine)
 local layers = need(model:slice{machine = machine, width = o.width > 0 and o.width or nil})
 
 -- raster angles: the first layer's is 0, each next one turns by the step

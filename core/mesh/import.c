@@ -101,6 +101,7 @@ static int finish(lam_mesh *mesh, const char *path, const char *format, const la
 {
     int rc = lam_xform_apply(o ? o->xform : NULL, mesh, err);
     if (rc) {
+        if (err && !err->file[0]) snprintf(err->file, sizeof err->file, "%s", path);
         lam_mesh_free(mesh);
         return rc;
     }

@@ -299,7 +299,7 @@ int lam_mesh_add_vertex_welded(lam_mesh *m, lam_welder *w, double x, double y, d
     double p[3] = { x + 0.0, y + 0.0, z + 0.0 };
     uint64_t h = lam_weld_hash(p), tag = h & 0xffffffff00000000ull;
     size_t r = (size_t)(h >> 20) & (LAM_WELDER_RECENT - 1);
-    if (w->recent[r].h == h && w->recent[r].v != UINT32_MAX && lam_weld_same(m->xyz + 3 * (size_t)w->recent[r].v, p)) {
+    if (w->recent[r].v != UINT32_MAX && w->recent[r].h == h && lam_weld_same(m->xyz + 3 * (size_t)w->recent[r].v, p)) {
         *idx = w->recent[r].v;
         return LAM_OK;
     }

@@ -15,11 +15,17 @@ enum { LAM_MESH_STL = 0, LAM_MESH_OBJ = 1 };
 int lam_mesh_format_for(const char *path);
 
 /* Write md's triangles (as oriented: outward, cavities inward) to w in
- * format fmt. Binary STL: an 80-byte header, the count, per facet its
- * unit normal and three float32 vertices; OBJ: `v` lines with the
- * shortest round-trip numbers, then `f` lines. Errors: the writer's
- * (sticky; the caller commits or aborts w), LAM_EINVAL for an STL of more
- * than 2^32 - 1 facets. */
+ * format fmt, streamed (a buffer of 32 kB, and for OBJ an index per
+ * vertex). Binary STL: an 80-byte header "lamina VERSION binary STL of
+ * SOURCE" (never "solid" first), the count, per facet its unit normal
+ * (from the vertices in double; 0 for a facet of no area) and three
+ * float32 corners, attribute 0, little-endian. OBJ: a comment, a `v` line
+ * per vertex a triangle uses (in the mesh's order, the shortest numbers
+ * that read back as the doubles), then an `f` line per triangle (1-based).
+ * Wires are not written. Errors: the writer's (sticky, with its path and
+ * reason; the caller commits or aborts w), LAM_EINVAL for an STL of more
+ * than 2^32 - 1 facets or a coordinate beyond float32 (told before a byte
+ * is written), LAM_ENOMEM. */
 int lam_model_write_mesh(const lam_model *md, int fmt, lam_writer *w, lam_error *err);
 
 #endif

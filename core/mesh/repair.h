@@ -55,7 +55,7 @@ typedef struct lam_repair_opts {
 /* Repair *md in place (o may be NULL: defaults): *md may be replaced by a
  * new model (the old one is freed); (*md)->repair says what was done.
  * Errors: LAM_ENOMEM, LAM_EGEOM when nothing with area is left; on error
- * *md is still a valid model (the unrepaired one). */
+ * the model is freed and *md is NULL. */
 int lam_model_repair(lam_model **md, const lam_repair_opts *o, lam_error *err);
 
 /* The report's fields, one row each, for every writer of it (the run's

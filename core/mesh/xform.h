@@ -17,7 +17,10 @@
  * bit for bit as read (outputs do not change without an option).
  *
  * Parsing: the text forms the command line and Lua share. Errors are
- * LAM_EUSAGE with a message naming the bad part of the text. */
+ * LAM_EUSAGE with a message saying what is wrong with the text ("the axis
+ * must be x, y or z"), without the text itself: the caller names its
+ * option and the value given ("--rotate q:90: the axis must be x, y or
+ * z", "rotate 'q:90': ..."). A failed parse leaves x as it was. */
 #ifndef LAM_XFORM_H
 #define LAM_XFORM_H
 
@@ -42,35 +45,43 @@ typedef struct lam_xform {
     double translate[3];
 } lam_xform;
 
-/* An identity transform. */
+/* An identity transform (scale 1, no rotation, no placement, no offset). */
 void lam_xform_init(lam_xform *x);
 
 /* 1 when x changes nothing (NULL is the identity). */
 int lam_xform_is_identity(const lam_xform *x);
 
-/* Millimetres in one `unit` ("mm", "cm", "m", "um", "in", "inch", "ft");
- * 0 for an unknown name. The same table as lam_profile_unit_mm. */
+/* Millimetres in one `unit` ("mm", "cm", "m", "um", "\xc2\xb5m", "in",
+ * "inch", "ft"); 0 for an unknown name (NULL too). The table is the
+ * profile key `units`' (lam_key_unit_mm, profile_keys.c), so a model's
+ * unit and a machine's are the same names with the same factors. */
 double lam_unit_mm(const char *unit);
 
 /* Multiply the scale by factor on every axis (the units conversion). */
 void lam_xform_scale_by(lam_xform *x, double factor);
 
-/* "F" or "FX,FY,FZ": non-zero finite factors, multiplied into x's scale. */
+/* "F" or "FX,FY,FZ": non-zero finite factors, multiplied into x's scale
+ * (so two --scale options multiply). */
 int lam_xform_parse_scale(lam_xform *x, const char *text, lam_error *err);
 
-/* "AXIS:DEG" (x, y or z; degrees, finite): appended to x's rotations
- * (LAM_EUSAGE past LAM_XFORM_MAX_ROT). */
+/* "AXIS:DEG" (x, y or z, also upper case; degrees, finite), or several
+ * separated by commas ("x:90,z:45", applied in that order): appended to
+ * x's rotations (LAM_EUSAGE past LAM_XFORM_MAX_ROT). Multiples of 90
+ * degrees turn exactly (integer coordinates stay integers). */
 int lam_xform_parse_rotate(lam_xform *x, const char *text, lam_error *err);
 
-/* "X,Y,Z": finite offsets, added to x's translation. */
+/* "X,Y,Z": finite offsets, added to x's translation (two add up). */
 int lam_xform_parse_translate(lam_xform *x, const char *text, lam_error *err);
 
-/* "plate" or "none" into x->place. */
+/* "plate" or "none" into x->place (the last one given wins). */
 int lam_xform_parse_place(lam_xform *x, const char *text, lam_error *err);
 
 /* Apply x to every vertex of m (x NULL or the identity: nothing). A
  * coordinate that leaves the range lam_coord_problem accepts is LAM_EGEOM
- * naming the step. */
+ * naming the step ("after scaling (units and --scale), vertex 3's x
+ * coordinate (inf) is not a finite number"); m is then partly transformed
+ * and only good to free. Placement looks at every vertex of the mesh,
+ * as the model's bounding box does (lam_model_stats.bbox). */
 int lam_xform_apply(const lam_xform *x, lam_mesh *m, lam_error *err);
 
 #endif

@@ -244,8 +244,45 @@ static int o_part(const char *cmd, args *a, const cli_opt *o, const char *opt, c
     return 0;
 }
 
+/* --units: a name of the profile key `units` (the one table, lam_unit_mm) */
+static int o_units(const char *cmd, args *a, const cli_opt *o, const char *opt, const char *val)
+{
+    (void)o;
+    if (lam_unit_mm(val) > 0) {
+        a->units = val;
+        return 0;
+    }
+    const lam_key *k = lam_key_find("units");
+    char list[160] = "";
+    size_t n = 0;
+    for (size_t i = 0; k && k->choices && k->choices[i] && n < sizeof list; i++)
+        n += (size_t)snprintf(list + n, sizeof list - n, "%s%s", i ? ", " : "", k->choices[i]);
+    return cli_usage(cmd, "%s %s: the units lamina knows are %s", opt, val, list);
+}
+
+/* --scale, --rotate, --translate, --place: into a->xform (xform.h's
+ * parsers, which Lua shares); the message names the option and its value */
+static int o_xform(const char *cmd, args *a, const cli_opt *o, const char *opt, const char *val)
+{
+    lam_error err;
+    lam_error_clear(&err);
+    int (*parse)(lam_xform *, const char *, lam_error *) =
+        !strcmp(o->name, "scale")    ? lam_xform_parse_scale
+        : !strcmp(o->name, "rotate") ? lam_xform_parse_rotate
+        : !strcmp(o->name, "place")  ? lam_xform_parse_place
+                                     : lam_xform_parse_translate;
+    if (parse(&a->xform, val, &err)) return cli_usage(cmd, "%s %s: %s", opt, val, err.msg);
+    return 0;
+}
+
 #define F(member) offsetof(args, member)
 static const cli_opt options[] = {
+    { "units", 0, OPT_MODEL, "UNIT", o_units, 0 },
+    { "scale", 0, OPT_MODEL, "F|FX,FY,FZ", o_xform, 0 },
+    { "rotate", 0, OPT_MODEL, "AXIS:DEG", o_xform, 0 },
+    { "place", 0, OPT_MODEL, "WHERE", o_xform, 0 },
+    { "translate", 0, OPT_MODEL, "X,Y,Z", o_xform, 0 },
+    { "no-repair", 0, OPT_MODEL, NULL, o_flag, F(no_repair) },
     { "jobs", 'j', OPT_PLAN | OPT_JOBS, "N", o_jobs, 0 },
     { "machine", 'm', OPT_SLICE, "MACHINE", o_text, F(machine) },
     { "axis", 'a', OPT_SLICE, "AXIS", o_axis, 0 },
@@ -371,10 +408,29 @@ static int unknown_option(const char *cmd, unsigned groups, const char *opt)
     return cli_usage(cmd, "unknown option '%s'", opt);
 }
 
-/* The command's help: its usage text, then its profile-key options. */
+/* The model options (OPT_MODEL), as a table of the help: in the order
+ * they apply (xform.h), which is not the order given */
+static void help_model(void)
+{
+    fputs("How the model is loaded, in this order (docs/cli.md):\n"
+          "      --units UNIT        the model's units: mm, cm, m, um, in or ft (default: the\n"
+          "                          machine's), converted to the machine profile's units\n"
+          "      --scale F|FX,FY,FZ  then scale by F, or per axis (repeatable: factors multiply)\n"
+          "      --rotate AXIS:DEG   then rotate about x, y or z through the origin, right-handed\n"
+          "                          (repeatable, applied in the order given; x:90,z:45 is both)\n"
+          "      --place WHERE       then plate: lowest point on z = 0 and the footprint centred\n"
+          "                          on the origin; none (default): where the file has it\n"
+          "      --translate X,Y,Z   then move by X,Y,Z (repeatable: offsets add)\n"
+          "      --no-repair         build the model from the file as it is: no repair on load\n",
+          stdout);
+}
+
+/* The command's help: its usage text, the model options, then its
+ * profile-key options. */
 static void help(const char *usage, unsigned groups)
 {
     fputs(usage, stdout);
+    if (groups & OPT_MODEL) help_model();
     int head = 0;
     for (size_t i = 0; i < lam_profile_nkeys; i++) {
         const lam_key *k = &lam_profile_keys[i];
@@ -430,6 +486,7 @@ int cli_parse_args(const char *cmd, const char *usage_text, unsigned groups, int
 {
     memset(a, 0, sizeof *a);
     lam_slice_opts_init(&a->so);
+    lam_xform_init(&a->xform);
     int only_args = 0, rc = 0;
     for (int i = 1; i < argc && !rc; i++) {
         const char *o = argv[i];

@@ -21,10 +21,12 @@
 #include "profile.h"
 #include "profile_keys.h"
 #include "slice.h"
+#include "xform.h"
 
 /* Option groups a command accepts. */
 enum {
-    OPT_MODEL = 1,     /* one MODEL argument */
+    OPT_MODEL = 1,     /* one MODEL argument, and how it is loaded: --units --scale
+                          --rotate --translate --place --no-repair */
     OPT_SLICE = 2,     /* -m -a --widths --planes --fill --allow-open, and the slicing keys' options */
     OPT_PLAN = 4,      /* --validate -o --html, and the planning keys' options */
     OPT_JSON = 8,      /* --json */
@@ -61,6 +63,12 @@ typedef struct args { /* struct args: cli.h names it */
     size_t layers_a, layers_b; /* A:B (1-based, inclusive), or with layers_split K/N */
     int layers_split;
     int no_repair;           /* --no-repair: the mesh as the file has it (repair.h) */
+    /* OPT_MODEL: the transform on load (xform.h) as the options give it:
+     * --scale, --rotate, --translate and --place; the units (--units,
+     * NULL: the machine's) are turned into a factor by cli_load_model,
+     * which knows the machine. */
+    lam_xform xform;
+    const char *units;
 } args;
 
 /* Parse argv[1..] for command cmd, accepting the option groups in

@@ -188,7 +188,15 @@ int cmd_info(int argc, char **argv)
     lam_error err;
     lam_error_clear(&err);
     lam_model *m;
-    if (cli_load_model(&a, NULL, &m, &err)) {
+    /* -m's units are what --units converts into, as for slice */
+    lam_profile *machine = NULL;
+    if (a.machine && (rc = cli_profile("info", &a, &machine, NULL))) {
+        cli_args_free(&a);
+        return rc;
+    }
+    rc = cli_load_model(&a, machine, &m, &err);
+    lam_profile_free(machine);
+    if (rc) {
         cli_args_free(&a);
         return cli_fail(&err);
     }

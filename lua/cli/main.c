@@ -3,6 +3,7 @@
 #define _DEFAULT_SOURCE /* madvise, MADV_HUGEPAGE */
 #include "cli.h"
 #include "cli_lua.h"
+#include "cli_repair.h"
 #include "cli_signal.h"
 #include "file.h"
 #include "repl.h"
@@ -90,6 +91,8 @@ typedef struct command {
 
 static const command commands[] = {
     { "info", "MODEL [--json]", "model report: shells, cavities, volume, defects", cmd_info, 0 },
+    { "repair", "MODEL -o FILE", "the mesh repaired (holes filled, facets\noriented) as STL or OBJ", cmd_repair,
+      0 },
     { "slice", "MODEL [options]", "slice and plan; program to stdout or -o FILE", cmd_slice, 0 },
     { "join", "PART... [-o FILE]", "the program of a run sliced in parts\n(lamina slice ... --layers A:B)", cmd_join,
       0 },

@@ -30,5 +30,6 @@ void cli_repair_json(FILE *o, const lam_repair_report *r)
 #define MEASURE(f) fputs(",\"" #f "\":", o), cli_json_number(o, r->f);
     LAM_REPAIR_MEASURES(MEASURE)
 #undef MEASURE
+    fprintf(o, ",\"crossings_unknown\":%s", r->crossings_unknown ? "true" : "false");
     fputc('}', o);
 }

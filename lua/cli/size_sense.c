@@ -1,9 +1,40 @@
 #include "size_sense.h"
 
+#include <math.h>
 #include <stdio.h>
+#include <string.h>
 
 #include "fmt.h"
 #include "views.h"
+
+/* the mm one model unit was taken as on load (--units), 0: the machine's */
+static double loaded_unit_mm;
+
+void cli_size_sense_loaded(double unit_mm) { loaded_unit_mm = unit_mm; }
+
+/* The option that makes a model e mm across (as loaded, one unit taken as
+ * u0 mm) plausible: the unit that brings it nearest CLI_SENSE_AIM_MM
+ * within the bounds, else a power of ten for --scale (whose factors
+ * multiply, so it adds to any --scale given). */
+static void remedy(char *buf, size_t size, double e, double u0)
+{
+    static const char *const name[] = { "m", "cm", "in", "mm", "um" };
+    static const char *const word[] = { "metres", "centimetres", "inches", "millimetres", "micrometres" };
+    int best = -1;
+    double best_e = 0;
+    for (int i = 0; i < 5; i++) {
+        double mm = lam_unit_mm(name[i]);
+        double f = e * mm / u0;
+        if (mm == u0 || f < CLI_SENSE_MIN_MM || f > CLI_SENSE_MAX_MM) continue;
+        if (best < 0 || fabs(log(f / CLI_SENSE_AIM_MM)) < fabs(log(best_e / CLI_SENSE_AIM_MM))) best = i, best_e = f;
+    }
+    if (best >= 0) {
+        snprintf(buf, size, "if it was drawn in %s, --units %s makes it %s mm", word[best], name[best], LAM_NUM(best_e));
+        return;
+    }
+    double f = pow(10, round(log10(CLI_SENSE_AIM_MM / e)));
+    snprintf(buf, size, "--scale %s makes it %s mm", LAM_NUM(f), LAM_NUM(e * f));
+}
 
 int cli_size_sense(const char *path, const lam_profile *machine, const lam_model *m, const lam_slicer *s,
                    const lam_plan_opts *po)
@@ -27,12 +58,15 @@ int cli_size_sense(const char *path, const lam_profile *machine, const lam_model
         if (b[k + 3] - b[k] > ext) ext = b[k + 3] - b[k];
     if (mm > 0 && ext > 0 && (ext * mm > CLI_SENSE_MAX_MM || ext * mm < CLI_SENSE_MIN_MM)) {
         int big = ext * mm > CLI_SENSE_MAX_MM;
+        char fix[160];
+        remedy(fix, sizeof fix, ext * mm, loaded_unit_mm > 0 ? loaded_unit_mm : mm);
         fprintf(stderr,
                 "lamina: warning: %s: the model is %s across (x %s, y %s, z %s) and %s's units are %s: %s mm, %s "
-                "than %s mm; was it drawn in another unit?\n",
+                "than %s mm; was it drawn in another unit? %c%s\n",
                 path, LAM_NUM(ext), LAM_NUM(b[3] - b[0]), LAM_NUM(b[4] - b[1]), LAM_NUM(b[5] - b[2]),
                 machine->name ? machine->name : "the profile", machine->units ? machine->units : "mm",
-                LAM_NUM(ext * mm), big ? "larger" : "smaller", LAM_NUM(big ? CLI_SENSE_MAX_MM : CLI_SENSE_MIN_MM));
+                LAM_NUM(ext * mm), big ? "larger" : "smaller", LAM_NUM(big ? CLI_SENSE_MAX_MM : CLI_SENSE_MIN_MM),
+                fix[0] == 'i' ? 'I' : fix[0], fix + 1);
         n++;
     }
     if (po) {

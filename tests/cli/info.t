@@ -77,10 +77,22 @@ is "$RC" 2 "unknown option: usage error"
 run "$LAMINA" frobnicate
 is "$RC" 2 "unknown command: usage error"
 
-# An open mesh is a warning, not an error.
+# An open mesh is a warning, not an error (--no-repair: as the file has it).
 head -n 71 "$M/thesis_cube_ascii.stl" >"$TMP/open.stl"; echo "endsolid" >>"$TMP/open.stl"
-run "$LAMINA" info --json "$TMP/open.stl"
+run "$LAMINA" info --json --no-repair "$TMP/open.stl"
 is "$RC" 0 "open mesh: exit 0"
 like "$ERR" 'warning: .*open' "open mesh: warning on stderr"
 is "$(j .closed)" false "open mesh: closed is false"
+is "$(j .repair.ran)" false "open mesh: repair off"
+# Repaired (the default): the 10 facets of the file (12 less 2, a face of
+# the cube) are closed by one hole of 4 edges filled with 2 triangles.
+run "$LAMINA" info --json "$TMP/open.stl"
+is "$RC" 0 "repaired: exit 0"
+like "$ERR" 'repaired: filled 1 hole \(4 boundary edges\)' "repaired: said on stderr"
+is "$(j .closed)" true "repaired: closed"
+is "$(j '.repair.holes, .repair.hole_edges, .repair.fill_triangles, .triangles')" "$(printf '1\n4\n2\n12')" \
+    "repaired: the counts in the JSON"
+is "$(j .volume)" 8 "repaired: the cube's volume"
+run "$LAMINA" info "$TMP/open.stl"
+like "$OUT" '^repair +filled 1 hole \(4 boundary edges\)$' "repaired: the text report's line"
 done_testing

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The man pages' examples (man/*.in, .EX blocks) do what they say: every
-# `lamina slice|check|info|machines|validate|join` line runs (exit 0; 3 is
+# `lamina slice|check|info|machines|validate|join|repair` line runs (exit 0; 3 is
 # check's "violations found") on stand-in parts, and in every slice example
 # each profile value given (-s KEY=VALUE or an option short for one, as
 # `lamina slice --help` lists them) changes the program: an example may not
@@ -23,7 +23,7 @@ for page in "$ROOT"/man/*.in; do
         # roff to text: \- is -, \(aq is '
         line=${line//\\-/-}
         case "$line" in
-            "lamina slice "* | "lamina check "* | "lamina info "* | "lamina machines"* | "lamina validate "* | "lamina join "*) ;;
+            "lamina slice "* | "lamina check "* | "lamina info "* | "lamina machines"* | "lamina validate "* | "lamina join "* | "lamina repair "*) ;;
             *) continue ;;
         esac
         case "$line" in *"|"* | *'$'* | *"\\"*) continue ;; esac

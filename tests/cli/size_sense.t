@@ -27,7 +27,7 @@ is "$RC.$ERR" "0." "a 2 mm cube in 4 layers: no warning"
 # 3000 units in a mm profile: 3 m
 run "$LAMINA" slice "$TMP/big.ug" -m sls-contours -w 500 -o "$TMP/big.sls"
 is "$RC" 0 "a 3000 mm part: the run goes on"
-like "$ERR" "^lamina: warning: .*big\.ug: the model is 3000 across \(x 3000, y 3000, z 3000\) and sls-contours's units are mm: 3000 mm, larger than 2000 mm; was it drawn in another unit\?$" \
+like "$ERR" "^lamina: warning: .*big\.ug: the model is 3000 across \(x 3000, y 3000, z 3000\) and sls-contours's units are mm: 3000 mm, larger than 2000 mm; was it drawn in another unit\? If it was drawn in micrometres, --units um makes it 3 mm$" \
     "... with a warning that gives the extent, the unit and the bound"
 is "$(grep -c '^contour' "$TMP/big.sls")" 6 "... and writes its program: 3000 / 500 = 6 layers"
 run "$LAMINA" slice "$TMP/big.ug" -m creol-ladrp -w 500 -o "$TMP/big.nc"
@@ -43,7 +43,7 @@ like "$ERR" "^lamina: warning: .*big\.ug: the model is 3000 across" "... and val
 # 0.2 units: 0.2 mm in a mm profile, 2 mm in a cm one
 run "$LAMINA" slice "$TMP/tiny.ug" -m sls-contours -w 0.05 -o "$TMP/tiny.sls"
 is "$RC" 0 "a 0.2 mm part: the run goes on"
-like "$ERR" "^lamina: warning: .*tiny\.ug: the model is 0\.2 across \(x 0\.2, y 0\.2, z 0\.2\) and sls-contours's units are mm: 0\.2 mm, smaller than 0\.5 mm; was it drawn in another unit\?$" \
+like "$ERR" "^lamina: warning: .*tiny\.ug: the model is 0\.2 across \(x 0\.2, y 0\.2, z 0\.2\) and sls-contours's units are mm: 0\.2 mm, smaller than 0\.5 mm; was it drawn in another unit\? If it was drawn in metres, --units m makes it 200 mm$" \
     "... with a warning: smaller than 0.5 mm"
 run "$LAMINA" slice "$TMP/tiny.ug" -m creol-ladrp -w 0.05 -o "$TMP/tiny.nc"
 ok "$(grep -q warning <<<"$ERR"; [ $? = 1 ]; echo $?)" "0.2 cm is 2 mm: no warning"

@@ -60,27 +60,36 @@ usage --cut top
 usage --bogus
 ok "$([ ! -e "$TMP/u.sls" ]; echo $?)" "usage errors write no output file"
 
-# An open mesh: a cube without its x=+1 side. Default gap fails (exit 1,
-# no output file); a larger gap closes it and says so; --allow-open drops it.
+# An open mesh: a cube without its x=+1 side. Repaired on load (the
+# default), the side is filled and the cube slices as the closed one does.
+# With --no-repair: the default gap fails (exit 1, no output file); a
+# larger gap closes it and says so; --allow-open drops it.
 awk 'BEGIN{skip=0} /facet normal 1 0 0/{skip=7} skip>0{skip--; next} {print}' "$M/thesis_cube_ascii.stl" >"$TMP/open.stl"
-run "$LAMINA" info --json "$TMP/open.stl"
+run "$LAMINA" info --json --no-repair "$TMP/open.stl"
 is "$(jq .boundary_edges <<<"$OUT")" 4 "the open cube has 4 boundary edges"
 run "$LAMINA" slice "$TMP/open.stl" -w 0.5 -o "$TMP/open.sls"
+is "$RC" 0 "repaired on load: exit 0"
+like "$ERR" 'repaired: filled 1 hole \(4 boundary edges\)' "... and says what it filled"
+"$LAMINA" slice "$M/thesis_cube_ascii.stl" -w 0.5 -o "$TMP/closed.sls" 2>/dev/null
+cmp -s "$TMP/open.sls" "$TMP/closed.sls"
+ok $? "... into the closed cube's program"
+rm -f "$TMP/open.sls"
+run "$LAMINA" slice --no-repair "$TMP/open.stl" -w 0.5 -o "$TMP/open.sls"
 is "$RC" 1 "open outlines: exit 1"
 like "$ERR" 'layer 1 .*open outline from \(1, 1\) to \(1, -1\)' "open outline reported with layer and position"
 # the default gap is 1/2000 of the diagonal of the 2 x 2 x 2 box: 0.00173205
 like "$ERR" 'stayed open \(gap tolerance 0.00173205\)' "the automatic gap tolerance is reported"
 ok "$([ ! -e "$TMP/open.sls" ]; echo $?)" "failed run leaves no output file"
-run "$LAMINA" slice "$TMP/open.stl" -w 0.5 --gap 2.5 -o "$TMP/open.sls"
+run "$LAMINA" slice --no-repair "$TMP/open.stl" -w 0.5 --gap 2.5 -o "$TMP/open.sls"
 is "$RC" 0 "--gap 2.5 closes the gap"
 like "$ERR" 'layer 1 .*closed 1 gap, largest 2 \(gap tolerance 2.5\)' "gap closing reported per layer, with the tolerance"
-run "$LAMINA" slice "$TMP/open.stl" -w 0.5 --gap auto -o "$TMP/open.sls"
+run "$LAMINA" slice --no-repair "$TMP/open.stl" -w 0.5 --gap auto -o "$TMP/open.sls"
 is "$RC" 1 "--gap auto: still open"
 like "$ERR" 'stayed open \(gap tolerance 0.00173205\)' "--gap auto: the default tolerance"
 usage --gap -1
 usage --gap big
 is "$(grep -c '^loop 4' "$TMP/open.sls")" 4 "closed outlines are 4-point squares"
-run "$LAMINA" slice "$TMP/open.stl" -w 0.5 --allow-open -o "$TMP/open2.sls"
+run "$LAMINA" slice --no-repair "$TMP/open.stl" -w 0.5 --allow-open -o "$TMP/open2.sls"
 is "$RC" 0 "--allow-open: exit 0"
 like "$ERR" 'dropped' "--allow-open says what it dropped"
 
