@@ -29,9 +29,14 @@ for c in sphere_holes torus_holes cube_open sphere_flipped sphere_flipped_most t
     run "$LAMINA" info --json --no-repair "$m"
     is "$(jq -c '[.boundary_edges, has("repair") and (.repair.ran // false)]' <<<"$OUT")" \
         "[$(want $c hole_edges),false]" "$c: info --no-repair: the open edges as in the file, no repair"
-    if [ "$(want $c hole_edges)" != 0 ]; then
+    if [ $c = torus_crack ]; then
+        # cracks of 5e-8 are within the 2D gap closing of each layer
         run "$LAMINA" slice "$m" --no-repair -w "$(want $c 'widths.z')" -o "$TMP/x.sls"
-        like "$RC $ERR" '^1 .*stayed open' "$c: slice --no-repair fails on the open outlines (the test can fail)"
+        like "$RC $ERR" '\A0 (?s:.*)^lamina: .*: layer \d+ .*: closed \d+ gaps, largest [0-9.e-]+ ' \
+            "$c: slice --no-repair sees the cracks (closes them per layer as gaps)"
+    elif [ "$(want $c hole_edges)" != 0 ]; then
+        run "$LAMINA" slice "$m" --no-repair -w "$(want $c 'widths.z')" -o "$TMP/x.sls"
+        like "$RC $ERR" '\A1 (?s:.*)^lamina: .*: \d+ outlines? stayed open' "$c: slice --no-repair fails on the open outlines (the test can fail)"
     fi
 
     # ---- sliced with repair along three axes: areas against the original
@@ -39,8 +44,9 @@ for c in sphere_holes torus_holes cube_open sphere_flipped sphere_flipped_most t
         w=$(want $c "widths[\"$ax\"]")
         run "$LAMINA" slice "$m" -a "$ax" -w "$w" --json "$TMP/$c.json" -o "$TMP/$c.sls"
         is "$RC" 0 "$c along $ax (-w $w): exit 0"
-        ok "$(grep -q 'stayed open' <<<"$ERR"; [ $? -ne 0 ]; echo $?)" "$c along $ax: no outline stayed open"
+        ok "$(grep -Eq 'stayed open|could not be closed' <<<"$ERR"; [ $? -ne 0 ]; echo $?)" "$c along $ax: no outline stayed open"
         [ "$RC" = 0 ] || echo "$ERR" | head -3 | sed 's/^/# /'
+        ok "$(grep -Eq 'closed [0-9]+ gaps?' <<<"$ERR"; [ $? -ne 0 ]; echo $?)" "$c along $ax: no gap left for the layers to close"
         run "${OM[@]}" check "$closed" "$TMP/$c.json" --removed "$removed"
         is "$RC" 0 "$c along $ax: every layer's net area = the closed original's section (1% or the crossed holes' area)"
         echo "$OUT" | sed 's/^\([^#]\)/# \1/' | tail -6
@@ -48,7 +54,10 @@ for c in sphere_holes torus_holes cube_open sphere_flipped sphere_flipped_most t
     # the run's JSON says what repair did, as info does
     run "$LAMINA" info --json "$m"
     rep=$(jq -c '.repair' <<<"$OUT")
-    is "$(jq -c '.job.repair' "$TMP/$c.json")" "$(jq -c 'del(.ran)' <<<"$rep")" "$c: the run's job.repair = info's repair"
+    # (info has keys of its own: ran, crossings_unknown)
+    job=$(jq -c '.job.repair' "$TMP/$c.json")
+    is "$job" "$(jq -c --argjson j "$job" 'with_entries(select(.key as $k | $j | has($k)))' <<<"$rep")" \
+        "$c: the run's job.repair = info's repair"
 
     # ---- the repair's counts against what the generator did
     is "$(jq -c '[.ran, .holes_left, .boundary_edges, .nonmanifold_edges]' <<<"$rep")" \
