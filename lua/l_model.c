@@ -1,6 +1,7 @@
 /* lamina.model: a loaded solid (lamina.load). Fields are what `lamina info`
  * reports; methods give the bounding box, shells and triangles, and slice
  * it (model:slice lives in l_layer.c). */
+#include "repair.h"
 #include "l_common.h"
 
 #include "xform.h"
@@ -230,6 +231,22 @@ static int m_len(lua_State *L)
     return 1;
 }
 
+/* model.repair: what repair on load did (repair.h's rows, and ran). */
+static void push_repair(lua_State *L, const lam_repair_report *r)
+{
+    lua_createtable(L, 0, 20);
+    lua_pushboolean(L, r->ran);
+    lua_setfield(L, -2, "ran");
+#define COUNT(f) lua_pushinteger(L, (lua_Integer)r->f), lua_setfield(L, -2, #f);
+    LAM_REPAIR_COUNTS(COUNT)
+#undef COUNT
+#define MEASURE(f) lua_pushnumber(L, r->f), lua_setfield(L, -2, #f);
+    LAM_REPAIR_MEASURES(MEASURE)
+#undef MEASURE
+    lua_pushboolean(L, r->crossings_unknown);
+    lua_setfield(L, -2, "crossings_unknown");
+}
+
 static int m_fields(lua_State *L)
 {
     const lam_model *m = lam_lua_checkmodel(L, 1)->m;
@@ -251,6 +268,7 @@ static int m_fields(lua_State *L)
     else if (strcmp(k, "area") == 0) lua_pushnumber(L, s->area);
     else if (strcmp(k, "volume") == 0) lua_pushnumber(L, s->volume);
     else if (strcmp(k, "closed") == 0) lua_pushboolean(L, s->boundary_edges == 0);
+    else if (strcmp(k, "repair") == 0) push_repair(L, &m->repair);
     else lua_pushnil(L);
     return 1;
 }

@@ -113,15 +113,29 @@ size_t lam_lua_mem_reclaim(lua_State *L, size_t want)
     return lam_lua_mem_room(L);
 }
 
+/* A charge must leave this much room for the Lua objects that carry and
+ * follow it (a userdata, a table slot): otherwise a recipe that fills its
+ * memory with lamina's objects fails at some small Lua allocation just
+ * after, with Lua's bare "not enough memory", instead of at the object
+ * that took the room, named (which of the two came first depended on a
+ * few bytes of struct size). */
+static size_t headroom(const lam_sandbox *sb)
+{
+    size_t h = sb->mem_limit / 16;
+    return h < 65536 ? h : 65536;
+}
+
 int lam_lua_charge(lua_State *L, size_t *slot, size_t bytes)
 {
     lam_sandbox *sb = lam_lua_sandbox_of(L);
     if (!sb || !sb->mem_limit || !bytes) return 1;
+    size_t need = bytes + headroom(sb);
+    if (need < bytes) return 0;
     /* objects that are garbage hold memory until their finalizers run,
      * which Lua's emergency collection does not do: a full collection
      * first, as Lua's allocator collects before it gives up */
-    if (!fits(L, bytes)) lua_gc(L, LUA_GCCOLLECT);
-    if (!fits(L, bytes)) return 0;
+    if (!fits(L, need)) lua_gc(L, LUA_GCCOLLECT);
+    if (!fits(L, need)) return 0;
     sb->obj_used += bytes;
     *slot += bytes;
     return 1;

@@ -188,7 +188,7 @@ open(out, "w").write("\n".join(res))
 EOF
 for j in 1 2 3 8; do
     rm -f "$TMP/open.out"
-    run "$LAMINA" slice "$TMP/open.stl" -w 0.2 -j $j -o "$TMP/open.out"
+    run "$LAMINA" slice --no-repair "$TMP/open.stl" -w 0.2 -j $j -o "$TMP/open.out"
     echo "$RC" >"$TMP/open.rc$j"
     printf '%s' "$ERR" >"$TMP/open.err$j"
     [ ! -e "$TMP/open.out" ]
@@ -203,7 +203,9 @@ for j in 2 3 8; do
     ok $? "open outline, -j $j: the same messages as -j 1"
 done
 # with --allow-open the layers are written without those outlines, the same for every N
-same open-allowed "$TMP/open.stl" -w 0.2 --allow-open
+same open-allowed "$TMP/open.stl" -w 0.2 --allow-open --no-repair
+# repaired on load (the default) the hole is filled: the same program for every N
+same open-repaired "$TMP/open.stl" -w 0.2
 
 # the binary CLI writer (a plugin) formats layers on the workers too; one
 # refusing a middle layer (a square bipyramid 2e39 across: from layer 4 on
