@@ -161,6 +161,45 @@ bench_threads() {
 }
 bench_threads "$RUNS"
 
+# ---- a scan as users have it (issue 24): the Stanford bunny ----------------
+# tests/models/bunny: 69,451 triangles open at the bottom, in metres, sliced
+# as a user would (--units m, 0.5 mm layers: 242 along z), repaired on load;
+# next to a closed UV sphere of as many triangles (spheregen) sliced into as
+# many layers (binary STL), and the bunny as `lamina repair` wrote it
+# (closed; OBJ like the scan, so the reading costs the same) sliced with
+# --no-repair: what repair costs on top of reading and slicing.
+bench_bunny() {
+    local runs=$1 bunny="$work/bun_zipper.obj" sph="$work/sphere69k.stl" fixed="$work/bunny.repaired.obj"
+    [ -s "$bunny" ] || gunzip -c "$here/../models/bunny/bun_zipper.obj.gz" >"$bunny"
+    [ "$work/spheregen" -nt "$here/spheregen.c" ] || cc -O2 -o "$work/spheregen" "$here/spheregen.c" -lm
+    [ -s "$sph" ] || "$work/spheregen" 69451 "$sph" >/dev/null
+    "$LAMINA" repair "$bunny" -o "$fixed" 2>"$work/bunny.err" || { echo "bench: lamina repair failed" >&2; cat "$work/bunny.err" >&2; exit 1; }
+    local sph_tris=$(( ($(stat -c %s "$sph") - 84) / 50 ))
+    # the sphere (radius 20) at the bunny's layer count
+    local layers sw
+    "$LAMINA" slice "$bunny" --units m -w 0.5 --json "$work/bunny.json" -o "$work/bunny.sls" 2>"$work/bunny.err"
+    layers=$(grep -o '"layers": [0-9]*' "$work/bunny.json" | head -1 | grep -o '[0-9]*$')
+    sw=$(awk -v n="$layers" 'BEGIN { printf "%.6g", 40 / n }')
+    : >"$work/bu.txt"; : >"$work/bs.txt"; : >"$work/bf.txt"
+    for ((r = 0; r < runs; r++)); do
+        fresh "$work/bunny.sls" "$work/sphere69k.sls" "$work/bunny.fixed.sls"
+        measure "$LAMINA" slice "$bunny" --units m -w 0.5 -o "$work/bunny.sls" >>"$work/bu.txt"
+        measure "$LAMINA" slice "$sph" -w "$sw" -o "$work/sphere69k.sls" >>"$work/bs.txt"
+        measure "$LAMINA" slice "$fixed" --units m --no-repair -w 0.5 -o "$work/bunny.fixed.sls" >>"$work/bf.txt"
+    done
+    local bt bm st sm ft
+    bt=$(cut -d' ' -f1 "$work/bu.txt" | median); bm=$(cut -d' ' -f2 "$work/bu.txt" | median)
+    st=$(cut -d' ' -f1 "$work/bs.txt" | median); sm=$(cut -d' ' -f2 "$work/bs.txt" | median)
+    ft=$(cut -d' ' -f1 "$work/bf.txt" | median)
+    awk -v bt="$bt" -v bm="$bm" -v st="$st" -v sm="$sm" -v ft="$ft" -v n="$layers" -v s="$sph_tris" -v sw="$sw" 'BEGIN {
+        printf "bunny scan (69451 triangles, open, --units m -w 0.5, repaired on load, %d layers): %.3f s, %.1f MB peak\n", n, bt, bm / 1024
+        printf "  closed sphere (%d triangles, -w %s, %d layers): %.3f s, %.1f MB peak (bunny / sphere %.2fx)\n", s, sw, n, st, sm / 1024, bt / (st > 0 ? st : 0.001)
+        printf "  the bunny as lamina repair wrote it (closed OBJ), --no-repair: %.3f s (repair on load adds %.3f s)\n", ft, bt - ft }'
+    sed -n 's/^lamina: [^:]*: repaired: /  repair: /p' "$work/bunny.err"
+    echo "(medians of $runs alternating runs)"
+}
+bench_bunny "$RUNS"
+
 # Scaling (time per triangle, time per layer, the 5M-triangle run's memory):
 # its own script, tests/bench/scaling.sh.
 bash "$here/scaling.sh" "$LAMINA"
