@@ -301,7 +301,7 @@ static int fill_once(lam_model *md, lam_fill_plan *plan, lam_repair_report *r, u
     rc = crossings(*out, r, crossed, err);
     /* the build keeps the triangles' order (nothing in a fill collapses):
      * the plan's ranges are the model's */
-    int same = (*out)->mesh.ntris == plan->first[plan->nloops];
+    int same = plan->nloops && (*out)->mesh.ntris == plan->first[plan->nloops]; /* no loop closed: no plan */
     for (size_t k = 0; k < plan->nloops; k++) {
         bad[k] = 0;
         for (size_t t = plan->first[k]; same && t < plan->first[k + 1] && !bad[k]; t++) bad[k] = crossed[t];
@@ -347,13 +347,20 @@ static int fill_checked(lam_model *md, lam_repair_report *r, lam_model **out, la
     return rc;
 }
 
+/* Whether the file's facet order says which side is out: STL's and OBJ's
+ * does (counter-clockwise seen from outside); Unigrafix's does not (SPEC
+ * 2.1: the thesis's own sample mixes both), so its facets turned to agree
+ * are the import's ordinary work, not a repair to report. */
+static int winding_means(const char *format) { return !format || strcmp(format, "unigrafix") != 0; }
+
 int lam_model_repair(lam_model **mdp, const lam_repair_opts *o, lam_error *err)
 {
     lam_model *md = *mdp;
     lam_repair_report r;
     memset(&r, 0, sizeof r);
     r.ran = 1;
-    r.flipped = md->stats.flipped_tris;
+    int winding = winding_means(md->format);
+    r.flipped = winding ? md->stats.flipped_tris : 0;
     if (md->stats.boundary_edges == 0 && md->stats.nonmanifold_edges == 0) {
         md->repair = r;
         return LAM_OK;
@@ -376,7 +383,7 @@ int lam_model_repair(lam_model **mdp, const lam_repair_opts *o, lam_error *err)
     if (rc) return rc;
     /* flips the second build made count too: a facet the weld joined to
      * its shell the other way round */
-    r.flipped += md->stats.flipped_tris;
+    r.flipped += winding ? md->stats.flipped_tris : 0;
     count_left(md, &r);
     md->repair = r;
     return LAM_OK;

@@ -35,8 +35,9 @@
  *      own (self-intersections: a fill through another part of the
  *      surface, or the file's own; Embree segment queries, rays.h).
  * Facets the file wound against the majority of their shell (which the
- * model build turns to agree) are counted in `flipped`, for every model
- * repaired; a shell wound inward throughout is turned outward silently,
+ * model build turns to agree) are counted in `flipped`, for every STL and
+ * OBJ model repaired (a Unigrafix file's winding means nothing, SPEC 2.1:
+ * not counted); a shell wound inward throughout is turned outward silently,
  * as the model build always has (SPEC: the file's winding is never
  * trusted).
  *
