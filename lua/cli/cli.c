@@ -1,11 +1,9 @@
 #include "cli.h"
-#include "cli_args.h"
 
 #include "dialect.h"
 #include "fmt.h"
 #include "model.h"
 #include "pool.h"
-#include "size_sense.h"
 #include "svg.h"
 #include "writer.h"
 
@@ -64,27 +62,6 @@ void cli_json_number(FILE *f, double x)
     char buf[64];
     if (!isfinite(x)) fputs("null", f);
     else fputs(cli_num(buf, sizeof buf, x), f);
-}
-
-int cli_load_model(const args *a, const lam_profile *machine, lam_model **m, lam_error *err)
-{
-    const char *path = a->path;
-    /* the units are a scale known once the machine is: the model's unit
-     * over the machine's (no machine: mm), before --scale's factors */
-    lam_xform x = a->xform;
-    double machine_mm = machine ? lam_profile_unit_mm(machine) : 1;
-    if (a->units && !(machine_mm > 0))
-        return lam_error_set(err, LAM_EUSAGE, NULL, 0, 0, "--units %s: the machine's units (%s) are unknown",
-                             a->units ? a->units : "", machine && machine->units ? machine->units : "");
-    if (a->units) lam_xform_scale_by(&x, lam_unit_mm(a->units) / machine_mm);
-    /* profiles have no plate yet: --place plate centres on the origin */
-    x.plate_centre[0] = x.plate_centre[1] = 0;
-    cli_size_sense_loaded(a->units ? lam_unit_mm(a->units) : 0);
-    lam_load_opts o = { .threads = a->threads ? a->threads : lam_default_threads(NULL),
-                        .no_repair = a->no_repair,
-                        .xform = &x };
-    *m = NULL;
-    return strcmp(path, "-") ? lam_model_load_opts(path, &o, m, err) : lam_model_load_stdin_opts(&o, m, err);
 }
 
 int cli_fail_cmd(const char *cmd, const lam_error *err)

@@ -26,14 +26,7 @@ const char *cli_num(char *buf, size_t size, double x);
 /* Load the model a command names: a file, or standard input for "-" (its
  * messages then name it "<stdin>"), read with `threads` threads (-j; 0:
  * LAMINA_THREADS, else the online processors). */
-struct lam_model;
-struct args;
-struct lam_profile;
-/* Load the command's MODEL (a->path, "-": standard input) with its load
- * options: -j threads, --no-repair, and --units/--scale/--rotate/
- * --translate/--place converted for `machine` (its units and plate; NULL:
- * millimetres, no plate). */
-int cli_load_model(const struct args *a, const struct lam_profile *machine, struct lam_model **m, lam_error *err);
+
 
 /* A failure of a command: a usage error (LAM_EUSAGE: options that cannot
  * go together, an output that would replace an input) as cli_usage says

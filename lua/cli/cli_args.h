@@ -47,7 +47,7 @@ typedef struct cli_set {
     char shown[160];         /* the option as given, for messages: "--set gap=x", "-w 0" */
 } cli_set;
 
-typedef struct args { /* struct args: cli.h names it */
+typedef struct args {
     const char *path, *out, *svg, *machine, *show, *program;
     const char *json_out;    /* slice --json FILE */
     const char *html;        /* slice --html FILE */
@@ -92,6 +92,12 @@ void cli_args_free(args *a);
  * layers, and po (when not NULL) its planning values. Returns EXIT_OK with
  * *out to free, or the exit status after printing the problem. */
 int cli_profile(const char *cmd, args *a, lam_profile **out, lam_plan_opts *po);
+
+/* Load the command's MODEL (a->path, "-": standard input) with its load
+ * options: -j threads, --no-repair, and --units/--scale/--rotate/
+ * --translate/--place converted for `machine` (its units and plate; NULL:
+ * millimetres, no plate). (cli_load.c) */
+int cli_load_model(const args *a, const lam_profile *machine, struct lam_model **m, lam_error *err);
 
 /* The profile values of the command line applied to p (machines --show). */
 int cli_apply_sets(const char *cmd, const args *a, lam_profile *p);

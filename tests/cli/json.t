@@ -85,7 +85,7 @@ run "$LAMINA" slice "$M/thesis_cube_hole.ug" -w 0.25 --json "$TMP/nodir/x.json" 
 like "$RC $ERR" "(?s)^1 lamina: .*nodir/x.json" "--json into a missing directory: exit 1"
 [ ! -e "$TMP/x.sls" ]; ok $? "... and no program is left"
 run "$LAMINA" slice "$M/thesis_cube_hole.ug" -w 0.25 --json "$M/thesis_cube_hole.ug"
-like "$RC $ERR" "(?s)^2 lamina.*^lamina slice: --json .* is an input of this command" "--json onto the model: refused"
+like "$RC $ERR" "^2 lamina slice: --json .* is an input of this command" "--json onto the model: refused"
 
 # ---- read back: validate --program run.json -----------------------------------
 run "$LAMINA" validate "$TMP/torus.stl" --program "$TMP/d.json"

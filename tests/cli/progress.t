@@ -155,7 +155,7 @@ with open(sys.argv[1], "w") as f:
             f.write("facet normal 0 0 0\nouter loop\n" + "".join("vertex %g %g %g\n" % p for p in t) + "endloop\nendfacet\n")
     f.write("endsolid t\n")
 PY
-start open env LAMINA_PROGRESS_INTERVAL=0 "$LAMINA" slice open.stl -w 0.1 -o open.sls --allow-open
+start open env LAMINA_PROGRESS_INTERVAL=0 "$LAMINA" slice open.stl -w 0.1 -o open.sls --allow-open --no-repair
 finish open
 is "$STATUS" 0 "open outlines with --allow-open: succeeds"
 is "$(printf '%s\n' "$SCREEN" | grep -c 'could not be closed')" 20 "... the first 20 open outlines reported"

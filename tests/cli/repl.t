@@ -157,7 +157,7 @@ prompt r
 
 # help(x): the API.md entry of a function, found by identity
 type_line r 'help(lamina.load)'
-wait_for r '^lamina\.load\(path\) → model \| nil, message$' && wait_for r '^Load a model: Unigrafix'
+wait_for r '^lamina\.load\(path \[, options\]\) → model \| nil, message$' && wait_for r '^Load a model: Unigrafix'
 rc=$?; ok $rc "help(lamina.load) prints its entry of lua/API.md"; show_on_failure $rc r
 prompt r
 type_line r 'help(m)'
