@@ -83,7 +83,26 @@ struct lam_rays {
 typedef struct ray_ctx {
     struct RTCIntersectContext rtc;
     lam_rays *v;
+    int cross;              /* a crossing query (lam_rays_crossed_edges): */
+    uint32_t ea, eb;        /* the edge's ends, whose triangles do not count */
+    size_t calls;           /* filter calls: the query's work */
 } ray_ctx;
+
+static int touches(const lam_mesh *m, uint32_t t, uint32_t a, uint32_t b);
+
+/* The crossing query's filter: a hit on a triangle of the edge's ends is
+ * rejected, any other accepted, so that Embree keeps only the nearest and
+ * looks no further than it (a stack of overlapping facets would otherwise
+ * give each edge thousands of hits to gather). */
+static void first_cross(const struct RTCFilterFunctionNArguments *a, ray_ctx *c)
+{
+    const unsigned *hu = (const unsigned *)a->hit;
+    for (unsigned i = 0; i < a->N; i++) {
+        if (!a->valid[i]) continue;
+        c->calls++;
+        if (touches(&c->v->m->mesh, hu[5 * a->N + i], c->ea, c->eb)) a->valid[i] = 0;
+    }
+}
 
 static int nomem(lam_error *err) { return lam_error_nomem(err, "while validating"); }
 
@@ -116,6 +135,10 @@ static void on_rtc_error(void *user, enum RTCError code, const char *str)
 static void gather(const struct RTCFilterFunctionNArguments *a)
 {
     ray_ctx *c = (ray_ctx *)a->context;
+    if (c->cross) {
+        first_cross(a, c);
+        return;
+    }
     lam_rays *v = c->v;
     const unsigned N = a->N;
     const float *ray = (const float *)a->ray;
@@ -395,6 +418,7 @@ static int trace_to(lam_rays *v, const float o[3], const float d[3], float tfar)
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
     ray_ctx c;
+    memset(&c, 0, sizeof c);
     rtcInitIntersectContext(&c.rtc);
     c.v = v;
     v->nhits = 0;
@@ -415,31 +439,87 @@ static int touches(const lam_mesh *m, uint32_t t, uint32_t a, uint32_t b)
     return 0;
 }
 
-int lam_rays_crossed_edges(lam_rays *v, size_t *count, unsigned char *crossed, lam_error *err)
+/* The work a crossing count may take (filter calls, edges cast): past it
+ * the count stops and says it is incomplete. */
+#define CROSS_BUDGET 50000000u
+#define CROSS_EDGES 2000000u
+
+/* The box of the triangles from `first` on, grown by a thousandth of the
+ * model: the edges that can cross them lie in it. */
+static void fill_box(const lam_model *md, size_t first, double box[6])
+{
+    const lam_mesh *m = &md->mesh;
+    for (int k = 0; k < 3; k++) box[k] = INFINITY, box[k + 3] = -INFINITY;
+    for (size_t i = 3 * first; i < 3 * m->ntris; i++)
+        for (int k = 0; k < 3; k++) {
+            double x = m->xyz[3 * (size_t)m->tris[i] + k];
+            if (x < box[k]) box[k] = x;
+            if (x > box[k + 3]) box[k + 3] = x;
+        }
+    const double *b = md->stats.bbox;
+    double g = 1e-3 * fmax(b[3] - b[0], fmax(b[4] - b[1], b[5] - b[2]));
+    for (int k = 0; k < 3; k++) box[k] -= g, box[k + 3] += g;
+}
+
+/* Is edge e one to cast: an edge of a triangle from `first` on, or one
+ * whose box meets the box of those triangles? */
+static int candidate(const lam_model *md, size_t e, size_t first, const double box[6])
+{
+    for (uint32_t j = md->edges.first[e]; j < md->edges.first[e + 1]; j++)
+        if (md->edges.tris[j] >= first) return 1;
+    const double *p = md->mesh.xyz + 3 * (size_t)md->edges.v[2 * e], *q = md->mesh.xyz + 3 * (size_t)md->edges.v[2 * e + 1];
+    for (int k = 0; k < 3; k++)
+        if (fmax(p[k], q[k]) < box[k] || fmin(p[k], q[k]) > box[k + 3]) return 0;
+    return 1;
+}
+
+int lam_rays_crossed_edges(lam_rays *v, size_t first, size_t *count, unsigned char *crossed, lam_error *err)
 {
     const lam_model *md = v->m;
     const lam_mesh *m = &md->mesh;
     *count = 0;
+    if (first >= m->ntris) return LAM_OK;
+    double box[6];
+    fill_box(md, first, box);
+    ray_ctx c;
+    memset(&c, 0, sizeof c);
+    c.v = v;
+    c.cross = 1;
+    size_t cast = 0;
     for (size_t e = 0; e < md->edges.n; e++) {
-        uint32_t a = md->edges.v[2 * e], b = md->edges.v[2 * e + 1];
+        if (!candidate(md, e, first, box)) continue;
+        if (c.calls > CROSS_BUDGET || ++cast > CROSS_EDGES)
+            return lam_error_set(err, LAM_ELIMIT, NULL, 0, 0, "counting self-intersections: past the budget");
+        c.ea = md->edges.v[2 * e], c.eb = md->edges.v[2 * e + 1];
+        struct RTCRayHit rh;
+        memset(&rh, 0, sizeof rh);
         float o[3], d[3];
         for (int j = 0; j < 3; j++) {
-            o[j] = (float)((m->xyz[3 * (size_t)a + j] - v->center[j]) / v->unit);
-            d[j] = (float)((m->xyz[3 * (size_t)b + j] - v->center[j]) / v->unit) - o[j];
+            o[j] = (float)((m->xyz[3 * (size_t)c.ea + j] - v->center[j]) / v->unit);
+            d[j] = (float)((m->xyz[3 * (size_t)c.eb + j] - v->center[j]) / v->unit) - o[j];
         }
-        /* the segment a -> b is t in [0, 1]; hits on the triangles at its
+        /* the segment a -> b is t in (0, 1); hits on the triangles at its
          * ends are theirs (they share a or b), any other is a crossing */
-        if (trace_to(v, o, d, 1.0f)) return nomem(err);
-        for (size_t i = 0; i < v->nhits; i++)
-            if (v->hits[i].t > 0 && v->hits[i].t < 1 && !touches(m, v->hits[i].prim, a, b)) {
-                (*count)++;
-                if (crossed) {
-                    crossed[v->hits[i].prim] = 1;
-                    for (uint32_t j = md->edges.first[e]; j < md->edges.first[e + 1]; j++)
-                        crossed[md->edges.tris[j]] = 1;
-                }
-                break;
-            }
+        rh.ray.org_x = o[0], rh.ray.org_y = o[1], rh.ray.org_z = o[2];
+        rh.ray.dir_x = d[0], rh.ray.dir_y = d[1], rh.ray.dir_z = d[2];
+        rh.ray.tnear = 0;
+        rh.ray.tfar = 1;
+        rh.ray.mask = UINT32_MAX;
+        rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+        rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+        rtcInitIntersectContext(&c.rtc);
+        rtcIntersect1(v->scene, &c.rtc, &rh);
+        v->st.rays++;
+        if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID || !(rh.ray.tfar > 0 && rh.ray.tfar < 1)) continue;
+        int filled = rh.hit.primID >= first;
+        for (uint32_t j = md->edges.first[e]; j < md->edges.first[e + 1] && !filled; j++)
+            filled = md->edges.tris[j] >= first;
+        if (!filled) continue; /* the file's own crossing: not what is counted */
+        (*count)++;
+        if (crossed) {
+            crossed[rh.hit.primID] = 1;
+            for (uint32_t j = md->edges.first[e]; j < md->edges.first[e + 1]; j++) crossed[md->edges.tris[j]] = 1;
+        }
     }
     return LAM_OK;
 }

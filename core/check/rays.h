@@ -108,14 +108,18 @@ const double *lam_rays_direction(size_t k);
 int lam_rays_cast(lam_rays *v, const double p[3], const double d[3], double tmin, double *t, uint32_t *tri,
                   lam_error *err);
 
-/* How many of the model's edges pass through a triangle that has neither
- * of their ends (the surface intersects itself there), in *count. One
- * segment query an edge, in float32 (rays.h): an edge that only grazes a
- * triangle within lam_rays_tolerance may count or not. crossed (may be
- * NULL; one byte a triangle, zeroed by the caller): set for the triangles
- * of each such edge and the triangle it passes through. Errors:
- * LAM_ENOMEM. */
-int lam_rays_crossed_edges(lam_rays *v, size_t *count, unsigned char *crossed, lam_error *err);
+/* How many edges pass through a triangle that has neither of their ends
+ * (the surface intersects itself there) where the edge or the triangle is
+ * one of the model's triangles from `first` on (a repair's fill: the
+ * file's own crossings are not searched, which on a stack of overlapping
+ * facets would cost each edge a walk past thousands of them), in *count.
+ * One segment query an edge near those triangles, in float32: an edge that
+ * only grazes a triangle within lam_rays_tolerance may count or not.
+ * crossed (may be NULL; one byte a triangle, zeroed by the caller): set
+ * for the triangles of each such edge and the triangle it passes through.
+ * Errors: LAM_ENOMEM, LAM_ELIMIT past a budget of work (fills by the
+ * million among overlapping facets): then *count is a part. */
+int lam_rays_crossed_edges(lam_rays *v, size_t first, size_t *count, unsigned char *crossed, lam_error *err);
 
 typedef struct lam_rays_stats {
     size_t points;      /* winding queries (including surface retries) */

@@ -65,9 +65,10 @@ typedef struct lam_repair_report {
     size_t holes_left;        /* loops not filled (see repair.h) */
     size_t boundary_edges;    /* open edges that remain */
     size_t nonmanifold_edges; /* edges with more than two facets that remain */
-    size_t crossing_edges;    /* edges through a facet not their own: self-intersections that
-                                 remain (counted when repair changed the model) */
-    int crossings_unknown;    /* 1 when they could not be counted (Embree could not be loaded) */
+    size_t crossing_edges;    /* edges through a facet not their own, the edge or the facet a
+                                 fill's: self-intersections the fills left */
+    int crossings_unknown;    /* 1 when they could not all be counted (Embree could not be
+                                 loaded, or overlapping facets by the thousand: a part) */
 } lam_repair_report;
 
 typedef struct lam_model {

@@ -228,22 +228,27 @@ static void count_left(const lam_model *md, lam_repair_report *r)
 }
 
 /* The self-intersections that remain, counted as the edges crossing a
- * facet (rays.h), and (crossed, may be NULL) the triangles involved.
+ * facet where one of the two is from `first` on (the fills; rays.h), and
+ * (crossed, may be NULL) the triangles involved.
  * Without Embree (it could not be loaded) the count is unknown and said
  * so; only running out of memory is an error. */
-static int crossings(const lam_model *md, lam_repair_report *r, unsigned char *crossed, lam_error *err)
+static int crossings(const lam_model *md, size_t first, lam_repair_report *r, unsigned char *crossed,
+                     lam_error *err)
 {
     lam_rays *v;
     lam_error e2;
     r->crossing_edges = 0;
+    if (first >= md->mesh.ntris) return LAM_OK; /* nothing filled: nothing to look for */
     int rc = lam_rays_new(md, &v, &e2);
     if (rc) {
         r->crossings_unknown = 1;
         return rc == LAM_ENOMEM ? lam_error_nomem(err, "repairing the model") : LAM_OK;
     }
-    rc = lam_rays_crossed_edges(v, &r->crossing_edges, crossed, err);
+    rc = lam_rays_crossed_edges(v, first, &r->crossing_edges, crossed, &e2);
     lam_rays_free(v);
-    return rc;
+    if (rc == LAM_ELIMIT) r->crossings_unknown = 1; /* a part counted: said, not an error */
+    else if (rc) return lam_error_nomem(err, "repairing the model");
+    return LAM_OK;
 }
 
 /* A copy of m's arrays (the filled mesh, built into a model while m is
@@ -298,7 +303,7 @@ static int fill_once(lam_model *md, lam_fill_plan *plan, lam_repair_report *r, u
         free(crossed);
         return lam_error_nomem(err, "repairing the model");
     }
-    rc = crossings(*out, r, crossed, err);
+    rc = crossings(*out, plan->nloops ? plan->first[0] : (*out)->mesh.ntris, r, crossed, err);
     /* the build keeps the triangles' order (nothing in a fill collapses):
      * the plan's ranges are the model's */
     int same = plan->nloops && (*out)->mesh.ntris == plan->first[plan->nloops]; /* no loop closed: no plan */
@@ -375,7 +380,6 @@ int lam_model_repair(lam_model **mdp, const lam_repair_opts *o, lam_error *err)
     md = *mdp;
     lam_model *filled = NULL;
     if (md->stats.boundary_edges) rc = fill_checked(md, &r, &filled, err);
-    else rc = crossings(md, &r, NULL, err);
     if (rc || filled) {
         lam_model_free(md);
         *mdp = md = filled;

@@ -32,8 +32,9 @@
  *      plane, then as a fan (at most two more fills of the model);
  *   4. the model is rebuilt again, and what remains is counted: open and
  *      non-manifold edges, and edges that pass through a facet not their
- *      own (self-intersections: a fill through another part of the
- *      surface, or the file's own; Embree segment queries, rays.h).
+ *      own where one of the two is a fill's (self-intersections a fill
+ *      made; Embree segment queries, rays.h; the file's own crossings are
+ *      not searched: --fill nonzero is what slices overlapping bodies).
  * Facets the file wound against the majority of their shell (which the
  * model build turns to agree) are counted in `flipped`, for every STL and
  * OBJ model repaired (a Unigrafix file's winding means nothing, SPEC 2.1:
