@@ -306,6 +306,8 @@ int lam_lua_validate(lua_State *L)
     vctx vc = { L, j, { 0 }, 0 };
     lam_validate_opts_init(&vc.vo);
     vc.vo.fill_nonzero = fill;
+    for (size_t i = 0; i < n; i++) /* the loss check's allowance for bridged gaps */
+        if (j->ls[i]->gap > vc.vo.gap) vc.vo.gap = j->ls[i]->gap;
     lam_lua_check_interrupt(L);
     int rc = lam_validate_layers(j->v, n, threads, n ? &j->frames[0] : NULL, list_layer, keep_check, &vc, &err);
     lam_rays_free(j->v);

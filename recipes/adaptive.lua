@@ -27,25 +27,14 @@ local adaptive = require "lamina.adaptive"
 local o, fail, die, need = args.parse(arg, {
   usage = "lamina run recipes/adaptive.lua [--cusp H] [--min W] [--max W] [--axis A]"
     .. " [--list] [--allow-open] [MODEL]"
-    .. " [--units U] [--scale F] [--rotate A:D] [--translate X,Y,Z] [--place plate] [--no-repair]",
-  options = { units = "", scale = "", rotate = "", translate = "", place = "", no_repair = false,
+    .. args.LOAD_USAGE,
+  options = args.with_load{
               cusp = 0.05, min = 0.02, max = 0.5, axis = "z", list = false, allow_open = false,
               model = args.beside(arg, "parts/sphere.obj") },
   positive = { "cusp", "min", "max" },
   positional = { "model" },
 })
--- the load options, as `lamina slice` takes them (docs/cli.md, "Units and
--- placement on load"); "" is an option not given. A bad value is a usage
--- error (exit 2), a file that does not load a message (exit 1).
-local function load(path, machine)
-  local function given(v) if v ~= "" then return v end end
-  local ok, model, err = pcall(lamina.load, path, {
-    units = given(o.units), scale = given(o.scale), rotate = given(o.rotate), translate = given(o.translate),
-    place = given(o.place), repair = not o.no_repair, machine = machine })
-  if not ok then fail("%s", tostring(model):match("%((.*)%)$") or tostring(model)) end
-  if not model then die("%s", err) end
-  return model
-end
+local function load(path, machine) return args.load(o, path, machine, fail, die) end
 if o.min > o.max then fail("--min (%g) is greater than --max (%g)", o.min, o.max) end
 local axis, why = axes.parse(o.axis)
 if not axis then fail("--axis: %s", why) end

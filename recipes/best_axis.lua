@@ -26,26 +26,15 @@ local axes = require "lamina.axes"
 local o, fail, die = args.parse(arg, {
   usage = "lamina run recipes/best_axis.lua [--width W] [--more] [--overhang-deg D]"
     .. " [--w-layers A] [--w-stair B] [--w-overhang C] [MODEL]"
-    .. " [--units U] [--scale F] [--rotate A:D] [--translate X,Y,Z] [--place plate] [--no-repair]",
-  options = { units = "", scale = "", rotate = "", translate = "", place = "", no_repair = false,
+    .. args.LOAD_USAGE,
+  options = args.with_load{
               width = 0.1, more = false, overhang_deg = 45,
               w_layers = 1, w_stair = 1, w_overhang = 1,
               model = args.beside(arg, "parts/thesis_cube_hole.ug") },
   positive = { "width" },
   positional = { "model" },
 })
--- the load options, as `lamina slice` takes them (docs/cli.md, "Units and
--- placement on load"); "" is an option not given. A bad value is a usage
--- error (exit 2), a file that does not load a message (exit 1).
-local function load(path, machine)
-  local function given(v) if v ~= "" then return v end end
-  local ok, model, err = pcall(lamina.load, path, {
-    units = given(o.units), scale = given(o.scale), rotate = given(o.rotate), translate = given(o.translate),
-    place = given(o.place), repair = not o.no_repair, machine = machine })
-  if not ok then fail("%s", tostring(model):match("%((.*)%)$") or tostring(model)) end
-  if not model then die("%s", err) end
-  return model
-end
+local function load(path, machine) return args.load(o, path, machine, fail, die) end
 for _, k in ipairs{ "w_layers", "w_stair", "w_overhang" } do
   if o[k] < 0 then fail("--%s must be 0 or more, got %g", k:gsub("_", "-"), o[k]) end
 end

@@ -17,25 +17,14 @@ local args = require "lamina.args"
 
 local o, fail, die, need = args.parse(arg, {
   usage = "lamina run recipes/default.lua [--out DIR] [--sls-width W] [MODEL]"
-    .. " [--units U] [--scale F] [--rotate A:D] [--translate X,Y,Z] [--place plate] [--no-repair]",
-  options = { units = "", scale = "", rotate = "", translate = "", place = "", no_repair = false,
+    .. args.LOAD_USAGE,
+  options = args.with_load{
               out = "out", sls_width = 0.25,
               model = args.beside(arg, "parts/thesis_cube_hole.ug") },
   positive = { "sls_width" },
   positional = { "model" },
 })
--- the load options, as `lamina slice` takes them (docs/cli.md, "Units and
--- placement on load"); "" is an option not given. A bad value is a usage
--- error (exit 2), a file that does not load a message (exit 1).
-local function load(path, machine)
-  local function given(v) if v ~= "" then return v end end
-  local ok, model, err = pcall(lamina.load, path, {
-    units = given(o.units), scale = given(o.scale), rotate = given(o.rotate), translate = given(o.translate),
-    place = given(o.place), repair = not o.no_repair, machine = machine })
-  if not ok then fail("%s", tostring(model):match("%((.*)%)$") or tostring(model)) end
-  if not model then die("%s", err) end
-  return model
-end
+local function load(path, machine) return args.load(o, path, machine, fail, die) end
 local model = load(o.model)
 local name = o.model:match("([^/]+)$"):gsub("%.[^.]*$", "")
 need(lamina.mkdir(o.out))

@@ -18,23 +18,12 @@ local args = require "lamina.args"
 
 local o, fail, die, need = args.parse(arg, {
   usage = "lamina run recipes/scan_orders.lua [--machine NAME] [--width W] [MODEL]"
-    .. " [--units U] [--scale F] [--rotate A:D] [--translate X,Y,Z] [--place plate] [--no-repair]",
-  options = { units = "", scale = "", rotate = "", translate = "", place = "", no_repair = false,
+    .. args.LOAD_USAGE,
+  options = args.with_load{
               machine = "creol-ladrp", width = 0, model = args.beside(arg, "parts/pillars.ug") },
   positional = { "model" },
 })
--- the load options, as `lamina slice` takes them (docs/cli.md, "Units and
--- placement on load"); "" is an option not given. A bad value is a usage
--- error (exit 2), a file that does not load a message (exit 1).
-local function load(path, machine)
-  local function given(v) if v ~= "" then return v end end
-  local ok, model, err = pcall(lamina.load, path, {
-    units = given(o.units), scale = given(o.scale), rotate = given(o.rotate), translate = given(o.translate),
-    place = given(o.place), repair = not o.no_repair, machine = machine })
-  if not ok then fail("%s", tostring(model):match("%((.*)%)$") or tostring(model)) end
-  if not model then die("%s", err) end
-  return model
-end
+local function load(path, machine) return args.load(o, path, machine, fail, die) end
 local machine, err = lamina.machine(o.machine)
 if not machine then die("%s", err) end
 if machine.process ~= "ladrp" then

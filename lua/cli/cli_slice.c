@@ -116,6 +116,7 @@ static int on_layer(void *ctx, const lam_layer *L, lam_error *err)
         lam_validate_opts vo;
         lam_validate_opts_init(&vo);
         vo.fill_nonzero = r->fill_nonzero;
+        vo.gap = L->gap; /* a layer with gaps bridged is compared with the loss check's allowance */
         int rc = vreport_layer(&r->vr, r->v, L, r->frame, &vo, NULL, err);
         if (rc) return rc;
     }

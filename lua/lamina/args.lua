@@ -28,10 +28,37 @@
 -- place of `assert`, which would print a traceback. A stock `lua` prints
 -- them without a traceback too.
 --
+-- args.with_load(options) adds the load options (`lamina slice`'s --units,
+-- --scale, --rotate, --translate, --place, --no-repair; docs/cli.md) to a
+-- spec's options, args.LOAD_USAGE is their usage text, and
+-- args.load(o, path, machine, fail, die) loads a model with them: a bad
+-- value is `fail` (exit 2), a file that does not load `die` (exit 1).
+--
 -- args.beside(arg, "parts/x.ug") is a path beside the running recipe
 -- ("recipes/parts/x.ug" for `lamina run recipes/y.lua`): default models
 -- that work from any directory.
 local args = {}
+
+args.LOAD_USAGE = " [--units U] [--scale F] [--rotate A:D] [--translate X,Y,Z] [--place plate] [--no-repair]"
+
+local LOAD_DEFAULTS = { units = "", scale = "", rotate = "", translate = "", place = "", no_repair = false }
+
+function args.with_load(options)
+  for k, v in pairs(LOAD_DEFAULTS) do
+    if options[k] == nil then options[k] = v end
+  end
+  return options
+end
+
+function args.load(o, path, machine, fail, die)
+  local function given(v) if v ~= "" then return v end end
+  local ok, model, err = pcall(lamina.load, path, {
+    units = given(o.units), scale = given(o.scale), rotate = given(o.rotate), translate = given(o.translate),
+    place = given(o.place), repair = not o.no_repair, machine = machine })
+  if not ok then fail("%s", tostring(model):match("%((.*)%)$") or tostring(model)) end
+  if not model then die("%s", err) end
+  return model
+end
 
 function args.beside(argv, rel)
   local dir = argv and argv[0] and tostring(argv[0]):match("^(.*)/")
