@@ -266,12 +266,13 @@ static int mesh_copy(const lam_mesh *m, lam_mesh *out, lam_error *err)
         lam_mesh_free(out);
         return lam_error_nomem(err, "repairing the model");
     }
-    memcpy(out->xyz, m->xyz, 3 * m->nverts * sizeof *out->xyz);
-    memcpy(out->tris, m->tris, 3 * m->ntris * sizeof *out->tris);
-    if (m->tri_face) memcpy(out->tri_face, m->tri_face, m->ntris * sizeof *out->tri_face);
-    memcpy(out->faces, m->faces, m->nfaces * sizeof *out->faces);
-    memcpy(out->wires, m->wires, 2 * m->nwire_segs * sizeof *out->wires);
-    memcpy(out->strings, m->strings, m->strings_len);
+    /* an empty array may be NULL, which memcpy may not be given */
+    if (m->nverts) memcpy(out->xyz, m->xyz, 3 * m->nverts * sizeof *out->xyz);
+    if (m->ntris) memcpy(out->tris, m->tris, 3 * m->ntris * sizeof *out->tris);
+    if (m->tri_face && m->ntris) memcpy(out->tri_face, m->tri_face, m->ntris * sizeof *out->tri_face);
+    if (m->nfaces) memcpy(out->faces, m->faces, m->nfaces * sizeof *out->faces);
+    if (m->nwire_segs) memcpy(out->wires, m->wires, 2 * m->nwire_segs * sizeof *out->wires);
+    if (m->strings_len) memcpy(out->strings, m->strings, m->strings_len);
     out->nverts = out->cap_verts = m->nverts;
     out->ntris = out->cap_tris = m->ntris;
     out->nfaces = out->cap_faces = m->nfaces;
