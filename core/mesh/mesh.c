@@ -350,3 +350,12 @@ const char *lam_mesh_describe_tri(const lam_mesh *m, size_t t, char *buf, size_t
         snprintf(buf, size, "face%s", where);
     return buf;
 }
+
+double lam_tri_area2(const double *a, const double *b, const double *c, int *degenerate)
+{
+    double u[3] = { b[0] - a[0], b[1] - a[1], b[2] - a[2] };
+    double v[3] = { c[0] - a[0], c[1] - a[1], c[2] - a[2] };
+    double n[3] = { u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0] };
+    *degenerate = n[0] == 0 && n[1] == 0 && n[2] == 0;
+    return sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+}

@@ -127,6 +127,20 @@ int lam_mesh_add_vertex_welded(lam_mesh *m, lam_welder *w, double x, double y, d
  * face records are kept. Linear expected time (hashing). */
 int lam_mesh_weld(lam_mesh *m, lam_error *err);
 
+/* Twice the area of triangle abc, and (*degenerate) whether it is exactly
+ * zero (every component of the cross product 0: repeated or collinear
+ * corners). The test is the same for either winding: swapping b and c
+ * negates each component exactly (ISO C mode: no fused multiply-add
+ * contraction). The one measure the model build and repair use. */
+double lam_tri_area2(const double *a, const double *b, const double *c, int *degenerate);
+
+/* The squared distance between two points. */
+static inline double lam_dist2(const double *a, const double *b)
+{
+    double d0 = a[0] - b[0], d1 = a[1] - b[1], d2 = a[2] - b[2];
+    return d0 * d0 + d1 * d1 + d2 * d2;
+}
+
 /* A string stored in the mesh (NULL for LAM_NO_NAME). */
 const char *lam_mesh_string(const lam_mesh *m, uint32_t offset);
 

@@ -288,19 +288,6 @@ static int build_shells(lam_model *md, const unsigned char *hdir, lam_error *err
     return LAM_OK;
 }
 
-/* Twice the area of triangle abc, and whether it is exactly zero (every
- * component of the cross product 0: a degenerate triangle). The test is
- * the same for either winding: swapping b and c negates each component
- * exactly (ISO C mode: no fused multiply-add contraction). */
-static double tri_area2(const double *a, const double *b, const double *c, int *degenerate)
-{
-    double u[3] = { b[0] - a[0], b[1] - a[1], b[2] - a[2] };
-    double v[3] = { c[0] - a[0], c[1] - a[1], c[2] - a[2] };
-    double n[3] = { u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0] };
-    *degenerate = n[0] == 0 && n[1] == 0 && n[2] == 0;
-    return sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-}
-
 /* Per shell: bbox, area and signed volume measured from a point of the
  * shell (keeps the sum well conditioned far from the origin). Returns how
  * many triangles have zero area. */
@@ -341,7 +328,7 @@ static size_t measure_shells(lam_model *md, double *ref, double *comp)
         comp[md->tri_shell[t]] += fabs(sh->volume) >= fabs(d) ? (sh->volume - s6) + d : (d - s6) + sh->volume;
         sh->volume = s6;
         int zero;
-        sh->area += 0.5 * tri_area2(p[0], p[1], p[2], &zero);
+        sh->area += 0.5 * lam_tri_area2(p[0], p[1], p[2], &zero);
         degenerate += (size_t)zero;
         sh->ntris++;
     }

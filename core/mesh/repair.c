@@ -29,19 +29,18 @@ typedef struct cell_item {
     uint32_t v;
 } cell_item;
 
-static int cmp_cell(const void *x, const void *y)
-{
-    const cell_item *a = x, *b = y;
-    for (int k = 0; k < 3; k++)
-        if (a->c[k] != b->c[k]) return a->c[k] < b->c[k] ? -1 : 1;
-    return a->v < b->v ? -1 : a->v > b->v;
-}
-
 static int cell_cmp3(const int64_t *a, const int64_t *b)
 {
     for (int k = 0; k < 3; k++)
         if (a[k] != b[k]) return a[k] < b[k] ? -1 : 1;
     return 0;
+}
+
+static int cmp_cell(const void *x, const void *y)
+{
+    const cell_item *a = x, *b = y;
+    int c = cell_cmp3(a->c, b->c);
+    return c ? c : (a->v > b->v) - (a->v < b->v);
 }
 
 /* The first item of the sorted cells at key c, or n. */
@@ -56,11 +55,6 @@ static size_t cell_lower(const cell_item *it, size_t n, const int64_t c[3])
     return lo;
 }
 
-static double dist2(const double *a, const double *b)
-{
-    double d0 = a[0] - b[0], d1 = a[1] - b[1], d2 = a[2] - b[2];
-    return d0 * d0 + d1 * d1 + d2 * d2;
-}
 
 /* Join the vertices of open edges that lie within tol of each other: each
  * such vertex is looked up in the 27 grid cells around it (cells of side
@@ -97,7 +91,7 @@ static int weld_open(const lam_model *md, double tol, uint32_t *remap, size_t *w
         for (int d = 0; d < 27; d++) {
             int64_t c[3] = { it[i].c[0] + d % 3 - 1, it[i].c[1] + d / 3 % 3 - 1, it[i].c[2] + d / 9 - 1 };
             for (size_t j = cell_lower(it, n, c); j < n && !cell_cmp3(it[j].c, c); j++) {
-                if (it[j].v >= it[i].v || dist2(p, m->xyz + 3 * (size_t)it[j].v) > tol * tol) continue;
+                if (it[j].v >= it[i].v || lam_dist2(p, m->xyz + 3 * (size_t)it[j].v) > tol * tol) continue;
                 uint32_t a = uf_find(remap, it[i].v), b = uf_find(remap, it[j].v);
                 if (a == b) continue;
                 if (a < b) remap[b] = a;
@@ -152,13 +146,13 @@ static int mark_duplicates(const lam_mesh *m, unsigned char *keep, size_t *dups,
     return LAM_OK;
 }
 
-/* Twice the area of a triangle, exactly zero only for collinear corners. */
+/* Has triangle t no area (lam_tri_area2's exact test, the model's own)? */
 static int no_area(const lam_mesh *m, size_t t)
 {
-    const double *a = m->xyz + 3 * (size_t)m->tris[3 * t], *b = m->xyz + 3 * (size_t)m->tris[3 * t + 1],
-                 *c = m->xyz + 3 * (size_t)m->tris[3 * t + 2];
-    double u[3] = { b[0] - a[0], b[1] - a[1], b[2] - a[2] }, w[3] = { c[0] - a[0], c[1] - a[1], c[2] - a[2] };
-    return u[1] * w[2] - u[2] * w[1] == 0 && u[2] * w[0] - u[0] * w[2] == 0 && u[0] * w[1] - u[1] * w[0] == 0;
+    int zero;
+    lam_tri_area2(m->xyz + 3 * (size_t)m->tris[3 * t], m->xyz + 3 * (size_t)m->tris[3 * t + 1],
+                  m->xyz + 3 * (size_t)m->tris[3 * t + 2], &zero);
+    return zero;
 }
 
 /* Does triangle t have an edge no other triangle shares? */

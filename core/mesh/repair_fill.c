@@ -108,25 +108,10 @@ typedef struct filler {
 
 static const double *P(const lam_mesh *m, uint32_t v) { return m->xyz + 3 * (size_t)v; }
 
-static double dist2v(const double *a, const double *b)
-{
-    double d0 = a[0] - b[0], d1 = a[1] - b[1], d2 = a[2] - b[2];
-    return d0 * d0 + d1 * d1 + d2 * d2;
-}
-
-static void tri_cross(const double *a, const double *b, const double *c, double n[3])
-{
-    double u[3] = { b[0] - a[0], b[1] - a[1], b[2] - a[2] }, w[3] = { c[0] - a[0], c[1] - a[1], c[2] - a[2] };
-    n[0] = u[1] * w[2] - u[2] * w[1];
-    n[1] = u[2] * w[0] - u[0] * w[2];
-    n[2] = u[0] * w[1] - u[1] * w[0];
-}
-
 static double tri_area(const lam_mesh *m, uint32_t a, uint32_t b, uint32_t c)
 {
-    double n[3];
-    tri_cross(P(m, a), P(m, b), P(m, c), n);
-    return 0.5 * sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    int zero;
+    return 0.5 * lam_tri_area2(P(m, a), P(m, b), P(m, c), &zero);
 }
 
 static int add_tri(filler *F, uint32_t a, uint32_t b, uint32_t c, double *area, lam_error *err)
@@ -143,7 +128,7 @@ static int add_tri(filler *F, uint32_t a, uint32_t b, uint32_t c, double *area, 
 static double cost(const lam_mesh *m, uint32_t a, uint32_t b, uint32_t c)
 {
     double area = tri_area(m, a, b, c);
-    double p = sqrt(dist2v(P(m, a), P(m, b))) + sqrt(dist2v(P(m, b), P(m, c))) + sqrt(dist2v(P(m, c), P(m, a)));
+    double p = sqrt(lam_dist2(P(m, a), P(m, b))) + sqrt(lam_dist2(P(m, b), P(m, c))) + sqrt(lam_dist2(P(m, c), P(m, a)));
     return area < 1e-9 * p * p ? area + 1e-6 * p * p : area;
 }
 

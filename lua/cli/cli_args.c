@@ -294,7 +294,7 @@ static const cli_opt options[] = {
     { "max-output", 0, OPT_PLAN, "SIZE", o_max_output, 0 },
     { "set", 's', OPT_SET, "KEY=VALUE", o_set, 0 },
     { "validate", 0, OPT_PLAN, NULL, o_flag, F(validate) },
-    { "output", 'o', OPT_PLAN, "FILE", o_output, F(out) },
+    { "output", 'o', OPT_PLAN | OPT_OUTPUT, "FILE", o_output, F(out) },
     { "svg", 0, OPT_SVG, "FILE", o_output, F(svg) },
     { "json", 0, OPT_JSON_FILE, "FILE", o_output, F(json_out) },
     { "html", 0, OPT_PLAN, "FILE", o_output, F(html) },

@@ -37,7 +37,8 @@ enum {
     OPT_TALK = 256,    /* -q/--quiet, -v/--verbose (progress.h) */
     OPT_JSON_FILE = 512, /* slice: --json FILE (the run as JSON), instead of the --json flag */
     OPT_PART = 1024,   /* slice: --layers A:B or K/N (a part file) */
-    OPT_JOBS = 2048    /* -j N without the rest of OPT_PLAN (validate) */
+    OPT_JOBS = 2048,   /* -j N without the rest of OPT_PLAN (validate) */
+    OPT_OUTPUT = 4096  /* -o FILE without the rest of OPT_PLAN, and no standard-output default (repair) */
 };
 
 /* A profile value from the command line: --set KEY=VALUE or an option short for it. */

@@ -35,40 +35,6 @@ static const char usage_text[] =
     "  -v, --verbose    also the mesh's counts before and after repair\n"
     "MODEL - reads standard input. Values: --name=VALUE or --name VALUE; -- ends the options.\n";
 
-/* -o is taken out of the arguments before the shared parser sees them:
- * there it belongs to the planning options (OPT_PLAN), which repair does
- * not take. Returns 0 or EXIT_USAGE; rest (argc + 1 slots) gets the
- * others, in order. */
-static int take_output(int argc, char **argv, char **rest, int *n, const char **out)
-{
-    int only_args = 0;
-    *n = 0;
-    rest[(*n)++] = argv[0];
-    for (int i = 1; i < argc; i++) {
-        const char *s = argv[i], *val, *opt = s;
-        if (only_args || s[0] != '-' || !strcmp(s, "--")) {
-            only_args |= !strcmp(s, "--");
-            rest[(*n)++] = argv[i];
-            continue;
-        }
-        if (!strcmp(s, "-o") || !strcmp(s, "--output")) {
-            if (i + 1 >= argc) return cli_usage("repair", "option %s needs a value", s);
-            val = argv[++i];
-        } else if (!strncmp(s, "--output=", 9)) {
-            val = s + 9, opt = "--output";
-        } else if (s[1] == 'o') {
-            val = s + 2, opt = "-o";
-        } else {
-            rest[(*n)++] = argv[i];
-            continue;
-        }
-        if (!*val) return cli_usage("repair", "%s needs a file name (or - for standard output)", opt);
-        *out = val;
-    }
-    rest[*n] = NULL;
-    return 0;
-}
-
 /* What the output option allows, before anything is read. */
 static int check_output(const char *out, const args *a)
 {
@@ -210,20 +176,11 @@ static int repair(args *a, const char *out)
 
 int cmd_repair(int argc, char **argv)
 {
-    char **rest = calloc((size_t)argc + 1, sizeof *rest);
-    if (!rest) {
-        fprintf(stderr, "lamina: out of memory\n");
-        return EXIT_INPUT;
-    }
-    const char *out = NULL;
-    int nrest = 0;
     args a;
     memset(&a, 0, sizeof a);
-    int rc = take_output(argc, argv, rest, &nrest, &out);
-    if (!rc) rc = cli_parse_args("repair", usage_text, OPT_MODEL | OPT_JSON | OPT_TALK, nrest, rest, &a);
-    if (!rc) rc = check_output(out, &a);
-    if (!rc) rc = repair(&a, out);
+    int rc = cli_parse_args("repair", usage_text, OPT_MODEL | OPT_JSON | OPT_TALK | OPT_OUTPUT, argc, argv, &a);
+    if (!rc) rc = check_output(a.out, &a);
+    if (!rc) rc = repair(&a, a.out);
     cli_args_free(&a);
-    free(rest);
     return rc < 0 ? EXIT_OK : rc; /* -1: --help was printed */
 }
