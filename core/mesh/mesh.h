@@ -127,6 +127,10 @@ int lam_mesh_add_vertex_welded(lam_mesh *m, lam_welder *w, double x, double y, d
  * face records are kept. Linear expected time (hashing). */
 int lam_mesh_weld(lam_mesh *m, lam_error *err);
 
+/* A copy of every array of m in out (initialised here; free it with
+ * lam_mesh_free). Errors: LAM_ENOMEM (out is then empty). */
+int lam_mesh_copy(const lam_mesh *m, lam_mesh *out, lam_error *err);
+
 /* Twice the area of triangle abc, and (*degenerate) whether it is exactly
  * zero (every component of the cross product 0: repeated or collinear
  * corners). The test is the same for either winding: swapping b and c

@@ -245,38 +245,6 @@ static int crossings(const lam_model *md, size_t first, lam_repair_report *r, un
     return LAM_OK;
 }
 
-/* A copy of m's arrays (the filled mesh, built into a model while m is
- * kept to be filled again). */
-static int mesh_copy(const lam_mesh *m, lam_mesh *out, lam_error *err)
-{
-    lam_mesh_init(out);
-    out->xyz = malloc(3 * m->nverts * sizeof *out->xyz + 1);
-    out->tris = malloc(3 * m->ntris * sizeof *out->tris + 1);
-    out->tri_face = m->tri_face ? malloc(m->ntris * sizeof *out->tri_face + 1) : NULL;
-    out->faces = malloc(m->nfaces * sizeof *out->faces + 1);
-    out->wires = malloc(2 * m->nwire_segs * sizeof *out->wires + 1);
-    out->strings = malloc(m->strings_len + 1);
-    if (!out->xyz || !out->tris || (m->tri_face && !out->tri_face) || !out->faces || !out->wires || !out->strings) {
-        lam_mesh_free(out);
-        return lam_error_nomem(err, "repairing the model");
-    }
-    /* an empty array may be NULL, which memcpy may not be given */
-    if (m->nverts) memcpy(out->xyz, m->xyz, 3 * m->nverts * sizeof *out->xyz);
-    if (m->ntris) memcpy(out->tris, m->tris, 3 * m->ntris * sizeof *out->tris);
-    if (m->tri_face && m->ntris) memcpy(out->tri_face, m->tri_face, m->ntris * sizeof *out->tri_face);
-    if (m->nfaces) memcpy(out->faces, m->faces, m->nfaces * sizeof *out->faces);
-    if (m->nwire_segs) memcpy(out->wires, m->wires, 2 * m->nwire_segs * sizeof *out->wires);
-    if (m->strings_len) memcpy(out->strings, m->strings, m->strings_len);
-    out->nverts = out->cap_verts = m->nverts;
-    out->ntris = out->cap_tris = m->ntris;
-    out->nfaces = out->cap_faces = m->nfaces;
-    out->nwire_segs = out->cap_wire_segs = m->nwire_segs;
-    out->nwires = m->nwires;
-    out->strings_len = out->strings_cap = m->strings_len;
-    out->welded = m->welded;
-    return LAM_OK;
-}
-
 /* One fill of md (which is kept: its mesh is truncated back after) into
  * the model *out, with the crossings counted and, per loop, whether its
  * fill crosses the surface (bad[k]). */
@@ -287,7 +255,7 @@ static int fill_once(lam_model *md, lam_fill_plan *plan, lam_repair_report *r, u
     size_t nv = m->nverts, nt = m->ntris, nf = m->nfaces, ns = m->strings_len;
     int rc = lam_repair_fill(md, plan, r, err);
     lam_mesh filled;
-    if (!rc) rc = mesh_copy(m, &filled, err);
+    if (!rc) rc = lam_mesh_copy(m, &filled, err);
     m->nverts = nv, m->ntris = nt, m->nfaces = nf, m->strings_len = ns;
     if (rc) return rc;
     if ((rc = lam_model_from_mesh(&filled, md->path, md->format, out, err))) return rc;

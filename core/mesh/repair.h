@@ -50,8 +50,9 @@
 #include "error.h"
 #include "model.h"
 
-/* Loops longer than this are fanned from their centroid (the minimal-area
- * triangulation is cubic in the loop's length). */
+/* Loops longer than this are triangulated in their plane, or fanned from
+ * their centroid (the minimal-area triangulation is cubic in the loop's
+ * length). */
 #define LAM_REPAIR_DP_MAX 400
 
 typedef struct lam_repair_opts {

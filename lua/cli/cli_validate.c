@@ -352,16 +352,8 @@ static int repaired_copy(const lam_model *m, lam_model **out, lam_error *err)
 {
     *out = NULL;
     lam_mesh mesh;
-    lam_mesh_init(&mesh);
-    int rc = lam_mesh_reserve(&mesh, m->mesh.nverts, m->mesh.ntris, err);
-    if (rc) {
-        lam_mesh_free(&mesh);
-        return rc;
-    }
-    memcpy(mesh.xyz, m->mesh.xyz, 3 * m->mesh.nverts * sizeof *mesh.xyz);
-    memcpy(mesh.tris, m->mesh.tris, 3 * m->mesh.ntris * sizeof *mesh.tris);
-    mesh.nverts = m->mesh.nverts;
-    mesh.ntris = m->mesh.ntris;
+    int rc = lam_mesh_copy(&m->mesh, &mesh, err);
+    if (rc) return rc;
     if ((rc = lam_model_from_mesh(&mesh, m->path, m->format, out, err))) return rc;
     if ((rc = lam_model_repair(out, NULL, err))) {
         lam_model_free(*out);
