@@ -18,8 +18,8 @@
  *      the shell's winding) is filled with triangles: a minimal-area
  *      triangulation of the loop for loops of up to LAM_REPAIR_DP_MAX
  *      vertices (planar or not: on a planar simple loop that is a
- *      triangulation of the polygon itself), otherwise a fan from the
- *      loop's centroid (a lone facet's loop is left open and counted in
+ *      triangulation of the polygon itself), otherwise its polygon
+ *      triangulated in its plane (GEOS) or a fan from its centroid (a lone facet's loop is left open and counted in
  *      holes_left: filled, it would be a two-sided sliver of no volume);
  *      a loop that crosses itself in its best-fit plane is
  *      filled the same way and counted. The programme and the crossing
