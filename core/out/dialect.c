@@ -197,7 +197,7 @@ static int d_contour(void *ctx, const lam_contour_info *ci)
     dsink *s = ctx;
     const lam_dialect *d = s->d;
     lam_tvals v;
-    int rc = block_start(s, &v, (double)ci->attrs.part, ci->power, ci->speed, ci->point_distance, ci->exposure_time);
+    int rc = block_start(s, &v, (double)lam_attrs_id(&ci->attrs), ci->power, ci->speed, ci->point_distance, ci->exposure_time);
     if (rc) return rc;
     int close = d->close_polylines && ci->n > 0;
     size_t written = ci->n + (close ? 1 : 0);
@@ -240,7 +240,7 @@ static int d_hatches(void *ctx, const lam_hatch_info *h)
     dsink *s = ctx;
     const lam_dialect *d = s->d;
     lam_tvals v;
-    int rc = block_start(s, &v, (double)h->attrs.part, h->power, h->speed, h->point_distance, h->exposure_time);
+    int rc = block_start(s, &v, (double)lam_attrs_id(&h->attrs), h->power, h->speed, h->point_distance, h->exposure_time);
     if (rc) return rc;
     v.text[LAM_TF_KIND] = lam_kind_name(h->kind);
     v.num[LAM_TF_N] = (double)h->n;

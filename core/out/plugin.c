@@ -694,7 +694,7 @@ static int ps_contour(void *ctx, const lam_contour_info *c)
     plugin_sink *s = ctx;
     if (!s->state) return not_running(s, "contour");
     last_msg[0] = '\0';
-    return writer_result(s, s->we->w.polyline(s->state, (size_t)c->attrs.part, c->solid, c->uv, c->n), "polyline");
+    return writer_result(s, s->we->w.polyline(s->state, (size_t)lam_attrs_id(&c->attrs), c->solid, c->uv, c->n), "polyline");
 }
 
 static int ps_hatches(void *ctx, const lam_hatch_info *h)
@@ -705,7 +705,7 @@ static int ps_hatches(void *ctx, const lam_hatch_info *h)
         return lam_error_set(s->err, LAM_EUSAGE, NULL, 0, 0, "writer %s cannot write hatches (set hatch_strategy: none)",
                              s->we->w.name);
     last_msg[0] = '\0';
-    return writer_result(s, s->we->w.hatches(s->state, (size_t)h->attrs.part, h->uv, h->n), "hatches");
+    return writer_result(s, s->we->w.hatches(s->state, (size_t)lam_attrs_id(&h->attrs), h->uv, h->n), "hatches");
 }
 
 static int ps_end(void *ctx)

@@ -38,6 +38,10 @@ typedef struct lam_job_info {
     int frame_machine;       /* coordinates are in the layer frame (u, v, w) */
     const struct lam_repair_report *repair; /* what repair on load did to the model
                                 when it did anything (lam_repair_acted), else NULL */
+    /* A build (core/build): the CLI labels, labels[k] the text of id k + 1
+     * (lam_attrs_id); NULL: the one label `label`, id 1. */
+    const char *const *labels;
+    size_t nlabels;
 } lam_job_info;
 
 /* The part's name for a job from a model's path: the file's name without
@@ -55,6 +59,14 @@ typedef struct lam_layer_info {
     const struct lam_scan_time *time; /* at layer_end of an SLS plan whose estimate means
                                          something (lam_scan_estimates): the layer's
                                          estimate; NULL otherwise */
+    /* A build (core/build): z is the layer's top above the plate and cut
+     * the height the layer was cut at; at layer_end, each laser's share
+     * of the layer, lasers[k] laser k + 1's (time->exposure and jump are
+     * then the busiest laser's). has_cut 0: not a build (cut unset). */
+    int has_cut;
+    double cut;
+    const struct lam_scan_time *lasers;
+    size_t nlasers;
 } lam_layer_info;
 
 /* Every operation carries both frames' coordinates, computed once by the

@@ -56,3 +56,5 @@ void lam_attr_set(lam_attrs *a, size_t i, long long v)
 {
     memcpy((char *)a + i * sizeof v, &v, sizeof v);
 }
+
+long long lam_attrs_id(const lam_attrs *a) { return a->label ? a->label : a->part; }

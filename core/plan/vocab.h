@@ -40,7 +40,11 @@ int lam_kind_find(const char *name, size_t len);
 int lam_kind_exposed(int kind);
 
 /* The attributes: X(field, key, default, meaning). Whole numbers. */
-#define LAM_ATTRS(X) X(part, "part", 1, "the part the operation belongs to (CLI's $$LABEL id)")
+#define LAM_ATTRS(X)                                                                                         \
+    X(part, "part", 1, "the part the operation belongs to (a build's part number, 1: a job of one model)")  \
+    X(style, "style", 0, "the build style it is exposed with (a build's style number; 0: not a build)")     \
+    X(laser, "laser", 0, "the laser that exposes it (a build's laser number; 0: not a build)")              \
+    X(label, "label", 0, "its CLI $$LABEL id: the build's (part, style, laser) number; 0: the part's")
 
 typedef struct lam_attrs {
 #define LAM_ATTR_FIELD(field, key, def, doc) long long field;
@@ -50,6 +54,10 @@ typedef struct lam_attrs {
 
 /* The number of attributes (rows of LAM_ATTRS). */
 #define LAM_NATTRS (sizeof(lam_attrs) / sizeof(long long))
+
+/* The CLI $$LABEL id of an operation: a->label when set (a build), else
+ * a->part. */
+long long lam_attrs_id(const lam_attrs *a);
 
 /* Every attribute at its default. */
 lam_attrs lam_attrs_default(void);
