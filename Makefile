@@ -42,7 +42,7 @@ LUA_LIBS   := -llua5.4
 # nesting, offsets), plan (planners, hatching, recording), out (dialects,
 # JSON, SVG, HTML, plugins), check (validation, DRC, program readers),
 # profile (machine profiles and their key table).
-CORE_DIRS := base mesh layer plan out check profile
+CORE_DIRS := base mesh layer plan out check profile build
 CORE_INC := -Icore $(addprefix -Icore/,$(CORE_DIRS))
 CPPFLAGS += $(CORE_INC) -D_POSIX_C_SOURCE=200809L
 # -fPIC everywhere: the same objects also make the Lua C module lamina.so

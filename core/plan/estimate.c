@@ -285,7 +285,7 @@ static int sample_layer(const lam_sink *sk, const lam_job_info *job, const sampl
     lam_contour ct = { 0, q->points, 0, -1, LAM_SOLID, (b[3] - b[0]) * (b[4] - b[1]), 0, { b[0], b[1], b[3], b[4] } };
     lam_layer sec = { .cut = z, .floor = b[2], .ceiling = b[5], .width = b[5] - b[2], .uv = uv,
                       .npoints = q->points, .contours = &ct, .ncontours = q->points ? 1 : 0 };
-    lam_layer_info li = { 0, z, b[5] - b[2], b[2], b[5], &sec, NULL };
+    lam_layer_info li = { .index = 0, .z = z, .width = b[5] - b[2], .floor = b[2], .ceiling = b[5], .section = &sec };
     int rc = sk->layer ? sk->layer(sk->ctx, &li) : LAM_OK;
     if (!rc && q->points && sk->contour) {
         lam_contour_info ci = { .attrs = lam_attrs_default(), .solid = 1, .z = z, .xyz = xyz, .uv = uv, .n = q->points };

@@ -77,7 +77,7 @@ static void copy_error(lam_error *to, const lam_error *from)
 
 static lam_layer_info info(const lam_layer *L)
 {
-    lam_layer_info li = { L->index, L->cut, L->width, L->floor, L->ceiling, L, NULL };
+    lam_layer_info li = { .index = L->index, .z = L->cut, .width = L->width, .floor = L->floor, .ceiling = L->ceiling, .section = L };
     return li;
 }
 

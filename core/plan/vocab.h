@@ -40,11 +40,13 @@ int lam_kind_find(const char *name, size_t len);
 int lam_kind_exposed(int kind);
 
 /* The attributes: X(field, key, default, meaning). Whole numbers. */
-#define LAM_ATTRS(X)                                                                                         \
-    X(part, "part", 1, "the part the operation belongs to (a build's part number, 1: a job of one model)")  \
+/* A build's rows (core/build): 0 outside a build, so they are left out of
+ * the JSON of a single part's run. */
+#define LAM_ATTRS_BUILD(X)                                                                                   \
     X(style, "style", 0, "the build style it is exposed with (a build's style number; 0: not a build)")     \
     X(laser, "laser", 0, "the laser that exposes it (a build's laser number; 0: not a build)")              \
     X(label, "label", 0, "its CLI $$LABEL id: the build's (part, style, laser) number; 0: the part's")
+#define LAM_ATTRS(X) X(part, "part", 1, "the part the operation belongs to (CLI's $$LABEL id)") LAM_ATTRS_BUILD(X)
 
 typedef struct lam_attrs {
 #define LAM_ATTR_FIELD(field, key, def, doc) long long field;
