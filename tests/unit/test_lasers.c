@@ -406,6 +406,21 @@ static void test_errors(void)
     expect_outside(one, 1, leaves, "a vector at (100, 10) of part 3 lies outside every laser's field", "leaving the field");
     expect_outside(one, 1, away, "a vector at (150, 150) of part 3 lies outside every laser's field", "off the plate");
     expect_outside(gap, 2, across, "a vector at (40, 5) of part 3 lies outside every laser's field", "across a gap");
+    /* a gas flow needs every part's centre */
+    lam_laser_set g = set_of(1, one);
+    g.gas_flow[1] = 1;
+    lam_scan_cfg c = cfg_make();
+    lam_blayer gi = { 0 }, go = { 0 };
+    const double inside[4] = { 1, 1, 2, 2 };
+    push(&gi, 2, LAM_KIND_CORE, 0, inside, 1, 0);
+    lam_scan_time gt[1];
+    lam_error err;
+    lam_error_clear(&err);
+    int grc = lam_lasers_share(&g, &c, &gi, &go, gt, &err);
+    ok(grc == LAM_EINVAL && !strcmp(err.msg, "part 2 has no footprint centre for the gas flow") && go.n == 0,
+       "a gas flow without the part's centre: invalid (%s)", err.msg);
+    lam_blayer_free(&gi);
+    lam_blayer_free(&go);
     /* on the boundary is inside */
     lam_laser_set ls = set_of(2, gap);
     lam_scan_cfg cfg = cfg_make();
