@@ -8,7 +8,7 @@
  *     $$VERSION/200
  *     $$DIMENSION/x1,y1,z1,x2,y2,z2   the job's bounding box (%.5f)
  *     $$LAYERS/<n>
- *     $$LABEL/1,<part name>       one line per label of the job: id, text
+ *     $$LABEL/<id>,<label>         one per label of the job, ids 1, 2, ...
  *     $$HEADEREND
  *
  * (lines end with "\n"; binary data follows "$$HEADEREND" immediately),
@@ -18,14 +18,14 @@
  *     130  polyline long      int32 id, int32 dir, int32 n, n x (float32 x, float32 y)
  *     132  hatches long       int32 id, int32 n, n x (float32 x0, y0, x1, y1)
  *
- * id is the part's id, as $$LABEL says (1: the job's one model; a build
- * plate's ids 1..n name its labels); dir is 1 for counter-clockwise
- * (solid) and 0 for clockwise (hole) contours; every polyline is closed by repeating its first point, which n
- * counts (as the ASCII profile's $$POLYLINE/id,dir,n,... with
- * close_polylines). Nothing follows the last polyline: CLI binary has no
- * end-of-file command. Bytes are written one by one, so the output does not
- * depend on the host's byte order; float32 is IEEE 754 binary32 (C's float
- * on every platform lamina supports). */
+ * id is the block's label id, as $$LABEL says (1: the job's one model; a
+ * build plate's ids 1..n name its labels); dir is 1 for counter-clockwise
+ * (solid) and 0 for clockwise (hole) contours; every polyline is closed by
+ * repeating its first point, which n counts (as the ASCII profile's
+ * $$POLYLINE/id,dir,n,... with close_polylines). Nothing follows the last
+ * polyline: CLI binary has no end-of-file command. Bytes are written one by
+ * one, so the output does not depend on the host's byte order; float32 is
+ * IEEE 754 binary32 (C's float on every platform lamina supports). */
 #include <float.h>
 #include <stdarg.h>
 #include <stdint.h>
