@@ -32,6 +32,14 @@ struct lamina_job {
     double bbox[6];            /* min xyz, max xyz (output frame) */
     double bead;               /* bead or spot width */
     const char *label;         /* the part's name (CLI $$LABEL text) */
+    /* The job's labels, one per id the polyline and hatches calls give:
+     * labels[k] (never NULL) is the text of id k + 1, nlabels >= 1 (a job
+     * of one part: its label, id 1). A host older than these members
+     * passes a smaller size: read them only when size holds them, else
+     * the one label `label`. */
+    const char *const *labels;
+    size_t nlabels;
+    /* New members go here, at the end, only. */
 };
 
 /* Output bytes go through the host: the host owns the file (atomic: it

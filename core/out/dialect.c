@@ -14,6 +14,8 @@ typedef struct dsink {
     lam_error *err;
     lam_job_info job;
     char *name, *process, *units, *label;   /* copies of the job's strings */
+    char **labels;                  /* copies of the job's labels (one: label) */
+    size_t nlabels;
     double pos[3];                  /* the stage position as the machine knows it */
     size_t blocks;                  /* contour blocks written */
     size_t layer_index, in_layer;   /* contours seen in the current layer */
@@ -60,6 +62,8 @@ static void job_vals(const dsink *s, lam_tvals *v)
     v->text[LAM_TF_PROCESS] = s->process;
     v->text[LAM_TF_UNITS] = s->units;
     v->text[LAM_TF_LABEL] = s->label;
+    v->labels = (const char *const *)s->labels;
+    v->nlabels = s->nlabels;
     v->num[LAM_TF_LAYERS] = (double)s->job.layers;
     v->num[LAM_TF_DIMENSION] = 3;
     v->num[LAM_TF_BEAD] = s->job.bead;
@@ -71,6 +75,30 @@ static void job_vals(const dsink *s, lam_tvals *v)
 static char *dup_or_empty(const char *s)
 {
     return strdup(s ? s : "");
+}
+
+static void free_labels(dsink *s)
+{
+    for (size_t k = 0; k < s->nlabels; k++) free(s->labels[k]);
+    free(s->labels);
+    s->labels = NULL;
+    s->nlabels = 0;
+}
+
+/* Copy the job's label table (a label NULL: "part"), or make the one
+ * label `label` (id 1) of a job without one. 0 when out of memory. */
+static int copy_labels(dsink *s, const lam_job_info *job)
+{
+    free_labels(s);
+    int table = job->labels && job->nlabels;
+    size_t n = table ? job->nlabels : 1;
+    if (!(s->labels = calloc(n, sizeof *s->labels))) return 0;
+    for (size_t k = 0; k < n; k++) {
+        const char *text = !table ? s->label : job->labels[k] ? job->labels[k] : "part";
+        if (!(s->labels[k] = strdup(text))) return 0;
+        s->nlabels = k + 1;
+    }
+    return 1;
 }
 
 static int d_begin(void *ctx, const lam_job_info *job)
@@ -85,7 +113,8 @@ static int d_begin(void *ctx, const lam_job_info *job)
     s->process = dup_or_empty(job->process);
     s->units = dup_or_empty(job->units);
     s->label = dup_or_empty(job->label ? job->label : "part");
-    if (!s->name || !s->process || !s->units || !s->label) return lam_error_set(s->err, LAM_ENOMEM, NULL, 0, 0, "out of memory");
+    if (!s->name || !s->process || !s->units || !s->label || !copy_labels(s, job))
+        return lam_error_set(s->err, LAM_ENOMEM, NULL, 0, 0, "out of memory");
     memcpy(s->pos, job->origin, sizeof s->pos);
     s->blocks = 0;
     lam_tvals v;
@@ -290,6 +319,7 @@ static void d_destroy(void *ctx)
         free(s->process);
         free(s->units);
         free(s->label);
+        free_labels(s);
     }
     free(s->b.s);
     free(s);
@@ -352,6 +382,8 @@ static int fork_of(const dsink *m, int moves, lam_sink *out, lam_error *err)
     s->process = m->process;
     s->units = m->units;
     s->label = m->label;
+    s->labels = m->labels;
+    s->nlabels = m->nlabels;
     s->borrowed = 1;
     s->worker = 1;
     memcpy(s->pos, m->job.origin, sizeof s->pos);

@@ -11,7 +11,7 @@
  *
  * Fields by command:
  *   preamble, postamble   name process units layers dimension bead rate travel_rate
- *                         xmin ymin zmin xmax ymax zmax label
+ *                         xmin ymin zmin xmax ymax zmax label id
  *   layer, layer_end      index number z width floor ceiling
  *   feed                  rate
  *   laser_on, laser_off   rate
@@ -28,15 +28,24 @@
  *   separator             (none: written between two contour blocks)
  * `dir` is 1 for solids (counter-clockwise) and 0 for holes; `kind` is the
  * text "solid" or "hole" (hatch commands: "core", "upskin" or "downskin");
- * `id` is the part's id (1 for the one model of a job) and `label` its name
- * (the model file's name without directory and extension, characters other
- * than letters, digits, `_`, `-` and `.` made `_`); a hatch block's `n`
+ * `id` is a block's CLI label id (lam_attrs_id: 1 for the one model of a
+ * job, a build's label otherwise) and `label` the part's name (the model
+ * file's name without directory and extension, characters other than
+ * letters, digits, `_`, `-` and `.` made `_`); a hatch block's `n`
  * counts its vectors and its `points` are x0,y0,x1,y1 per vector;
  * `power speed point_distance exposure_time` are the exposure of the
  * vector type (profile keys, sections contour:, upskin:, downskin:); `number` is index + 1; `points` expands to
  * x,y,x,y,... (layer-plane coordinates in the output frame, each number with
  * the field's format, default %.6f), repeating the first point when the
  * dialect says `close_polylines: true`; `n` counts the points written.
+ *
+ * Labels: a line of the preamble or postamble that uses {id} is written
+ * once per label of the job (lam_job_info.labels; a job without a table
+ * has one, id 1, its label), with {id} and {label} that label's id and
+ * text: `$$LABEL/{id},{label}` lists a build plate's labels. Copies of the
+ * template's last line are still one a line. Elsewhere {label} is the
+ * job's label; a fixed `$$LABEL/1,{label}` names only that one (a build's
+ * other ids are then missing from the header).
  *
  * Details fixed by the implementation (machines/README.md says the same):
  * - `index` is the layer's 0-based index in layer commands and the contour's
@@ -56,7 +65,7 @@
  *   rounding never accumulates; an axis without its relative field in the
  *   template is taken as reached. An absent travel/deposit command writes
  *   nothing and leaves the stage where it was.
- * - The sink copies the job's strings at begin. */
+ * - The sink copies the job's strings, its labels too, at begin. */
 #ifndef LAM_DIALECT_H
 #define LAM_DIALECT_H
 

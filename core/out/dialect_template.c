@@ -60,9 +60,9 @@ static enum ftype field_type(int f)
 /* The fields of each command, in the order dialect.h lists them. */
 static const char *const cmd_field_text[LAM_CMD_COUNT] = {
     [LAM_CMD_PREAMBLE] = "name process units layers dimension bead rate travel_rate xmin ymin zmin xmax ymax zmax "
-                         "label",
+                         "label id",
     [LAM_CMD_POSTAMBLE] = "name process units layers dimension bead rate travel_rate xmin ymin zmin xmax ymax zmax "
-                          "label",
+                          "label id",
     [LAM_CMD_LAYER] = "index number z width floor ceiling",
     [LAM_CMD_LAYER_END] = "index number z width floor ceiling",
     [LAM_CMD_FEED] = "rate",
@@ -140,12 +140,20 @@ static int push_seg(lam_template *t, size_t *cap, const lam_tseg *s)
     return 1;
 }
 
+/* Whether command c's lines that use {id} are written once per label
+ * (lam_tvals.labels): its literal segments then end at line breaks, so
+ * that a line is a run of whole segments. */
+static int by_lines(lam_cmd c)
+{
+    return c == LAM_CMD_PREAMBLE || c == LAM_CMD_POSTAMBLE;
+}
+
 /* Append text[0..n) to the literal segment at the end of t (a new one if
- * the last segment is a field). */
-static int push_lit(lam_template *t, size_t *cap, const char *text, size_t n)
+ * the last segment is a field, or, with lines, ends a line). */
+static int push_lit(lam_template *t, size_t *cap, const char *text, size_t n, int lines)
 {
     lam_tseg *last = t->nsegs ? &t->segs[t->nsegs - 1] : NULL;
-    if (!last || last->field >= 0) {
+    if (!last || last->field >= 0 || (lines && last->len && last->lit[last->len - 1] == '\n')) {
         lam_tseg s;
         memset(&s, 0, sizeof s);
         s.field = -1;
@@ -337,18 +345,19 @@ int lam_template_parse(lam_cmd c, const char *text, lam_template *t, size_t *off
     if ((unsigned)c >= LAM_CMD_COUNT) return perr(err, offset, 0, "no such command");
     size_t cap = 0;
     uint64_t allowed = cmd_fields(c);
+    int lines = by_lines(c);
     int rc = LAM_OK;
     size_t i = 0;
     while (text[i] && !rc) {
         char ch = text[i];
         if (ch == '{' && text[i + 1] == '{') {
-            if (!push_lit(t, &cap, "{", 1)) goto nomem;
+            if (!push_lit(t, &cap, "{", 1, lines)) goto nomem;
             i += 2;
             continue;
         }
         if (ch == '}') {
             if (text[i + 1] == '}') {
-                if (!push_lit(t, &cap, "}", 1)) goto nomem;
+                if (!push_lit(t, &cap, "}", 1, lines)) goto nomem;
                 i += 2;
                 continue;
             }
@@ -356,8 +365,9 @@ int lam_template_parse(lam_cmd c, const char *text, lam_template *t, size_t *off
             break;
         }
         if (ch != '{') {
-            size_t run = strcspn(text + i, "{}");
-            if (!push_lit(t, &cap, text + i, run)) goto nomem;
+            size_t run = strcspn(text + i, lines ? "{}\n" : "{}");
+            if (lines && text[i + run] == '\n') run++; /* the break ends its line's segment */
+            if (!push_lit(t, &cap, text + i, run, lines)) goto nomem;
             i += run;
             continue;
         }
@@ -588,12 +598,11 @@ static size_t fmt_number(char *out, const lam_tseg *seg, double x, enum ftype ty
     return n < 0 ? 0 : n >= LAM_FMT_MAX ? LAM_FMT_MAX - 1 : (size_t)n;
 }
 
-/* Render t into b; for travel/deposit also the text of dx dy dz
- * (rel[k] set to the value the machine reads, has_rel[k] to 1). Numbers
- * are formatted straight into b. */
-void lam_template_render(const lam_template *t, const lam_tvals *v, lam_tbuf *b, double rel[3], int has_rel[3])
+/* Render segments [from, to) of t into b (lam_template_render). */
+static void render_segs(const lam_template *t, size_t from, size_t to, const lam_tvals *v, lam_tbuf *b,
+                        double rel[3], int has_rel[3])
 {
-    for (size_t i = 0; i < t->nsegs; i++) {
+    for (size_t i = from; i < to; i++) {
         const lam_tseg *s = &t->segs[i];
         if (s->field < 0) {
             lam_tbuf_put(b, s->lit, s->len);
@@ -641,4 +650,37 @@ void lam_template_render(const lam_template *t, const lam_tvals *v, lam_tbuf *b,
             }
         }
     }
+}
+
+/* Render t line by line, a line that uses {id} once per label of v
+ * (by_lines parsed its literals to end at line breaks). */
+static void render_labels(const lam_template *t, const lam_tvals *v, lam_tbuf *b)
+{
+    lam_tvals lv = *v;
+    for (size_t from = 0, to; from < t->nsegs; from = to) {
+        int id = 0, broken = 0;
+        for (to = from; to < t->nsegs && !broken; to++) {
+            const lam_tseg *s = &t->segs[to];
+            id |= s->field == LAM_TF_ID;
+            broken = s->field < 0 && s->len && s->lit[s->len - 1] == '\n';
+        }
+        if (!id) {
+            render_segs(t, from, to, v, b, NULL, NULL);
+            continue;
+        }
+        for (size_t k = 0; k < v->nlabels; k++) {
+            /* the template's last line has no break of its own: the
+             * labels' lines are still one a line */
+            if (k && !broken) lam_tbuf_put(b, "\n", 1);
+            lv.num[LAM_TF_ID] = (double)(k + 1);
+            lv.text[LAM_TF_LABEL] = v->labels[k];
+            render_segs(t, from, to, &lv, b, NULL, NULL);
+        }
+    }
+}
+
+void lam_template_render(const lam_template *t, const lam_tvals *v, lam_tbuf *b, double rel[3], int has_rel[3])
+{
+    if (v->labels && v->nlabels) render_labels(t, v, b);
+    else render_segs(t, 0, t->nsegs, v, b, rel, has_rel);
 }

@@ -130,11 +130,18 @@ typedef struct lam_tvals {
     const double *uv;        /* points: 2 per point, or xyz with stride 3 */
     size_t uv_stride, npts;
     int close;
+    /* preamble, postamble: the job's labels (nlabels >= 1), labels[k] the
+     * text of id k + 1; NULL: the template renders once as it is */
+    const char *const *labels;
+    size_t nlabels;
 } lam_tvals;
 
 /* Render t into b; for travel/deposit also the text of dx dy dz
  * (rel[k] set to the value the machine reads, has_rel[k] to 1). Numbers
- * are formatted straight into b. */
+ * are formatted straight into b. With v->labels (a preamble or
+ * postamble), each line of t that uses {id} is rendered once per label,
+ * with that label's id and text as {id} and {label}, the copies one a
+ * line; the other lines once, {label} there v->text's. */
 void lam_template_render(const lam_template *t, const lam_tvals *v, lam_tbuf *b, double rel[3], int has_rel[3]);
 
 #endif

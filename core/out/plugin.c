@@ -622,6 +622,7 @@ typedef struct plugin_sink {
     void *state;             /* the writer's, between begin and end */
     int begun, ended;
     struct lamina_job job;   /* as begin had it, for the workers' states */
+    const char **labels;     /* job.labels (owned; the texts are the caller's job's) */
     size_t layer;            /* the layer last begun (a worker's) */
 } plugin_sink;
 
@@ -665,6 +666,13 @@ static int ps_begin(void *ctx, const lam_job_info *job)
     memcpy(j.bbox, job->bbox, sizeof j.bbox);
     j.bead = job->bead;
     j.label = job->label ? job->label : "part";
+    /* the writer's table: the job's (a label NULL: "part"), or the one label */
+    int table = job->labels && job->nlabels;
+    j.nlabels = table ? job->nlabels : 1;
+    free(s->labels);
+    if (!(s->labels = malloc(j.nlabels * sizeof *s->labels))) return lam_error_nomem(s->err, NULL);
+    for (size_t k = 0; k < j.nlabels; k++) s->labels[k] = !table ? j.label : job->labels[k] ? job->labels[k] : "part";
+    j.labels = s->labels;
     s->job = j;
     last_msg[0] = '\0';
     s->state = s->we->w.begin(&s->out, &j);
@@ -749,6 +757,7 @@ static void ps_destroy(void *ctx)
     if (!s) return;
     if (s->state && s->we->w.abort) s->we->w.abort(s->state);
     free(s->out.buf);
+    free(s->labels);
     free(s);
 }
 

@@ -8,7 +8,7 @@
  *     $$VERSION/200
  *     $$DIMENSION/x1,y1,z1,x2,y2,z2   the job's bounding box (%.5f)
  *     $$LAYERS/<n>
- *     $$LABEL/1,<part name>
+ *     $$LABEL/<id>,<label>         one per label of the job, ids 1, 2, ...
  *     $$HEADEREND
  *
  * (lines end with "\n"; binary data follows "$$HEADEREND" immediately),
@@ -18,14 +18,16 @@
  *     130  polyline long      int32 id, int32 dir, int32 n, n x (float32 x, float32 y)
  *     132  hatches long       int32 id, int32 n, n x (float32 x0, y0, x1, y1)
  *
- * id is the part's id (1: the job's one model, as $$LABEL says); dir is 1 for counter-clockwise (solid) and 0 for clockwise (hole)
- * contours; every polyline is closed by repeating its first point, which n
- * counts (as the ASCII profile's $$POLYLINE/id,dir,n,... with
- * close_polylines). Nothing follows the last polyline: CLI binary has no
- * end-of-file command. Bytes are written one by one, so the output does not
- * depend on the host's byte order; float32 is IEEE 754 binary32 (C's float
- * on every platform lamina supports). */
+ * id is the block's label id, as $$LABEL says (1: the job's one model; a
+ * build plate's ids 1..n name its labels); dir is 1 for counter-clockwise
+ * (solid) and 0 for clockwise (hole) contours; every polyline is closed by
+ * repeating its first point, which n counts (as the ASCII profile's
+ * $$POLYLINE/id,dir,n,... with close_polylines). Nothing follows the last
+ * polyline: CLI binary has no end-of-file command. Bytes are written one by
+ * one, so the output does not depend on the host's byte order; float32 is
+ * IEEE 754 binary32 (C's float on every platform lamina supports). */
 #include <float.h>
+#include <stdarg.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -136,6 +138,56 @@ static void cli_free(cli *c)
     free(c);
 }
 
+/* Append printf-style text to c's buffer (at most 1023 bytes); non-zero
+ * when it cannot. */
+static int append(cli *c, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+static int append(cli *c, const char *fmt, ...)
+{
+    char text[1024];
+    va_list ap;
+    va_start(ap, fmt);
+    int n = vsnprintf(text, sizeof text, fmt, ap);
+    va_end(ap);
+    if (n < 0 || (size_t)n >= sizeof text || reserve(c, (size_t)n) != 0) return -1;
+    memcpy(c->buf + c->len, text, (size_t)n);
+    c->len += (size_t)n;
+    return 0;
+}
+
+/* Label k + 1 of the job: its table's when the host passes one (a host
+ * older than the table passes a size without it), else the one label;
+ * "part" for a missing or empty one. */
+static const char *job_label(const struct lamina_job *job, size_t k)
+{
+    const char *label = NULL;
+    if (job->size >= offsetof(struct lamina_job, nlabels) + sizeof job->nlabels && job->labels && job->nlabels)
+        label = k < job->nlabels ? job->labels[k] : NULL;
+    else if (job->size >= offsetof(struct lamina_job, label) + sizeof job->label && k == 0)
+        label = job->label;
+    return label && *label ? label : "part";
+}
+
+static size_t job_nlabels(const struct lamina_job *job)
+{
+    if (job->size >= offsetof(struct lamina_job, nlabels) + sizeof job->nlabels && job->labels && job->nlabels)
+        return job->nlabels;
+    return 1;
+}
+
+/* The ASCII header into c's buffer: one $$LABEL per label, each text cut
+ * at 200 bytes (as the header always had it). Non-zero when it cannot. */
+static int header(cli *c, const struct lamina_job *job, double mm)
+{
+    const double *b = job->bbox;
+    int rc = append(c,
+                    "$$HEADERSTART\n$$BINARY\n$$UNITS/%015.6f\n$$VERSION/200\n"
+                    "$$DIMENSION/%.5f,%.5f,%.5f,%.5f,%.5f,%.5f\n$$LAYERS/%zu\n",
+                    mm, b[0], b[1], b[2], b[3], b[4], b[5], job->layers);
+    size_t n = job_nlabels(job);
+    for (size_t k = 0; k < n && !rc; k++) rc = append(c, "$$LABEL/%zu,%.200s\n", k + 1, job_label(job, k));
+    return rc ? rc : append(c, "$$HEADEREND");
+}
+
 static void *cli_begin(struct lamina_out *out, const struct lamina_job *job)
 {
     if (!job || job->size < offsetof(struct lamina_job, layers) + sizeof job->layers) {
@@ -156,22 +208,11 @@ static void *cli_begin(struct lamina_out *out, const struct lamina_job *job)
     }
     c->out = out;
     c->layers = job->layers;
-    char head[1024];
-    const char *label = "part";
-    if (job->size >= offsetof(struct lamina_job, label) + sizeof job->label && job->label && *job->label)
-        label = job->label;
-    const double *b = job->bbox;
-    int n = snprintf(head, sizeof head,
-                     "$$HEADERSTART\n$$BINARY\n$$UNITS/%015.6f\n$$VERSION/200\n"
-                     "$$DIMENSION/%.5f,%.5f,%.5f,%.5f,%.5f,%.5f\n$$LAYERS/%zu\n$$LABEL/1,%.200s\n$$HEADEREND",
-                     mm, b[0], b[1], b[2], b[3], b[4], b[5], job->layers, label);
-    if (n < 0 || (size_t)n >= sizeof head || reserve(c, (size_t)n) != 0) {
+    if (header(c, job, mm) != 0) {
         host->set_error(host, "cli-binary: cannot format the header");
         cli_free(c);
         return NULL;
     }
-    memcpy(c->buf, head, (size_t)n);
-    c->len = (size_t)n;
     if (flush(c) != 0) {
         cli_free(c);
         return NULL;
