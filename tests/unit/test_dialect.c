@@ -324,7 +324,7 @@ static void test_moves(void)
     j.origin[1] = 2;
     j.origin[2] = 3;
     r.sink.begin(r.sink.ctx, &j);
-    lam_layer_info L = { 4, 3.25, 0.5, 3, 3.5, NULL, NULL };
+    lam_layer_info L = { .index = 4, .z = 3.25, .width = 0.5, .floor = 3, .ceiling = 3.5 };
     r.sink.layer(r.sink.ctx, &L);
     r.sink.feed(r.sink.ctx, 0.15);
     r.sink.laser(r.sink.ctx, 0);
@@ -390,10 +390,10 @@ static void test_contours(void)
     static const double sq_uv[] = { -1, -1, 1, -1, 1, 1, -1, 1 };
     static const double hole_xyz[] = { -0.5, -0.5, 0.5, -0.5, 0.5, 0.5, 0.5, 0.5, 0.5 };
     static const double hole_uv[] = { -0.5, -0.5, -0.5, 0.5, 0.5, 0.5 };
-    lam_contour_info a = { { 1 }, 1, 0, 0.5, sq_xyz, sq_uv, 4, 0, 0, 0, 0 };
-    lam_contour_info b = { { 2 }, 0, 1, 0.5, hole_xyz, hole_uv, 3, 0, 0, 0, 0 };
-    lam_contour_info c = { { 3 }, 1, 0, 1.5, sq_xyz, sq_uv, 4, 0, 0, 0, 0 };
-    lam_layer_info L0 = { 0, 0.5, 1, 0, 1, NULL, NULL }, L1 = { 1, 1.5, 1, 1, 2, NULL, NULL };
+    lam_contour_info a = { { .part = 1 }, 1, 0, 0.5, sq_xyz, sq_uv, 4, 0, 0, 0, 0 };
+    lam_contour_info b = { { .part = 2 }, 0, 1, 0.5, hole_xyz, hole_uv, 3, 0, 0, 0, 0 };
+    lam_contour_info c = { { .part = 3 }, 1, 0, 1.5, sq_xyz, sq_uv, 4, 0, 0, 0, 0 };
+    lam_layer_info L0 = { .index = 0, .z = 0.5, .width = 1, .floor = 0, .ceiling = 1 }, L1 = { .index = 1, .z = 1.5, .width = 1, .floor = 1, .ceiling = 2 };
 
     run r;
     memset(&r, 0, sizeof r);
@@ -453,7 +453,7 @@ static void test_contours(void)
     set(&r.d, LAM_CMD_POLYLINE, "P {n} {points}");
     run_start(&r);
     r.sink.begin(r.sink.ctx, &j);
-    lam_contour_info nouv = { { 9 }, 1, 0, 0.5, hole_xyz, NULL, 3, 0, 0, 0, 0 };
+    lam_contour_info nouv = { { .part = 9 }, 1, 0, 0.5, hole_xyz, NULL, 3, 0, 0, 0, 0 };
     r.sink.contour(r.sink.ctx, &nouv);
     out = run_take(&r);
     is_str(out, "P 3 -0.500000,-0.500000,-0.500000,0.500000,0.500000,0.500000\n", "points default %%.6f, open");

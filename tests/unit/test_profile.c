@@ -193,7 +193,7 @@ static void test_shipped(void)
 
 static void ded_script(const lam_sink *s)
 {
-    lam_layer_info L = { 0, 0.25, 0.5, 0, 0.5, NULL, NULL };
+    lam_layer_info L = { .index = 0, .z = 0.25, .width = 0.5, .floor = 0, .ceiling = 0.5 };
     s->layer(s->ctx, &L);
     move_to(s, 0, (double[]){ 1, 2, 0.25 });
     s->laser(s->ctx, 1);
@@ -206,9 +206,9 @@ static void cli_script(const lam_sink *s)
 {
     static const double xyz[] = { 0, 0, 0.05, 10, 0, 0.05, 10, 5, 0.05, 0, 5, 0.05 };
     static const double uv[] = { 0, 0, 10, 0, 10, 5, 0, 5 };
-    lam_layer_info L = { 0, 0.05, 0.1, 0, 0.1, NULL, NULL };
+    lam_layer_info L = { .index = 0, .z = 0.05, .width = 0.1, .floor = 0, .ceiling = 0.1 };
     s->layer(s->ctx, &L);
-    lam_contour_info c = { { 1 }, 1, 0, 0.05, xyz, uv, 4, 0, 0, 0, 0 };
+    lam_contour_info c = { { .part = 1 }, 1, 0, 0.05, xyz, uv, 4, 0, 0, 0, 0 };
     s->contour(s->ctx, &c);
     s->layer_end(s->ctx, &L);
 }
@@ -319,7 +319,7 @@ static int sls_same(const char *model, const double dir[3], double width, lam_cu
     lam_layer *L;
     while (lam_slicer_next(s, &L, &err) == LAM_OK && L) {
         lam_sls_write_layer(wa, L, &o.frame, &blocks);
-        lam_layer_info li = { L->index, L->cut, L->width, L->floor, L->ceiling, NULL, NULL };
+        lam_layer_info li = { .index = L->index, .z = L->cut, .width = L->width, .floor = L->floor, .ceiling = L->ceiling };
         sink.layer(sink.ctx, &li);
         for (size_t k = 0; k < L->ncontours; k++) {
             const lam_contour *c = &L->contours[k];
@@ -327,7 +327,7 @@ static int sls_same(const char *model, const double dir[3], double width, lam_cu
             for (size_t i = 0; i < c->n; i++)
                 lam_frame_to_model(&o.frame, L->uv[2 * (c->first + i)], L->uv[2 * (c->first + i) + 1], L->cut,
                                    xyz + 3 * i);
-            lam_contour_info ci = { { id++ }, c->kind == LAM_SOLID, c->depth, L->cut, xyz, L->uv + 2 * c->first, c->n, 0, 0, 0, 0 };
+            lam_contour_info ci = { { .part = id++ }, c->kind == LAM_SOLID, c->depth, L->cut, xyz, L->uv + 2 * c->first, c->n, 0, 0, 0, 0 };
             sink.contour(sink.ctx, &ci);
             free(xyz);
         }

@@ -201,7 +201,7 @@ static int drive(const lam_sink *s)
 {
     const double xyz[9] = { 0.1, 0.2, 0.3, 1e-300, -2.5, 3, 7, 8, 9 }, uv[6] = { 0.1, 0.2, -2.5, 3, 7, 8 };
     const double hx[12] = { 1, 2, 3, 4, 5, 6, 1.5, 2.5, 3.5, 4.5, 5.5, 6.5 }, hu[8] = { 1, 2, 4, 5, 1.5, 2.5, 4.5, 5.5 };
-    lam_contour_info c = { { 1 }, 1, 0, 0.3, xyz, uv, 3, 100, 200, 0, 0 };
+    lam_contour_info c = { { .part = 1 }, 1, 0, 0.3, xyz, uv, 3, 100, 200, 0, 0 };
     lam_hatch_info h = { .attrs = { 3 }, .kind = LAM_KIND_UPSKIN, .z = 0.3, .xyz = hx, .uv = hu, .n = 2, .angle = 67,
                          .power = 100, .speed = 200 };
     lam_move_info m1 = { .attrs = { 2 }, .deposit = 1, .xyz = { xyz[3], xyz[4], xyz[5] }, .uv = { -2.5, 3 } };
@@ -258,8 +258,8 @@ static void dialect_fork(void)
              put_tpl(&d, LAM_CMD_SEPARATOR, "--") | put_tpl(&d, LAM_CMD_PREAMBLE, "begin {layers}");
     ok(rc == LAM_OK, "dialect: templates parse");
     double xyz[9] = { 0, 0, 1, 1, 0, 1, 0, 1, 1 }, uv[6] = { 0, 0, 1, 0, 0, 1 };
-    lam_contour_info ci = { { 1 }, 1, 0, 1, xyz, uv, 3, 0, 0, 0, 0 };
-    lam_layer_info li[2] = { { 0, 0.5, 0.5, 0, 0.5, NULL, NULL }, { 1, 1, 0.5, 0.5, 1, NULL, NULL } };
+    lam_contour_info ci = { { .part = 1 }, 1, 0, 1, xyz, uv, 3, 0, 0, 0, 0 };
+    lam_layer_info li[2] = { { .index = 0, .z = 0.5, .width = 0.5, .floor = 0, .ceiling = 0.5 }, { .index = 1, .z = 1, .width = 0.5, .floor = 0.5, .ceiling = 1 } };
     lam_job_info job;
     memset(&job, 0, sizeof job);
     job.layers = 2;
