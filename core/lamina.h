@@ -77,5 +77,11 @@
 #include "plan_record.h"
 #include "views.h"
 #include "part.h"
+#include "blayer.h"
+#include "lasers.h"
+#include "arrange.h"
+#include "build.h"
+#include "build_job.h"
+#include "build_plan.h"
 
 #endif

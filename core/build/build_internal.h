@@ -26,7 +26,12 @@ struct lam_build_run {
     size_t nlabels;
     lam_job_info job;
     char job_label[160];
+    char *json;              /* the job's "build" member in the JSON (build_json.c) */
 };
+
+/* Render the build's JSON description into r->json and the job's
+ * json_extra. LAM_ENOMEM. */
+int lam_build_run_json(lam_build_run *r, lam_error *err);
 
 /* The label id of (part, style, laser), 0 when it has none. */
 long long lam_build_run_label(const lam_build_run *r, long long part, long long style, long long laser);

@@ -48,6 +48,7 @@ typedef struct drive {
     size_t window;
     double *xyz;             /* the writer's scratch */
     size_t xyz_cap;
+    lam_part_time *pt;       /* the layer's parts' times (nparts) */
     lam_scan_cfg cfg;        /* the machine's jumps and recoating */
     lam_error *err;
 } drive;
@@ -300,6 +301,10 @@ static int write_layer(drive *d, size_t k, const slot *s)
     li.time = &t;
     li.lasers = s->lasers;
     li.nlasers = r->lasers.n;
+    for (size_t i = 0; i < s->nparts; i++)
+        d->pt[i] = (lam_part_time){ (long long)s->parts[i] + 1, s->ptime[i].exposure + s->ptime[i].jump };
+    li.parts = d->pt;
+    li.nparts = s->nparts;
     if (!rc && sk->layer_end) rc = sk->layer_end(sk->ctx, &li);
     for (size_t i = 0; i < s->nparts && !rc; i++) lam_scan_time_add(&d->r->parts[s->parts[i]].time, &s->ptime[i]);
     if (!rc && d->o->planned) d->o->planned(d->o->user, k, &t, s->lasers, r->lasers.n);
@@ -330,7 +335,8 @@ static int drive_open(drive *d, unsigned threads, lam_error *err)
     d->window = threads > 1 ? lam_pool_window(4, 0, 4 * ((size_t)threads + 1)) : 1;
     d->ws = calloc(threads, sizeof *d->ws);
     d->slots = calloc(d->window, sizeof *d->slots);
-    if (!d->ws || !d->slots) return lam_error_nomem(err, "planning a build");
+    d->pt = calloc(r->nparts ? r->nparts : 1, sizeof *d->pt);
+    if (!d->ws || !d->slots || !d->pt) return lam_error_nomem(err, "planning a build");
     for (unsigned i = 0; i < threads; i++)
         if (!(d->ws[i].sweeps = calloc(r->nparts ? r->nparts : 1, sizeof *d->ws[i].sweeps)))
             return lam_error_nomem(err, "planning a build");
@@ -353,6 +359,7 @@ static void drive_close(drive *d)
     free(d->ws);
     free(d->slots);
     free(d->xyz);
+    free(d->pt);
 }
 
 /* The layers on the calling thread, one after the other. */

@@ -304,6 +304,7 @@ static int setup(lam_build_run *r, const lam_load_opts *load, lam_model **models
     if (!rc) rc = place_parts(r, models, items, err);
     if (!rc) rc = number_labels(r, err);
     if (!rc) make_job(r);
+    if (!rc) rc = lam_build_run_json(r, err);
     r->lasers.part_centre = r->centres;
     r->lasers.nparts = r->nparts;
     return rc;
@@ -360,6 +361,7 @@ void lam_build_run_free(lam_build_run *r)
     free(r->label_of);
     free(r->parts);
     free(r->centres);
+    free(r->json);
     free(r);
 }
 

@@ -19,6 +19,8 @@
  * contour of a million points never needs its whole line in memory. */
 #define FLUSH_AT 65536
 
+#define LAM_JSON_LASERS 16
+
 typedef struct js {
     lam_writer *w;           /* the JSON, or NULL */
     lam_writer *script;      /* the same for a <script> element, or NULL */
@@ -32,6 +34,11 @@ typedef struct js {
     double deposit_total, travel_total;
     lam_scan_time time;      /* the layers' estimates, summed */
     size_t timed;            /* layers that had one */
+    /* a build's totals: each laser's (busiest-laser) time, each part's */
+    double laser_time[LAM_JSON_LASERS];
+    size_t nlasers;
+    double *part_time;
+    size_t nparts_time;
     /* the last points written: a vector starts where the one before ended,
      * so each point is formatted once (formatting is most of the time) */
     struct {
@@ -256,6 +263,12 @@ static int j_begin(void *ctx, const lam_job_info *job)
     key(s, "bead");
     num(s, job->bead);
     if (job->repair) repair_obj(s, job->repair);
+    if (job->json_extra) {
+        put(s, ",");
+        line(s);
+        put(s, "  ");
+        put(s, job->json_extra);
+    }
     put(s, "},");
     line(s);
     put(s, " \"layers\": [");
@@ -272,6 +285,7 @@ static int j_layer(void *ctx, const lam_layer_info *li)
     size(s, li->index + 1);
     static const char *const keys[] = { "z", "floor", "ceiling", "width" };
     nums(s, 0, keys, (const double[]){ li->z, li->floor, li->ceiling, li->width }, 4);
+    if (li->has_cut) put(s, ", \"cut\": "), num(s, li->cut);
     put(s, ",");
     line(s);
     put(s, "   \"contours\": [");
@@ -348,6 +362,58 @@ static void time_object(js *s, const lam_scan_time *t)
     put(s, "}");
 }
 
+/* A build layer's lasers: each one's time, exposure and jumps, and the
+ * balance (the busiest over the ideal, lasers.h); totals kept for the end. */
+static void lasers_obj(js *s, const lam_layer_info *li)
+{
+    double busiest = 0, sum = 0;
+    size_t working = 0;
+    put(s, ", \"lasers\": [");
+    for (size_t l = 0; l < li->nlasers; l++) {
+        const lam_scan_time *t = &li->lasers[l];
+        double x = t->exposure + t->jump;
+        put(s, l ? ", {\"laser\": " : "{\"laser\": ");
+        size(s, l + 1);
+        static const char *const keys[] = { "time", "exposure", "jumps", "exposed" };
+        nums(s, 0, keys, (const double[]){ x, t->exposure, t->jump, t->exposure_length }, 4);
+        put(s, "}");
+        if (x > busiest) busiest = x;
+        if (x > 0) sum += x, working++;
+        if (l < LAM_JSON_LASERS) s->laser_time[l] += x;
+    }
+    if (li->nlasers > s->nlasers) s->nlasers = li->nlasers < LAM_JSON_LASERS ? li->nlasers : LAM_JSON_LASERS;
+    put(s, "], \"balance\": ");
+    num(s, working ? busiest / (sum / (double)working) : 1);
+}
+
+/* A build layer's parts: each one's own time; totals kept for the end. */
+static void parts_obj(js *s, const lam_layer_info *li)
+{
+    put(s, ", \"parts\": [");
+    for (size_t i = 0; i < li->nparts; i++) {
+        const lam_part_time *p = &li->parts[i];
+        put(s, i ? ", {\"part\": " : "{\"part\": ");
+        char b[32];
+        put(s, (snprintf(b, sizeof b, "%lld", p->part), b));
+        put(s, ", \"time\": ");
+        num(s, p->time);
+        put(s, "}");
+        if (p->part >= 1 && (size_t)p->part > s->nparts_time) {
+            size_t n = (size_t)p->part;
+            double *t = realloc(s->part_time, n * sizeof *t);
+            if (!t) {
+                nomem(s);
+                return;
+            }
+            memset(t + s->nparts_time, 0, (n - s->nparts_time) * sizeof *t);
+            s->part_time = t;
+            s->nparts_time = n;
+        }
+        if (p->part >= 1) s->part_time[p->part - 1] += p->time;
+    }
+    put(s, "]");
+}
+
 static int j_layer_end(void *ctx, const lam_layer_info *li, const lam_vec_stats *st)
 {
     js *s = ctx;
@@ -371,12 +437,41 @@ static int j_layer_end(void *ctx, const lam_layer_info *li, const lam_vec_stats 
     } else {
         put(s, "null");
     }
+    if (li->nlasers) lasers_obj(s, li);
+    if (li->nparts) parts_obj(s, li);
     put(s, "}}");
     s->layers++;
     s->deposit_total += st->deposit_length;
     s->travel_total += st->travel_length;
     flush(s); /* the layer is whole: out it goes */
     return s->rc;
+}
+
+/* A build's totals: each laser's time and each part's. */
+static void build_totals(js *s)
+{
+    if (s->nlasers) {
+        put(s, ", \"lasers\": [");
+        for (size_t l = 0; l < s->nlasers; l++) {
+            put(s, l ? ", {\"laser\": " : "{\"laser\": ");
+            size(s, l + 1);
+            put(s, ", \"time\": ");
+            num(s, s->laser_time[l]);
+            put(s, "}");
+        }
+        put(s, "]");
+    }
+    if (s->nparts_time) {
+        put(s, ", \"parts\": [");
+        for (size_t p = 0; p < s->nparts_time; p++) {
+            put(s, p ? ", {\"part\": " : "{\"part\": ");
+            size(s, p + 1);
+            put(s, ", \"time\": ");
+            num(s, s->part_time[p]);
+            put(s, "}");
+        }
+        put(s, "]");
+    }
 }
 
 static int j_end(void *ctx)
@@ -396,6 +491,7 @@ static int j_end(void *ctx)
     /* a total only when every layer had its estimate */
     if (s->timed && s->timed == s->layers) time_object(s, &s->time);
     else put(s, "null");
+    build_totals(s);
     put(s, "}}");
     line(s);
     flush(s);
@@ -406,6 +502,7 @@ static void j_destroy(void *ctx)
 {
     js *s = ctx;
     lam_buf_free(&s->b);
+    free(s->part_time);
     free(s);
 }
 

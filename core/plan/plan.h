@@ -42,6 +42,8 @@ typedef struct lam_job_info {
      * (lam_attrs_id); NULL: the one label `label`, id 1. */
     const char *const *labels;
     size_t nlabels;
+    const char *json_extra;  /* a build: more members of the JSON's job object, as JSON
+                                text (`"build": {...}`), or NULL */
 } lam_job_info;
 
 /* The part's name for a job from a model's path: the file's name without
@@ -67,7 +69,16 @@ typedef struct lam_layer_info {
     double cut;
     const struct lam_scan_time *lasers;
     size_t nlasers;
+    const struct lam_part_time *parts; /* at layer_end of a build: each part's time */
+    size_t nparts;
 } lam_layer_info;
+
+/* A part's share of a build layer (lam_layer_info.parts): exposure and
+ * jumps of its own blocks, seconds. */
+typedef struct lam_part_time {
+    long long part;          /* attrs.part */
+    double time;
+} lam_part_time;
 
 /* Every operation carries both frames' coordinates, computed once by the
  * planner: a consumer takes the frame it needs and never converts back. */

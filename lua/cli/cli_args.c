@@ -299,6 +299,7 @@ static const cli_opt options[] = {
     { "json", 0, OPT_JSON_FILE, "FILE", o_output, F(json_out) },
     { "html", 0, OPT_PLAN, "FILE", o_output, F(html) },
     { "layers", 0, OPT_PART, "A:B|K/N", o_part, 0 },
+    { "layout", 0, OPT_BUILD, "FILE", o_output, F(layout) },
     { "program", 0, OPT_PROGRAM, "FILE", o_text, F(program) },
     { "json", 0, OPT_JSON, NULL, o_flag, F(json) },
     { "show", 0, OPT_SHOW, "NAME|PATH", o_show, 0 },
@@ -491,6 +492,11 @@ int cli_parse_args(const char *cmd, const char *usage_text, unsigned groups, int
     for (int i = 1; i < argc && !rc; i++) {
         const char *o = argv[i];
         if (only_args || o[0] != '-' || !o[1]) {
+            if (groups & OPT_BUILD) {
+                if (a->path) return cli_usage(cmd, "more than one job given ('%s' and '%s')", a->path, o);
+                a->path = o;
+                continue;
+            }
             if (!(groups & OPT_MODEL))
                 return cli_usage(cmd, "unexpected argument '%s'%s%s%s", o, groups & OPT_SHOW ? " (to print a profile: --show " : "",
                                  groups & OPT_SHOW ? o : "", groups & OPT_SHOW ? ")" : "");
@@ -534,6 +540,7 @@ int cli_parse_args(const char *cmd, const char *usage_text, unsigned groups, int
     }
     if (rc) return rc;
     if (groups & OPT_MODEL && !a->path) return cli_usage(cmd, "no model given");
+    if (groups & OPT_BUILD && !a->path) return cli_usage(cmd, "no job given (a build job file: docs/builds.md)");
     /* LAMINA_THREADS is checked for every command, also those without -j
      * (info and check read a big binary STL with it) */
     unsigned otherwise = groups & (OPT_PLAN | OPT_JOBS) ? lam_online_cores() : 0;

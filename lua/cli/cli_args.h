@@ -38,7 +38,8 @@ enum {
     OPT_JSON_FILE = 512, /* slice: --json FILE (the run as JSON), instead of the --json flag */
     OPT_PART = 1024,   /* slice: --layers A:B or K/N (a part file) */
     OPT_JOBS = 2048,   /* -j N without the rest of OPT_PLAN (validate) */
-    OPT_OUTPUT = 4096  /* -o FILE without the rest of OPT_PLAN, and no standard-output default (repair) */
+    OPT_OUTPUT = 4096, /* -o FILE without the rest of OPT_PLAN, and no standard-output default (repair) */
+    OPT_BUILD = 8192   /* build: one JOB argument (a->path), --layout FILE */
 };
 
 /* A profile value from the command line: --set KEY=VALUE or an option short for it. */
@@ -51,6 +52,7 @@ typedef struct cli_set {
 typedef struct args {
     const char *path, *out, *svg, *machine, *show, *program;
     const char *json_out;    /* slice --json FILE */
+    const char *layout;      /* build --layout FILE */
     const char *html;        /* slice --html FILE */
     lam_slice_opts so;
     double *list;
