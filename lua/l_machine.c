@@ -118,7 +118,9 @@ int lam_lua_machines(lua_State *L)
  * the profile key table, in its order */
 int lam_lua_machine_keys(lua_State *L)
 {
-    static const char *const types[] = { "number", "integer", "boolean", "choice", "string", "template" };
+    static const char *const types[] = { "number", "integer", "boolean", "choice", "string", "template", "numbers",
+                                         "lasers" };
+    _Static_assert(sizeof types / sizeof types[0] == LAM_KEY_LASERS + 1, "a name for every key type");
     lua_createtable(L, (int)lam_profile_nkeys, 0);
     for (size_t i = 0; i < lam_profile_nkeys; i++) {
         const lam_key *k = &lam_profile_keys[i];
@@ -129,7 +131,11 @@ int lam_lua_machine_keys(lua_State *L)
         lua_setfield(L, -2, "lua");
         lua_pushstring(L, types[k->type]);
         lua_setfield(L, -2, "type");
-        if (k->type == LAM_KEY_NUMBER || k->type == LAM_KEY_INTEGER) {
+        if (k->type == LAM_KEY_NUMBERS) {
+            lua_pushinteger(L, (lua_Integer)k->count);
+            lua_setfield(L, -2, "count");
+        }
+        if (k->type == LAM_KEY_NUMBER || k->type == LAM_KEY_INTEGER || k->type == LAM_KEY_NUMBERS) {
             lua_pushnumber(L, k->lo);
             lua_setfield(L, -2, "min");
             lua_pushnumber(L, k->hi);
@@ -187,13 +193,45 @@ static int mc_tostring(lua_State *L)
     return 1;
 }
 
+/* {a, b, ...} of v[0..n) */
+static void push_numbers(lua_State *L, const double *v, size_t n)
+{
+    lua_createtable(L, (int)n, 0);
+    for (size_t i = 0; i < n; i++) {
+        lua_pushnumber(L, v[i]);
+        lua_rawseti(L, -2, (lua_Integer)i + 1);
+    }
+}
+
+/* A list row's value: {dx, dy}; { {field = {x0, y0, x1, y1}}, ... }; nil
+ * when not given. */
+static void push_list(lua_State *L, const lam_profile *p, const lam_key *k)
+{
+    if (!lam_key_given(p, k)) {
+        lua_pushnil(L);
+        return;
+    }
+    if (k->type == LAM_KEY_NUMBERS) {
+        push_numbers(L, (const double *)(const void *)((const char *)p + k->offset), k->count);
+        return;
+    }
+    lua_createtable(L, (int)p->nlasers, 0);
+    for (size_t i = 0; i < p->nlasers; i++) {
+        lua_createtable(L, 0, 1);
+        push_numbers(L, p->laser_field[i], 4);
+        lua_setfield(L, -2, "field");
+        lua_rawseti(L, -2, (lua_Integer)i + 1);
+    }
+}
+
 void lam_lua_push_key(lua_State *L, const lam_profile *p, const lam_key *k)
 {
     const char *at = (const char *)p + k->offset;
     double x = lam_key_get(p, k);
     switch (k->type) {
     case LAM_KEY_NUMBER:
-        if (k->flags & LAM_KEY_OPTIONAL && x == 0) lua_pushnil(L);
+        /* an optional value with a default (spacing: 0) is that number */
+        if (k->flags & LAM_KEY_OPTIONAL && x == 0 && !k->def) lua_pushnil(L);
         else if (k->flags & LAM_KEY_AUTO && x < 0) lua_pushliteral(L, "auto");
         else lua_pushnumber(L, x);
         break;
@@ -207,6 +245,8 @@ void lam_lua_push_key(lua_State *L, const lam_profile *p, const lam_key *k)
         else lua_pushnil(L);
         break;
     }
+    case LAM_KEY_NUMBERS:
+    case LAM_KEY_LASERS: push_list(L, p, k); break;
     }
 }
 
@@ -231,10 +271,17 @@ static int mc_fields(lua_State *L)
 
 /* ---- overrides -------------------------------------------------------------- */
 
+/* A list row (gas_flow, lasers): its value does not fit the one number
+ * per row that lam_lua_overrides keeps. */
+static int is_list(const lam_key *k)
+{
+    return k->type == LAM_KEY_NUMBERS || k->type == LAM_KEY_LASERS;
+}
+
 /* Whether row k may be given in a table whose rows must have `need`. */
 static int allowed(const lam_key *k, unsigned need)
 {
-    return !(k->flags & (LAM_KEY_FIXED | LAM_KEY_LOADER)) && (k->flags & need) == need;
+    return !(k->flags & (LAM_KEY_FIXED | LAM_KEY_LOADER)) && (k->flags & need) == need && !is_list(k);
 }
 
 static void read_one(lua_State *L, int t, int arg, const lam_key *k, double *v)
@@ -291,6 +338,8 @@ void lam_lua_read_overrides(lua_State *L, int t, int arg, unsigned need, const c
         const char *name = lua_type(L, -1) == LUA_TSTRING ? lua_tostring(L, -1) : NULL;
         const lam_key *k = lua_key(name);
         if (!name || (k && allowed(k, need))) continue;
+        if (k && is_list(k) && !(need & LAM_KEY_PLAN))
+            lam_lua_opterror(L, arg, "%s cannot be changed here (give it in the profile, or with --set)", name);
         if (k && k->flags & LAM_KEY_FIXED)
             lam_lua_opterror(L, arg, "%s cannot be changed here (load another machine profile)", name);
         if (k) lam_lua_opterror(L, arg, "%s cannot be changed here (it is not a planning option)", name);
@@ -339,6 +388,11 @@ static int mc_override(lua_State *L)
     lam_lua_overrides ovr;
     lam_lua_read_overrides(L, 2, 2, 0, NULL, &ovr); /* may run metamethods: no pointers held yet */
     lam_lua_check_readers(L, 2, &ovr, &lam_lua_checkmachine(L, 1)->p);
+    /* the plate the values leave is one shape, whole (a width needs a depth) */
+    lam_profile trial = lam_lua_checkmachine(L, 1)->p;
+    lam_lua_apply_overrides(&ovr, &trial);
+    lam_error err;
+    if (lam_profile_check_plate(&trial, &err)) lam_lua_opterror(L, 2, "%s", err.msg);
     lmachine *u = lua_newuserdatauv(L, sizeof *u, 1);
     memset(u, 0, sizeof *u);
     u->tag = LAM_TAG_MACHINE;

@@ -582,6 +582,79 @@ static int apply_template(const src *s, const lam_key *k, const yaml_node_t *v, 
     return LAM_OK;
 }
 
+/* The `count` numbers of sequence v (a list row's value, a laser's field)
+ * into out; `name` says what it is in messages. */
+static int read_numbers(const src *s, const yaml_node_t *v, const char *name, size_t count, double *out)
+{
+    char b[64];
+    if (v->type != YAML_SEQUENCE_NODE)
+        return at(s, v->start_mark, LAM_EINVAL, "%s must be a list of %zu numbers, got %s", name, count,
+                  describe(v, b, sizeof b));
+    size_t n = (size_t)(v->data.sequence.items.top - v->data.sequence.items.start);
+    if (n != count)
+        return at(s, v->start_mark, LAM_EINVAL, "%s must be a list of %zu numbers, got a list of %zu", name, count, n);
+    for (size_t i = 0; i < n; i++) {
+        const yaml_node_t *e = node(s, v->data.sequence.items.start[i]);
+        int rc = LAM_EINVAL;
+        /* "1" in quotes is text, as for a number key */
+        if (e->type == YAML_SCALAR_NODE && !is_null(e) && e->data.scalar.style == YAML_PLAIN_SCALAR_STYLE)
+            rc = lam_parse_number(e->data.scalar.value, e->data.scalar.length, &out[i]);
+        if (rc == LAM_ENOMEM) return oom();
+        if (rc)
+            return at(s, e->start_mark, LAM_EINVAL, "%s must be a list of %zu numbers, got %s in it", name, count,
+                      describe(e, b, sizeof b));
+        if (!isfinite(out[i]))
+            return at(s, e->start_mark, LAM_EINVAL, "%s must be finite numbers, got %s", name, describe(e, b, sizeof b));
+    }
+    return LAM_OK;
+}
+
+/* One laser of `lasers:`, a mapping {field: [x0, y0, x1, y1]}, into f. */
+static int read_laser(const src *s, const yaml_node_t *m, double f[4])
+{
+    static const char *const names[] = { "field" };
+    char b[64];
+    if (m->type != YAML_MAPPING_NODE)
+        return at(s, m->start_mark, LAM_EINVAL, "a laser must be a mapping {field: [x0, y0, x1, y1]}, got %s",
+                  describe(m, b, sizeof b));
+    int rc = check_keys(s, m, "lasers", names, 1);
+    if (rc) return rc;
+    const yaml_node_t *fv = lookup(s, m, "field");
+    if (!fv) return at(s, m->start_mark, LAM_EINVAL, "a laser needs its field: {field: [x0, y0, x1, y1]}");
+    if ((rc = read_numbers(s, fv, "a laser's field", 4, f))) return rc;
+    lam_error e;
+    if (lam_key_check_field(f, &e)) return at(s, fv->start_mark, LAM_EINVAL, "%s", e.msg);
+    return LAM_OK;
+}
+
+/* A list row's value v (numbers, lasers) into p; p is unchanged on error. */
+static int read_list(const src *s, const lam_key *k, const yaml_node_t *v, lam_profile *p)
+{
+    char b[64];
+    double f[LAM_PROFILE_LASERS_MAX][4];
+    if (k->type == LAM_KEY_NUMBERS) {
+        if (k->count > 4 * LAM_PROFILE_LASERS_MAX) return at(s, v->start_mark, LAM_EINVAL, "%s: too many", k->name);
+        int rc = read_numbers(s, v, k->name, k->count, f[0]);
+        lam_error e;
+        if (!rc && lam_key_check_numbers(k, NULL, f[0], k->count, &e)) rc = at(s, v->start_mark, LAM_EINVAL, "%s", e.msg);
+        if (!rc) memcpy((char *)p + k->offset, f[0], k->count * sizeof f[0][0]);
+        return rc;
+    }
+    if (v->type != YAML_SEQUENCE_NODE) return at_key(s, v, k, describe(v, b, sizeof b));
+    size_t n = (size_t)(v->data.sequence.items.top - v->data.sequence.items.start);
+    if (n < 1 || n > LAM_PROFILE_LASERS_MAX) {
+        snprintf(b, sizeof b, n ? "a list of %zu" : "an empty list", n);
+        return at_key(s, v, k, b);
+    }
+    for (size_t i = 0; i < n; i++) {
+        int rc = read_laser(s, node(s, v->data.sequence.items.start[i]), f[i]);
+        if (rc) return rc;
+    }
+    memcpy(p->laser_field, f, n * sizeof f[0]);
+    p->nlasers = n;
+    return LAM_OK;
+}
+
 /* The value v of row k into L's profile, with the row's checks. */
 static int apply_value(ldr *L, const src *s, const lam_key *k, const yaml_node_t *v)
 {
@@ -590,7 +663,9 @@ static int apply_value(ldr *L, const src *s, const lam_key *k, const yaml_node_t
     int rc;
     lam_error e;
     lam_error_clear(&e);
-    if (k->type == LAM_KEY_TEMPLATE) {
+    if (k->type == LAM_KEY_NUMBERS || k->type == LAM_KEY_LASERS) {
+        rc = read_list(s, k, v, p);
+    } else if (k->type == LAM_KEY_TEMPLATE) {
         rc = apply_template(s, k, v, p);
     } else if (k->type == LAM_KEY_STRING) {
         char **field = (char **)(void *)((char *)p + k->offset);
@@ -615,6 +690,22 @@ static int apply_value(ldr *L, const src *s, const lam_key *k, const yaml_node_t
     return rc;
 }
 
+/* plate: (before its values, then after them) a file that gives a shape
+ * replaces the shape it inherits, a round plate over a rectangular one or
+ * the other way round; the plate it leaves must be one shape, whole. */
+static int plate_shape(ldr *L, const src *s, const yaml_node_t *m, int after)
+{
+    const yaml_node_t *d = lookup(s, m, "diameter"), *w = lookup(s, m, "width"), *h = lookup(s, m, "depth");
+    if (!after) {
+        if (d) L->p->plate_width = L->p->plate_depth = 0;
+        if (w || h) L->p->plate_diameter = 0;
+        return LAM_OK;
+    }
+    lam_error e;
+    if (!lam_profile_check_plate(L->p, &e)) return LAM_OK;
+    return at(s, d && (w || h) ? d->start_mark : m->start_mark, LAM_EINVAL, "%s", e.msg);
+}
+
 /* A section's mapping (raster:, dialect:): its keys merge into the profile. */
 static int apply_section(ldr *L, const src *s, const char *section, const yaml_node_t *m)
 {
@@ -625,6 +716,8 @@ static int apply_section(ldr *L, const src *s, const char *section, const yaml_n
         return at(s, m->start_mark, LAM_EINVAL, "%s must be a mapping (%s, %s, ...), got %s", section, ks.names[0],
                   ks.n > 1 ? ks.names[1] : "", describe(m, b, sizeof b));
     int rc = check_keys(s, m, section, ks.names, ks.n);
+    int plate = !strcmp(section, "plate");
+    if (!rc && plate) plate_shape(L, s, m, 0);
     for (yaml_node_pair_t *pr = m->data.mapping.pairs.start; !rc && pr < m->data.mapping.pairs.top; pr++) {
         char full[128];
         snprintf(full, sizeof full, "%s.%s", section, (const char *)node(s, pr->key)->data.scalar.value);
@@ -636,6 +729,7 @@ static int apply_section(ldr *L, const src *s, const char *section, const yaml_n
         snprintf(full, sizeof full, "%s.%s", section, ks.names[i]);
         if (exact_key(full)->type == LAM_KEY_TEMPLATE) L->templates_given = 1;
     }
+    if (!rc && plate) rc = plate_shape(L, s, m, 1);
     return rc;
 }
 
@@ -1036,6 +1130,92 @@ int lam_profile_find(const char *name_or_path, lam_profile **out, lam_error *err
     return rc;
 }
 
+/* ---- --set ---------------------------------------------------------------- */
+
+/* Set a list row (numbers, lasers) of p from text, YAML in flow style
+ * ("[1, 0]", "[{field: [0, 0, 125, 250]}]"), with the loader's checks and
+ * messages, without a position; p is unchanged on error. */
+static int set_list(lam_profile *p, const lam_key *k, const char *text, lam_error *err)
+{
+    if (!text[strspn(text, " \t")]) return lam_key_expected(k, NULL, "nothing", err);
+    src s;
+    memset(&s, 0, sizeof s);
+    s.path = "--set";
+    s.err = err;
+    s.len = strlen(text);
+    if (!(s.text = strdup(text))) return oom_err(err);
+    int rc = parse(&s);
+    if (!rc) rc = check_tags(&s);
+    if (!rc) rc = read_list(&s, k, yaml_document_get_root_node(&s.doc), p);
+    if (s.have_doc) yaml_document_delete(&s.doc);
+    free(s.text);
+    if (rc && rc != LAM_ENOMEM) {
+        /* the loader's message, without a position in the value's text */
+        char msg[sizeof err->msg];
+        snprintf(msg, sizeof msg, "%s", err->msg);
+        lam_error_set(err, rc, NULL, 0, 0, "%s", msg);
+    }
+    return rc;
+}
+
+static const lam_key *find_or_fail(const char *name, lam_error *err)
+{
+    const lam_key *k = lam_key_find(name);
+    if (k) return k;
+    const char *names[LAM_KEYS_MAX];
+    size_t n = 0;
+    for (size_t i = 0; i < lam_profile_nkeys; i++)
+        if (!(lam_profile_keys[i].flags & LAM_KEY_LOADER)) names[n++] = lam_profile_keys[i].name;
+    const char *best = lam_key_nearest(name, names, n);
+    char shown[64];
+    lam_quote_bytes(shown, sizeof shown, (const unsigned char *)name, strlen(name));
+    if (best)
+        lam_error_set(err, LAM_EINVAL, NULL, 0, 0, "unknown key %s (did you mean '%s'?)", shown, best);
+    else
+        lam_error_set(err, LAM_EINVAL, NULL, 0, 0, "unknown key %s", shown);
+    return NULL;
+}
+
+int lam_profile_set(lam_profile *p, const char *name, const char *text, lam_error *err)
+{
+    lam_error own; /* err may be NULL (error.h); messages are wrapped below */
+    if (!err) err = &own;
+    const lam_key *k = find_or_fail(name, err);
+    if (!k) return LAM_EINVAL;
+    if (k->flags & LAM_KEY_LOADER)
+        return lam_error_set(err, LAM_EINVAL, NULL, 0, 0, "%s is only read while a profile loads", k->name);
+    if (k->type == LAM_KEY_STRING) {
+        int rc = lam_key_check_text(k, text, err);
+        if (rc) return rc;
+        char *copy = strdup(text);
+        if (!copy) return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory");
+        char **at = (char **)(void *)((char *)p + k->offset);
+        free(*at);
+        *at = copy;
+        return LAM_OK;
+    }
+    if (k->type == LAM_KEY_TEMPLATE) {
+        lam_template t;
+        size_t off = 0;
+        int rc = lam_template_parse((lam_cmd)k->cmd, text, &t, &off, err);
+        if (rc == LAM_ENOMEM) return rc;
+        if (rc) {
+            char msg[sizeof err->msg];
+            snprintf(msg, sizeof msg, "%s", err->msg);
+            return lam_error_set(err, LAM_EINVAL, NULL, 0, 0, "%s: %s (at character %zu)", k->name, msg, off + 1);
+        }
+        lam_template *at = (lam_template *)(void *)((char *)p + k->offset);
+        lam_template_free(at);
+        *at = t;
+        return LAM_OK;
+    }
+    if (k->type == LAM_KEY_NUMBERS || k->type == LAM_KEY_LASERS) return set_list(p, k, text, err);
+    double x;
+    int rc = lam_key_scan(k, NULL, text, strlen(text), &x, err);
+    if (!rc) lam_key_put(p, k, x);
+    return rc;
+}
+
 /* ---- dump --------------------------------------------------------------- */
 
 static void put_string(lam_writer *w, const char *s)
@@ -1065,6 +1245,30 @@ static void put_comment(lam_writer *w, const char *label, const char *text)
     lam_writer_write(w, "\n", 1);
 }
 
+/* A list row's value in YAML flow style: "[-1, 0]", "[{field: [0, 0, 125,
+ * 250]}, ...]". */
+static void put_list(lam_writer *w, const lam_profile *p, const lam_key *k)
+{
+    char buf[LAM_FMT_MAX];
+    size_t n = k->type == LAM_KEY_LASERS ? p->nlasers : k->count;
+    const double *v = (const double *)(const void *)((const char *)p + k->offset);
+    lam_writer_write(w, "[", 1);
+    for (size_t i = 0; i < n; i++) {
+        if (i) lam_writer_write(w, ", ", 2);
+        if (k->type == LAM_KEY_NUMBERS) {
+            lam_writer_write(w, buf, lam_dialect_number(buf, v[i]));
+            continue;
+        }
+        lam_writer_write(w, "{field: [", 9);
+        for (int j = 0; j < 4; j++) {
+            if (j) lam_writer_write(w, ", ", 2);
+            lam_writer_write(w, buf, lam_dialect_number(buf, p->laser_field[i][j]));
+        }
+        lam_writer_write(w, "]}", 2);
+    }
+    lam_writer_write(w, "]", 1);
+}
+
 int lam_profile_dump(const lam_profile *p, lam_writer *w)
 {
     put_comment(w, "lamina machine profile ", p->name ? p->name : "");
@@ -1078,13 +1282,7 @@ int lam_profile_dump(const lam_profile *p, lam_writer *w)
         const char *str = k->type == LAM_KEY_STRING ? *(char *const *)(const void *)at : NULL;
         /* not the other planner's keys (an sls profile's bead width is its
          * spot width): the dump loads again (check_readers) */
-        if (k->flags & LAM_KEY_LOADER || !lam_key_read_by(k, p->process)) continue;
-        if (k->flags & LAM_KEY_OPTIONAL) {
-            if (k->type == LAM_KEY_TEMPLATE ? !t->present
-                : k->type == LAM_KEY_STRING ? !str
-                                            : !(lam_key_get(p, k) != 0))
-                continue;
-        }
+        if (k->flags & LAM_KEY_LOADER || !lam_key_read_by(k, p->process) || !lam_key_given(p, k)) continue;
         size_t kl = lam_key_section_len(k);
         if (kl && (kl != sl || strncmp(k->name, section, kl) != 0)) {
             lam_writer_printf(w, "%.*s:\n", (int)kl, k->name);
@@ -1109,6 +1307,8 @@ int lam_profile_dump(const lam_profile *p, lam_writer *w)
         }
         case LAM_KEY_STRING: put_string(w, str ? str : ""); break;
         case LAM_KEY_TEMPLATE: put_string(w, t->source); break;
+        case LAM_KEY_NUMBERS:
+        case LAM_KEY_LASERS: put_list(w, p, k); break;
         }
         lam_writer_write(w, "\n", 1);
     }

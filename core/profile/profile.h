@@ -69,4 +69,11 @@ double lam_profile_gap_limit(const lam_profile *p);
  * the keys its planner reads (lam_key_read_by), so that the text loads again. */
 int lam_profile_dump(const lam_profile *p, lam_writer *w);
 
+/* Set key `name` of p from text, as one more YAML file on top of p would
+ * (`--set KEY=VALUE`): every row but the loader's; the value is checked
+ * with the loader's rules and messages; strings and templates replace
+ * p's (p owns them). Errors: LAM_EINVAL (unknown key, with "did you mean";
+ * a bad value), LAM_ENOMEM. p is unchanged on error. */
+int lam_profile_set(struct lam_profile *p, const char *name, const char *text, lam_error *err);
+
 #endif

@@ -179,6 +179,28 @@ const lam_key lam_profile_keys[] = {
     EXPOSURE_ROWS("contour.", LAM_KIND_CONTOUR, "sls, contour passes"),
     HATCH_ROWS("upskin.", LAM_KIND_UPSKIN, "sls, up-skin"),
     HATCH_ROWS("downskin.", LAM_KIND_DOWNSKIN, "sls, down-skin"),
+    { .name = "plate.width", .type = LAM_KEY_NUMBER, .flags = LAM_KEY_ABOVE | LAM_KEY_OPTIONAL, .lo = 0,
+      .hi = HUGE_VAL, .offset = AT(plate_width),
+      .doc = "builds: a rectangular build plate's width (x); plate coordinates start at its front-left corner (with "
+             "`plate.depth`)" },
+    { .name = "plate.depth", .type = LAM_KEY_NUMBER, .flags = LAM_KEY_ABOVE | LAM_KEY_OPTIONAL, .lo = 0,
+      .hi = HUGE_VAL, .offset = AT(plate_depth),
+      .doc = "builds: a rectangular build plate's depth (y) (with `plate.width`)" },
+    { .name = "plate.diameter", .type = LAM_KEY_NUMBER, .flags = LAM_KEY_ABOVE | LAM_KEY_OPTIONAL, .lo = 0,
+      .hi = HUGE_VAL, .offset = AT(plate_diameter),
+      .doc = "builds: a round build plate's diameter, instead of `plate.width` and `plate.depth`; plate "
+             "coordinates start at its centre" },
+    { .name = "plate.margin", .type = LAM_KEY_NUMBER, .flags = LAM_KEY_OPTIONAL, .lo = 0, .hi = HUGE_VAL,
+      .def = "0", .offset = AT(plate_margin), .doc = "builds: kept free of parts along the plate's edge" },
+    { .name = "spacing", .type = LAM_KEY_NUMBER, .flags = LAM_KEY_OPTIONAL, .lo = 0, .hi = HUGE_VAL, .def = "0",
+      .offset = AT(spacing), .doc = "builds: least distance between two parts' footprints on the plate" },
+    { .name = "gas_flow", .type = LAM_KEY_NUMBERS, .flags = LAM_KEY_OPTIONAL, .lo = -HUGE_VAL, .hi = HUGE_VAL,
+      .count = 2, .offset = AT(gas_flow),
+      .doc = "builds: `[dx, dy]`, the direction the shielding gas flows in over the plate (`[-1, 0]`: from +x "
+             "towards -x; absent or `[0, 0]`: none)" },
+    { .name = "lasers", .type = LAM_KEY_LASERS, .flags = LAM_KEY_OPTIONAL, .offset = AT(nlasers),
+      .doc = "builds: `[{field: [x0, y0, x1, y1]}, ...]`, each laser's field: the box of the plate it reaches, "
+             "in plate coordinates (absent: none given)" },
     { .name = "max_overhang_deg", .type = LAM_KEY_NUMBER, .flags = LAM_KEY_OPTIONAL, .lo = 0, .hi = 90,
       .offset = AT(max_overhang_deg), .doc = "design rule for `lamina check`, degrees from the vertical (0: no rule)" },
     { .name = "writer", .type = LAM_KEY_STRING, .flags = LAM_KEY_NONEMPTY | LAM_KEY_FIXED, .def = "text",
@@ -351,7 +373,7 @@ int lam_key_check(const lam_key *k, const char *as, double x, const char *shown,
                                  lo, hi, shown);
         return LAM_OK;
     }
-    if (k->type != LAM_KEY_NUMBER) return LAM_OK;
+    if (k->type != LAM_KEY_NUMBER && k->type != LAM_KEY_NUMBERS) return LAM_OK;
     int above = k->flags & LAM_KEY_ABOVE;
     if ((above ? x > k->lo : x >= k->lo) && x <= k->hi) return LAM_OK;
     if (k->hi == HUGE_VAL)
@@ -395,6 +417,10 @@ int lam_key_expected(const lam_key *k, const char *as, const char *got, lam_erro
     case LAM_KEY_CHOICE: choice_list(k, list, sizeof list); break;
     case LAM_KEY_STRING: choice_list(k, list, sizeof list); break;
     case LAM_KEY_TEMPLATE: what = "a template (text) or null"; break;
+    case LAM_KEY_NUMBERS: snprintf(list, sizeof list, "a list of %zu numbers", k->count); break;
+    case LAM_KEY_LASERS:
+        snprintf(list, sizeof list, "a list of 1 to %d lasers ({field: [x0, y0, x1, y1]})", LAM_PROFILE_LASERS_MAX);
+        break;
     }
     return lam_error_set(err, LAM_EINVAL, NULL, 0, 0, "%s must be %s, got %s", as ? as : k->name, what, got);
 }
@@ -472,6 +498,9 @@ void lam_key_put(lam_profile *p, const lam_key *k, double x)
         const lam_key *f = &lam_profile_keys[i];
         if (f->follows && !strcmp(f->follows, k->name) && lam_key_get(p, f) == old) lam_key_store(p, f, x);
     }
+    /* one plate shape: a round plate or a rectangular one */
+    if (k->offset == AT(plate_diameter) && x > 0) p->plate_width = p->plate_depth = 0;
+    if ((k->offset == AT(plate_width) || k->offset == AT(plate_depth)) && x > 0) p->plate_diameter = 0;
     /* one width for sls: whichever of the two is set */
     if (p->process == LAM_PROCESS_SLS) {
         if (k->offset == AT(bead_width)) p->spot_width = x;
@@ -479,64 +508,77 @@ void lam_key_put(lam_profile *p, const lam_key *k, double x)
     }
 }
 
-/* ---- --set ---------------------------------------------------------------- */
-
-static const lam_key *find_or_fail(const char *name, lam_error *err)
+int lam_key_given(const lam_profile *p, const lam_key *k)
 {
-    const lam_key *k = lam_key_find(name);
-    if (k) return k;
-    const char *names[LAM_KEYS_MAX];
-    size_t n = 0;
-    for (size_t i = 0; i < lam_profile_nkeys; i++)
-        if (!(lam_profile_keys[i].flags & LAM_KEY_LOADER)) names[n++] = lam_profile_keys[i].name;
-    const char *best = lam_key_nearest(name, names, n);
-    char shown[64];
-    lam_quote_bytes(shown, sizeof shown, (const unsigned char *)name, strlen(name));
-    if (best)
-        lam_error_set(err, LAM_EINVAL, NULL, 0, 0, "unknown key %s (did you mean '%s'?)", shown, best);
-    else
-        lam_error_set(err, LAM_EINVAL, NULL, 0, 0, "unknown key %s", shown);
-    return NULL;
+    const char *at = (const char *)p + k->offset;
+    if (!(k->flags & LAM_KEY_OPTIONAL)) return 1;
+    switch (k->type) {
+    case LAM_KEY_TEMPLATE: return ((const lam_template *)(const void *)at)->present;
+    case LAM_KEY_STRING: return *(char *const *)(const void *)at != NULL;
+    case LAM_KEY_LASERS: return p->nlasers > 0;
+    case LAM_KEY_NUMBERS:
+        for (size_t i = 0; i < k->count; i++)
+            if (((const double *)(const void *)at)[i] != 0) return 1;
+        return 0;
+    default: return lam_key_get(p, k) != 0;
+    }
 }
 
-int lam_profile_set(lam_profile *p, const char *name, const char *text, lam_error *err)
+/* "[a, b, c]" of v[0..n) into buf (LAM_FMT_MAX per number) */
+static const char *num_list(char *buf, size_t size, const double *v, size_t n)
 {
-    lam_error own; /* err may be NULL (error.h); messages are wrapped below */
-    if (!err) err = &own;
-    const lam_key *k = find_or_fail(name, err);
-    if (!k) return LAM_EINVAL;
-    if (k->flags & LAM_KEY_LOADER)
-        return lam_error_set(err, LAM_EINVAL, NULL, 0, 0, "%s is only read while a profile loads", k->name);
-    if (k->type == LAM_KEY_STRING) {
-        int rc = lam_key_check_text(k, text, err);
+    size_t len = 0;
+    buf[len++] = '[';
+    for (size_t i = 0; i < n && len + LAM_FMT_MAX + 3 < size; i++) {
+        if (i) buf[len++] = ',', buf[len++] = ' ';
+        len += lam_dialect_number(buf + len, v[i]);
+    }
+    buf[len++] = ']';
+    buf[len] = '\0';
+    return buf;
+}
+
+int lam_key_check_numbers(const lam_key *k, const char *as, const double *v, size_t n, lam_error *err)
+{
+    const char *name = as ? as : k->name;
+    if (n != k->count)
+        return lam_error_set(err, LAM_EINVAL, NULL, 0, 0, "%s must be a list of %zu numbers, got a list of %zu", name,
+                             k->count, n);
+    for (size_t i = 0; i < n; i++) {
+        char shown[LAM_FMT_MAX];
+        if (!isfinite(v[i]))
+            return lam_error_set(err, LAM_EINVAL, NULL, 0, 0, "%s must be finite numbers, got %s", name,
+                                 isnan(v[i]) ? "nan" : v[i] > 0 ? "inf" : "-inf");
+        int rc = lam_key_check(k, as, v[i], num(shown, v[i]), err);
         if (rc) return rc;
-        char *copy = strdup(text);
-        if (!copy) return lam_error_set(err, LAM_ENOMEM, NULL, 0, 0, "out of memory");
-        char **at = (char **)(void *)((char *)p + k->offset);
-        free(*at);
-        *at = copy;
-        return LAM_OK;
     }
-    if (k->type == LAM_KEY_TEMPLATE) {
-        lam_template t;
-        size_t off = 0;
-        int rc = lam_template_parse((lam_cmd)k->cmd, text, &t, &off, err);
-        if (rc == LAM_ENOMEM) return rc;
-        if (rc) {
-            char msg[sizeof err->msg];
-            snprintf(msg, sizeof msg, "%s", err->msg);
-            return lam_error_set(err, LAM_EINVAL, NULL, 0, 0, "%s: %s (at character %zu)", k->name, msg, off + 1);
-        }
-        lam_template *at = (lam_template *)(void *)((char *)p + k->offset);
-        lam_template_free(at);
-        *at = t;
-        return LAM_OK;
-    }
-    double x;
-    int rc = lam_key_scan(k, NULL, text, strlen(text), &x, err);
-    if (!rc) lam_key_put(p, k, x);
-    return rc;
+    return LAM_OK;
 }
+
+int lam_key_check_field(const double f[4], lam_error *err)
+{
+    char shown[4 * LAM_FMT_MAX + 16];
+    for (int i = 0; i < 4; i++)
+        if (!isfinite(f[i]))
+            return lam_error_set(err, LAM_EINVAL, NULL, 0, 0, "a laser's field must be 4 finite numbers [x0, y0, x1, y1]");
+    if (f[0] < f[2] && f[1] < f[3]) return LAM_OK;
+    return lam_error_set(err, LAM_EINVAL, NULL, 0, 0, "a laser's field must have x0 < x1 and y0 < y1, got %s",
+                         num_list(shown, sizeof shown, f, 4));
+}
+
+int lam_profile_check_plate(const lam_profile *p, lam_error *err)
+{
+    if (p->plate_diameter > 0 && (p->plate_width > 0 || p->plate_depth > 0))
+        return lam_error_set(err, LAM_EINVAL, NULL, 0, 0,
+                             "plate.diameter excludes plate.width and plate.depth (a plate is round or rectangular)");
+    if ((p->plate_width > 0) != (p->plate_depth > 0))
+        return lam_error_set(err, LAM_EINVAL, NULL, 0, 0,
+                             "plate.width and plate.depth go together: give both (a rectangular plate) or "
+                             "plate.diameter (a round one)");
+    return LAM_OK;
+}
+
+/* ---- after --set ---------------------------------------------------------- */
 
 int lam_profile_check(const lam_profile *p, lam_error *err)
 {
@@ -547,5 +589,5 @@ int lam_profile_check(const lam_profile *p, lam_error *err)
             return lam_error_set(err, LAM_EINVAL, NULL, 0, 0, "%s must be given for process %s", k->name,
                                  process_choices[p->process == LAM_PROCESS_SLS]);
     }
-    return LAM_OK;
+    return lam_profile_check_plate(p, err);
 }

@@ -4,7 +4,8 @@
  *
  * The table drives everything that knows a key by name: the YAML loader and
  * its messages (profile.c), `lamina machines --show` (lam_profile_dump),
- * `--set KEY=VALUE` and the convenience options (lua/cli/cli_args.c), the Lua
+ * `--set KEY=VALUE` (lam_profile_set, profile.h: a list's value is read as
+ * YAML) and the convenience options (lua/cli/cli_args.c), the Lua
  * machine fields and machine:override (lua/l_machine.c) and the key
  * reference in machines/README.md (`lamina machines --keys`, checked by a
  * test). Adding a key is one row in profile_keys.c, a field in lam_profile
@@ -30,6 +31,9 @@
  * live in (lam_key.offset). */
 typedef enum lam_process { LAM_PROCESS_LADRP, LAM_PROCESS_SLS } lam_process;
 typedef enum lam_first_line { LAM_FIRST_EDGE, LAM_FIRST_CENTER } lam_first_line;
+
+/* Most lasers a profile may give (lam_profile.laser_field). */
+#define LAM_PROFILE_LASERS_MAX 16
 
 typedef struct lam_profile {
     char *name;              /* `name:` */
@@ -57,6 +61,15 @@ typedef struct lam_profile {
     int beam_offset;             /* contours inset by spot/2, default false */
     lam_scan_cfg scan;           /* hatching, skins, exposure, time (hatch.h);
                                     scan.compensation is not a key: the planner's */
+    /* the build plate (builds, core/build): 0 when absent */
+    double plate_width, plate_depth;   /* plate.width, plate.depth: a rectangular plate */
+    double plate_diameter;             /* plate.diameter: a round plate (instead of width/depth) */
+    double plate_margin;               /* plate.margin: kept free along the edge, default 0 */
+    double spacing;                    /* between parts' footprints, default 0 */
+    double gas_flow[2];                /* gas_flow: [dx, dy], the direction the gas flows in
+                                          (plate x, y; any length); 0 0: none */
+    size_t nlasers;                    /* lasers: [{field: [x0, y0, x1, y1]}, ...]; 0: none given */
+    double laser_field[LAM_PROFILE_LASERS_MAX][4]; /* each laser's field on the plate (x0 < x1, y0 < y1) */
     /* design rules (optional) */
     double max_overhang_deg;     /* 0 when absent */
     char *writer;                /* "text" (default: the dialect) or a plugin writer name; never NULL */
@@ -69,7 +82,14 @@ typedef enum lam_key_type {
     LAM_KEY_BOOLEAN,  /* int 0 or 1: true/false/yes/no */
     LAM_KEY_CHOICE,   /* int: index into choices */
     LAM_KEY_STRING,   /* char *, malloc'd, owned by the profile; with choices, one of them */
-    LAM_KEY_TEMPLATE  /* lam_template of a dialect command (dialect.h) */
+    LAM_KEY_TEMPLATE, /* lam_template of a dialect command (dialect.h) */
+    LAM_KEY_NUMBERS,  /* double[count]: a YAML list of exactly `count` finite
+                         numbers in [lo, hi] (gas_flow: [dx, dy]); with
+                         LAM_KEY_OPTIONAL all 0 means "not given" */
+    LAM_KEY_LASERS    /* the lasers: nlasers and laser_field of lam_profile
+                         (offset: nlasers), a YAML list of 1 to
+                         LAM_PROFILE_LASERS_MAX mappings {field: [x0, y0, x1,
+                         y1]} with x0 < x1, y0 < y1 */
 } lam_key_type;
 
 enum lam_key_flag {
@@ -123,6 +143,7 @@ typedef struct lam_key {
                                     other name true */
     char letter;                 /* its one-letter form ('w' for -w), or 0 */
     int cmd;                     /* template: the lam_cmd */
+    size_t count;                /* numbers: how many */
     size_t offset;               /* where it lives in lam_profile */
     int planner;                 /* lam_key_planner: who reads it */
     const char *instead;         /* a one-planner key: what the other planner
@@ -203,25 +224,42 @@ int lam_key_check(const lam_key *k, const char *as, double x, const char *shown,
 /* A number, integer, boolean or choice key's value in p. */
 double lam_key_get(const struct lam_profile *p, const lam_key *k);
 
+/* Whether row k has a value in p: an optional row's value not 0 (a number
+ * list with a number not 0, at least one laser, a present template, a
+ * string not NULL); always 1 for a row that is not optional. */
+int lam_key_given(const struct lam_profile *p, const lam_key *k);
+
+/* Check numbers row k's values v[0..n): n is the row's count, each finite
+ * and in its range. `as` names the key (NULL: its name). Errors:
+ * LAM_EINVAL "gas_flow must be a list of 2 numbers, got 3 numbers",
+ * "gas_flow must be finite numbers, got inf". */
+int lam_key_check_numbers(const lam_key *k, const char *as, const double *v, size_t n, lam_error *err);
+
+/* Check one laser's field f = {x0, y0, x1, y1}: finite, x0 < x1 and
+ * y0 < y1. Errors: LAM_EINVAL "a laser's field must have x0 < x1 and
+ * y0 < y1, got [0, 0, 0, 250]". */
+int lam_key_check_field(const double f[4], lam_error *err);
+
 /* Store a checked number, integer, boolean or choice value into p, and
  * keep what follows it: a key that `follows` this one and had its value
  * takes the new one (a travel rate that followed the feed rate), and an sls
- * profile's bead width is its spot width. */
+ * profile's bead width is its spot width; a plate's shape is one: a
+ * diameter clears the width and depth, a width or depth the diameter. */
 void lam_key_put(struct lam_profile *p, const lam_key *k, double x);
 
 /* The same without the values that follow (the loader settles those once
  * the whole chain is read). */
 void lam_key_store(struct lam_profile *p, const lam_key *k, double x);
 
-/* Set key `name` of p from text, as one more YAML file on top of p would
- * (`--set KEY=VALUE`): every row but the loader's; the value is checked
- * with the loader's rules and messages; strings and templates replace
- * p's (p owns them). Errors: LAM_EINVAL (unknown key, with "did you mean";
- * a bad value), LAM_ENOMEM. p is unchanged on error. */
-int lam_profile_set(struct lam_profile *p, const char *name, const char *text, lam_error *err);
-
 /* After lam_profile_set: the keys a profile must give for its process are
- * there (a changed process may need another width). LAM_EINVAL otherwise. */
+ * there (a changed process may need another width), and a plate's width
+ * and depth go together (lam_profile_check_plate). LAM_EINVAL otherwise. */
 int lam_profile_check(const struct lam_profile *p, lam_error *err);
+
+/* The plate's keys of p agree: width and depth both or neither, a
+ * diameter without them. Errors: LAM_EINVAL "plate.width and plate.depth
+ * go together: give both (a rectangular plate) or plate.diameter (a round
+ * one)", "plate.diameter excludes plate.width and plate.depth". */
+int lam_profile_check_plate(const struct lam_profile *p, lam_error *err);
 
 #endif

@@ -189,6 +189,8 @@ static void key_type(const lam_key *k, char *out, size_t size)
         break;
     case LAM_KEY_TEMPLATE: snprintf(out, size, "template"); break;
     case LAM_KEY_CHOICE: choice_names(k, out, size); break;
+    case LAM_KEY_NUMBERS: snprintf(out, size, "list of %zu numbers", k->count); break;
+    case LAM_KEY_LASERS: snprintf(out, size, "list of 1..%d lasers", LAM_PROFILE_LASERS_MAX); break;
     }
 }
 

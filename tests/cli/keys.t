@@ -54,14 +54,18 @@ like "$OUT" '^ +--gap X +--set gap=X$' "--help: --gap for both"
     next unless /^\| `([\w.]+)` \| ([^|]*(?:\\\|[^|]*)*) \| [^|]* \| (.*) \|$/;
     my ($k, $t, $doc) = ($1, $2, $3);
     next if $k eq "inherits" || $k eq "name" || $k eq "process" || $k =~ /^dialect\./;
-    my $v = $t =~ /^`([^`]+)`/ ? $1 : $t =~ /^boolean/ ? "true" : $t =~ /^(?:whole )?number/ ? "1" : "x";
+    my $v = $t =~ /^`([^`]+)`/ ? $1 : $t =~ /^boolean/ ? "true" : $t =~ /^(?:whole )?number/ ? "1"
+          : $t =~ /^list of (\d+) numbers/ ? "[" . join(",", (1) x $1) . "]"
+          : $t =~ /^list of .* lasers/ ? "[{\"field\":[0,0,1,1]}]" : "x";
     my $who = $doc =~ /^ladrp:/ ? "ladrp" : $doc =~ /^sls[:,]/ ? "sls" : "both";
     print "$k $v $who\n"' >keys.txt
 [ "$(wc -l <keys.txt)" -gt 60 ]; ok $? "the reference lists the keys ($(wc -l <keys.txt))"
 bad=""
 while read -r k v who; do
+    extra=() # a plate's width and depth go together
+    case $k in plate.width) extra=(-s plate.depth=1) ;; plate.depth) extra=(-s plate.width=1) ;; esac
     for prof in creol-ladrp:ladrp cli-ascii:sls; do
-        "$LAMINA" machines --show "${prof%%:*}" -s "$k=$v" >/dev/null 2>err.txt
+        "$LAMINA" machines --show "${prof%%:*}" -s "$k=$v" "${extra[@]}" >/dev/null 2>err.txt
         rc=$?
         want=0
         [ "$who" != both ] && [ "$who" != "${prof##*:}" ] && want=2

@@ -137,6 +137,16 @@ static void test_set_round_trip(void)
             snprintf(text, sizeof text, "%s", k->choices[n]); /* the last: never the base's (first) value here */
             break;
         }
+        case LAM_KEY_NUMBERS: {
+            /* [12.5, 12.5, ...]: the dump's flow style */
+            size_t n = 0;
+            n += (size_t)snprintf(text, sizeof text, "[");
+            for (size_t j = 0; j < k->count && n < sizeof text - 8; j++)
+                n += (size_t)snprintf(text + n, sizeof text - n, "%s12.5", j ? ", " : "");
+            snprintf(text + n, sizeof text - n, "]");
+            break;
+        }
+        case LAM_KEY_LASERS: snprintf(text, sizeof text, "[{field: [0, 0, 12.5, 12.5]}]"); break;
         default:
             if (k->choices) snprintf(text, sizeof text, "%s", k->choices[1]); /* units: not the default */
             else snprintf(text, sizeof text, "v-%s", lam_key_short(k));
@@ -145,6 +155,9 @@ static void test_set_round_trip(void)
         int rc = lam_profile_set(p, k->name, text, &err);
         /* process: sls needs its width given too */
         if (!rc && k->offset == offsetof(lam_profile, process)) rc = lam_profile_set(p, "spot_width", "0.25", &err);
+        /* a plate's width and depth go together */
+        if (!rc && k->offset == offsetof(lam_profile, plate_width)) rc = lam_profile_set(p, "plate.depth", "1", &err);
+        if (!rc && k->offset == offsetof(lam_profile, plate_depth)) rc = lam_profile_set(p, "plate.width", "1", &err);
         if (k->flags & LAM_KEY_LOADER) {
             ok(rc == LAM_EINVAL && strstr(err.msg, "only read while a profile loads"), "%s: refused by set", k->name);
             lam_profile_free(p);
