@@ -82,6 +82,7 @@
 #include "arrange.h"
 #include "build.h"
 #include "build_job.h"
+#include "build_run.h"
 #include "build_plan.h"
 
 #endif

@@ -478,7 +478,7 @@ static int no_duplicates(const jp *j, const yaml_node_t *m)
 
 static int read_job(jp *j)
 {
-    int rc = lam_yaml_doc_parse(&j->d, "a mapping (machine: NAME, parts: [...])");
+    int rc = lam_yaml_doc_parse(&j->d, "empty build job: expected a mapping (machine: NAME, parts: [...])");
     const yaml_node_t *root = rc ? NULL : yaml_document_get_root_node(&j->d.doc);
     if (!rc && root->type != YAML_MAPPING_NODE)
         rc = lam_yaml_at(&j->d, root->start_mark, LAM_EINVAL, "a build job is a mapping (machine: NAME, parts: [...]), got %s",

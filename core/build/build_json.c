@@ -1,7 +1,7 @@
 /* The build in the run's JSON (docs/json.md): the job object's "build"
  * member, made once when the plate is set up and written by the JSON sink
  * (lam_job_info.json_extra). */
-#include "build_internal.h"
+#include "build_run.h"
 
 #include <stdio.h>
 #include <string.h>

@@ -2,7 +2,7 @@
  * part that reaches a layer and share the layer between the lasers; the
  * calling thread writes the layers in order through the ordered pool
  * (pool.h), so the program is the same for any number of threads. */
-#include "build_internal.h"
+#include "build_plan.h"
 
 #include <math.h>
 #include <stdint.h>

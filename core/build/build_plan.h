@@ -30,34 +30,10 @@
 
 #include <stddef.h>
 
-#include "build.h"
+#include "build_run.h"
 #include "error.h"
 #include "hatch.h"
-#include "lasers.h"
-#include "model.h"
 #include "plan.h"
-#include "planner.h"
-#include "slice.h"
-#include "arrange.h"
-
-/* One part on the plate (a copy of a job's part). */
-typedef struct lam_run_part {
-    size_t spec;             /* the job's part (lam_build.parts index) */
-    char name[160];          /* NAME, or NAME_k for copy k of several */
-    lam_model *model;        /* in plate coordinates (owned) */
-    lam_slicer *slicer;      /* on the plate's planes where the part is (owned) */
-    size_t first, count;     /* plate layers first .. first + count - 1 */
-    double box[4];           /* footprint box on the plate: xmin ymin xmax ymax */
-    double at[2];            /* its centre */
-    double zmax;             /* its top */
-    lam_profile styled;      /* the machine with the part's styles (strings borrowed) */
-    lam_plan_opts po;        /* its planning options */
-    int style_id[LAM_REGIONS]; /* the style number of each region */
-    lam_scan_time time;      /* its share of the estimate (exposure and jumps of its own
-                                blocks, as if one laser did it all), filled by planning */
-} lam_run_part;
-
-typedef struct lam_build_run lam_build_run;
 
 /* How a plate is planned. */
 typedef struct lam_run_opts {
@@ -72,32 +48,6 @@ typedef struct lam_run_opts {
     void (*planned)(void *user, size_t k, const lam_scan_time *layer, const lam_scan_time *lasers, size_t nlasers);
     void *user;
 } lam_run_opts;
-
-/* Load, arrange and slice build b's parts (b is borrowed and must outlive
- * the run). load: threads and repair for reading models (xform ignored).
- * Errors: a model's (file:line:col), the arrangement's (arrange.h),
- * LAM_EINVAL for a plate the profile and job do not give ("the machine
- * has no plate: give plate: {width: W, depth: D} or {diameter: D}"), a
- * layer width missing, LAM_ENOMEM. */
-int lam_build_run_new(const lam_build *b, const lam_load_opts *load, lam_build_run **out, lam_error *err);
-
-void lam_build_run_free(lam_build_run *r);
-
-/* The parts on the plate, n of them. */
-const lam_run_part *lam_build_run_parts(const lam_build_run *r, size_t *n);
-
-/* The plate's layers and layer width, the plate and the lasers. */
-size_t lam_build_run_layers(const lam_build_run *r);
-double lam_build_run_width(const lam_build_run *r);
-const lam_plate *lam_build_run_plate(const lam_build_run *r);
-const lam_laser_set *lam_build_run_lasers(const lam_build_run *r);
-
-/* The style names: style number s (1-based) is names[s - 1]; *n of them. */
-const char *const *lam_build_run_styles(const lam_build_run *r, size_t *n);
-
-/* The job the plate's program begins with (lam_job_info; label table
- * included); valid while r lives. */
-const lam_job_info *lam_build_run_job(const lam_build_run *r);
 
 /* Plan the plate into sink: begin, every plate layer, end (the sink is not
  * destroyed). Returns LAM_OK or the first error (a part's planner naming

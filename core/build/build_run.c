@@ -1,6 +1,6 @@
 /* Setting up a build's plate: models loaded and placed, parts arranged and
  * sliced on the plate's planes, styles and labels numbered (build_plan.h). */
-#include "build_internal.h"
+#include "build_run.h"
 
 #include <math.h>
 #include <stdio.h>

@@ -20,6 +20,8 @@
 #include <unistd.h>
 #include <yaml.h>
 
+#include "yaml_doc.h"
+
 #include "file.h"
 #include "fmt.h"
 #include "lexnum.h"
@@ -28,7 +30,6 @@
 #include "slice.h"
 
 #define MAX_CHAIN 32                 /* inherits depth */
-#define MAX_NESTING 32               /* lists and mappings inside each other */
 #define MAX_DIRS 16
 
 /* The keys are the rows of profile_keys.c; the loader keeps which rows
@@ -53,14 +54,8 @@ static const lam_key *inherits_key(void)
 
 /* ---- one source file ---------------------------------------------------- */
 
-typedef struct src {
-    const char *path;        /* as given, for messages */
-    char *text;              /* the raw bytes (positions of template errors) */
-    size_t len;
-    yaml_document_t doc;
-    int have_doc;
-    lam_error *err;
-} src;
+/* The file being read: one YAML document (yaml_doc.h). */
+typedef lam_yaml_doc src;
 
 /* The loader's state across an inherits chain. */
 typedef struct ldr {
@@ -74,16 +69,7 @@ typedef struct ldr {
     size_t depth;
 } ldr;
 
-static int at(const src *s, yaml_mark_t m, int code, const char *fmt, ...) __attribute__((format(printf, 4, 5)));
-
-static int at(const src *s, yaml_mark_t m, int code, const char *fmt, ...)
-{
-    va_list ap;
-    va_start(ap, fmt);
-    int rc = lam_error_vset(s->err, code, s->path, (long)m.line + 1, (long)m.column + 1, -1, fmt, ap);
-    va_end(ap);
-    return rc;
-}
+#define at lam_yaml_at
 
 static int oom_err(lam_error *err)
 {
@@ -288,14 +274,7 @@ static yaml_node_t *node(const src *s, int id)
     return yaml_document_get_node((yaml_document_t *)&s->doc, id);
 }
 
-static int is_null(const yaml_node_t *n)
-{
-    if (n->type != YAML_SCALAR_NODE) return 0;
-    if (strcmp((const char *)n->tag, YAML_NULL_TAG) == 0) return 1;
-    if (n->data.scalar.style != YAML_PLAIN_SCALAR_STYLE) return 0;
-    const char *v = (const char *)n->data.scalar.value;
-    return !*v || !strcmp(v, "~") || !strcmp(v, "null") || !strcmp(v, "Null") || !strcmp(v, "NULL");
-}
+#define is_null lam_yaml_is_null
 
 /* "a mapping", "a list", "null", "'text'" for messages. */
 static const char *describe(const yaml_node_t *n, char *buf, size_t size)
@@ -438,109 +417,9 @@ static const yaml_node_t *lookup(const src *s, const yaml_node_t *m, const char 
     return NULL;
 }
 
-/* Only the core schema's tags: anything else could mean "construct an
- * object" to some loader, and a profile is data. */
-static int check_tags(const src *s)
-{
-    static const char *const ok_tags[] = { YAML_STR_TAG, YAML_INT_TAG, YAML_FLOAT_TAG, YAML_BOOL_TAG,
-                                           YAML_NULL_TAG, YAML_MAP_TAG, YAML_SEQ_TAG, NULL };
-    for (yaml_node_t *n = s->doc.nodes.start; n < s->doc.nodes.top; n++) {
-        const char *tag = (const char *)n->tag;
-        int good = 0;
-        for (int i = 0; ok_tags[i] && tag; i++) good |= !strcmp(tag, ok_tags[i]);
-        if (!good) {
-            char shown[200];
-            const char *prefix = "tag:yaml.org,2002:";
-            if (tag && !strncmp(tag, prefix, strlen(prefix)))
-                snprintf(shown, sizeof shown, "!!%s", tag + strlen(prefix));
-            else
-                snprintf(shown, sizeof shown, "%s", tag ? tag : "?");
-            return at(s, n->start_mark, LAM_EINVAL, "YAML tag '%s' is not allowed: a machine profile is data only",
-                      shown);
-        }
-    }
-    return LAM_OK;
-}
-
-/* ---- parse one file ----------------------------------------------------- */
-
-/* Refuse nesting deeper than MAX_NESTING from the event stream, before
- * the loader builds the document: libyaml's scanner and loader take time
- * quadratic in the depth (100,000 nested '[' took 31 s), the events up to
- * the limit take time linear in the file. A syntax error is left to the
- * loader, which meets it at the same place and says it with context. */
-static int check_nesting(src *s)
-{
-    yaml_parser_t parser;
-    if (!yaml_parser_initialize(&parser)) return oom();
-    yaml_parser_set_input_string(&parser, (const unsigned char *)s->text, s->len);
-    int rc = LAM_OK, depth = 0, done = 0;
-    while (!done && rc == LAM_OK) {
-        yaml_event_t ev;
-        if (!yaml_parser_parse(&parser, &ev)) break;
-        if (ev.type == YAML_SEQUENCE_START_EVENT || ev.type == YAML_MAPPING_START_EVENT) {
-            if (++depth > MAX_NESTING)
-                rc = at(s, ev.start_mark, LAM_EINVAL, "lists and mappings nested more than %d deep", MAX_NESTING);
-        } else if (ev.type == YAML_SEQUENCE_END_EVENT || ev.type == YAML_MAPPING_END_EVENT) {
-            depth--;
-        }
-        done = ev.type == YAML_STREAM_END_EVENT;
-        yaml_event_delete(&ev);
-    }
-    yaml_parser_delete(&parser);
-    return rc;
-}
-
 static int parse(src *s)
 {
-    int rc = check_nesting(s);
-    if (rc) return rc;
-    yaml_parser_t parser;
-    if (!yaml_parser_initialize(&parser)) return oom();
-    yaml_parser_set_input_string(&parser, (const unsigned char *)s->text, s->len);
-    if (!yaml_parser_load(&parser, &s->doc)) {
-        goto fail;
-    }
-    s->have_doc = 1;
-    if (!yaml_document_get_root_node(&s->doc)) {
-        rc = lam_error_set(s->err, LAM_EINVAL, s->path, 1, 1,
-                           "empty profile: expected a mapping of keys (name, process, ...)");
-        goto out;
-    }
-    yaml_document_t more;
-    if (!yaml_parser_load(&parser, &more)) goto fail;
-    yaml_node_t *r = yaml_document_get_root_node(&more);
-    if (r) {
-        yaml_mark_t m = more.start_mark;
-        yaml_document_delete(&more);
-        rc = at(s, m, LAM_EINVAL, "a machine profile is one YAML document; a second one starts here");
-        goto out;
-    }
-    yaml_document_delete(&more);
-    goto out;
-fail:
-    if (parser.error == YAML_MEMORY_ERROR) {
-        rc = oom();
-    } else if (parser.error == YAML_READER_ERROR) {
-        /* invalid encoding: only a byte offset is known */
-        size_t off = parser.problem_offset < s->len ? parser.problem_offset : s->len;
-        long line = 1, ls = 0;
-        for (size_t i = 0; i < off; i++)
-            if (s->text[i] == '\n') line++, ls = (long)i + 1;
-        rc = lam_error_set(s->err, LAM_ESYNTAX, s->path, line, col_of(s, ls, (long)off) + 1, "malformed YAML: %s",
-                           parser.problem ? parser.problem : "cannot read");
-    } else {
-        char ctx[200] = "";
-        if (parser.context)
-            snprintf(ctx, sizeof ctx, " (%s at line %lu, column %lu)", parser.context,
-                     (unsigned long)parser.context_mark.line + 1, (unsigned long)parser.context_mark.column + 1);
-        rc = lam_error_set(s->err, LAM_ESYNTAX, s->path, (long)parser.problem_mark.line + 1,
-                           (long)parser.problem_mark.column + 1, "malformed YAML: %s%s",
-                           parser.problem ? parser.problem : "cannot parse", ctx);
-    }
-out:
-    yaml_parser_delete(&parser);
-    return rc;
+    return lam_yaml_doc_parse(s, "empty profile: expected a mapping of keys (name, process, ...)");
 }
 
 /* ---- apply keys --------------------------------------------------------- */
@@ -966,8 +845,8 @@ static int load_file(ldr *L, const char *path, int top)
 static int load_text(ldr *L, src *s, const char *path, int top)
 {
     int rc;
+    s->what = "a machine profile";
     if ((rc = parse(s))) goto out;
-    if ((rc = check_tags(s))) goto out;
     const yaml_node_t *root = yaml_document_get_root_node(&s->doc);
     if (root->type != YAML_MAPPING_NODE) {
         /* nothing of a file that is not a profile is quoted */
@@ -1001,7 +880,7 @@ static int load_text(ldr *L, src *s, const char *path, int top)
     if ((rc = apply(L, s, root))) goto out;
     if (top && !(rc = finish(L, s, root))) rc = check_readers(L, s, root);
 out:
-    if (s->have_doc) yaml_document_delete(&s->doc);
+    lam_yaml_doc_free(s);
     free(s->text);
     return rc;
 }
@@ -1141,13 +1020,13 @@ static int set_list(lam_profile *p, const lam_key *k, const char *text, lam_erro
     src s;
     memset(&s, 0, sizeof s);
     s.path = "--set";
+    s.what = "a profile value";
     s.err = err;
     s.len = strlen(text);
     if (!(s.text = strdup(text))) return oom_err(err);
     int rc = parse(&s);
-    if (!rc) rc = check_tags(&s);
     if (!rc) rc = read_list(&s, k, yaml_document_get_root_node(&s.doc), p);
-    if (s.have_doc) yaml_document_delete(&s.doc);
+    lam_yaml_doc_free(&s);
     free(s.text);
     if (rc && rc != LAM_ENOMEM) {
         /* the loader's message, without a position in the value's text */

@@ -114,7 +114,7 @@ static int one_document(const lam_yaml_doc *d, yaml_parser_t *parser)
     return r ? lam_yaml_at(d, m, LAM_EINVAL, "%s is one YAML document; a second one starts here", d->what) : LAM_OK;
 }
 
-int lam_yaml_doc_parse(lam_yaml_doc *d, const char *expect)
+int lam_yaml_doc_parse(lam_yaml_doc *d, const char *empty)
 {
     int rc = check_nesting(d);
     if (rc) return rc;
@@ -126,7 +126,7 @@ int lam_yaml_doc_parse(lam_yaml_doc *d, const char *expect)
     } else {
         d->have_doc = 1;
         if (!yaml_document_get_root_node(&d->doc))
-            rc = lam_error_set(d->err, LAM_EINVAL, d->path, 1, 1, "empty %s: expected %s", d->what + 2, expect);
+            rc = lam_error_set(d->err, LAM_EINVAL, d->path, 1, 1, "%s", empty);
         if (!rc) rc = one_document(d, &parser);
         if (!rc) rc = check_tags(d);
     }

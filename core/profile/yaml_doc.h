@@ -27,10 +27,10 @@ typedef struct lam_yaml_doc {
 } lam_yaml_doc;
 
 /* Parse d->text[0 .. d->len) (path, what and err set by the caller) into
- * d->doc, checked as above. An empty document is LAM_EINVAL "empty WHAT:
- * expected EXPECT"; a second document, a tag, nesting: LAM_EINVAL at its
+ * d->doc, checked as above. An empty document is LAM_EINVAL with message
+ * `empty` at 1:1; a second document, a tag, nesting: LAM_EINVAL at its
  * position; malformed YAML: LAM_ESYNTAX. */
-int lam_yaml_doc_parse(lam_yaml_doc *d, const char *expect);
+int lam_yaml_doc_parse(lam_yaml_doc *d, const char *empty);
 
 /* Release the document (not the text). */
 void lam_yaml_doc_free(lam_yaml_doc *d);
