@@ -147,3 +147,131 @@ void lam_fmt_pair(char *a, char *b, double x, double y)
     lam_fmt_num(b, y, 15);
     if (x != y && !strcmp(a, b)) lam_fmt_num(a, x, 17), lam_fmt_num(b, y, 17);
 }
+
+/* ---- for people: durations and lengths ------------------------------------ */
+
+/* Whole minutes of seconds t (86400 <= t < 4e15), rounded half to even
+ * exactly: t = 60 m + r with r computed without rounding (r < 64 and t's
+ * fraction needs at most 36 bits below the point from t >= 2^16, 42 bits in
+ * all), so only the comparison with 30 decides. */
+static unsigned long long whole_minutes(double t)
+{
+    unsigned long long s = (unsigned long long)t; /* floor: t < 2^52 */
+    double r = (double)(s % 60u) + (t - (double)s);
+    unsigned long long m = s / 60u;
+    return m + (r > 30 || (r == 30 && (m & 1u)));
+}
+
+const char *lam_fmt_duration(double t, char *buf, size_t size)
+{
+    unsigned long long q;
+    if (!(t >= 0) || !isfinite(t)) {
+        snprintf(buf, size, "unknown");
+        return buf;
+    }
+    if (t == 0) {
+        snprintf(buf, size, "0 s");
+        return buf;
+    }
+    if (!lam_fmt_scaled(t, 0, &q)) { /* from 4e15 s: 46 billion days */
+        snprintf(buf, size, "%.3g d", t / 86400);
+        return buf;
+    }
+    char num[LAM_FMT_MAX];
+    if (t < 0.1) {
+        /* the decimals that show two significant digits: the first d with
+         * t 10^d >= 10 (a product rounded up to 10 is t within an ulp of
+         * 10^-(d-1), whose two digits at d + 1 round to the same value) */
+        int d = 2;
+        while (d < 15 && t * pow10_tab[d] < 10) d++;
+        lam_fmt_scaled(t, d, &q);
+        if (q < 10u) {
+            snprintf(buf, size, "%.2g s", t);
+            return buf;
+        }
+        if (q < (unsigned long long)pow10_tab[d - 1]) { /* still below 0.1 once rounded */
+            lam_fmt_scaled_text(num, q, d, 0);
+            snprintf(buf, size, "%s s", num);
+            return buf;
+        }
+    }
+    if (lam_fmt_scaled(t, 1, &q) && q < 100u) {
+        snprintf(buf, size, "%llu.%llu s", q / 10u, q % 10u);
+        return buf;
+    }
+    lam_fmt_scaled(t, 0, &q);
+    if (q < 86400u) {
+        unsigned long long h = q / 3600u, m = q / 60u % 60u, s = q % 60u;
+        if (h) snprintf(buf, size, "%llu h %llu min %llu s", h, m, s);
+        else if (m) snprintf(buf, size, "%llu min %llu s", m, s);
+        else snprintf(buf, size, "%llu s", s);
+        return buf;
+    }
+    unsigned long long m = whole_minutes(t);
+    snprintf(buf, size, "%llu d %llu h %llu min", m / 1440u, m / 60u % 24u, m % 60u);
+    return buf;
+}
+
+/* The three digits dig (a nonzero first) times 10^(e - 2) as plain
+ * decimals into out (room for 24), the fraction's trailing zeros dropped;
+ * -4 <= e <= 17. */
+static void plain3(char *out, const char dig[3], int e)
+{
+    char *w = out;
+    if (e < 0) {
+        *w++ = '0';
+        *w++ = '.';
+        for (int k = -1; k > e; k--) *w++ = '0';
+        for (int k = 0; k < 3; k++) *w++ = dig[k];
+    } else {
+        for (int k = 0; k <= e; k++) *w++ = k < 3 ? dig[k] : '0';
+        if (e < 2) {
+            *w++ = '.';
+            for (int k = e + 1; k < 3; k++) *w++ = dig[k];
+        }
+    }
+    *w = '\0';
+    if (strchr(out, '.')) { /* trailing zeros of the fraction, then a bare point */
+        while (w[-1] == '0') *--w = '\0';
+        if (w[-1] == '.') *--w = '\0';
+    }
+}
+
+const char *lam_fmt_length(double length, double mm_per_unit, const char *unit, char *buf, size_t size)
+{
+    if (!isfinite(length) || !isfinite(mm_per_unit) || !(mm_per_unit >= 0)) {
+        snprintf(buf, size, "unknown");
+        return buf;
+    }
+    const char *sign = length < 0 ? "-" : "", *name = unit && *unit ? unit : "";
+    int known = mm_per_unit > 0;
+    double v = fabs(length) * (known ? mm_per_unit : 1);
+    if (!isfinite(v)) {
+        snprintf(buf, size, "unknown");
+        return buf;
+    }
+    if (known) name = "mm";
+    char num[32] = "0";
+    if (v > 0) {
+        char e[LAM_FMT_NUM];
+        snprintf(e, sizeof e, "%.2e", v); /* d.dde+XX, exactly rounded */
+        char dig[3] = { e[0], e[2], e[3] };
+        int ex = atoi(e + 5);
+        static const struct { int from, shift; double scale; const char *name; } units[] = {
+            { 6, 6, 1e-6, "km" }, { 3, 3, 1e-3, "m" }, { -1, 0, 1, "mm" }, { INT32_MIN, -3, 1e3, "\xc2\xb5m" }
+        };
+        if (known) {
+            size_t i = 0;
+            while (ex < units[i].from) i++;
+            ex -= units[i].shift;
+            v *= units[i].scale;
+            name = units[i].name;
+        }
+        if (ex < -4 || ex > 17) snprintf(num, sizeof num, "%.3g", v);
+        else plain3(num, dig, ex);
+    } else {
+        sign = "";
+    }
+    snprintf(buf, size, "%s%s%s%s", sign, num, *name ? " " : "", name);
+    return buf;
+}

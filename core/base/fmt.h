@@ -55,4 +55,32 @@ int lam_fmt_scaled(double x, int decimals, unsigned long long *q);
  * that meets the same rounded value again reuse its text. */
 size_t lam_fmt_scaled_text(char *buf, unsigned long long q, int decimals, int neg);
 
+/* A duration for people, rounded once to the resolution shown and then
+ * split into units (so 59.96 s is "1 min 0 s", never "60 s"):
+ *   below 0.1 s   two significant digits: "0.050 s", "0.0012 s" ("0 s" for 0;
+ *                 "%.2g s" when 15 decimals show fewer: "3e-16 s")
+ *   below 10 s    tenths: "0.8 s", "3.8 s", "1.0 s"
+ *   below 1 day   whole seconds, every unit below the largest shown:
+ *                 "45 s", "12 min 3 s", "1 h 0 min 0 s" (3599.6 s)
+ *   from 1 day    whole minutes: "2 d 3 h 4 min"; from 4e15 s "%.3g d"
+ * Each range is chosen by the rounded value (9.96 s is "10 s"); rounding is
+ * exact, half to even on exact ties (lam_fmt_scaled). A negative or not
+ * finite seconds is "unknown". Writes at most size bytes (snprintf's
+ * truncation); returns buf. */
+const char *lam_fmt_duration(double seconds, char *buf, size_t size);
+
+/* A length for people: three significant digits with the trailing zeros
+ * of the fraction dropped, in the metric unit the rounded value reads best
+ * in: km from 1 km, m from 1 m, mm from 0.1 mm, else µm ("3.02 km",
+ * "120 m", "45.3 mm", "0.8 mm", "50 µm"; 0 is "0 mm"). length is in model
+ * units, mm_per_unit how many millimetres one is (lam_key_unit_mm,
+ * profile_keys.h); when that is 0 (a unit lamina does not know) the
+ * number is written in model units followed by ` unit` ("2930 furlong",
+ * or the number alone when unit is NULL or ""). The digits are %.2e's
+ * (exactly rounded); numbers too large or small to write plainly (a
+ * decimal exponent past 17 or below -4 in the unit) are written as %.3g. A
+ * negative length gets a "-"; a not finite one is "unknown". Writes at most
+ * size bytes; returns buf. */
+const char *lam_fmt_length(double length, double mm_per_unit, const char *unit, char *buf, size_t size);
+
 #endif

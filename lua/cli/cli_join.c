@@ -6,9 +6,10 @@
  * refuses, before writing anything, parts of different runs, overlapping
  * parts and layers no part holds; a corrupt or truncated part stops it
  * with nothing written (every part is read through once, to its end
- * hash, before anything is written). The build-time estimate of a
- * powder-bed job is printed as the whole run prints it (join adds the
- * parts' per-layer estimates in layer order). */
+ * hash, before anything is written). The build-time estimate is
+ * printed as the whole run prints it (join adds a powder-bed job's
+ * per-layer estimates in layer order, and measures a LADRP job's moves
+ * as they are checked). */
 #include "cli.h"
 #include "cli_estimate.h"
 #include "cli_join.h"
@@ -114,7 +115,9 @@ static int join(const char *out, char **paths, size_t n)
      * corrupt part is reported as such (not as whatever its bad numbers
      * would make the writer say), and standard output, which cannot be
      * taken back, gets nothing */
-    lam_sink check = { 0 };
+    lam_sink check;
+    cli_ladrp_meter meter; /* LADRP: the run's moves, as the whole run counts them */
+    cli_ladrp_meter_sink(&meter, &check);
     if (lam_part_join(parts, n, &check, NULL, NULL, &err)) {
         rc = cli_fail(&err);
         goto done;
@@ -123,7 +126,8 @@ static int join(const char *out, char **paths, size_t n)
         rc = cli_fail(&err);
         goto done;
     }
-    if (sls && lam_scan_estimates(&po.scan)) cli_print_estimate(meta->model, &est);
+    if (sls && lam_scan_estimates(&po.scan)) cli_print_estimate(meta->model, &po, &est);
+    if (po.kind == LAM_PLAN_LADRP) cli_print_ladrp_estimate(meta->model, &po, meta->layers, &meter.st);
     lam_writer *tmp = w;
     w = NULL;
     if (lam_writer_commit(tmp, &err)) rc = cli_fail_cmd("join", &err);

@@ -150,6 +150,7 @@ typedef struct job {
     report rep;
     lam_plan_opts po;
     lam_scan_time est;
+    lam_ladrp_stats ladrp;   /* LADRP: the run's moves, for the estimate */
 } job;
 
 /* The profile, the model, the slicer and (--validate) the rays: every input
@@ -188,6 +189,7 @@ static int open_outputs(job *j)
     lam_writer_set_limit(j->w, limit);
     if (j->jw) lam_writer_set_limit(j->jw, limit);
     j->po.time = &j->est;
+    j->po.totals = &j->ladrp;
     if (a->layers) return cli_part_setup(&j->a, j->prof, j->s, &j->po, j->w, &j->sink);
     int rc = lam_program_sink(j->prof->writer, &j->prof->dialect, j->w, &j->sink, &j->err);
     if (!rc) rc = tee_outputs(&j->sink, j->jw, &j->rep, a, j->s, &j->po, &j->err);
@@ -244,7 +246,9 @@ static int report_run(job *j)
         if (!j->a.allow_open) return EXIT_INPUT;
     }
     if (j->po.kind == LAM_PLAN_SLS && notes && !j->a.layers && lam_scan_estimates(&j->po.scan))
-        cli_print_estimate(path, &j->est);
+        cli_print_estimate(path, &j->po, &j->est);
+    if (j->po.kind == LAM_PLAN_LADRP && notes && !j->a.layers)
+        cli_print_ladrp_estimate(path, &j->po, lam_slicer_count(j->s), &j->ladrp);
     return EXIT_OK;
 }
 

@@ -147,9 +147,12 @@ like "$(grep '^//' "$TMP/l.cli" | sort -u)" '^//contour power 120 speed 600//\n/
 # ends where it starts, (-1, -1); to the first line's start (-1, -0.875)
 # 0.125, then 7 x 0.25 between lines: 1.875 at 10 per second = 0.1875 s,
 # plus 8 jumps x 0.01 s delay = 0.08 s. Recoating 5 s. Total 15.2675 s.
+# Printed for people (fmt.h): lengths to three digits in mm (1.875 is a
+# tie: 1.88), times below 10 s in tenths (0.2675: 0.3 s; 5: 5.0 s), from
+# 10 s in whole seconds (15 s); the JSON below has the exact figures.
 t=(-s speed=2 -s contour.speed=4 -s jump_speed=10 -s jump_delay=0.01 -s recoat_time=5)
 run "$LAMINA" slice "$cube" "${base[@]}" -s hatch_strategy=lines "${t[@]}" -o "$TMP/t.cli"
-like "$ERR" '1 layers, 1 contour passes, 8 hatch vectors, 24 exposed, 1.875 jumped; estimated build time 15.2675 s \(exposure 10 s, jumps 0.2675 s, recoating 5 s\)' \
+like "$ERR" '1 layers, 1 contour passes, 8 hatch vectors, 24 mm exposed, 1.88 mm jumped; estimated build time 15 s \(exposure 10 s, jumps 0.3 s, recoating 5.0 s\)' \
     "slice: the estimate of the hand-computed layer"
 # --json FILE: the same in the run's JSON, each layer's too (two layers of 1:
 # the first is the hand-computed one; the job's total is the layers' sum)
@@ -160,9 +163,9 @@ is "$(jq -c '[.totals.layers, ([.layers[].vectors[] | select(.kind == "core")] |
 like "$ERR" 'estimated build time' "slice --json: the estimate is still a line on standard error"
 # point exposure (the contour's follows the core's): 2 / 0.5 + 1 = 5 points
 # a line, 0.1 s each: 8 x 0.5 = 4 s; the closed contour 8 / 0.5 = 16 points,
-# 1.6 s; with jumps and recoating 10.8675 s
+# 1.6 s; with jumps and recoating 10.8675 s (printed: 11 s)
 run "$LAMINA" slice "$cube" "${base[@]}" -s hatch_strategy=lines "${t[@]}" -s point_distance=0.5 -s exposure_time=0.1 -o "$TMP/t.cli"
-like "$ERR" 'estimated build time 10.8675 s \(exposure 5.6 s' "slice: point exposure counts points x exposure time"
+like "$ERR" 'estimated build time 11 s \(exposure 5.6 s' "slice: point exposure counts points x exposure time"
 
 # ---- CLI round trip: ASCII and binary, one part id -----------------------
 for model in "$M/frame_island.ug" "$TMP/torus.stl"; do
