@@ -355,7 +355,7 @@ static int cmp_okey(const void *pa, const void *pb)
     return (a->i > b->i) - (a->i < b->i);
 }
 
-/* Working memory of one call, in one block's worth of pointers. */
+/* Working memory of one call (calloc: a count times a size cannot wrap). */
 typedef struct work {
     pbox *fixed;
     okey *order;
@@ -384,18 +384,18 @@ static int work_alloc(work *m, size_t n)
 {
     size_t k = n ? n : 1;
     memset(m, 0, sizeof *m);
-    m->fixed = malloc(k * sizeof *m->fixed);
-    m->order = malloc(k * sizeof *m->order);
-    m->w = malloc(k * sizeof(double));
-    m->h = malloc(k * sizeof(double));
-    m->x = malloc(k * sizeof(double));
-    m->y = malloc(k * sizeof(double));
-    m->bx = malloc(k * sizeof(double));
-    m->by = malloc(k * sizeof(double));
-    m->cand = malloc((k + 2) * sizeof(double));
-    m->rows = malloc(k * sizeof *m->rows);
-    m->placed = malloc(k);
-    m->bp = malloc(k);
+    m->fixed = calloc(k, sizeof *m->fixed);
+    m->order = calloc(k, sizeof *m->order);
+    m->w = calloc(k, sizeof(double));
+    m->h = calloc(k, sizeof(double));
+    m->x = calloc(k, sizeof(double));
+    m->y = calloc(k, sizeof(double));
+    m->bx = calloc(k, sizeof(double));
+    m->by = calloc(k, sizeof(double));
+    m->cand = calloc(k + 2, sizeof(double));
+    m->rows = calloc(k, sizeof *m->rows);
+    m->placed = calloc(k, 1);
+    m->bp = calloc(k, 1);
     if (m->fixed && m->order && m->w && m->h && m->x && m->y && m->bx && m->by && m->cand && m->rows && m->placed &&
         m->bp)
         return 1;

@@ -17,8 +17,8 @@
  *   plate's edge leave it no room there;
  * - never two boxes closer than the spacing (their gap in x or in y is at
  *   least the spacing), every box inside the plate less its margin.
- * Rectangular plates are filled from the front-left corner (x0 + margin,
- * y0 + margin), not centred. Round plates: a box is inside when its four
+ * Rectangular plates are filled from the front-left corner (margin,
+ * margin), not centred. Round plates: a box is inside when its four
  * corners are within diameter / 2 - margin of the centre; rows run across
  * the circle and start at its left edge, and the rows' front-to-back
  * offset is the best (most parts placed, the first of equals) of a few:
