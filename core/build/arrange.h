@@ -28,7 +28,9 @@
  * grid from its corner, a circle's centred grid. Comparisons allow 1e-9
  * of the plate's size in the "fits" direction only, so a row that exactly
  * fills the width fits; a box's edge never passes the margin by more than
- * that. The same input gives the same placement.
+ * that (a box that would is moved back inside, so it may come that much
+ * closer to its neighbour than the spacing). The same input gives the
+ * same placement.
  *
  * Plate coordinates: from the front-left corner of a rectangular plate
  * (x across its width, y across its depth), from the centre of a round

@@ -62,7 +62,9 @@ static const char *violation(const lam_plate *p, double s, const lam_arrange_ite
             double c[4];
             placed(&out[j], c);
             double gx = fmax(c[0] - b[2], b[0] - c[2]), gy = fmax(c[1] - b[3], b[1] - c[3]);
-            if (fmax(gx, gy) < s - t)
+            /* the spacing to rounding (arrange.h allows the slack, which
+             * only a box that passes the edge by less than it takes) */
+            if (fmax(gx, gy) < s - 1e-9)
                 return snprintf(buf, size, "items %zu and %zu are %g apart (spacing %g)", j, i, fmax(gx, gy), s), buf;
         }
     }
@@ -202,6 +204,19 @@ static void test_errors(void)
     rc = lam_arrange(&sq, 5, it, 3, "mm", &err);
     ok(rc == LAM_EINVAL && strstr(err.msg, "fixed part B at (235.5, 55) is off the plate (250 x 250 mm, margin 5)"),
        "a fixed part past the margin: '%s'", err.msg);
+    /* round: a fixed part's corners within the radius less the margin */
+    lam_plate disc2 = { .round = 1, .diameter = 110, .margin = 5 };
+    box_item(&it[0], 0, 0, 20, 20, "corner");
+    it[0].fixed = 1;
+    it[0].at[0] = 0, it[0].at[1] = 39; /* corner (10, 49): 50.01 from the centre */
+    ok(lam_arrange(&disc2, 5, it, 1, "mm", &err) == LAM_EINVAL &&
+           strstr(err.msg, "fixed part corner at (0, 39) is off the plate (diameter 110 mm, margin 5)"),
+       "round: a fixed part with a corner past the margin: '%s'", err.msg);
+    it[0].at[1] = 38; /* corner (10, 48): 49.03 */
+    ok(lam_arrange(&disc2, 5, it, 1, "mm", &err) == LAM_OK && it[0].shift[0] == -10 && it[0].shift[1] == 28,
+       "... its corners inside: placed where asked");
+    box_item(&it[1], 100, 100, 20, 20, "B");
+    box_item(&it[2], 0, 0, 20, 20, "free");
     ok(lam_arrange(&sq, -1, it, 3, "mm", &err) == LAM_EINVAL && strstr(err.msg, "spacing"), "negative spacing");
     lam_plate none = { .width = 10, .depth = 10, .margin = 5 };
     ok(lam_arrange(&none, 0, it, 3, "mm", &err) == LAM_EINVAL && strstr(err.msg, "no room"), "a margin leaving no room");
