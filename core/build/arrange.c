@@ -329,7 +329,8 @@ static int check_fixed_pairs(const pbox *f, size_t nf, const lam_arrange_item *i
             const char *a = name_of(&items[f[i].i], f[i].i, na), *b = name_of(&items[f[j].i], f[j].i, nb);
             if (gx < 0 && gy < 0)
                 return lam_error_set(err, LAM_EINVAL, NULL, 0, 0, "fixed parts %s and %s overlap", a, b);
-            return lam_error_set(err, LAM_EINVAL, NULL, 0, 0, "fixed parts %s and %s are closer than the spacing (%s%s%s)",
+            return lam_error_set(err, LAM_EINVAL, NULL, 0, 0,
+                                 "fixed parts %s and %s are closer than the spacing (%s%s%s)",
                                  a, b, LAM_NUM(s), unit_sp(units), unit_of(units));
         }
     return LAM_OK;
@@ -413,7 +414,8 @@ static int not_all_fit(const lam_plate *p, double s, const lam_arrange_item *ite
     char nb[32], pb[160], more[48] = "";
     size_t left = nauto - (fitted - (n - nauto));
     if (left > 1) snprintf(more, sizeof more, " and %zu more", left - 1);
-    return lam_error_set(err, LAM_EINVAL, NULL, 0, 0, "only %zu of %zu parts fit on the plate (%s, spacing %s); not placed: %s%s",
+    return lam_error_set(err, LAM_EINVAL, NULL, 0, 0,
+                         "only %zu of %zu parts fit on the plate (%s, spacing %s); not placed: %s%s",
                          fitted, n, plate_text(p, units, pb, sizeof pb), LAM_NUM(s), name_of(&items[first], first, nb),
                          more);
 }
