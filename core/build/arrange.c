@@ -31,10 +31,11 @@ typedef struct packer {
     double s;
     const pbox *fixed;  /* sorted by x0 */
     size_t nfixed;
+    double wmax;        /* the widest fixed part's x1 - x0 */
+    const double *tops; /* the fixed parts' y1 + spacing, ascending */
     const double *w, *h; /* the automatic boxes in packing order */
     size_t nauto;
     row *rows;
-    double *cand;       /* room for nfixed + 2 candidate rows */
     double *x, *y;      /* out: each box's front-left corner */
     unsigned char *placed;
 } packer;
@@ -150,7 +151,18 @@ static double gap_y(const pbox *a, const pbox *b)
 static double clear_of_fixed(const packer *pk, double x, double y, double w, double h)
 {
     double lim = pk->s - pk->a->tol;
-    for (size_t k = 0; k < pk->nfixed; k++) {
+    /* the parts that start before x - wmax - lim end before x - lim (the
+     * tol covers the rounding of x0 + wmax): they are clear on the left */
+    double from = x - pk->wmax - lim - pk->a->tol;
+    size_t lo = 0, hi = pk->nfixed;
+    while (lo < hi) {
+        size_t mid = lo + (hi - lo) / 2;
+        if (pk->fixed[mid].x0 < from)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    for (size_t k = lo; k < pk->nfixed; k++) {
         const pbox *f = &pk->fixed[k];
         if (f->x0 - (x + w) >= lim) break;
         if (fmax(f->y0 - (y + h), y - f->y1) >= lim) continue;
@@ -188,31 +200,27 @@ static int cmp_double(const void *pa, const void *pb)
 }
 
 /* Open a row for a box w x h at ycur or, when it has no room there, at
- * the first place further back where something changes: a round plate's
- * chord becoming wide enough, or a fixed part left behind. */
+ * the first place further back where something changes: a fixed part
+ * left behind. On a round plate nothing in front of the place where the
+ * chord is as wide as the box can hold it, so the search starts there. */
 static int open_row(packer *pk, double ycur, double w, double h, row *r, double *x, double *y)
 {
     const area *a = pk->a;
-    size_t nc = 0;
-    pk->cand[nc++] = ycur;
-    if (a->round && w / 2 < a->r) {
-        double front = -sqrt((a->r - w / 2) * (a->r + w / 2));
-        if (front > ycur) pk->cand[nc++] = front;
-    }
-    for (size_t k = 0; k < pk->nfixed; k++)
-        if (pk->fixed[k].y1 + pk->s > ycur) pk->cand[nc++] = pk->fixed[k].y1 + pk->s;
-    qsort(pk->cand, nc, sizeof *pk->cand, cmp_double);
-    for (size_t k = 0; k < nc; k++) {
-        double c = pk->cand[k];
-        if (k && c == pk->cand[k - 1]) continue;
-        if (c + h > a->y1 + a->tol) break;
+    double c = ycur;
+    if (a->round && w / 2 < a->r) c = fmax(c, -sqrt((a->r - w / 2) * (a->r + w / 2)));
+    size_t k = 0;
+    while (k < pk->nfixed && pk->tops[k] <= c) k++;
+    for (;;) {
+        if (c + h > a->y1 + a->tol) return 0;
         row t = { c, h, -INFINITY };
         if (try_row(pk, &t, w, h, x, y)) {
             *r = t;
             return 1;
         }
+        while (k < pk->nfixed && pk->tops[k] <= c) k++;
+        if (k == pk->nfixed) return 0;
+        c = pk->tops[k++];
     }
-    return 0;
 }
 
 /* The shelf packing from front edge ystart: first fit into the rows in
@@ -360,7 +368,7 @@ static int cmp_okey(const void *pa, const void *pb)
 typedef struct work {
     pbox *fixed;
     okey *order;
-    double *w, *h, *x, *y, *bx, *by, *cand;
+    double *w, *h, *x, *y, *bx, *by, *tops;
     row *rows;
     unsigned char *placed, *bp;
 } work;
@@ -375,7 +383,7 @@ static void work_free(work *m)
     free(m->y);
     free(m->bx);
     free(m->by);
-    free(m->cand);
+    free(m->tops);
     free(m->rows);
     free(m->placed);
     free(m->bp);
@@ -393,11 +401,11 @@ static int work_alloc(work *m, size_t n)
     m->y = calloc(k, sizeof(double));
     m->bx = calloc(k, sizeof(double));
     m->by = calloc(k, sizeof(double));
-    m->cand = calloc(k + 2, sizeof(double));
+    m->tops = calloc(k, sizeof(double));
     m->rows = calloc(k, sizeof *m->rows);
     m->placed = calloc(k, 1);
     m->bp = calloc(k, 1);
-    if (m->fixed && m->order && m->w && m->h && m->x && m->y && m->bx && m->by && m->cand && m->rows && m->placed &&
+    if (m->fixed && m->order && m->w && m->h && m->x && m->y && m->bx && m->by && m->tops && m->rows && m->placed &&
         m->bp)
         return 1;
     work_free(m);
@@ -444,6 +452,20 @@ static size_t sort_items(const lam_arrange_item *items, size_t n, work *m, size_
     return na;
 }
 
+/* Sort the fixed parts by x0 and their tops (y1 + spacing); returns the
+ * widest one's width. */
+static double sort_fixed(work *m, size_t nf, double s)
+{
+    double wmax = 0;
+    qsort(m->fixed, nf, sizeof *m->fixed, cmp_pbox_x0);
+    for (size_t k = 0; k < nf; k++) {
+        wmax = fmax(wmax, m->fixed[k].x1 - m->fixed[k].x0);
+        m->tops[k] = m->fixed[k].y1 + s;
+    }
+    qsort(m->tops, nf, sizeof *m->tops, cmp_double);
+    return wmax;
+}
+
 /* Write the placement into the items: at and shift (fixed ones keep at). */
 static void write_out(lam_arrange_item *items, size_t n, const work *m, size_t nauto)
 {
@@ -476,9 +498,9 @@ int lam_arrange(const lam_plate *p, double spacing, lam_arrange_item *items, siz
     size_t nf, na = sort_items(items, n, &m, &nf);
     rc = check_fixed_pairs(m.fixed, nf, items, spacing, a.tol, units, err);
     if (!rc) {
-        qsort(m.fixed, nf, sizeof *m.fixed, cmp_pbox_x0);
-        packer pk = { .a = &a, .s = spacing, .fixed = m.fixed, .nfixed = nf, .w = m.w, .h = m.h, .nauto = na,
-                      .rows = m.rows, .cand = m.cand, .x = m.x, .y = m.y, .placed = m.placed };
+        packer pk = { .a = &a, .s = spacing, .fixed = m.fixed, .nfixed = nf, .wmax = sort_fixed(&m, nf, spacing),
+                      .tops = m.tops, .w = m.w, .h = m.h, .nauto = na, .rows = m.rows, .x = m.x, .y = m.y,
+                      .placed = m.placed };
         size_t fitted = nf + pack_best(&pk, m.bx, m.by, m.bp);
         if (fitted < n)
             rc = not_all_fit(p, spacing, items, n, &m, na, fitted, units, err);
