@@ -2,6 +2,7 @@
  * command per file (cli_*.c). */
 #define _DEFAULT_SOURCE /* madvise, MADV_HUGEPAGE */
 #include "cli.h"
+#include "cli_build.h"
 #include "cli_lua.h"
 #include "cli_repair.h"
 #include "cli_signal.h"
@@ -94,6 +95,8 @@ static const command commands[] = {
     { "repair", "MODEL -o FILE", "the mesh repaired (holes filled, facets\noriented) as STL or OBJ", cmd_repair,
       0 },
     { "slice", "MODEL [options]", "slice and plan; program to stdout or -o FILE", cmd_slice, 0 },
+    { "build", "JOB.yaml [-o FILE]", "plan a build plate: parts placed, styles,\nseveral lasers (docs/builds.md)", cmd_build,
+      0 },
     { "join", "PART... [-o FILE]", "the program of a run sliced in parts\n(lamina slice ... --layers A:B)", cmd_join,
       0 },
     { "validate", "MODEL [options]", "Embree check of every solid/hole label", cmd_validate, 0 },

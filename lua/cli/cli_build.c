@@ -1,0 +1,172 @@
+/* lamina build JOB.yaml -o PROGRAM [--json F] [--html F] [--layout F]:
+ * a build plate (docs/builds.md): the job's parts placed on the machine's
+ * plate, planned into one program, shared between the machine's lasers,
+ * with the build time per laser and per part. Every output is written
+ * through an atomic writer: a run that fails leaves none. */
+#include "cli.h"
+#include "cli_args.h"
+#include "cli_build.h"
+#include "cli_estimate.h"
+#include "build_job.h"
+#include "build_plan.h"
+#include "fmt.h"
+#include "plugin.h"
+#include "profile.h"
+#include "progress.h"
+#include "tee.h"
+#include "views.h"
+#include "writer.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const char usage_text[] =
+    "usage: lamina build JOB.yaml [-o FILE] [--json FILE] [--html FILE] [--layout FILE]\n"
+    "                             [-s KEY=VALUE ...] [-j N] [--max-output SIZE] [-q | -v]\n"
+    "  JOB.yaml         the build: machine, parts, styles (docs/builds.md)\n"
+    "  -o, --output     the plate's program (default: standard output)\n"
+    "      --json       the run as JSON: the build, each layer's vectors with their part,\n"
+    "                   style and laser, each layer's time per laser and per part\n"
+    "      --html       a viewer of the run\n"
+    "      --layout     an SVG of the plate: footprints, names, the lasers' fields\n"
+    "  -s, --set        KEY=VALUE: a machine profile key on top of the job's\n"
+    "  -j, --jobs       threads that plan layers (the program is the same for any number)\n"
+    "  -q, --quiet      no progress and no summary; -v: every note\n";
+
+typedef struct totals {
+    lam_scan_time all;       /* layers' estimates summed (busiest laser's) */
+    lam_scan_time laser[LAM_LASERS_MAX];
+    double worst_balance;
+    size_t worst_layer;
+    cli_progress *progress;
+} totals;
+
+typedef struct bjob {
+    args a;
+    lam_error err;
+    lam_build *b;
+    lam_build_run *run;
+    lam_writer *w, *jw, *hw;
+    lam_sink sink;
+    totals t;
+    cli_progress progress;
+} bjob;
+
+static void on_planned(void *user, size_t k, const lam_scan_time *layer, const lam_scan_time *lasers, size_t n)
+{
+    totals *t = user;
+    lam_scan_time_add(&t->all, layer);
+    double busiest = 0, sum = 0;
+    size_t working = 0;
+    for (size_t l = 0; l < n && l < LAM_LASERS_MAX; l++) {
+        lam_scan_time_add(&t->laser[l], &lasers[l]);
+        double x = lasers[l].exposure + lasers[l].jump;
+        if (x > busiest) busiest = x;
+        if (x > 0) sum += x, working++;
+    }
+    double bal = working ? busiest / (sum / (double)working) : 1;
+    if (bal > t->worst_balance) t->worst_balance = bal, t->worst_layer = k + 1;
+    cli_progress_step(t->progress, k + 1);
+}
+
+/* The job and its machine, -s values on top, the parts loaded and placed:
+ * every input is read before an output is checked against them. */
+static int open_inputs(bjob *j)
+{
+    if (lam_build_load(j->a.path, &j->b, &j->err)) return cli_fail(&j->err);
+    if (j->a.nsets && cli_apply_sets("build", &j->a, j->b->profile)) return EXIT_USAGE;
+    lam_load_opts lo = { .threads = j->a.threads, .no_repair = j->a.no_repair };
+    if (lam_build_run_new(j->b, &lo, &j->run, &j->err)) return cli_fail(&j->err);
+    const char *outs[][2] = { { "-o", j->a.out }, { "--json", j->a.json_out }, { "--html", j->a.html },
+                              { "--layout", j->a.layout } };
+    for (size_t i = 0; i < sizeof outs / sizeof *outs; i++)
+        if (cli_output_check(outs[i][0], outs[i][1], &j->err)) return cli_fail_cmd("build", &j->err);
+    return EXIT_OK;
+}
+
+/* The program's sink, teed with the views (--json, --html). */
+static int open_outputs(bjob *j)
+{
+    const args *a = &j->a;
+    const lam_profile *p = j->b->profile;
+    if (cli_writer("-o", a->out, &j->w, &j->err) || (a->json_out && cli_writer("--json", a->json_out, &j->jw, &j->err)) ||
+        (a->html && cli_writer("--html", a->html, &j->hw, &j->err)))
+        return cli_fail_cmd("build", &j->err);
+    unsigned long long limit = a->max_output ? a->max_output : LAM_DEFAULT_MAX_OUTPUT;
+    lam_writer_set_limit(j->w, limit);
+    if (j->jw) lam_writer_set_limit(j->jw, limit);
+    if (j->hw) lam_writer_set_limit(j->hw, limit);
+    if (lam_program_sink(p->writer, &p->dialect, j->w, &j->sink, &j->err)) return cli_fail_cmd("build", &j->err);
+    if (!j->jw && !j->hw) return EXIT_OK;
+    lam_views views = { .json = j->jw, .html = j->hw };
+    lam_sink all[2] = { j->sink };
+    int rc = lam_views_sink(&views, &all[1], &j->err);
+    if (!rc && (rc = lam_tee_sink(all, 2, &j->sink, &j->err))) all[1].destroy(all[1].ctx);
+    return rc ? cli_fail_cmd("build", &j->err) : EXIT_OK;
+}
+
+static int run_plan(bjob *j)
+{
+    j->t.progress = &j->progress;
+    lam_run_opts o = { .threads = j->a.threads, .planned = on_planned, .user = &j->t };
+    cli_progress_begin(&j->progress, "planning", j->a.path, lam_build_run_layers(j->run));
+    int rc = lam_build_run_plan(j->run, &o, &j->sink, &j->err);
+    cli_progress_end(&j->progress);
+    if (!rc) return EXIT_OK;
+    int full = lam_writer_over_limit(j->w) || (j->jw && lam_writer_over_limit(j->jw)) ||
+               (j->hw && lam_writer_over_limit(j->hw));
+    return cli_fail_limit(&j->err, full, CLI_RAISE_OUTPUT);
+}
+
+static int commit(lam_writer **w, lam_error *err)
+{
+    lam_writer *tmp = *w;
+    *w = NULL;
+    int over = tmp && lam_writer_over_limit(tmp);
+    if (tmp && lam_writer_commit(tmp, err)) return cli_fail_limit(err, over, CLI_RAISE_OUTPUT);
+    return EXIT_OK;
+}
+
+static int commit_outputs(bjob *j)
+{
+    int rc = commit(&j->w, &j->err);
+    if (!rc) rc = commit(&j->jw, &j->err);
+    if (!rc) rc = commit(&j->hw, &j->err);
+    if (!rc && j->a.layout) rc = cli_build_layout(j->run, j->b->profile, j->a.layout, &j->err);
+    return rc;
+}
+
+static void job_free(bjob *j)
+{
+    if (j->sink.destroy) j->sink.destroy(j->sink.ctx);
+    lam_writer_abort(j->w);
+    lam_writer_abort(j->jw);
+    lam_writer_abort(j->hw);
+    lam_build_run_free(j->run);
+    lam_build_free(j->b);
+    cli_args_free(&j->a);
+}
+
+int cmd_build(int argc, char **argv)
+{
+    bjob j;
+    memset(&j, 0, sizeof j);
+    int rc = cli_parse_args("build", usage_text, OPT_BUILD | OPT_PLAN | OPT_JSON_FILE | OPT_TALK | OPT_SET, argc, argv,
+                            &j.a);
+    if (rc) {
+        cli_args_free(&j.a);
+        return rc < 0 ? EXIT_OK : rc;
+    }
+    lam_error_clear(&j.err);
+    if (j.a.validate) rc = cli_usage("build", "--validate is for one part: 'lamina validate MODEL' checks a model");
+    cli_progress_init(&j.progress, j.a.talk, !j.a.out || !strcmp(j.a.out, "-"));
+    if (!rc) rc = open_inputs(&j);
+    if (!rc) rc = open_outputs(&j);
+    if (!rc) rc = run_plan(&j);
+    if (!rc) rc = commit_outputs(&j);
+    if (!rc && j.a.talk >= 0) cli_build_summary(j.a.path, j.run, j.b->profile, &j.t.all, j.t.laser, j.t.worst_balance,
+                                                j.t.worst_layer);
+    job_free(&j);
+    return rc;
+}
