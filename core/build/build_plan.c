@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "grow.h"
 #include "pool.h"
 
 /* A worker's sweep over one part: a fork of its slicer and the layers
@@ -33,6 +34,9 @@ typedef struct slot {
     lam_scan_time *ptime;    /* ... and each one's estimate */
     size_t nparts;
     double cut;
+    lam_layer sec;           /* the parts' sections together (the JSON's contours) */
+    long long *sec_part;     /* the part of each of its contours */
+    size_t sec_cap, pts_cap;
     lam_error err;
 } slot;
 
@@ -137,7 +141,8 @@ static void sweep_free(drive *d, part_sweep *s)
 
 /* Part p's local layer j planned into the worker's blocks; its estimate
  * into *t. */
-static int plan_part(drive *d, worker *w, size_t pi, size_t j, lam_scan_time *t, lam_error *err)
+static int plan_part(drive *d, worker *w, size_t pi, size_t j, lam_scan_time *t, const lam_layer **sec,
+                     lam_error *err)
 {
     const lam_run_part *p = &d->r->parts[pi];
     part_sweep *s = &w->sweeps[pi];
@@ -157,6 +162,7 @@ static int plan_part(drive *d, worker *w, size_t pi, size_t j, lam_scan_time *t,
     lam_sink sink = { .ctx = &cc, .contour = collect_contour, .hatches = collect_hatches };
     rc = lam_plan_sls_layer(near[j - lo], below, nb, above, na, &d->r->frame, &p->po, &sink, NULL, &st, err);
     *t = st.time;
+    *sec = near[j - lo];
     lam_sls_state_free(&st);
     return rc;
 }
@@ -172,6 +178,40 @@ static int slot_note_part(slot *s, size_t pi, const lam_scan_time *t, lam_error 
     if (!np || !nt) return lam_error_nomem(err, "planning a build");
     s->parts[s->nparts] = pi;
     s->ptime[s->nparts++] = *t;
+    return LAM_OK;
+}
+
+/* Part pi's section L appended to the layer's sections. */
+static int add_section(slot *s, const lam_layer *L, size_t pi, lam_error *err)
+{
+    lam_layer *m = &s->sec;
+    size_t nc = m->ncontours + L->ncontours, np = m->npoints + L->npoints;
+    if (nc > s->sec_cap) {
+        size_t cap = lam_grow_cap(s->sec_cap, nc, 16, sizeof *m->contours);
+        lam_contour *c = cap ? realloc(m->contours, cap * sizeof *c) : NULL;
+        long long *pp = c ? realloc(s->sec_part, cap * sizeof *pp) : NULL;
+        if (c) m->contours = c;
+        if (pp) s->sec_part = pp;
+        if (!pp) return lam_error_nomem(err, "planning a build");
+        s->sec_cap = cap;
+    }
+    if (np > s->pts_cap) {
+        size_t cap = lam_grow_cap(s->pts_cap, np, 64, 2 * sizeof *m->uv);
+        double *uv = cap ? realloc(m->uv, 2 * cap * sizeof *uv) : NULL;
+        if (!uv) return lam_error_nomem(err, "planning a build");
+        m->uv = uv;
+        s->pts_cap = cap;
+    }
+    if (L->npoints) memcpy(m->uv + 2 * m->npoints, L->uv, 2 * L->npoints * sizeof *m->uv);
+    for (size_t k = 0; k < L->ncontours; k++) {
+        lam_contour c = L->contours[k];
+        c.first += m->npoints;
+        if (c.parent >= 0) c.parent += (long)m->ncontours;
+        m->contours[m->ncontours + k] = c;
+        s->sec_part[m->ncontours + k] = (long long)pi + 1;
+    }
+    m->ncontours = nc;
+    m->npoints = np;
     return LAM_OK;
 }
 
@@ -201,18 +241,21 @@ static int plan_layer(drive *d, unsigned wi, size_t k, slot *s)
     lam_blayer_clear(&w->collect);
     s->nparts = 0;
     s->cut = plate_cut(r, k);
+    s->sec.ncontours = s->sec.npoints = 0;
     int rc = LAM_OK;
     for (size_t pi = 0; pi < r->nparts && !rc; pi++) {
         const lam_run_part *p = &r->parts[pi];
         if (k < p->first || k >= p->first + p->count) continue;
         lam_scan_time t;
+        const lam_layer *L = NULL;
         lam_error e;
         lam_error_clear(&e);
-        rc = plan_part(d, w, pi, k - p->first, &t, &e);
+        rc = plan_part(d, w, pi, k - p->first, &t, &L, &e);
         if (rc) rc = lam_error_set(&s->err, rc, e.file[0] ? e.file : NULL, e.line, e.column, "part %s, layer %zu: %s",
                                    p->name, k + 1, e.msg);
         if (!rc) s->cut = lam_slicer_cut(p->slicer, k - p->first);
         if (!rc) rc = slot_note_part(s, pi, &t, &s->err);
+        if (!rc) rc = add_section(s, L, pi, &s->err);
     }
     if (!rc) rc = lam_lasers_share(&r->lasers, &d->cfg, &w->collect, &s->out, s->lasers, &s->err);
     if (!rc) rc = label_blocks(r, &s->out, &s->err);
@@ -292,8 +335,14 @@ static int write_layer(drive *d, size_t k, const slot *s)
 {
     const lam_build_run *r = d->r;
     double top = (double)(k + 1) * r->width;
-    lam_layer_info li = { .index = k, .z = top, .width = r->width, .floor = (double)k * r->width,
-                          .ceiling = top, .has_cut = 1, .cut = s->cut };
+    lam_layer sec = s->sec;
+    sec.index = k;
+    sec.cut = s->cut;
+    sec.floor = (double)k * r->width;
+    sec.ceiling = top;
+    sec.width = r->width;
+    lam_layer_info li = { .index = k, .z = top, .width = r->width, .floor = sec.floor, .ceiling = top,
+                          .section = &sec, .has_cut = 1, .cut = s->cut, .section_part = s->sec_part };
     const lam_sink *sk = d->sink;
     int rc = sk->layer ? sk->layer(sk->ctx, &li) : LAM_OK;
     for (size_t i = 0; i < s->out.n && !rc; i++) rc = write_block(d, &s->out.b[i], top);
@@ -355,6 +404,9 @@ static void drive_close(drive *d)
         lam_blayer_free(&d->slots[k].out);
         free(d->slots[k].parts);
         free(d->slots[k].ptime);
+        free(d->slots[k].sec.uv);
+        free(d->slots[k].sec.contours);
+        free(d->slots[k].sec_part);
     }
     free(d->ws);
     free(d->slots);

@@ -303,6 +303,11 @@ static int j_layer(void *ctx, const lam_layer_info *li)
         else put(s, "null");
         put(s, ", \"area\": ");
         num(s, c->area);
+        if (li->section_part) {
+            char b[32];
+            put(s, ", \"part\": ");
+            put(s, (snprintf(b, sizeof b, "%lld", li->section_part[k]), b));
+        }
         put(s, ", \"points\": [");
         for (size_t i = 0; i < c->n; i++) {
             const double *uv = L->uv + 2 * (c->first + i);
