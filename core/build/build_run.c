@@ -382,3 +382,40 @@ const char *const *lam_build_run_styles(const lam_build_run *r, size_t *n)
     *n = r->nstyles;
     return (const char *const *)r->styles;
 }
+
+/* ---- identity (part files) ------------------------------------------------------ */
+
+static uint64_t hash_part(uint64_t h, const lam_build_part *spec, const lam_run_part *p)
+{
+    h = lam_part_hash(h, p->at, sizeof p->at);
+    h = lam_part_hash(h, &spec->z, sizeof spec->z);
+    h = lam_part_hash(h, spec->xform.scale, sizeof spec->xform.scale);
+    for (size_t k = 0; k < spec->xform.nrot; k++) {
+        h = lam_part_hash(h, &spec->xform.rot[k].axis, sizeof spec->xform.rot[k].axis);
+        h = lam_part_hash(h, &spec->xform.rot[k].deg, sizeof spec->xform.rot[k].deg);
+    }
+    return lam_part_hash(h, p->style_id, sizeof p->style_id);
+}
+
+int lam_build_run_identity(const lam_build_run *r, const char *profile, size_t len, uint64_t *out, lam_error *err)
+{
+    uint64_t h = lam_part_hash(0, profile, len);
+    for (size_t s = 0; s < r->b->nstyles; s++) {
+        const lam_build_style *st = &r->b->styles[s];
+        h = lam_part_hash(h, st->name, strlen(st->name) + 1);
+        for (size_t k = 0; k < st->nkeys; k++) {
+            h = lam_part_hash(h, st->keys[k].key, strlen(st->keys[k].key) + 1);
+            h = lam_part_hash(h, st->keys[k].text, strlen(st->keys[k].text) + 1);
+        }
+    }
+    for (size_t i = 0; i < r->nparts; i++) {
+        const lam_run_part *p = &r->parts[i];
+        const lam_build_part *spec = &r->b->parts[p->spec];
+        uint64_t id;
+        int rc = lam_part_identity(spec->model, "", 0, p->slicer, &id, err);
+        if (rc) return rc;
+        h = hash_part(lam_part_hash(h, &id, sizeof id), spec, p);
+    }
+    *out = h;
+    return LAM_OK;
+}

@@ -15,6 +15,7 @@
 #include "hatch.h"
 #include "lasers.h"
 #include "model.h"
+#include "part.h"
 #include "plan.h"
 #include "planner.h"
 #include "slice.h"
@@ -91,6 +92,13 @@ const char *const *lam_build_run_styles(const lam_build_run *r, size_t *n);
 /* The job the plate's program begins with (lam_job_info; label table
  * included); valid while r lives. */
 const lam_job_info *lam_build_run_job(const lam_build_run *r);
+
+/* The identity of the plate's run for part files (part.h): the resolved
+ * profile's text, the styles, and every part's model bytes, layers
+ * (lam_part_identity), place, height, scale, rotations and styles. Two
+ * plates with equal identities write the same program. Errors: LAM_EIO
+ * reading a model. */
+int lam_build_run_identity(const lam_build_run *r, const char *profile, size_t len, uint64_t *out, lam_error *err);
 
 /* The label id of (part, style, laser), 0 when it has none. */
 long long lam_build_run_label(const lam_build_run *r, long long part, long long style, long long laser);

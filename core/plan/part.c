@@ -26,6 +26,8 @@ static uint64_t fnv(uint64_t h, const void *data, size_t n)
     return h;
 }
 
+uint64_t lam_part_hash(uint64_t h, const void *data, size_t n) { return fnv(h ? h : FNV_BASIS, data, n); }
+
 /* ---- identity ------------------------------------------------------------ */
 
 int lam_part_identity(const char *model_path, const char *profile, size_t profile_len, const lam_slicer *s,
@@ -132,6 +134,13 @@ static void put_attr_keys(rec *r)
     for (size_t i = 0; i < LAM_NATTRS; i++) put_cstr(r, lam_attr_key(i));
 }
 
+/* A build's CLI labels (plan.h's lam_job_info.labels; none: 0). */
+static void put_labels(rec *r, const lam_job_info *j)
+{
+    put_u64(r, j->labels ? j->nlabels : 0);
+    for (size_t i = 0; j->labels && i < j->nlabels; i++) put_cstr(r, j->labels[i] ? j->labels[i] : "");
+}
+
 static int r_begin(void *ctx, const lam_job_info *j)
 {
     rec *r = ctx;
@@ -154,6 +163,7 @@ static int r_begin(void *ctx, const lam_job_info *j)
     put_str(r, r->meta.profile, r->meta.profile_len);
     put_cstr(r, r->meta.model);
     put_attr_keys(r);
+    put_labels(r, j);
     put_u64(r, fnv(FNV_BASIS, r->b.buf, r->b.len)); /* the header's own check */
     if (j->layers != r->meta.layers)
         return lam_error_set(r->err, LAM_EUSAGE, NULL, 0, 0, "part: the run has %zu layers, not %zu", j->layers,
@@ -177,6 +187,8 @@ static int r_layer_end(void *ctx, const lam_layer_info *L)
         /* the planner added this layer's estimate to a zero total */
         t = *r->time;
         memset(r->time, 0, sizeof *r->time);
+    } else if (L->time) { /* a build's layer carries its own (build_plan.h) */
+        t = *L->time;
     }
     lam_record_layer_end(&r->b, L, &t);
     return flush(r, 0);
@@ -291,6 +303,7 @@ struct lam_part {
      * layer-frame points and heights within reach of the origin */
     double lo[3], hi[3], tol, reach;
     lam_layer_info layer;     /* the layer being replayed */
+    char **labels;            /* the job's labels (job.labels), owned */
 };
 
 /* LAM_EFORMAT at the current offset */
@@ -367,6 +380,8 @@ void lam_part_close(lam_part *p)
     free((char *)p->job.process);
     free((char *)p->job.units);
     free((char *)p->job.label);
+    for (size_t i = 0; p->labels && i < p->job.nlabels; i++) free(p->labels[i]);
+    free(p->labels);
     free(p->d);
     free(p);
 }
@@ -534,6 +549,24 @@ static int check_job(lam_part *p, long long at_reals, lam_error *err)
     return LAM_OK;
 }
 
+/* The header's CLI labels (a build's), each text lamina writes: no
+ * control characters, no comma (a CLI $$LABEL's separator). */
+static int read_labels(lam_part *p, lam_error *err)
+{
+    size_t n = 0;
+    int rc = get_size(p, &n, err);
+    if (rc || !n) return rc;
+    if (!(p->labels = calloc(n, sizeof *p->labels))) return lam_error_nomem(err, "reading a part file");
+    p->job.nlabels = n;
+    p->job.labels = (const char *const *)p->labels;
+    for (size_t i = 0; i < n && !rc; i++) {
+        rc = get_str(p, &p->labels[i], NULL, err);
+        if (!rc && (!plain_text(p->labels[i], 0) || strchr(p->labels[i], ',')))
+            rc = corrupt(p, err, "a label holds characters lamina does not write");
+    }
+    return rc;
+}
+
 /* The header's attribute keys: the same as this lamina's (vocab.h). */
 static int read_attr_keys(lam_part *p, lam_error *err)
 {
@@ -594,6 +627,7 @@ static int read_header(lam_part *p, lam_error *err)
     if (!rc) rc = get_str(p, &model, NULL, err);
     p->meta.model = model;
     if (!rc) rc = read_attr_keys(p, err);
+    if (!rc) rc = read_labels(p, err);
     uint64_t want = p->hash, got = 0;
     if (!rc) rc = get_u64(p, &got, err);
     if (!rc && got != want)
@@ -775,8 +809,9 @@ static int check_hatches(lam_part *p, long long at, const lam_rec_op *op, lam_er
     const lam_hatch_info *h = &op->hatches;
     double e[4] = { h->power, h->speed, h->point_distance, h->exposure_time };
     int rc = check_attrs(p, at, "hatches", &h->attrs, err);
-    /* the kind is written into programs: only the planner's hatch kinds */
-    if (!rc && !(h->kind >= LAM_KIND_CORE && h->kind < LAM_REGIONS))
+    /* the kind is written into programs: only the planner's regions (a
+     * build's contour pass cut at a laser field's edge is contour vectors) */
+    if (!rc && !(h->kind >= LAM_KIND_CONTOUR && h->kind < LAM_REGIONS))
         rc = bad_value(p, at, err, "hatches of kind %lld (not a hatch region)", (long long)op->kind);
     if (!rc && op->flag != 1) rc = bad_value(p, at, err, "hatches without their layer-frame points");
     if (!rc) rc = check_exposure(p, at, "hatches", e, err);

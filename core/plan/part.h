@@ -14,7 +14,7 @@
  * every dialect and every plugin writer. Slicing, contour building,
  * planning and hatching run in the parts; join only formats.
  *
- * Format, version 2 (integers unsigned 64-bit little-endian unless said,
+ * Format, version 3 (integers unsigned 64-bit little-endian unless said,
  * reals IEEE 754 binary64 little-endian, strings a length then the bytes):
  *
  *   magic "LAMPART\0", u32 version, u32 flags (0)
@@ -30,6 +30,8 @@
  *   attributes         u64 count, then each key (string): vocab.h's
  *                      attribute table the records carry; a part of a
  *                      lamina with another table is refused
+ *   labels             u64 count, then each label (string): a build's CLI
+ *                      labels (lam_job_info.labels; 0 for a single part)
  *   u64 FNV-1a hash of the header's bytes before it (read before anything
  *                      the header says is used)
  *   records            the plan's encoding (plan_record.h: 'L' layer, 'E'
@@ -59,7 +61,7 @@
 #include "slice.h"
 #include "writer.h"
 
-#define LAM_PART_VERSION 2
+#define LAM_PART_VERSION 3
 
 /* What a part says about itself (strings owned by the part or the caller). */
 typedef struct lam_part_meta {
@@ -78,11 +80,18 @@ typedef struct lam_part_meta {
 int lam_part_identity(const char *model_path, const char *profile, size_t profile_len, const lam_slicer *s,
                       uint64_t *out, lam_error *err);
 
+/* FNV-1a of data[0 .. n) continuing from h (0: from the start), as the
+ * identities and the part's checks hash: for a build's identity
+ * (build_run.h), which mixes its parts'. */
+uint64_t lam_part_hash(uint64_t h, const void *data, size_t n);
+
 /* A sink that writes a part file to w (not owned; the caller commits or
  * aborts it). meta's strings are copied. time, when not NULL, is the
  * planner's o->time: the sink records it at each layer's end as that
  * layer's estimate and sets it back to zero (so after the run it holds
- * nothing; join adds the layers up in order, as the whole run does). */
+ * nothing; join adds the layers up in order, as the whole run does);
+ * NULL: each layer's own estimate (lam_layer_info.time at layer_end, a
+ * build's). */
 int lam_part_sink(const lam_part_meta *meta, lam_scan_time *time, lam_writer *w, lam_sink *out, lam_error *err);
 
 typedef struct lam_part lam_part;

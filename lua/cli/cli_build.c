@@ -7,6 +7,7 @@
 #include "cli_args.h"
 #include "cli_build.h"
 #include "cli_estimate.h"
+#include "cli_join.h"
 #include "build_job.h"
 #include "build_plan.h"
 #include "fmt.h"
@@ -24,6 +25,7 @@
 static const char usage_text[] =
     "usage: lamina build JOB.yaml [-o FILE] [--json FILE] [--html FILE] [--layout FILE]\n"
     "                             [-s KEY=VALUE ...] [-j N] [--max-output SIZE] [-q | -v]\n"
+    "                             [--layers A:B|K/N -o PART]\n"
     "  JOB.yaml         the build: machine, parts, styles (docs/builds.md)\n"
     "  -o, --output     the plate's program (default: standard output)\n"
     "      --json       the run as JSON: the build, each layer's vectors with their part,\n"
@@ -31,6 +33,8 @@ static const char usage_text[] =
     "      --html       a viewer of the run\n"
     "      --layout     an SVG of the plate: footprints, names, the lasers' fields\n"
     "  -s, --set        KEY=VALUE: a machine profile key on top of the job's\n"
+    "      --layers     plan only layers A to B (from 1) or part K of N of the plate into a\n"
+    "                   part file for 'lamina join' (which writes the whole plate's program)\n"
     "  -j, --jobs       threads that plan layers (the program is the same for any number)\n"
     "  -q, --quiet      no progress and no summary; -v: every note\n";
 
@@ -51,6 +55,7 @@ typedef struct bjob {
     lam_sink sink;
     totals t;
     cli_progress progress;
+    size_t first, count;     /* --layers: the plate layers of the part file */
 } bjob;
 
 static void on_planned(void *user, size_t k, const lam_scan_time *layer, const lam_scan_time *lasers, size_t n)
@@ -85,6 +90,24 @@ static int open_inputs(bjob *j)
     return EXIT_OK;
 }
 
+/* --layers: a part file's sink for the plate's layers asked. */
+static int part_sink(bjob *j)
+{
+    size_t n = lam_build_run_layers(j->run), first, last;
+    int rc = cli_part_range("build", &j->a, n, &first, &last);
+    if (rc) return rc;
+    char *text = NULL;
+    size_t len = 0;
+    rc = cli_part_profile(j->b->profile, &text, &len, &j->err);
+    lam_part_meta meta = { 0, first, last, n, text, len, j->a.path };
+    if (!rc) rc = lam_build_run_identity(j->run, text, len, &meta.identity, &j->err);
+    if (!rc) rc = lam_part_sink(&meta, NULL, j->w, &j->sink, &j->err);
+    free(text);
+    j->first = first - 1;
+    j->count = last - first + 1;
+    return rc ? cli_fail(&j->err) : EXIT_OK;
+}
+
 /* The program's sink, teed with the views (--json, --html). */
 static int open_outputs(bjob *j)
 {
@@ -97,6 +120,7 @@ static int open_outputs(bjob *j)
     lam_writer_set_limit(j->w, limit);
     if (j->jw) lam_writer_set_limit(j->jw, limit);
     if (j->hw) lam_writer_set_limit(j->hw, limit);
+    if (a->layers) return part_sink(j);
     if (lam_program_sink(p->writer, &p->dialect, j->w, &j->sink, &j->err)) return cli_fail_cmd("build", &j->err);
     if (!j->jw && !j->hw) return EXIT_OK;
     lam_views views = { .json = j->jw, .html = j->hw };
@@ -109,7 +133,8 @@ static int open_outputs(bjob *j)
 static int run_plan(bjob *j)
 {
     j->t.progress = &j->progress;
-    lam_run_opts o = { .threads = j->a.threads, .planned = on_planned, .user = &j->t };
+    lam_run_opts o = { .threads = j->a.threads, .planned = on_planned, .user = &j->t, .layer_first = j->first,
+                       .layer_count = j->count };
     cli_progress_begin(&j->progress, "planning", j->a.path, lam_build_run_layers(j->run));
     int rc = lam_build_run_plan(j->run, &o, &j->sink, &j->err);
     cli_progress_end(&j->progress);
@@ -152,8 +177,8 @@ int cmd_build(int argc, char **argv)
 {
     bjob j;
     memset(&j, 0, sizeof j);
-    int rc = cli_parse_args("build", usage_text, OPT_BUILD | OPT_PLAN | OPT_JSON_FILE | OPT_TALK | OPT_SET, argc, argv,
-                            &j.a);
+    int rc = cli_parse_args("build", usage_text, OPT_BUILD | OPT_PLAN | OPT_JSON_FILE | OPT_TALK | OPT_SET | OPT_PART,
+                            argc, argv, &j.a);
     if (rc) {
         cli_args_free(&j.a);
         return rc < 0 ? EXIT_OK : rc;
@@ -165,7 +190,7 @@ int cmd_build(int argc, char **argv)
     if (!rc) rc = open_outputs(&j);
     if (!rc) rc = run_plan(&j);
     if (!rc) rc = commit_outputs(&j);
-    if (!rc && j.a.talk >= 0) cli_build_summary(j.a.path, j.run, j.b->profile, &j.t.all, j.t.laser, j.t.worst_balance,
+    if (!rc && j.a.talk >= 0 && !j.a.layers) cli_build_summary(j.a.path, j.run, j.b->profile, &j.t.all, j.t.laser, j.t.worst_balance,
                                                 j.t.worst_layer);
     job_free(&j);
     return rc;

@@ -28,36 +28,52 @@ static const char usage_text[] =
     "  -o, --output     program file (default: standard output)\n"
     "Parts may be given in any order; every layer must be in exactly one part.\n";
 
-int cli_part_setup(args *a, const lam_profile *prof, const lam_slicer *s, lam_plan_opts *po, lam_writer *w,
-                   lam_sink *sink)
+int cli_part_range(const char *cmd, const args *a, size_t n, size_t *first, size_t *last)
 {
-    size_t n = lam_slicer_count(s), first = a->layers_a, last = a->layers_b;
-    if (a->svg) return cli_usage("slice", "--svg draws the whole run: it cannot go with --layers");
-    if (a->json_out || a->html)
-        return cli_usage("slice", "%s describes the whole run: it cannot go with --layers", a->json_out ? "--json" : "--html");
+    *first = a->layers_a;
+    *last = a->layers_b;
+    if (a->svg) return cli_usage(cmd, "--svg draws the whole run: it cannot go with --layers");
+    if (a->json_out || a->html || a->layout)
+        return cli_usage(cmd, "%s describes the whole run: it cannot go with --layers",
+                         a->json_out ? "--json" : a->html ? "--html" : "--layout");
     if (!a->out || !strcmp(a->out, "-"))
-        return cli_usage("slice", "--layers writes a binary part file: give it a file (-o FILE)");
+        return cli_usage(cmd, "--layers writes a binary part file: give it a file (-o FILE)");
     if (a->layers_split) {
         /* part K of N: layers floor((K-1) n / N) + 1 .. floor(K n / N) */
         size_t k = a->layers_a, parts = a->layers_b;
         if (parts > n)
-            return cli_usage("slice", "--layers %s: the run has %zu layer%s, too few for %zu parts", a->layers, n,
+            return cli_usage(cmd, "--layers %s: the run has %zu layer%s, too few for %zu parts", a->layers, n,
                              n == 1 ? "" : "s", parts);
-        first = (size_t)((unsigned long long)(k - 1) * n / parts) + 1;
-        last = (size_t)((unsigned long long)k * n / parts);
-    } else if (last > n) {
-        return cli_usage("slice", "--layers %s: the run has %zu layer%s (A:B needs 1 <= A <= B <= %zu)", a->layers, n,
+        *first = (size_t)((unsigned long long)(k - 1) * n / parts) + 1;
+        *last = (size_t)((unsigned long long)k * n / parts);
+    } else if (*last > n) {
+        return cli_usage(cmd, "--layers %s: the run has %zu layer%s (A:B needs 1 <= A <= B <= %zu)", a->layers, n,
                          n == 1 ? "" : "s", n);
     }
+    return EXIT_OK;
+}
+
+int cli_part_profile(const lam_profile *prof, char **text, size_t *len, lam_error *err)
+{
+    lam_writer *mw = NULL;
+    int rc = lam_writer_memory(&mw, err);
+    if (!rc) rc = lam_profile_dump(prof, mw);
+    if (!rc) rc = lam_writer_take(mw, text, len, err);
+    else lam_writer_abort(mw);
+    return rc;
+}
+
+int cli_part_setup(args *a, const lam_profile *prof, const lam_slicer *s, lam_plan_opts *po, lam_writer *w,
+                   lam_sink *sink)
+{
+    size_t n = lam_slicer_count(s), first, last;
+    int rc = cli_part_range("slice", a, n, &first, &last);
+    if (rc) return rc;
     lam_error err;
     lam_error_clear(&err);
-    lam_writer *mw = NULL;
     char *text = NULL;
     size_t len = 0;
-    int rc = lam_writer_memory(&mw, &err);
-    if (!rc) rc = lam_profile_dump(prof, mw);
-    if (!rc) rc = lam_writer_take(mw, &text, &len, &err);
-    else lam_writer_abort(mw);
+    rc = cli_part_profile(prof, &text, &len, &err);
     lam_part_meta meta = { 0, first, last, n, text, len, a->path };
     if (!rc) rc = lam_part_identity(a->path, text, len, s, &meta.identity, &err);
     if (!rc) rc = lam_part_sink(&meta, po->time, w, sink, &err);

@@ -36,6 +36,10 @@ o += 8
 for _ in range(nattrs):
     o += 8 + u64(o)
 A = 8 * nattrs                          # an attribute block
+nlabels = u64(o)                        # a build's labels (version 3)
+o += 8
+for _ in range(nlabels):
+    o += 8 + u64(o)
 hhash = o
 assert u64(hhash) == fnv(b[:hhash]), "the header's hash"
 axis = {"x": 0, "y": 1, "z": 2}.get(field, 0)
