@@ -344,7 +344,8 @@ static int write_layer(drive *d, size_t k, const slot *s)
     lam_layer_info li = { .index = k, .z = top, .width = r->width, .floor = sec.floor, .ceiling = top,
                           .section = &sec, .has_cut = 1, .cut = s->cut, .section_part = s->sec_part };
     const lam_sink *sk = d->sink;
-    int rc = sk->layer ? sk->layer(sk->ctx, &li) : LAM_OK;
+    int rc = d->o->section ? d->o->section(d->o->user, &sec, d->err) : LAM_OK;
+    if (!rc && sk->layer) rc = sk->layer(sk->ctx, &li);
     for (size_t i = 0; i < s->out.n && !rc; i++) rc = write_block(d, &s->out.b[i], top);
     lam_scan_time t = layer_time(d, s);
     li.time = &t;

@@ -46,6 +46,9 @@ typedef struct lam_run_opts {
     /* Optional, on the calling thread in layer order once layer k is written: its
      * estimate (exposure and jump of the busiest laser), each laser's. */
     void (*planned)(void *user, size_t k, const lam_scan_time *layer, const lam_scan_time *lasers, size_t nlasers);
+    /* Optional, on the calling thread in layer order before layer k is written: its
+     * sections, every part's (a contact sheet's panel); non-zero stops the run. */
+    int (*section)(void *user, const lam_layer *sec, lam_error *err);
     void *user;
 } lam_run_opts;
 

@@ -376,6 +376,7 @@ double lam_build_run_width(const lam_build_run *r) { return r->width; }
 const lam_plate *lam_build_run_plate(const lam_build_run *r) { return &r->plate; }
 const lam_laser_set *lam_build_run_lasers(const lam_build_run *r) { return &r->lasers; }
 const lam_job_info *lam_build_run_job(const lam_build_run *r) { return &r->job; }
+const lam_frame *lam_build_run_frame(const lam_build_run *r) { return &r->frame; }
 
 const char *const *lam_build_run_styles(const lam_build_run *r, size_t *n)
 {

@@ -93,6 +93,9 @@ const char *const *lam_build_run_styles(const lam_build_run *r, size_t *n);
  * included); valid while r lives. */
 const lam_job_info *lam_build_run_job(const lam_build_run *r);
 
+/* The plate's frame (u, v, w = x, y, z). */
+const lam_frame *lam_build_run_frame(const lam_build_run *r);
+
 /* The identity of the plate's run for part files (part.h): the resolved
  * profile's text, the styles, and every part's model bytes, layers
  * (lam_part_identity), place, height, scale, rotations and styles. Two

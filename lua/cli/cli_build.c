@@ -15,6 +15,7 @@
 #include "profile.h"
 #include "progress.h"
 #include "tee.h"
+#include "svg.h"
 #include "views.h"
 #include "writer.h"
 
@@ -23,7 +24,7 @@
 #include <string.h>
 
 static const char usage_text[] =
-    "usage: lamina build JOB.yaml [-o FILE] [--json FILE] [--html FILE] [--layout FILE]\n"
+    "usage: lamina build JOB.yaml [-o FILE] [--json FILE] [--html FILE] [--svg FILE] [--layout FILE]\n"
     "                             [-s KEY=VALUE ...] [-j N] [--max-output SIZE] [-q | -v]\n"
     "                             [--layers A:B|K/N -o PART]\n"
     "  JOB.yaml         the build: machine, parts, styles (docs/builds.md)\n"
@@ -31,6 +32,7 @@ static const char usage_text[] =
     "      --json       the run as JSON: the build, each layer's vectors with their part,\n"
     "                   style and laser, each layer's time per laser and per part\n"
     "      --html       a viewer of the run\n"
+    "      --svg        a contact sheet of the plate's layers and their scan paths\n"
     "      --layout     an SVG of the plate: footprints, names, the lasers' fields\n"
     "  -s, --set        KEY=VALUE: a machine profile key on top of the job's\n"
     "      --layers     plan only layers A to B (from 1) or part K of N of the plate into a\n"
@@ -44,6 +46,7 @@ typedef struct totals {
     double worst_balance;
     size_t worst_layer;
     cli_progress *progress;
+    lam_svg *svg;            /* --svg: each layer's panel */
 } totals;
 
 typedef struct bjob {
@@ -55,6 +58,7 @@ typedef struct bjob {
     lam_sink sink;
     totals t;
     cli_progress progress;
+    lam_svg *svg;            /* --svg */
     size_t first, count;     /* --layers: the plate layers of the part file */
 } bjob;
 
@@ -84,7 +88,7 @@ static int open_inputs(bjob *j)
     lam_load_opts lo = { .threads = j->a.threads, .no_repair = j->a.no_repair };
     if (lam_build_run_new(j->b, &lo, &j->run, &j->err)) return cli_fail(&j->err);
     const char *outs[][2] = { { "-o", j->a.out }, { "--json", j->a.json_out }, { "--html", j->a.html },
-                              { "--layout", j->a.layout } };
+                              { "--layout", j->a.layout }, { "--svg", j->a.svg } };
     for (size_t i = 0; i < sizeof outs / sizeof *outs; i++)
         if (cli_output_check(outs[i][0], outs[i][1], &j->err)) return cli_fail_cmd("build", &j->err);
     return EXIT_OK;
@@ -108,7 +112,24 @@ static int part_sink(bjob *j)
     return rc ? cli_fail(&j->err) : EXIT_OK;
 }
 
-/* The program's sink, teed with the views (--json, --html). */
+/* --svg: a sheet of the plate's layers, the plate's extent its panels'. */
+static int open_svg(bjob *j)
+{
+    const lam_plate *p = lam_build_run_plate(j->run);
+    double h = p->diameter / 2;
+    double box[4] = { p->round ? -h : 0, p->round ? -h : 0, p->round ? h : p->width, p->round ? h : p->depth };
+    char title[600];
+    snprintf(title, sizeof title, "lamina: %s", j->a.path);
+    return lam_svg_new(lam_build_run_layers(j->run), box, title, &j->svg, &j->err);
+}
+
+static int add_panel(void *user, const lam_layer *sec, lam_error *err)
+{
+    const totals *t = user;
+    return t->svg ? lam_svg_add(t->svg, sec, err) : LAM_OK;
+}
+
+/* The program's sink, teed with the views (--json, --html, --svg). */
 static int open_outputs(bjob *j)
 {
     const args *a = &j->a;
@@ -122,8 +143,9 @@ static int open_outputs(bjob *j)
     if (j->hw) lam_writer_set_limit(j->hw, limit);
     if (a->layers) return part_sink(j);
     if (lam_program_sink(p->writer, &p->dialect, j->w, &j->sink, &j->err)) return cli_fail_cmd("build", &j->err);
-    if (!j->jw && !j->hw) return EXIT_OK;
-    lam_views views = { .json = j->jw, .html = j->hw };
+    if (a->svg && open_svg(j)) return cli_fail(&j->err);
+    if (!j->jw && !j->hw && !j->svg) return EXIT_OK;
+    lam_views views = { .json = j->jw, .html = j->hw, .svg = j->svg, .frame = lam_build_run_frame(j->run) };
     lam_sink all[2] = { j->sink };
     int rc = lam_views_sink(&views, &all[1], &j->err);
     if (!rc && (rc = lam_tee_sink(all, 2, &j->sink, &j->err))) all[1].destroy(all[1].ctx);
@@ -133,8 +155,9 @@ static int open_outputs(bjob *j)
 static int run_plan(bjob *j)
 {
     j->t.progress = &j->progress;
-    lam_run_opts o = { .threads = j->a.threads, .planned = on_planned, .user = &j->t, .layer_first = j->first,
-                       .layer_count = j->count };
+    j->t.svg = j->svg;
+    lam_run_opts o = { .threads = j->a.threads, .planned = on_planned, .section = add_panel, .user = &j->t,
+                       .layer_first = j->first, .layer_count = j->count };
     cli_progress_begin(&j->progress, "planning", j->a.path, lam_build_run_layers(j->run));
     int rc = lam_build_run_plan(j->run, &o, &j->sink, &j->err);
     cli_progress_end(&j->progress);
@@ -158,6 +181,7 @@ static int commit_outputs(bjob *j)
     int rc = commit(&j->w, &j->err);
     if (!rc) rc = commit(&j->jw, &j->err);
     if (!rc) rc = commit(&j->hw, &j->err);
+    if (!rc && j->svg && cli_save_svg(j->svg, j->a.svg, &j->err)) rc = cli_fail_cmd("build", &j->err);
     if (!rc && j->a.layout) rc = cli_build_layout(j->run, j->b->profile, j->a.layout, &j->err);
     return rc;
 }
@@ -168,6 +192,7 @@ static void job_free(bjob *j)
     lam_writer_abort(j->w);
     lam_writer_abort(j->jw);
     lam_writer_abort(j->hw);
+    lam_svg_free(j->svg);
     lam_build_run_free(j->run);
     lam_build_free(j->b);
     cli_args_free(&j->a);
@@ -177,7 +202,7 @@ int cmd_build(int argc, char **argv)
 {
     bjob j;
     memset(&j, 0, sizeof j);
-    int rc = cli_parse_args("build", usage_text, OPT_BUILD | OPT_PLAN | OPT_JSON_FILE | OPT_TALK | OPT_SET | OPT_PART,
+    int rc = cli_parse_args("build", usage_text, OPT_BUILD | OPT_PLAN | OPT_JSON_FILE | OPT_SVG | OPT_TALK | OPT_SET | OPT_PART,
                             argc, argv, &j.a);
     if (rc) {
         cli_args_free(&j.a);
