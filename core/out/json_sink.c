@@ -341,8 +341,17 @@ static int j_vector(void *ctx, const lam_vec *v)
     pt(s, v->to);
     put(s, ", \"order\": ");
     size(s, v->order);
-    for (size_t i = 0; i < LAM_NATTRS; i++) /* an attribute at its default is left out (vocab.h) */
-        if (lam_attr_get(&v->attrs, i) != lam_attr_default(i)) {
+    /* an attribute at its default is left out (vocab.h), but in a build
+     * (a style set): there every vector says its part, region, style and
+     * laser (docs/builds.md) */
+    int build = v->attrs.style != 0;
+    if (build && v->kind < LAM_REGIONS) {
+        put(s, ", \"region\": \"");
+        put(s, lam_kind_name(v->kind));
+        put(s, "\"");
+    }
+    for (size_t i = 0; i < LAM_NATTRS; i++)
+        if (build || lam_attr_get(&v->attrs, i) != lam_attr_default(i)) {
             char b[32];
             put(s, ", ");
             key(s, lam_attr_key(i));
