@@ -105,9 +105,10 @@ static void rotate_opt(lua_State *L, lam_xform *x)
 }
 
 /* The mm of the target machine's unit: machine= (an object or a name, as
- * lamina.machine takes it), else mm */
-static double machine_mm(lua_State *L)
+ * lamina.machine takes it), else mm; centre: its plate's (place="plate") */
+static double machine_mm(lua_State *L, double centre[2])
 {
+    centre[0] = centre[1] = 0;
     char b[64];
     int ty = lua_getfield(L, 2, "machine");
     double mm = 1;
@@ -118,12 +119,14 @@ static double machine_mm(lua_State *L)
         if (lua_isnil(L, -2)) lam_lua_opterror(L, 2, "machine: %s", lua_tostring(L, -1));
         lua_pop(L, 1);
         mm = lam_profile_unit_mm(&lam_lua_checkmachine(L, -1)->p);
+        lam_profile_plate_centre(&lam_lua_checkmachine(L, -1)->p, centre);
         lua_pop(L, 1);
     } else if (ty != LUA_TNIL) {
         if (!LAM_TESTUD(L, -1, lmachine, LAM_MACHINE, LAM_TAG_MACHINE))
             lam_lua_opterror(L, 2, "machine must be a lamina.machine or a machine's name, got %s",
                              lam_lua_describe(L, -1, b, sizeof b));
         mm = lam_profile_unit_mm(&lam_lua_checkmachine(L, -1)->p);
+        lam_profile_plate_centre(&lam_lua_checkmachine(L, -1)->p, centre);
     }
     lua_pop(L, 1);
     return mm;
@@ -145,7 +148,7 @@ static void load_opts(lua_State *L, lam_xform *x, int *no_repair)
             lam_lua_opterror(L, 2, "units must be mm, cm, m, um, in or ft, got %s", lam_lua_describe(L, -1, b, sizeof b));
     }
     lua_pop(L, 1);
-    double mm = machine_mm(L);
+    double mm = machine_mm(L, x->plate_centre);
     if (units) {
         if (!(mm > 0)) lam_lua_opterror(L, 2, "units: the machine's units are unknown");
         lam_xform_scale_by(x, lam_unit_mm(units) / mm);

@@ -1148,6 +1148,13 @@ static void put_list(lam_writer *w, const lam_profile *p, const lam_key *k)
     lam_writer_write(w, "]", 1);
 }
 
+void lam_profile_plate_centre(const lam_profile *p, double c[2])
+{
+    int rect = p && !(p->plate_diameter > 0) && p->plate_width > 0 && p->plate_depth > 0;
+    c[0] = rect ? p->plate_width / 2 : 0;
+    c[1] = rect ? p->plate_depth / 2 : 0;
+}
+
 int lam_profile_dump(const lam_profile *p, lam_writer *w)
 {
     put_comment(w, "lamina machine profile ", p->name ? p->name : "");

@@ -60,6 +60,12 @@ size_t lam_machine_dirs(char **dirs, size_t max);
  * m 1000, um (or µm) 0.001, in (inch) 25.4, ft 304.8; 0 for other units. */
 double lam_profile_unit_mm(const lam_profile *p);
 
+/* The centre of the machine's plate in plate coordinates (where
+ * `--place plate` puts a part's footprint): (width/2, depth/2) for a
+ * rectangular plate (coordinates from its front-left corner), the origin
+ * for a round plate (from its centre) or a profile without a plate. */
+void lam_profile_plate_centre(const lam_profile *p, double c[2]);
+
 /* The most the automatic gap-closing tolerance may be on this machine:
  * LAM_GAP_MM (0.05 mm) in the profile's units (mm, cm, m, um, in, inch,
  * ft); 0 (no limit) for other units. */

@@ -3,6 +3,7 @@
 #include "model.h"
 #include "pool.h"
 #include "size_sense.h"
+#include "profile.h"
 #include "xform.h"
 
 #include <string.h>
@@ -18,8 +19,8 @@ int cli_load_model(const args *a, const lam_profile *machine, lam_model **m, lam
         return lam_error_set(err, LAM_EUSAGE, NULL, 0, 0, "--units %s: the machine's units (%s) are unknown",
                              a->units ? a->units : "", machine && machine->units ? machine->units : "");
     if (a->units) lam_xform_scale_by(&x, lam_unit_mm(a->units) / machine_mm);
-    /* profiles have no plate yet: --place plate centres on the origin */
-    x.plate_centre[0] = x.plate_centre[1] = 0;
+    /* --place plate centres the footprint on the machine's plate */
+    lam_profile_plate_centre(machine, x.plate_centre);
     cli_size_sense_loaded(a->units ? lam_unit_mm(a->units) : 0);
     lam_load_opts o = { .threads = a->threads ? a->threads : lam_default_threads(NULL),
                         .no_repair = a->no_repair,
