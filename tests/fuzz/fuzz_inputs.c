@@ -24,8 +24,15 @@
  * process when that does not load or is a plugin's). Most mutants would
  * only meet the checksums, so three in four get both hashes made right
  * first (fix_hashes): the records' values and the writers are fuzzed.
+ * A first byte of 7 is a build job (core/build/build_job.h; jobs/ in the
+ * corpus, its machine tests/models/machines/plate.yaml): read, its parts
+ * loaded and arranged, and a plate of at most 64 layers and 64 parts
+ * planned through the machine's dialect into memory.
  * Every input must either work or fail with a message; nothing may crash,
  * leak or read out of bounds. TAP output: one test per seed. */
+#include "build_job.h"
+#include "plugin.h"
+#include "build_plan.h"
 #include "dialect.h"
 #include "error.h"
 #include "import.h"
@@ -50,7 +57,7 @@
 int luaopen_lamina(lua_State *L);
 #endif
 
-enum { K_UG, K_STL, K_OBJ, K_PROFILE, K_LUA, K_PROGRAM, K_PART, K_COUNT };
+enum { K_UG, K_STL, K_OBJ, K_PROFILE, K_LUA, K_PROGRAM, K_PART, K_JOB, K_COUNT };
 
 /* The thesis's cube with a through hole: the part every fuzzed profile plans. */
 static const char cube_hole[] =
@@ -300,6 +307,32 @@ static int run_part(const uint8_t *buf, size_t len)
     return rc != LAM_OK && err.msg[0] == '\0' ? -1 : 0;
 }
 
+/* A build job: read, placed and (when small) planned into memory. */
+static int run_job(const char *buf, size_t len)
+{
+    lam_error err;
+    lam_error_clear(&err);
+    lam_build *b = NULL;
+    lam_build_run *r = NULL;
+    lam_writer *w = NULL;
+    lam_sink sink = { 0 };
+    int rc = lam_build_load_buf("fuzz.job", buf, len, &b, &err);
+    if (!rc) rc = lam_build_run_new(b, NULL, &r, &err);
+    size_t nparts = 0;
+    if (!rc) lam_build_run_parts(r, &nparts);
+    if (!rc && lam_build_run_layers(r) <= 64 && nparts <= 64) {
+        rc = lam_writer_memory(&w, &err);
+        if (!rc) rc = lam_program_sink(b->profile->writer, &b->profile->dialect, w, &sink, &err);
+        lam_run_opts o = { .threads = 1 + (unsigned)(len & 1) };
+        if (!rc) rc = lam_build_run_plan(r, &o, &sink, &err);
+    }
+    if (sink.destroy) sink.destroy(sink.ctx);
+    lam_writer_abort(w);
+    lam_build_run_free(r);
+    lam_build_free(b);
+    return rc != LAM_OK && err.msg[0] == '\0' ? -1 : 0;
+}
+
 /* The first byte picks the reader, the rest is the input. */
 static int one(const uint8_t *data, size_t size)
 {
@@ -335,6 +368,7 @@ static int one(const uint8_t *data, size_t size)
         lam_profile_free(p);
         return rc != LAM_OK && err.msg[0] == '\0' ? -1 : 0;
     }
+    case K_JOB: return run_job(buf, len);
     case K_PROGRAM:
     case K_PART: {
         /* a heap copy of exactly the input: a read past it is caught */
