@@ -180,17 +180,22 @@ static int is_section(const char *key)
     return 0;
 }
 
+/* One profile key: a scalar's value as written (quotes are YAML's, not
+ * the value's), a list as YAML flow text; a key the machine's planner does
+ * not read is refused, as in a profile. */
 static int set_key(jp *j, const char *name, const yaml_node_t *v)
 {
     static char text[FLOW_MAX];
     size_t len = 0;
     text[0] = '\0';
-    if (lam_yaml_is_null(v) || flow(j, v, text, &len, 0))
+    if (lam_yaml_is_null(v) || (v->type == YAML_SCALAR_NODE ? put(text, &len, text_of(v)) : flow(j, v, text, &len, 0)))
         return lam_yaml_at(&j->d, v->start_mark, LAM_EINVAL, "%s: %s", name,
                            lam_yaml_is_null(v) ? "no value given" : "the value is too large");
     lam_error e;
     lam_error_clear(&e);
-    int rc = lam_profile_set(j->p, name, text, &e);
+    const lam_key *k = lam_key_find(name);
+    int rc = k && !lam_key_read_by(k, j->p->process) ? lam_key_unread(k, name, j->p->process, j->p->name, &e)
+                                                     : lam_profile_set(j->p, name, text, &e);
     return rc ? lam_yaml_at(&j->d, v->start_mark, rc, "%s", e.msg) : LAM_OK;
 }
 
