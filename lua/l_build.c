@@ -299,7 +299,10 @@ static int open_machine(lua_State *L, bjob *j)
  * keeps the name it was first given by (two names of one row raise). */
 static void set_row(lua_State *L, bjob *j, const lam_key *k, const char *as, char *first, size_t size)
 {
-    if (first[0]) lam_lua_opterror(L, 1, "%s is given twice (as %s and as %s)", k->name, first, as);
+    if (first[0]) { /* the names in their order: lua_next's is the table's hashing */
+        int less = strcmp(first, as) < 0;
+        lam_lua_opterror(L, 1, "%s is given twice (as %s and as %s)", k->name, less ? first : as, less ? as : first);
+    }
     snprintf(first, size, "%s", as);
     const char *text = value_text(L, j, as);
     lam_error e;
@@ -419,26 +422,28 @@ static void read_styles(lua_State *L, bjob *j)
     if (ty != LUA_TTABLE)
         lam_lua_opterror(L, 1, "styles must be a table of named styles, got %s", lam_lua_describe(L, -1, b, sizeof b));
     int t = lua_gettop(L);
-    size_t n = 0;
+    lua_Integer n = 0;
+    lua_newtable(L); /* the names, held here: a finalizer cannot take them from the recipe's table */
     lua_pushnil(L);
     while (lua_next(L, t)) {
         if (lua_type(L, -2) != LUA_TSTRING || !lua_tostring(L, -2)[0])
             lam_lua_opterror(L, 1, "styles: a style's name must be text, got %s", lam_lua_describe(L, -2, b, sizeof b));
         if (++n > LAM_BUILD_MAX_STYLES) lam_lua_opterror(L, 1, "styles: more than %d styles", LAM_BUILD_MAX_STYLES);
         lua_pop(L, 1);
+        lua_pushvalue(L, -1);
+        lua_rawseti(L, t + 1, n);
     }
-    const char **names = lua_newuserdatauv(L, (n ? n : 1) * sizeof *names, 0);
-    size_t k = 0;
-    lua_pushnil(L);
-    while (lua_next(L, t)) { /* the names stay in the styles table, which is not changed */
+    const char **names = lua_newuserdatauv(L, (size_t)(n ? n : 1) * sizeof *names, 0);
+    for (lua_Integer k = 1; k <= n; k++) {
+        lua_rawgeti(L, t + 1, k);
+        names[k - 1] = lua_tostring(L, -1);
         lua_pop(L, 1);
-        names[k++] = lua_tostring(L, -1);
     }
-    qsort(names, n, sizeof *names, by_name);
-    for (size_t i = 0; i < n; i++) {
+    qsort(names, (size_t)n, sizeof *names, by_name);
+    for (lua_Integer i = 0; i < n; i++) {
         lua_getfield(L, t, names[i]);
         one_style(L, j, names[i]);
-        lua_settop(L, t + 1);
+        lua_settop(L, t + 2);
     }
     lua_settop(L, t - 1);
 }
