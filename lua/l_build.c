@@ -687,7 +687,7 @@ static void read_opts(lua_State *L, bopts *o)
 /* Load and place the parts: 0, or the results of a failure to return. In
  * a sandbox the models must be readable, their files must fit the memory
  * left before they are read (a model file is read whole), and the plate's
- * models (one per copy) are charged once made. */
+ * models and their slicers (one per copy) are charged once made. */
 static int place(lua_State *L, bjob *j, unsigned threads)
 {
     size_t files = 0, check = 0, np, bytes = 0;
@@ -702,9 +702,10 @@ static int place(lua_State *L, bjob *j, unsigned threads)
     lam_load_opts lo = { .threads = threads };
     if (lam_build_run_new(j->b, &lo, &j->run, &j->err)) return lam_lua_fail(L, &j->err);
     const lam_run_part *rp = lam_build_run_parts(j->run, &np);
-    for (size_t i = 0; i < np; i++) bytes += sizeof *rp[i].model + lam_model_bytes(rp[i].model, NULL);
+    for (size_t i = 0; i < np; i++)
+        bytes += sizeof *rp[i].model + lam_model_bytes(rp[i].model, NULL) + lam_slicer_bytes(rp[i].slicer);
     if (!lam_lua_charge(L, &j->charged, bytes))
-        lam_lua_memory_raise(L, "lamina.build: the plate's %zu parts take %zu bytes", np, bytes);
+        lam_lua_memory_raise(L, "lamina.build: the plate's %zu parts (models and slicers) take %zu bytes", np, bytes);
     lam_lua_check_interrupt(L); /* loading may have taken the time that was left */
     return 0;
 }

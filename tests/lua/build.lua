@@ -213,5 +213,12 @@ T.ok(none3 == nil and tostring(err3):find("time limit exceeded", 1, true), "the 
 local none4, err4 = lamina.sandbox{code = code, args = {cube, 0.002}, allow = M, memory = 4e6}
 T.ok(none4 == nil and tostring(err4):find("memory limit exceeded: lamina.build", 1, true),
      "the sandbox's memory stops a big build", err4)
+-- 2000 copies of a cube: their models and slicers are counted (each copy
+-- more than 1 kB: over 2 MB in all)
+local none5, err5 = lamina.sandbox{code = [[
+  return lamina.build{machine = "lpbf-cli", layer_width = 0.5, plate = {width = 1000, depth = 1000},
+                      parts = {{model = ..., copies = 2000}}}]], args = {cube}, allow = M, memory = 2e6}
+T.ok(none5 == nil and tostring(err5):find("memory limit exceeded: lamina.build: the plate's 2000 parts", 1, true),
+     "the sandbox's memory counts the plate's models and slicers", err5)
 
 T.done()
