@@ -47,7 +47,7 @@ typedef struct bjob {
     int have_sink;
     lam_plan_data rec;       /* what was planned: handed to the plan */
     lam_error err;           /* the sinks report through it: it must not move */
-    size_t charged;          /* the plate's models, charged to a sandbox */
+    size_t charged;          /* the plate's models and slicers, charged to a sandbox */
     char flow[FLOW_MAX];     /* a Lua value as text for lam_profile_set */
     size_t flen;
 } bjob;

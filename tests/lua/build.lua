@@ -197,6 +197,9 @@ T.fails("nonexistent%.stl", "a model that does not load: nil and the message",
         lamina.build, {machine = "lpbf-cli", parts = {{model = "nonexistent.stl"}}})
 T.fails("margin", "parts that do not fit: nil and the arrangement's message",
         lamina.build, {machine = "lpbf-cli", plate = {width = 10, depth = 10}, parts = {{model = cube, scale = 4}}})
+T.fails("exceeds the limit of 1000 bytes %(raise the limit with the option max_output%)",
+        "a program past max_output: nil and the message", lamina.build,
+        {machine = "lpbf-cli", layer_width = 0.5, max_output = 1000, parts = {{model = cube, scale = 4}}})
 
 -- ---- in a sandbox ----------------------------------------------------------------------------
 local code = [[
