@@ -163,7 +163,7 @@ int lam_lua_sandbox(lua_State *L);
  * also check the block's size and tag, so a userdata given another type's
  * metatable (debug.setmetatable) is refused instead of misread. */
 enum { LAM_TAG_MODEL = 0x1a4d0001, LAM_TAG_RUN, LAM_TAG_LAYER, LAM_TAG_CONTOUR, LAM_TAG_MACHINE, LAM_TAG_PLAN,
-       LAM_TAG_BOX, LAM_TAG_PLANJOB };
+       LAM_TAG_BOX, LAM_TAG_PLANJOB, LAM_TAG_BUILDJOB };
 
 void *lam_lua_checkud(lua_State *L, int idx, const char *tname, size_t size, unsigned tag);
 void *lam_lua_testud(lua_State *L, int idx, const char *tname, size_t size, unsigned tag);
@@ -268,6 +268,12 @@ int lam_lua_machine(lua_State *L);         /* lamina.machine (l_machine.c) */
 int lam_lua_machines(lua_State *L);        /* lamina.machines (l_machine.c) */
 int lam_lua_machine_keys(lua_State *L);    /* lamina.machine_keys (l_machine.c) */
 int lam_lua_plan(lua_State *L);            /* machine:plan (l_plan.c) */
+int lam_lua_build(lua_State *L);           /* lamina.build (l_build.c) */
+
+/* After lam_lua_open_plan: a plan's fields look in its user value first,
+ * where lamina.build keeps the build's (parts, lasers, styles, labels);
+ * plans of machine:plan have none (l_build.c). */
+void lam_lua_open_build(lua_State *L);
 
 /* The option `axis` of table t (argument arg): "x", "y", "z" or a
  * direction {dx, dy, dz}, as model:slice takes it (z when absent); a bad

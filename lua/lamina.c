@@ -66,6 +66,7 @@ static const luaL_Reg lamina_funcs[] = {
     { "mkdir", l_mkdir },
     { "load", lam_lua_load },
     { "machine", lam_lua_machine },
+    { "build", lam_lua_build },
     { "machines", lam_lua_machines },
     { "machine_keys", lam_lua_machine_keys },
     { "plugin", l_plugin },
@@ -96,6 +97,7 @@ LUAMOD_API int luaopen_lamina(lua_State *L)
     lam_lua_open_contour(L);
     lam_lua_open_machine(L);
     lam_lua_open_plan(L);
+    lam_lua_open_build(L);
     lam_lua_addmethods(L, LAM_MODEL, model_methods);
     lam_lua_addmethods(L, LAM_MACHINE, machine_methods);
     luaL_newlib(L, lamina_funcs);
