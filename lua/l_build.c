@@ -5,8 +5,8 @@
  * plans the plate into the machine's writer, teed with Lua's plan data
  * (views.h), as machine:plan does. The result is a lamina.plan (l_plan.c:
  * the program, p:layer(i), p.time, ...) whose user value holds the
- * build's own fields (parts, lasers, styles, labels): the plan class's
- * fields function is wrapped here (lam_lua_open_build) to look there first.
+ * build's own fields (parts, lasers, styles, labels), which the plan
+ * class's fields (l_plan.c) look at first.
  *
  * Lua tables have no order: profile keys are applied in the order of the
  * profile's key table (lamina.machine_keys()), styles are numbered after
@@ -966,36 +966,3 @@ int lam_lua_build(lua_State *L)
     return 1;
 }
 
-/* ---- the plan class's fields ------------------------------------------------------------------ */
-
-static lua_CFunction plan_fields; /* the class's own (l_plan.c), called for every other key */
-
-/* A plan's field: a build's own (its user value) first. */
-static int build_fields(lua_State *L)
-{
-    lplan *pl = LAM_CHECKUD(L, 1, lplan, LAM_PLAN, LAM_TAG_PLAN);
-    if (!pl->data) return luaL_error(L, "attempt to use a collected " LAM_PLAN);
-    if (lua_getiuservalue(L, 1, 1) == LUA_TTABLE) {
-        lua_pushvalue(L, 2);
-        if (lua_rawget(L, -2) != LUA_TNIL) return 1;
-        lua_pop(L, 1);
-    }
-    lua_pop(L, 1);
-    return plan_fields ? plan_fields(L) : 0;
-}
-
-void lam_lua_open_build(lua_State *L)
-{
-    luaL_getmetatable(L, LAM_PLAN);
-    lua_getfield(L, -1, "__index"); /* lam_lua_newclass's: upvalue 2 is the fields function */
-    if (lua_getupvalue(L, -1, 2)) {
-        lua_CFunction f = lua_tocfunction(L, -1);
-        lua_pop(L, 1);
-        if (f != build_fields) {
-            plan_fields = f;
-            lua_pushcfunction(L, build_fields);
-            lua_setupvalue(L, -2, 2);
-        }
-    }
-    lua_pop(L, 2);
-}

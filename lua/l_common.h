@@ -270,11 +270,6 @@ int lam_lua_machine_keys(lua_State *L);    /* lamina.machine_keys (l_machine.c) 
 int lam_lua_plan(lua_State *L);            /* machine:plan (l_plan.c) */
 int lam_lua_build(lua_State *L);           /* lamina.build (l_build.c) */
 
-/* After lam_lua_open_plan: a plan's fields look in its user value first,
- * where lamina.build keeps the build's (parts, lasers, styles, labels);
- * plans of machine:plan have none (l_build.c). */
-void lam_lua_open_build(lua_State *L);
-
 /* The option `axis` of table t (argument arg): "x", "y", "z" or a
  * direction {dx, dy, dz}, as model:slice takes it (z when absent); a bad
  * value raises. */

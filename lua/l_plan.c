@@ -451,6 +451,14 @@ static int p_len(lua_State *L)
 static int p_fields(lua_State *L)
 {
     lplan *pl = check(L, 1);
+    /* a build's plan (lamina.build, l_build.c) holds its own fields in its
+     * user value: parts, lasers, styles, labels */
+    if (lua_getiuservalue(L, 1, 1) == LUA_TTABLE) {
+        lua_pushvalue(L, 2);
+        if (lua_rawget(L, -2) != LUA_TNIL) return 1;
+        lua_pop(L, 1);
+    }
+    lua_pop(L, 1);
     const char *k = lua_tostring(L, 2);
     if (strcmp(k, "bytes") == 0) lua_pushinteger(L, (lua_Integer)pl->len);
     else if (strcmp(k, "lines") == 0) lua_pushinteger(L, (lua_Integer)pl->lines);

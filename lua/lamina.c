@@ -97,7 +97,6 @@ LUAMOD_API int luaopen_lamina(lua_State *L)
     lam_lua_open_contour(L);
     lam_lua_open_machine(L);
     lam_lua_open_plan(L);
-    lam_lua_open_build(L);
     lam_lua_addmethods(L, LAM_MODEL, model_methods);
     lam_lua_addmethods(L, LAM_MACHINE, machine_methods);
     luaL_newlib(L, lamina_funcs);
