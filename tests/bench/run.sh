@@ -203,3 +203,7 @@ bench_bunny "$RUNS"
 # Scaling (time per triangle, time per layer, the 5M-triangle run's memory):
 # its own script, tests/bench/scaling.sh.
 bash "$here/scaling.sh" "$LAMINA"
+
+# Build plates (issue 25): a plate of 25 parts against the parts alone, peak
+# memory against parts x layers, hatch vectors a second: tests/bench/plate.sh.
+bash "$here/plate.sh" "$LAMINA"
