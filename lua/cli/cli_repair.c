@@ -152,7 +152,7 @@ static int write_out(const lam_model *m, const char *out)
 static int repair(args *a, const char *out)
 {
     lam_model *m = NULL;
-    lam_model_stats before;
+    lam_model_stats before = { 0 };
     int rc = load(a, &m, &before);
     if (rc) return rc;
     lam_error err;
