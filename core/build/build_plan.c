@@ -245,6 +245,10 @@ static int plan_layer(drive *d, unsigned wi, size_t k, slot *s)
     int rc = LAM_OK;
     for (size_t pi = 0; pi < r->nparts && !rc; pi++) {
         const lam_run_part *p = &r->parts[pi];
+        if (k >= p->first + p->count && w->sweeps[pi].fork) { /* the part has ended: its sweep goes */
+            sweep_free(d, &w->sweeps[pi]);
+            memset(&w->sweeps[pi], 0, sizeof w->sweeps[pi]);
+        }
         if (k < p->first || k >= p->first + p->count) continue;
         lam_scan_time t;
         const lam_layer *L = NULL;
