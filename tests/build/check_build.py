@@ -367,14 +367,20 @@ def arrange(run, plate, margin, spacing, nparts, extra):
         elif p["at"] != [x, y]:
             fail("fixed part %s: at %r, the job says %r" % (name, p["at"], [x, y]))
     ids = sorted(hulls)
+    close = (math.inf, None, None)
     for i in range(len(ids)):
         for j in range(i + 1, len(ids)):
             a, c = ids[i], ids[j]
-            if box_gap(boxes[a], boxes[c]) >= spacing:  # the boxes' gap bounds the outlines'
+            # the boxes' gap bounds the outlines': far apart pairs need no more (the
+            # neighbours, within a mm of the spacing, are measured)
+            if box_gap(boxes[a], boxes[c]) >= spacing + 1:
                 continue
             d = poly_dist(hulls[a], hulls[c])
+            close = min(close, (d, a, c))
             if d < spacing - 1e-9:
                 fail("parts %d and %d: contours %r apart, closer than the spacing %r" % (a, c, d, spacing))
+    if close[1]:
+        print("# closest contours %.6f apart: parts %d and %d" % close)
 
 
 def alone(plate_run, name, alone_run):

@@ -37,10 +37,10 @@ A_PIN=$(python3 -c 'import math; print(24 * 9 * math.sin(math.pi / 24))')
 # the head of every job: coarse hatches so that the runs stay small
 HEAD0='machine: lpbf-cli
 layer_width: 0.5
-hatch_distance: 0.5'
+hatch_distance: 1'
 HEAD="$HEAD0
-upskin: {hatch_distance: 0.5}
-downskin: {hatch_distance: 0.5}"
+upskin: {hatch_distance: 1}
+downskin: {hatch_distance: 1}"
 job() { # job NAME TEXT: the job file NAME.yaml in "$J"
     printf '%s\n' "$2" >"$J/$1.yaml"
 }
@@ -74,7 +74,11 @@ parts:
 build grid --layout "$J/grid.svg"
 is "$RC" 0 "25 cylinders and a fixed pin: exit 0"
 run "${CB[@]}" arrange "$J/grid.json" 250x250 5 5 26 pin=235,235 "cyl~$A_CYL" "pin~$A_PIN"
-is "$RC $OUT" "0 " "25 cylinders: inside the margin, contours >= 5 apart, the pin at (235, 235), outlines = the sections less the beam offset"
+# neighbours' centres 45 apart, each outer pass's vertex (at angle 0) half a spot
+# (0.04) inside the model's edges, 0.04 / cos 3.75 deg inside its radius 20
+D=$(python3 -c 'import math; print("%.6f" % (45 - 2 * (20 - 0.04 / math.cos(math.pi / 48))))')
+is "$RC $OUT" "0 # closest contours $D apart: parts 1 and 2" \
+    "25 cylinders: inside the margin, contours >= 5 apart ($D), the pin at (235, 235), outlines = the sections less the beam offset"
 
 # mixed sizes, rotations, an L, two fixed parts
 job mixed "$HEAD
@@ -82,14 +86,14 @@ parts:
   - {model: ell.stl, copies: 4}
   - {model: box.stl, copies: 3, rotate: z:30}
   - {model: cyl.stl, copies: 6}
-  - {model: tall.stl, copies: 5, rotate: [x:90, z:45]}
+  - {model: pin.stl, copies: 5, rotate: [x:90, z:45]}
   - {model: pin.stl, at: [120.25, 200.5], name: fixed_a}
   - {model: box.stl, at: [30, 220], name: fixed_b}"
 build mixed
 is "$RC" 0 "mixed sizes: exit 0"
 run "${CB[@]}" arrange "$J/mixed.json" 250x250 5 5 20 fixed_a=120.25,200.5 fixed_b=30,220 ell~376 box~600 \
     fixed_b~600 "cyl~$A_CYL"
-is "$RC $OUT" "0 " "mixed sizes: inside the margin, >= 5 apart, fixed parts where the job says, outlines = sections"
+like "$RC $OUT" '^0 # closest contours 5\.\d+ apart' "mixed sizes: inside the margin, >= 5 apart, fixed parts where the job says, outlines = sections"
 
 # a round plate (coordinates from its centre), spacing 8
 job round "$HEAD
@@ -105,21 +109,18 @@ parts:
 build round --layout "$J/round.svg"
 is "$RC" 0 "round plate: exit 0"
 run "${CB[@]}" arrange "$J/round.json" d200 5 8 12 centre=0,0 side=-60.5,20.25 ell~376 box~600 "cyl~$A_CYL"
-is "$RC $OUT" "0 " "round plate: within 95 of the centre, >= 8 apart, fixed parts honoured"
+like "$RC $OUT" '^0 # closest contours 8\.\d+ apart' "round plate: within 95 of the centre, >= 8 apart, fixed parts honoured"
 
-# the checker finds what it is there to find: part 2 moved 3 mm towards part 1
-python3 - "$J/grid.json" "$TMP/moved.json" <<'PY'
-import json, sys
-run = json.load(open(sys.argv[1]))
-for L in run["layers"]:
-    for v in L["vectors"]:
-        if v.get("part", 1) == 2:
-            v["from"][0] -= 3
-            v["to"][0] -= 3
-json.dump(run, open(sys.argv[2], "w"))
-PY
-run "${CB[@]}" arrange "$TMP/moved.json" 250x250 5 5 26
-like "$RC $OUT" '^1 (?s:.*)parts 1 and 2: contours 2\.\d+ apart, closer than the spacing 5' \
+# the checker finds what it is there to find: two pins (boxes x 5 .. 11, 16 .. 22),
+# the second moved 3 mm towards the first (its vectors' x less 3; one vector a line)
+job pair "$HEAD
+parts: [{model: pin.stl, copies: 2}]"
+build pair -q
+run "${CB[@]}" arrange "$J/pair.json" 250x250 5 5 2
+like "$RC $OUT" '^0 # closest contours 5\.08\d* apart' "two pins: 5 + 2 x 0.04 apart"
+perl -pe 's/"(from|to)": \[([-\d.e]+)/sprintf(q("%s": [%.17g), $1, $2 - 3)/ge if /"part": 2,/' "$J/pair.json" >"$TMP/moved.json"
+run "${CB[@]}" arrange "$TMP/moved.json" 250x250 5 5 2
+like "$RC $OUT" '^1 (?s:.*)parts 1 and 2: contours 2\.08\d* apart, closer than the spacing 5' \
     "checker: two parts 2 mm apart fail the spacing"
 
 # ten 100 mm boxes: 100 + 5 + 100 = 205 <= 240 but 310 > 240: 2 x 2 = 4 fit
@@ -201,15 +202,9 @@ job quad1 "$(grep -v '^lasers:' "$J/quad.yaml")"
 build quad1 -q
 run "${CB[@]}" lengths "$J/quad.json" "$J/quad1.json"
 is "$RC $OUT" "0 " "quadrant fields: every part's exposed length per kind and layer = one laser's (nothing lost at the cuts)"
-python3 - "$J/quad.json" "$TMP/swapped.json" <<'PY'
-import json, sys
-run = json.load(open(sys.argv[1]))
-for v in run["layers"][0]["vectors"]:
-    if v["kind"] == "contour" and v["laser"] == 1:
-        v["laser"] = 4
-        break
-json.dump(run, open(sys.argv[2], "w"))
-PY
+# the first contour vector of laser 1 (one vector a line) given to laser 4
+perl -pe 'if (!$done && /"kind": "contour".*"laser": 1,/) { s/"laser": 1,/"laser": 4,/; $done = 1 }' "$J/quad.json" \
+    >"$TMP/swapped.json"
 run "${CB[@]}" fields "$TMP/swapped.json"
 like "$RC $OUT" '^1 layer 1: a contour vector of part \d+ on laser 4 at' "checker: a vector given to another quadrant's laser fails"
 
@@ -234,17 +229,17 @@ for n in grid quad mixed round; do
     like "$RC $OUT" '^0 # ' "$n: printed time = sum of each layer's busiest laser + 8 s recoat = JSON total"
 done
 # slow speeds for days and hours, a pin without recoat for tenths of a second
-for sp in 0.01 1; do
+for sp in 0.01 0.5; do
     job "slow$sp" "$HEAD0
 contour: {speed: $sp}
-upskin: {hatch_distance: 0.5, speed: $sp}
-downskin: {hatch_distance: 0.5, speed: $sp}
+upskin: {hatch_distance: 1, speed: $sp}
+downskin: {hatch_distance: 1, speed: $sp}
 speed: $sp
 parts: [{model: tall.stl}]"
     build "slow$sp"
     run "${CB[@]}" time "$J/slow$sp.json" "$J/slow$sp.err" 8
-    like "$RC $OUT" "^0 # $([ "$sp" = 1 ] && echo '1 h \d+ min \d+ s' || echo '\d+ d \d+ h \d+ min') = " \
-        "speed $sp mm/s: the printed time ($([ "$sp" = 1 ] && echo 'h min s' || echo 'd h min')) = the layers' sum"
+    like "$RC $OUT" "^0 # $([ "$sp" = 0.5 ] && echo '1 h \d+ min \d+ s' || echo '\d+ d \d+ h \d+ min') = " \
+        "speed $sp mm/s: the printed time ($([ "$sp" = 0.5 ] && echo 'h min s' || echo 'd h min')) = the layers' sum"
 done
 job fastpin "$HEAD
 recoat_time: 0
