@@ -7,8 +7,8 @@ exits 0 when every check holds; else prints what failed and exits 1.
 
 Commands:
   selftest                         the geometry on hand-worked cases
-  stl KIND PATH ARGS...            write a model: cyl R H [N], box W D H, ell A B T H
-                                   (an L: A x B with arms T wide), binary STL
+  stl KIND PATH ARGS... [ascii]    write a model: cyl R H [N], box W D H, ell A B T H
+                                   (an L: A x B with arms T wide), binary STL or ASCII
   at RUN.json NAME                 the part's "at" as two repr()s: "x, y"
   arrange RUN.json PLATE MARGIN SPACING NPARTS [NAME=X,Y ...]
                                    PLATE: WxD or dD (round, centred on 0, 0)
@@ -20,7 +20,7 @@ Commands:
   gas RUN.json                     each laser's parts downstream first
   layers RUN.json PROG.cli W       $$LAYER tops, JSON z / cut / floor / ceiling
   labels RUN.json PROG.cli         the program's blocks and labels = the JSON's
-  time RUN.json STDERR RECOAT      the printed total and the JSON total
+  time RUN.json STDERR RECOAT      the printed total, lasers' and parts' times, the JSON totals
   styles RUN.json PROG.cli SPEC... NAME:REGION=POWER/SPEED: the part's region
                                    uses that exposure (a name prefix: NAME_*)
   layout SVG RUN.json              one footprint and name per part, the fields
@@ -181,7 +181,8 @@ def ears(poly):
 
 
 def stl(kind, path, args):
-    v = [float(x) for x in args]
+    ascii_ = bool(args) and args[-1] == "ascii"
+    v = [float(x) for x in (args[:-1] if ascii_ else args)]
     if kind == "cyl":
         r, h = v[0], v[1]
         n = int(v[2]) if len(v) > 2 else 48
@@ -199,6 +200,16 @@ def stl(kind, path, args):
         tris = prism([(0, 0), (a, 0), (a, t), (t, t), (t, b), (0, b)], h)
     else:
         raise SystemExit("stl: unknown kind " + kind)
+    if ascii_:  # the ASCII form: facets with their normals (0: readers recompute them)
+        with open(path, "w") as f:
+            f.write("solid check_build\n")
+            for t in tris:
+                f.write(" facet normal 0 0 0\n  outer loop\n")
+                for p in t:
+                    f.write("   vertex %r %r %r\n" % tuple(float(c) for c in p))
+                f.write("  endloop\n endfacet\n")
+            f.write("endsolid check_build\n")
+        return
     with open(path, "wb") as f:
         f.write(b"check_build".ljust(80, b" "))
         f.write(struct.pack("<I", len(tris)))
@@ -402,6 +413,16 @@ def alone(plate_run, name, alone_run):
             if vs:
                 out[L["z"]] = vs
         return out
+    # its time on the plate (its own blocks, as one laser would take them) = alone: its
+    # share there, which with one laser is the whole scanning time
+    t = next((x["time"] for x in plate_run["totals"]["parts"] if x["part"] == p["part"]), None)
+    share = alone_run["totals"]["parts"][0]["time"]
+    ta = alone_run["totals"]["time"]
+    if len(build(alone_run)["lasers"]) == 1 and abs(share - ta["exposure"] - ta["jumps"]) > 1e-9 * max(1, share):
+        fail("part %s alone, one laser: its time %r s, the run's exposure and jumps %r s" % (
+            name, share, ta["exposure"] + ta["jumps"]))
+    if t is None or abs(t - share) > 1e-9 * max(1, t):
+        fail("part %s: %r s on the plate, alone %r s" % (name, t, share))
     A, B = program(plate_run, p["part"], sp), program(alone_run, 1, sa)
     if sorted(A) != sorted(B):
         return fail("part %s: layers at %r on the plate, alone %r" % (name, sorted(A), sorted(B)))
@@ -583,6 +604,43 @@ def time_cmd(run, errpath, recoat):
     jt = run["totals"]["time"]["total"]
     if abs(jt - total) > 1e-6 * total:
         fail("JSON total %r, the layers add up to %r" % (jt, total))
+    # the lasers' and parts' lines: each laser's time summed over the layers, each part's
+    lt, pt = {}, {}
+    for L in run["layers"]:
+        for x in L["stats"]["lasers"]:
+            lt[x["laser"]] = lt.get(x["laser"], 0) + x["time"]
+        for x in L["stats"].get("parts", []):
+            pt[x["part"]] = pt.get(x["part"], 0) + x["time"]
+    for x in run["totals"]["lasers"]:
+        if abs(x["time"] - lt.get(x["laser"], 0)) > 1e-6 * max(1, x["time"]):
+            fail("JSON totals: laser %d %r, the layers add up to %r" % (x["laser"], x["time"], lt.get(x["laser"])))
+    for x in run["totals"]["parts"]:
+        if abs(x["time"] - pt.get(x["part"], 0)) > 1e-6 * max(1, x["time"]):
+            fail("JSON totals: part %d %r, the layers add up to %r" % (x["part"], x["time"], pt.get(x["part"])))
+    lm = re.search(r": lasers: (.*?)(?:; worst balance|\n)", err)
+    if not lm:
+        fail("no lasers line in: %r" % err)
+    else:
+        items = lm[1].split(", ")
+        if len(items) != len(lt):
+            fail("the lasers line names %d lasers, the run has %d" % (len(items), len(lt)))
+        for it in items:
+            k, d = re.fullmatch(r"laser (\d+) (.*)", it).groups()
+            got, half = parse_duration(d)
+            if abs(got - lt.get(int(k), 0)) > half + 1e-9:
+                fail("laser %s: printed %r, the layers add up to %r s" % (k, d, lt.get(int(k))))
+    pm = re.search(r": parts: (.*)\n", err)
+    names = {p["part"]: p["name"] for p in build(run)["parts"]}
+    if not pm:
+        fail("no parts line in: %r" % err)
+    else:
+        items = pm[1].split(", ")
+        if [re.match(r"\S+", it)[0] for it in items] != [names[k] for k in sorted(names)]:
+            fail("the parts line names %r" % items[:5])
+        for k, it in zip(sorted(names), items):
+            got, half = parse_duration(it.split(" ", 1)[1])
+            if abs(got - pt.get(k, 0)) > half + 1e-9:
+                fail("part %s: printed %r, the layers add up to %r s" % (names[k], it, pt.get(k)))
     print("# %s = %r s" % (m[1], total))
 
 

@@ -29,6 +29,7 @@ is "$RC $OUT" "0 " "checker: its geometry and time parsing on hand-worked cases"
 "${CB[@]}" stl box "$J/box.stl" 30 20 3
 "${CB[@]}" stl box "$J/big.stl" 100 100 1
 "${CB[@]}" stl ell "$J/ell.stl" 30 25 8 3 # an L: 30 x 25, arms 8 wide
+"${CB[@]}" stl ell "$J/ella.stl" 30 25 8 3 ascii # the same as ASCII STL
 # the sections' areas, by hand: a 48-gon of radius r is 24 r^2 sin(7.5 deg);
 # the L is 30 x 8 + 17 x 8; the box 30 x 20
 A_CYL=$(python3 -c 'import math; print(24 * 400 * math.sin(math.pi / 24))')
@@ -111,6 +112,12 @@ is "$RC" 0 "round plate: exit 0"
 run "${CB[@]}" arrange "$J/round.json" d200 5 8 12 centre=0,0 side=-60.5,20.25 ell~376 box~600 "cyl~$A_CYL"
 like "$RC $OUT" '^0 # closest contours 8\.\d+ apart' "round plate: within 95 of the centre, >= 8 apart, fixed parts honoured"
 
+# the same L as ASCII STL (integer corners: the same in float32): the same program
+job round_ascii "$(sed 's/{model: ell.stl, copies: 3}/{model: ella.stl, copies: 3, name: ell}/' "$J/round.yaml")"
+build round_ascii -q
+cmp -s "$J/round.cli" "$J/round_ascii.cli"
+ok $? "round plate with the L read from ASCII STL: the same program"
+
 # the checker finds what it is there to find: two pins (boxes x 5 .. 11, 16 .. 22),
 # the second moved 3 mm towards the first (its vectors' x less 3; one vector a line)
 job pair "$HEAD
@@ -164,6 +171,8 @@ parts:
     run "${CB[@]}" alone "$J/styled.json" "$name" "$J/alone_$name.json"
     is "$RC $OUT" "0 " "part $name on the plate = planned alone at its at: every vector, in order, its style"
 done
+is "$(jq -c '[.job.build.parts[] | select(.name == "quick" or .name == "lifted") | .layers]' "$J/styled.json")" \
+    '[[1,8],[3,8]]' "parts' layers: quick 0 .. 4 mm is layers 1 .. 8, lifted (z 1, 3 mm high) 3 .. 8"
 run "${CB[@]}" alone "$J/styled.json" careful "$J/alone_lifted.json"
 like "$RC $OUT" '^1 part careful: alone at' "checker: another part's program fails"
 
@@ -180,6 +189,15 @@ parts:
 build mix4
 run "${CB[@]}" balance "$J/mix4.json" "$J/mix4.cli" 0.05
 like "$RC $OUT" '^0 # worst balance' "four lasers, mixed parts: busiest <= 1.05 ideal + one block"
+# a part of the plate planned alone with the same four lasers: the same vectors (as sets:
+# the lasers share them differently)
+job alone4 "$HEAD
+$(grep '^lasers:' "$J/grid.yaml")
+parts:
+  - {model: cyl.stl, name: cyl_13, at: [$("${CB[@]}" at "$J/grid.json" cyl_13)]}"
+build alone4 -q
+run "${CB[@]}" alone "$J/grid.json" cyl_13 "$J/alone4.json"
+is "$RC $OUT" "0 " "four lasers: cyl_13 of the plate = cyl_13 alone with the same lasers (sets of vectors)"
 for n in grid mix4; do
     run "${CB[@]}" gas "$J/$n.json"
     is "$RC $OUT" "0 " "$n: each laser's parts downstream first (gas flow -x: smallest x first; ties by number)"
@@ -200,6 +218,13 @@ run "${CB[@]}" gas "$J/quad.json"
 is "$RC $OUT" "0 " "quadrant fields, gas towards +y: each laser's parts largest y first"
 job quad1 "$(grep -v '^lasers:' "$J/quad.yaml")"
 build quad1 -q
+job aloneq "$HEAD
+$(grep '^lasers:\|^gas_flow:' "$J/quad.yaml")
+parts:
+  - {model: cyl.stl, name: cyl_13, at: [$("${CB[@]}" at "$J/quad.json" cyl_13)]}"
+build aloneq -q
+run "${CB[@]}" alone "$J/quad.json" cyl_13 "$J/aloneq.json"
+is "$RC $OUT" "0 " "quadrant fields: cyl_13 (x 95 .. 135, cut at 125) of the plate = alone with the same fields"
 run "${CB[@]}" lengths "$J/quad.json" "$J/quad1.json"
 is "$RC $OUT" "0 " "quadrant fields: every part's exposed length per kind and layer = one laser's (nothing lost at the cuts)"
 # the first contour vector of laser 1 (one vector a line) given to laser 4
@@ -271,6 +296,9 @@ cmp -s "$TMP/j1.cli" "$TMP/j2.cli" && cmp -s "$TMP/j1.cli" "$TMP/j4.cli" && cmp 
 ok $? "-j 1, 2, 4: the same program"
 cmp -s "$TMP/j1.json" "$TMP/j2.json" && cmp -s "$TMP/j1.json" "$TMP/j4.json"
 ok $? "-j 1, 2, 4: the same JSON"
+"$LAMINA" build "$J/quad.yaml" -q -j 4 -o "$TMP/q4.cli" --json "$TMP/q4.json"
+cmp -s "$TMP/q4.cli" "$J/quad.cli" && cmp -s "$TMP/q4.json" "$J/quad.json"
+ok $? "quadrant fields (cut vectors): -j 4 = -j 1"
 
 # ---- 7. job file errors --------------------------------------------------------------
 pos() { # pos FILE TEXT: LINE:COL (1-based) of TEXT's first occurrence
