@@ -112,6 +112,40 @@ is "$RC" 0 "round plate: exit 0"
 run "${CB[@]}" arrange "$J/round.json" d200 5 8 12 centre=0,0 side=-60.5,20.25 ell~376 box~600 "cyl~$A_CYL"
 like "$RC $OUT" '^0 # closest contours 8\.\d+ apart' "round plate: within 95 of the centre, >= 8 apart, fixed parts honoured"
 
+# edge cases of the packing. 44 mm cylinders: 5 x 44 + 4 x 5 = 240 fills the plate
+# less its margins exactly, so 25 fit and not 26
+"${CB[@]}" stl cyl "$J/c44.stl" 22 1
+"${CB[@]}" stl box "$J/sq.stl" 20 20 1
+job exact "$HEAD
+parts: [{model: c44.stl, copies: 25}]"
+build exact -q
+run "${CB[@]}" arrange "$J/exact.json" 250x250 5 5 25
+like "$RC $OUT" '^0 # closest contours 5\.08' "25 cylinders of 44 mm exactly filling 240 mm: all fit, inside, apart"
+job exact26 "$HEAD
+parts: [{model: c44.stl, copies: 26}]"
+build exact26
+like "$RC $(cat "$J/exact26.err")" '^1 lamina: only 25 of 26 parts fit' "26 of them: only 25 fit"
+# 20 mm squares on the round plate: a square grid of pitch 25 centred on the plate
+# holds as many as the corners within 95 of the centre allow (counted here); the
+# packing must place at least as many
+N=$(python3 -c 'import math
+print(max(sum(all(math.hypot(o + 25 * i + a, o + 25 * j + b) <= 95 for a in (-10, 10) for b in (-10, 10))
+              for i in range(-5, 6) for j in range(-5, 6)) for o in (0, 12.5)))')
+job roundsq "$HEAD
+plate: {diameter: 200, margin: 5}
+lasers: [{field: [-100, -100, 100, 100]}]
+parts: [{model: sq.stl, copies: $N}]"
+build roundsq -q
+run "${CB[@]}" arrange "$J/roundsq.json" d200 5 5 "$N" sq~400
+like "$RC $OUT" '^0 # closest contours 5\.08' "round plate: $N squares (a centred grid's count) fit, inside, apart"
+job fixnear "$HEAD
+parts: [{model: pin.stl, at: [50, 50]}, {model: pin.stl, at: [60.5, 50], name: near}]"
+rm -f "$J/fixnear.cli"
+build fixnear
+like "$RC $(cat "$J/fixnear.err")" '^1 lamina: fixed parts pin and near are closer than the spacing \(5 mm\)' \
+    "fixed parts 4.5 mm apart (boxes 47 .. 53, 57.5 .. 63.5): an error"
+is "$(ls "$J" | grep -c '^fixnear\.\(cli\|json\)$')" 0 "fixed parts too close: no output"
+
 # the same L as ASCII STL (integer corners: the same in float32): the same program
 job round_ascii "$(sed 's/{model: ell.stl, copies: 3}/{model: ella.stl, copies: 3, name: ell}/' "$J/round.yaml")"
 build round_ascii -q
