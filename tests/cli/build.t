@@ -146,6 +146,21 @@ like "$RC $(cat "$J/fixnear.err")" '^1 lamina: fixed parts pin and near are clos
     "fixed parts 4.5 mm apart (boxes 47 .. 53, 57.5 .. 63.5): an error"
 is "$(ls "$J" | grep -c '^fixnear\.\(cli\|json\)$')" 0 "fixed parts too close: no output"
 
+# units and scale: a cylinder of radius 0.5 in (12.7 mm, 0.1 in high), a 10 x 5 x 1
+# box scaled 2 (20 x 10 x 2), the same turned; -s spacing=10 over the machine's 5
+"${CB[@]}" stl cyl "$J/inch.stl" 0.5 0.1
+"${CB[@]}" stl box "$J/b10.stl" 10 5 1
+job units "$HEAD
+parts: [{model: inch.stl, units: in, name: inch}, {model: b10.stl, scale: 2, name: twice},
+        {model: b10.stl, scale: 2, rotate: z:90, name: turned}]"
+build units -q -s spacing=10
+is "$(jq -c '[.job.build.spacing, [.job.build.parts[] | [((.box[2] - .box[0]) * 1e6 | round), ((.box[3] - .box[1]) * 1e6 | round), .layers[1]]]]' "$J/units.json")" \
+    '[10,[[25400000,25400000,6],[20000000,10000000,4],[10000000,20000000,4]]]' \
+    "units: in and scale: 2: footprints 25.4 x 25.4, 20 x 10, 10 x 20; 2.54 mm high in 6 layers, 2 mm in 4"
+run "${CB[@]}" arrange "$J/units.json" 250x250 5 10 3 \
+    "inch~$(python3 -c 'import math; print(24 * 12.7 ** 2 * math.sin(math.pi / 24))')" twice~200 turned~200
+like "$RC $OUT" '^0 # closest contours 10\.08' "units, scale, -s spacing=10: inside, 10 apart, the sections' areas"
+
 # the same L as ASCII STL (integer corners: the same in float32): the same program
 job round_ascii "$(sed 's/{model: ell.stl, copies: 3}/{model: ella.stl, copies: 3, name: ell}/' "$J/round.yaml")"
 build round_ascii -q
