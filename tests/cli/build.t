@@ -12,7 +12,9 @@
 # errors point at their line and column. The jobs live in a folder with a
 # space in its name and lamina runs from another one (models are found
 # from the job's folder). Models are a few mm high at 0.5 mm layers, hatch
-# distance 0.5: every run takes well under a second.
+# distance 1: every run takes well under a second. Known failure (a lamina
+# bug, reported): a non-powder-bed machine's error points at 1:1, not at
+# the machine line.
 . "$(dirname "$0")/lib.sh"
 
 CB=(python3 "$TESTS/build/check_build.py")
@@ -61,7 +63,8 @@ job one "$HEAD
 parts: [{model: pin.stl}]"
 run "$LAMINA" build "$J/one.yaml" "$J/one.yaml" -o "$TMP/x.cli"
 like "$RC $ERR" '^2 lamina build: more than one job given' "two jobs: usage error, exit 2"
-is "$(ls "$TMP/x.cli" 2>&1 >/dev/null | grep -c 'No such')" 1 "usage errors: no output"
+[ ! -e "$TMP/x.cli" ]
+ok $? "usage errors: no output"
 
 # ---- 1. arrangement ------------------------------------------------------------
 # 25 copies of the 40 mm cylinder: 5 x 40 + 4 x 5 = 220 <= 250 - 2 x 5, a 5 x 5 grid;
