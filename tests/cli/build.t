@@ -66,6 +66,10 @@ like "$RC $ERR" '^2 lamina build: more than one job given' "two jobs: usage erro
 [ ! -e "$TMP/x.cli" ]
 ok $? "usage errors: no output"
 
+# a relative job path from another folder: the models are the job folder's
+(cd "$TMP/cwd" && "$LAMINA" build "../job dir/one.yaml" -q -o rel.cli)
+ok $? "a job given by a relative path with a space: its models found from its folder"
+
 # ---- 1. arrangement ------------------------------------------------------------
 # 25 copies of the 40 mm cylinder: 5 x 40 + 4 x 5 = 220 <= 250 - 2 x 5, a 5 x 5 grid;
 # the pin fixed at (235, 235): its box 232 .. 238 clears the grid's 225 by 7 >= 5
@@ -292,6 +296,9 @@ for n in grid quad styled; do
     run "${CB[@]}" labels "$J/$n.json" "$J/$n.cli"
     is "$RC $OUT" "0 " "$n: the program's \$\$LABEL table = the JSON's, blocks' ids = the vectors' labels, PART:STYLE:LASER"
 done
+sed 's|^\$\$LAYER/1\.00000$|$$LAYER/1.10000|' "$J/grid.cli" >"$TMP/bad.cli"
+run "${CB[@]}" layers "$J/grid.json" "$TMP/bad.cli" 0.5
+like "$RC $OUT" '^1 \$\$LAYER #2 at 1\.1, the layer.s top is 1' "checker: a \$\$LAYER off by 0.1 fails"
 job quarter "$(sed 's/^layer_width: 0.5/layer_width: 0.25/' "$J/one.yaml")"
 build quarter -q
 run "${CB[@]}" layers "$J/quarter.json" "$J/quarter.cli" 0.25
