@@ -492,9 +492,14 @@ static int read_job(jp *j)
     if (!rc) rc = load_machine(j, root);
     if (!rc) rc = overrides(j, root);
     if (!rc) {
-        rc = lam_build_new(j->p, j->d.path, &j->b, j->err);
+        lam_error e;
+        lam_error_clear(&e);
+        rc = lam_build_new(j->p, j->d.path, &j->b, &e);
         j->p = NULL;
-        if (rc && j->err && !j->err->line) rc = lam_yaml_at(&j->d, root->start_mark, rc, "%s", j->err->msg);
+        if (rc) { /* a machine that cannot build a plate: said where it is named */
+            const yaml_node_t *m = lookup(j, root, "machine", NULL);
+            rc = lam_yaml_at(&j->d, (m ? m : root)->start_mark, rc, "%s", e.msg);
+        }
     }
     if (!rc) rc = styles(j, root);
     if (!rc) rc = parts(j, root);

@@ -84,6 +84,17 @@ static void part_name(const lam_build_part *spec, size_t copy, char *buf, size_t
     else snprintf(buf, size, "%s", stem);
 }
 
+/* A model that does not open is said where the job names it; an error
+ * inside the model keeps the model's own position. */
+static int load_error(const lam_build_run *r, const lam_build_part *spec, const lam_error *e, lam_error *err)
+{
+    if (e->code != LAM_EIO || !spec->line) {
+        if (err) *err = *e;
+        return e->code;
+    }
+    return lam_error_set(err, e->code, r->b->path, spec->line, spec->column, "model %s: %s", spec->model, e->msg);
+}
+
 /* The parts' models, one per job part, and the arrangement's items, one
  * per copy. */
 static int load_all(lam_build_run *r, const lam_load_opts *load, lam_model **models, lam_arrange_item *items,
@@ -92,8 +103,10 @@ static int load_all(lam_build_run *r, const lam_load_opts *load, lam_model **mod
     size_t n = 0;
     for (size_t i = 0; i < r->b->nparts; i++) {
         const lam_build_part *spec = &r->b->parts[i];
-        int rc = load_part(spec, load, 1, &models[i], err);
-        if (rc) return rc;
+        lam_error e;
+        lam_error_clear(&e);
+        int rc = load_part(spec, load, 1, &models[i], &e);
+        if (rc) return load_error(r, spec, &e, err);
         const double *bb = models[i]->stats.bbox;
         for (size_t c = 0; c < spec->copies; c++, n++) {
             lam_run_part *p = &r->parts[n];
@@ -244,6 +257,53 @@ static int number_labels(lam_build_run *r, lam_error *err)
     return LAM_OK;
 }
 
+/* ---- the lasers' reach ----------------------------------------------------------- */
+
+/* Whether the union of the fields covers box (every cell of the grid the
+ * fields' edges cut the box into lies in some field). */
+static int covered(const lam_laser_set *ls, const double box[4])
+{
+    double xs[2 * LAM_LASERS_MAX + 2], ys[2 * LAM_LASERS_MAX + 2];
+    size_t nx = 0, ny = 0;
+    xs[nx++] = box[0], xs[nx++] = box[2], ys[ny++] = box[1], ys[ny++] = box[3];
+    for (size_t l = 0; l < ls->n; l++) {
+        for (int k = 0; k < 4; k += 2)
+            if (ls->field[l][k] > box[0] && ls->field[l][k] < box[2]) xs[nx++] = ls->field[l][k];
+        for (int k = 1; k < 4; k += 2)
+            if (ls->field[l][k] > box[1] && ls->field[l][k] < box[3]) ys[ny++] = ls->field[l][k];
+    }
+    for (size_t i = 0; i < nx; i++)
+        for (size_t j = 0; j < ny; j++) {
+            /* a cell's centre: a point between this cut and the nearest one above */
+            double x1 = box[2], y1 = box[3];
+            for (size_t k = 0; k < nx; k++) if (xs[k] > xs[i] && xs[k] < x1) x1 = xs[k];
+            for (size_t k = 0; k < ny; k++) if (ys[k] > ys[j] && ys[k] < y1) y1 = ys[k];
+            if (xs[i] >= box[2] || ys[j] >= box[3]) continue;
+            double cx = (xs[i] + x1) / 2, cy = (ys[j] + y1) / 2;
+            int in = 0;
+            for (size_t l = 0; l < ls->n && !in; l++)
+                in = cx >= ls->field[l][0] && cx <= ls->field[l][2] && cy >= ls->field[l][1] && cy <= ls->field[l][3];
+            if (!in) return 0;
+        }
+    return 1;
+}
+
+/* Every part within the lasers' reach, said before anything is planned. */
+static int check_reach(const lam_build_run *r, lam_error *err)
+{
+    for (size_t i = 0; i < r->nparts; i++) {
+        const lam_run_part *p = &r->parts[i];
+        if (covered(&r->lasers, p->box)) continue;
+        const lam_build_part *spec = &r->b->parts[p->spec];
+        return lam_error_set(err, LAM_EINVAL, r->b->path, spec->line, spec->column,
+                             "part %s (%g .. %g x %g .. %g on the plate) is not within the lasers' fields "
+                             "(%zu laser%s): give the machine lasers: [{field: [x0, y0, x1, y1]}, ...] that "
+                             "reach it", p->name, p->box[0], p->box[2], p->box[1], p->box[3], r->lasers.n,
+                             r->lasers.n == 1 ? "" : "s");
+    }
+    return LAM_OK;
+}
+
 /* ---- the run ----------------------------------------------------------------- */
 
 /* Every copy moved to its place, sliced and styled. */
@@ -302,6 +362,7 @@ static int setup(lam_build_run *r, const lam_load_opts *load, lam_model **models
     if (!rc) rc = load_all(r, load, models, items, err);
     if (!rc) rc = lam_arrange(&r->plate, r->spacing, items, r->nparts, r->b->profile->units, err);
     if (!rc) rc = place_parts(r, models, items, err);
+    if (!rc) rc = check_reach(r, err);
     if (!rc) rc = number_labels(r, err);
     if (!rc) make_job(r);
     if (!rc) rc = lam_build_run_json(r, err);

@@ -12,9 +12,7 @@
 # errors point at their line and column. The jobs live in a folder with a
 # space in its name and lamina runs from another one (models are found
 # from the job's folder). Models are a few mm high at 0.5 mm layers, hatch
-# distance 1: every run takes well under a second. Known failure (a lamina
-# bug, reported): a non-powder-bed machine's error points at 1:1, not at
-# the machine line.
+# distance 1: every run takes well under a second.
 . "$(dirname "$0")/lib.sh"
 
 CB=(python3 "$TESTS/build/check_build.py")
@@ -435,7 +433,8 @@ jerr e_yaml "$T" "4:1: malformed YAML: .*\\(while parsing a flow mapping at line
 job e_file "machine: lpbf-cli
 parts: [{model: nothere.stl}]"
 build e_file
-like "$RC $(cat "$J/e_file.err")" '^1 lamina: .*nothere\.stl' "a model that does not exist: exit 1, the error names the model"
+like "$RC $(cat "$J/e_file.err")" "^1 lamina: .*e_file\\.yaml:$(pos "$J/e_file.yaml" '{model'): model .*nothere\\.stl: cannot open" \
+    "a model that does not exist: exit 1, the error names the model where the job lists the part"
 is "$(ls "$J" | grep -c '^e_file\.\(cli\|json\)$')" 0 "a model that does not exist: no output"
 T="layer_width: 0.5
 machine:   ded-gcode
@@ -444,6 +443,16 @@ printf '%s\n' "$T" >"$TMP/t"
 # the machine line, at its key or its value (as an unknown machine's error is)
 jerr e_ded "$T" "(?:$(pos "$TMP/t" machine)|$(pos "$TMP/t" ded-gcode)): machine ded-gcode is a ladrp profile" \
     "a non-powder-bed machine, on line 2"
+# a plate the machine's lasers do not reach: lpbf-cli's field [0, 0, 250, 250] and a
+# round plate of its own (coordinates from its centre): the parts placed left of and
+# below the centre are outside it, said before anything is planned
+T="machine: lpbf-cli
+plate: {diameter: 200, margin: 5}
+parts:
+  - {model: pin.stl, copies: 4}"
+printf '%s\n' "$T" >"$TMP/t"
+jerr e_reach "$T" "$(pos "$TMP/t" '{model'): part pin_1 .* is not within the lasers' fields \\(1 laser\\)" \
+    "parts the lasers do not reach: refused at the part, nothing written"
 
 # ---- 8. build styles -----------------------------------------------------------------
 # lpbf-cli: contour 120 W 600 mm/s, upskin 150/700, downskin 100/1200; the job's
