@@ -721,13 +721,6 @@ typedef struct bctx {
     lam_scan_time lasers[LAM_LASERS_MAX];
 } bctx;
 
-/* The C memory of a plan: its program, per-layer times and record. */
-static size_t plan_bytes(size_t program, size_t layers, const lam_plan_data *r)
-{
-    return program + 1 + layers * sizeof(double) + sizeof *r + r->cap_layers * sizeof *r->layers +
-           r->cap_contours * sizeof *r->contours + r->cap_vectors * sizeof *r->vectors + r->cap_pts * 2 * sizeof(double);
-}
-
 /* Before each layer, as machine:plan: Ctrl-C or the sandbox's time stop
  * the run; so does a plan grown past half the sandbox's room (a plan takes
  * twice its size while it is made). */
@@ -736,7 +729,7 @@ static int on_stop(void *user, size_t k)
     (void)k;
     bctx *c = user;
     c->stopped = lam_lua_stopping(c->L);
-    c->over = c->room != SIZE_MAX && plan_bytes((size_t)lam_writer_bytes(c->j->w), c->n, &c->j->rec) > c->room / 2;
+    c->over = c->room != SIZE_MAX && lam_lua_plan_bytes((size_t)lam_writer_bytes(c->j->w), c->n, &c->j->rec) > c->room / 2;
     return c->stopped || c->over ? LAM_EUSAGE : LAM_OK;
 }
 
@@ -958,7 +951,7 @@ int lam_lua_build(lua_State *L)
     if (rc) return lam_lua_fail(L, &j->err);
     push_info(L, j->run, c.lasers);
     lua_setiuservalue(L, 3, 1);
-    size_t bytes = plan_bytes(pl->len, pl->layers, pl->rec);
+    size_t bytes = lam_lua_plan_bytes(pl->len, pl->layers, pl->rec);
     job_release(L, j); /* the models, the slicers: the plan keeps what it needs */
     lua_settop(L, 3);
     if (!lam_lua_charge(L, &pl->charged, bytes))

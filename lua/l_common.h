@@ -268,6 +268,10 @@ int lam_lua_machine(lua_State *L);         /* lamina.machine (l_machine.c) */
 int lam_lua_machines(lua_State *L);        /* lamina.machines (l_machine.c) */
 int lam_lua_machine_keys(lua_State *L);    /* lamina.machine_keys (l_machine.c) */
 int lam_lua_plan(lua_State *L);            /* machine:plan (l_plan.c) */
+
+/* The C memory of a plan (l_plan.c): its program, per-layer times and its
+ * record, for the sandbox's budget; machine:plan's and lamina.build's. */
+size_t lam_lua_plan_bytes(size_t program, size_t layers, const struct lam_plan_data *r);
 int lam_lua_build(lua_State *L);           /* lamina.build (l_build.c) */
 
 /* The option `axis` of table t (argument arg): "x", "y", "z" or a

@@ -133,8 +133,7 @@ static const lam_hatches *given(void *ctx, size_t i)
     return lam_lua_hatch_given(((const planctx *)ctx)->ctl, i);
 }
 
-/* The C memory of a plan: its program, per-layer times and record. */
-static size_t plan_bytes(size_t program, size_t layers, const lam_plan_data *r)
+size_t lam_lua_plan_bytes(size_t program, size_t layers, const lam_plan_data *r)
 {
     return program + 1 + layers * sizeof(double) + sizeof *r + r->cap_layers * sizeof *r->layers +
            r->cap_contours * sizeof *r->contours + r->cap_vectors * sizeof *r->vectors + r->cap_pts * 2 * sizeof(double);
@@ -152,7 +151,7 @@ static int stop(void *ctx, size_t i)
     planctx *c = ctx;
     c->stopped = lam_lua_stopping(c->L);
     c->over = c->room != SIZE_MAX &&
-              plan_bytes((size_t)lam_writer_bytes(c->j->w), c->n, &c->j->rec) > c->room / 2;
+              lam_lua_plan_bytes((size_t)lam_writer_bytes(c->j->w), c->n, &c->j->rec) > c->room / 2;
     return c->stopped || c->over ? LAM_EUSAGE : LAM_OK;
 }
 
@@ -319,7 +318,7 @@ static int plan_done(lua_State *L, planjob *j, lplan *pl, int plan, const lam_pr
     *pl->rec = j->rec; /* the plan owns the record now */
     memset(&j->rec, 0, sizeof j->rec);
     lua_settop(L, plan);
-    size_t bytes = plan_bytes(pl->len, n, pl->rec);
+    size_t bytes = lam_lua_plan_bytes(pl->len, n, pl->rec);
     if (!lam_lua_charge(L, &pl->charged, bytes))
         return lam_lua_memory_raise(L, "machine:plan: the plan takes %zu bytes", bytes); /* p_gc frees it */
     return 1;

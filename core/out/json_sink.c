@@ -461,31 +461,29 @@ static int j_layer_end(void *ctx, const lam_layer_info *li, const lam_vec_stats 
     return s->rc;
 }
 
+/* A list of numbered times: [{"KEY": 1, "time": t[0]}, ...]. */
+static void numbered_times(js *s, const char *list, const char *key, const double *t, size_t n)
+{
+    put(s, ", \"");
+    put(s, list);
+    put(s, "\": [");
+    for (size_t i = 0; i < n; i++) {
+        put(s, i ? ", {\"" : "{\"");
+        put(s, key);
+        put(s, "\": ");
+        size(s, i + 1);
+        put(s, ", \"time\": ");
+        num(s, t[i]);
+        put(s, "}");
+    }
+    put(s, "]");
+}
+
 /* A build's totals: each laser's time and each part's. */
 static void build_totals(js *s)
 {
-    if (s->nlasers) {
-        put(s, ", \"lasers\": [");
-        for (size_t l = 0; l < s->nlasers; l++) {
-            put(s, l ? ", {\"laser\": " : "{\"laser\": ");
-            size(s, l + 1);
-            put(s, ", \"time\": ");
-            num(s, s->laser_time[l]);
-            put(s, "}");
-        }
-        put(s, "]");
-    }
-    if (s->nparts_time) {
-        put(s, ", \"parts\": [");
-        for (size_t p = 0; p < s->nparts_time; p++) {
-            put(s, p ? ", {\"part\": " : "{\"part\": ");
-            size(s, p + 1);
-            put(s, ", \"time\": ");
-            num(s, s->part_time[p]);
-            put(s, "}");
-        }
-        put(s, "]");
-    }
+    if (s->nlasers) numbered_times(s, "lasers", "laser", s->laser_time, s->nlasers);
+    if (s->nparts_time) numbered_times(s, "parts", "part", s->part_time, s->nparts_time);
 }
 
 static int j_end(void *ctx)
