@@ -220,7 +220,8 @@ T.ok(none4 == nil and tostring(err4):find("memory limit exceeded: lamina.build",
 -- more than 1 kB: over 2 MB in all)
 local none5, err5 = lamina.sandbox{code = [[
   return lamina.build{machine = "lpbf-cli", layer_width = 0.5, plate = {width = 1000, depth = 1000},
-                      parts = {{model = ..., copies = 2000}}}]], args = {cube}, allow = M, memory = 2e6}
+                      lasers = {{field = {0, 0, 1000, 1000}}}, parts = {{model = ..., copies = 2000}}}]],
+                      args = {cube}, allow = M, memory = 2e6}
 T.ok(none5 == nil and tostring(err5):find("memory limit exceeded: lamina.build: the plate's 2000 parts", 1, true),
      "the sandbox's memory counts the plate's models and slicers", err5)
 
