@@ -486,4 +486,12 @@ done
 is "$(grep -c 'class="part"' "$J/grid.svg") $(grep -c 'class="field"' "$J/quad.svg")" "26 4" \
     "--layout: 26 footprints on the grid, 4 quadrant fields"
 
+# ---- the README's example plate (examples/plate.yaml), at coarse layers -------------------
+EX="$TESTS/../examples/plate.yaml"
+run "$LAMINA" build "$EX" -s layer_width=0.5 -o "$J/example.cli" --json "$J/example.json" --layout "$J/example.svg"
+is "$RC" 0 "examples/plate.yaml builds (its models from the job's folder)"
+like "$ERR" "11 parts, 40 layers, 2 lasers" "examples/plate.yaml: 11 parts, 20 mm at 0.5 mm, 2 lasers"
+run "${CB[@]}" layout "$J/example.svg" "$J/example.json"
+is "$RC $OUT" "0 " "examples/plate.yaml: the layout shows every part and both fields"
+
 done_testing
