@@ -38,7 +38,7 @@ static const char usage_text[] =
     "      --layers     plan only layers A to B (from 1) or part K of N of the plate into a\n"
     "                   part file for 'lamina join' (which writes the whole plate's program)\n"
     "  -j, --jobs       threads that plan layers (the program is the same for any number)\n"
-    "  -q, --quiet      no progress and no summary; -v: every note\n";
+    "  -q, --quiet      no progress and no summary; -v: each layer's time per laser too\n";
 
 typedef struct totals {
     lam_scan_time all;       /* layers' estimates summed (busiest laser's) */
@@ -47,6 +47,8 @@ typedef struct totals {
     size_t worst_layer;
     cli_progress *progress;
     lam_svg *svg;            /* --svg: each layer's panel */
+    const char *path;        /* -v: each layer's lasers on standard error */
+    int verbose;
 } totals;
 
 typedef struct bjob {
@@ -62,6 +64,19 @@ typedef struct bjob {
     size_t first, count;     /* --layers: the plate layers of the part file */
 } bjob;
 
+/* -v: a layer's time, each laser's and the balance. */
+static void layer_note(totals *t, size_t k, const lam_scan_time *layer, const lam_scan_time *lasers, size_t n,
+                       double bal)
+{
+    char a[64];
+    cli_progress_hide(t->progress);
+    fprintf(stderr, "lamina: %s: layer %zu: %s;", t->path, k + 1, lam_fmt_duration(lam_scan_time_total(layer), a, sizeof a));
+    for (size_t l = 0; l < n; l++)
+        fprintf(stderr, "%s laser %zu %s", l ? "," : "", l + 1,
+                lam_fmt_duration(lasers[l].exposure + lasers[l].jump, a, sizeof a));
+    fprintf(stderr, "; balance %.3f\n", bal);
+}
+
 static void on_planned(void *user, size_t k, const lam_scan_time *layer, const lam_scan_time *lasers, size_t n)
 {
     totals *t = user;
@@ -76,6 +91,7 @@ static void on_planned(void *user, size_t k, const lam_scan_time *layer, const l
     }
     double bal = working ? busiest / (sum / (double)working) : 1;
     if (bal > t->worst_balance) t->worst_balance = bal, t->worst_layer = k + 1;
+    if (t->verbose) layer_note(t, k, layer, lasers, n, bal);
     cli_progress_step(t->progress, k + 1);
 }
 
@@ -156,6 +172,8 @@ static int run_plan(bjob *j)
 {
     j->t.progress = &j->progress;
     j->t.svg = j->svg;
+    j->t.path = j->a.path;
+    j->t.verbose = j->a.talk > 0;
     lam_run_opts o = { .threads = j->a.threads, .planned = on_planned, .section = add_panel, .user = &j->t,
                        .layer_first = j->first, .layer_count = j->count };
     cli_progress_begin(&j->progress, "planning", j->a.path, lam_build_run_layers(j->run));

@@ -486,6 +486,14 @@ done
 is "$(grep -c 'class="part"' "$J/grid.svg") $(grep -c 'class="field"' "$J/quad.svg")" "26 4" \
     "--layout: 26 footprints on the grid, 4 quadrant fields"
 
+# -v: a line per layer, its lasers' times and balance, as the JSON has them
+run "$LAMINA" build "$J/quad.yaml" -v -o "$J/quadv.cli"
+is "$(printf '%s\n' "$ERR" | grep -c '^lamina: .*quad\.yaml: layer [0-9]*: .*; laser 1 .*, laser 4 .*; balance [0-9.]*$')" \
+    "$(python3 -c 'import json,sys; print(len(json.load(open(sys.argv[1]))["layers"]))' "$J/quad.json")" \
+    "-v: one line per layer with the four lasers' times and the balance"
+first=$(python3 -c 'import json,sys; print("%.3f" % json.load(open(sys.argv[1]))["layers"][0]["stats"]["balance"])' "$J/quad.json")
+like "$ERR" "layer 1: .*; balance $first" "-v: layer 1's balance is the JSON's ($first)"
+
 # ---- the README's example plate (examples/plate.yaml), at coarse layers -------------------
 EX="$TESTS/../examples/plate.yaml"
 run "$LAMINA" build "$EX" -s layer_width=0.5 -o "$J/example.cli" --json "$J/example.json" --layout "$J/example.svg"
