@@ -494,11 +494,12 @@ is "$(printf '%s\n' "$ERR" | grep -c '^lamina: .*quad\.yaml: layer [0-9]*: .*; l
 first=$(python3 -c 'import json,sys; print("%.3f" % json.load(open(sys.argv[1]))["layers"][0]["stats"]["balance"])' "$J/quad.json")
 like "$ERR" "layer 1: .*; balance $first" "-v: layer 1's balance is the JSON's ($first)"
 
-# ---- the README's example plate (examples/plate.yaml), at coarse layers -------------------
+# ---- the README's example plate (examples/plate.yaml), coarse (layers, hatches) to be quick ----
 EX="$TESTS/../examples/plate.yaml"
-run "$LAMINA" build "$EX" -s layer_width=0.5 -o "$J/example.cli" --json "$J/example.json" --layout "$J/example.svg"
+run "$LAMINA" build "$EX" -s layer_width=2 -s hatch_distance=1 -s skin_layers=0 -o "$J/example.cli" \
+    --json "$J/example.json" --layout "$J/example.svg"
 is "$RC" 0 "examples/plate.yaml builds (its models from the job's folder)"
-like "$ERR" "11 parts, 40 layers, 2 lasers" "examples/plate.yaml: 11 parts, 20 mm at 0.5 mm, 2 lasers"
+like "$ERR" "11 parts, 10 layers, 2 lasers" "examples/plate.yaml: 11 parts, 20 mm at 2 mm, 2 lasers"
 run "${CB[@]}" layout "$J/example.svg" "$J/example.json"
 is "$RC $OUT" "0 " "examples/plate.yaml: the layout shows every part and both fields"
 
