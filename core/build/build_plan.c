@@ -53,6 +53,7 @@ typedef struct drive {
     double *xyz;             /* the writer's scratch */
     size_t xyz_cap;
     lam_part_time *pt;       /* the layer's parts' times (nparts) */
+    size_t consumed;         /* layers handed to the writer so far */
     lam_scan_cfg cfg;        /* the machine's jumps and recoating */
     lam_error *err;
 } drive;
@@ -355,6 +356,7 @@ static int write_layer(drive *d, size_t k, const slot *s)
     li.time = &t;
     li.lasers = s->lasers;
     li.nlasers = r->lasers.n;
+    li.balance = lam_lasers_balance(s->lasers, r->lasers.n);
     for (size_t i = 0; i < s->nparts; i++)
         d->pt[i] = (lam_part_time){ (long long)s->parts[i] + 1, s->ptime[i].exposure + s->ptime[i].jump };
     li.parts = d->pt;
@@ -370,6 +372,7 @@ static int consume(void *ctx, size_t t, int rc)
     drive *d = ctx;
     const slot *s = &d->slots[t % d->window];
     size_t k = d->first + t;
+    d->consumed++;
     if (rc) {
         if (d->err) *d->err = s->err;
         return rc;
@@ -445,7 +448,8 @@ int lam_build_run_plan(lam_build_run *r, const lam_run_opts *o, const lam_sink *
     if (!rc && sink->begin) rc = sink->begin(sink->ctx, &r->job);
     if (!rc && threads > 1) {
         rc = lam_pool_ordered(threads, d.n, 4, 0, d.window, produce, consume, &d, err);
-        if (rc == LAM_ENOMEM && d.n) rc = run_here(&d); /* no thread started: nothing was planned */
+        /* no thread could start (then nothing reached the sink): on this one */
+        if (rc == LAM_ENOMEM && !d.consumed) rc = run_here(&d);
     } else if (!rc) {
         rc = run_here(&d);
     }

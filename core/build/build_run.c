@@ -53,10 +53,9 @@ static int machine_plate(lam_build_run *r, lam_error *err)
 
 /* The part's model loaded, dropped on the plate at z, its footprint box
  * centred on the origin. */
-static int load_part(const lam_build_part *spec, const lam_load_opts *load, double mm, lam_model **m, lam_error *err)
+static int load_part(const lam_build_part *spec, const lam_load_opts *load, lam_model **m, lam_error *err)
 {
     lam_xform x = spec->xform;
-    (void)mm;
     x.place = LAM_PLACE_PLATE;
     x.plate_centre[0] = x.plate_centre[1] = 0;
     lam_load_opts o = { .xform = &x, .no_repair = load ? load->no_repair : 0, .threads = load ? load->threads : 0 };
@@ -105,7 +104,7 @@ static int load_all(lam_build_run *r, const lam_load_opts *load, lam_model **mod
         const lam_build_part *spec = &r->b->parts[i];
         lam_error e;
         lam_error_clear(&e);
-        int rc = load_part(spec, load, 1, &models[i], &e);
+        int rc = load_part(spec, load, &models[i], &e);
         if (rc) return load_error(r, spec, &e, err);
         const double *bb = models[i]->stats.bbox;
         for (size_t c = 0; c < spec->copies; c++, n++) {

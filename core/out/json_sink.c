@@ -380,8 +380,6 @@ static void time_object(js *s, const lam_scan_time *t)
  * balance (the busiest over the ideal, lasers.h); totals kept for the end. */
 static void lasers_obj(js *s, const lam_layer_info *li)
 {
-    double busiest = 0, sum = 0;
-    size_t working = 0;
     put(s, ", \"lasers\": [");
     for (size_t l = 0; l < li->nlasers; l++) {
         const lam_scan_time *t = &li->lasers[l];
@@ -391,13 +389,11 @@ static void lasers_obj(js *s, const lam_layer_info *li)
         static const char *const keys[] = { "time", "exposure", "jumps", "exposed" };
         nums(s, 0, keys, (const double[]){ x, t->exposure, t->jump, t->exposure_length }, 4);
         put(s, "}");
-        if (x > busiest) busiest = x;
-        if (x > 0) sum += x, working++;
         if (l < LAM_JSON_LASERS) s->laser_time[l] += x;
     }
     if (li->nlasers > s->nlasers) s->nlasers = li->nlasers < LAM_JSON_LASERS ? li->nlasers : LAM_JSON_LASERS;
     put(s, "], \"balance\": ");
-    num(s, working ? busiest / (sum / (double)working) : 1);
+    num(s, li->balance);
 }
 
 /* A build layer's parts: each one's own time; totals kept for the end. */

@@ -72,6 +72,7 @@ typedef struct lam_layer_info {
     const struct lam_part_time *parts; /* at layer_end of a build: each part's time */
     size_t nparts;
     const long long *section_part; /* a build: the part of each of section's contours */
+    double balance;          /* a build, at layer_end: the busiest laser over the ideal (lasers.h) */
 } lam_layer_info;
 
 /* A part's share of a build layer (lam_layer_info.parts): exposure and

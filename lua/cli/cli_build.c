@@ -81,15 +81,8 @@ static void on_planned(void *user, size_t k, const lam_scan_time *layer, const l
 {
     totals *t = user;
     lam_scan_time_add(&t->all, layer);
-    double busiest = 0, sum = 0;
-    size_t working = 0;
-    for (size_t l = 0; l < n && l < LAM_LASERS_MAX; l++) {
-        lam_scan_time_add(&t->laser[l], &lasers[l]);
-        double x = lasers[l].exposure + lasers[l].jump;
-        if (x > busiest) busiest = x;
-        if (x > 0) sum += x, working++;
-    }
-    double bal = working ? busiest / (sum / (double)working) : 1;
+    for (size_t l = 0; l < n && l < LAM_LASERS_MAX; l++) lam_scan_time_add(&t->laser[l], &lasers[l]);
+    double bal = lam_lasers_balance(lasers, n);
     if (bal > t->worst_balance) t->worst_balance = bal, t->worst_layer = k + 1;
     if (t->verbose) layer_note(t, k, layer, lasers, n, bal);
     cli_progress_step(t->progress, k + 1);

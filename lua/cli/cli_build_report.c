@@ -3,6 +3,7 @@
 
 #include "cli.h"
 #include "cli_args.h"
+#include "cli_estimate.h"
 #include "fmt.h"
 #include "writer.h"
 
@@ -15,16 +16,6 @@ static const char *dur(double s, char *buf, size_t size) { return lam_fmt_durati
 static const char *len(const lam_profile *p, double x, char *buf, size_t size)
 {
     return lam_fmt_length(x, lam_profile_unit_mm(p), p->units, buf, size);
-}
-
-/* Whether any region's exposure can be timed (a speed or a point time). */
-static int timed(const lam_profile *p)
-{
-    for (int k = 0; k < LAM_REGIONS; k++) {
-        const lam_exposure *e = &p->scan.type[k].exposure;
-        if (e->speed > 0 || (e->point_distance > 0 && e->exposure_time > 0)) return 1;
-    }
-    return 0;
 }
 
 static void lasers_line(const char *path, const lam_build_run *r, const lam_scan_time *laser, double worst,
@@ -61,7 +52,7 @@ void cli_build_summary(const char *path, const lam_build_run *r, const lam_profi
             path, n, n == 1 ? "" : "s", lam_build_run_layers(r), lam_build_run_lasers(r)->n,
             lam_build_run_lasers(r)->n == 1 ? "" : "s", all->contours, all->vectors,
             len(p, all->exposure_length, e, sizeof e), len(p, all->jump_length, jl, sizeof jl));
-    if (!timed(p)) {
+    if (!cli_scan_timed(&p->scan)) {
         fprintf(stderr, "estimated build time unknown: %s sets no speeds\n", p->name);
         return;
     }

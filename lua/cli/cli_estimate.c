@@ -11,8 +11,7 @@
 
 #define CLI_TEXT 64 /* a length or a duration for people */
 
-/* Whether some vector type of cfg can be timed: a speed or point exposure. */
-static int has_speeds(const lam_scan_cfg *cfg)
+int cli_scan_timed(const lam_scan_cfg *cfg)
 {
     for (int t = 0; t < LAM_REGIONS; t++)
         if (cfg->type[t].exposure.speed > 0 || cfg->type[t].exposure.exposure_time > 0) return 1;
@@ -32,7 +31,7 @@ void cli_print_estimate(const char *path, const lam_plan_opts *po, const lam_sca
     lam_fmt_length(t->jump_length, mm, po->units, jumped, sizeof jumped);
     fprintf(stderr, "lamina: %s: %zu layers, %zu contour passes, %zu hatch vectors, %s exposed, %s jumped; ", path,
             t->layers, t->contours, t->vectors, exposed, jumped);
-    if (!has_speeds(&po->scan)) {
+    if (!cli_scan_timed(&po->scan)) {
         fprintf(stderr, "estimated build time unknown: %s sets no speeds\n", profile_name(po));
         return;
     }

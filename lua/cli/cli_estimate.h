@@ -20,6 +20,10 @@
  * (one line). When no vector type has a scan speed or a point exposure
  * time the exposure cannot be timed, and the line ends "estimated build
  * time unknown: NAME sets no speeds". */
+/* Whether some vector type of cfg can be timed: a speed or a point
+ * exposure time (else the estimate is "unknown: NAME sets no speeds"). */
+int cli_scan_timed(const lam_scan_cfg *cfg);
+
 void cli_print_estimate(const char *path, const lam_plan_opts *po, const lam_scan_time *t);
 
 /* The summary of a LADRP (DED) job of `layers` layers whose moves st

@@ -31,15 +31,8 @@ here=$(cd "$(dirname "$0")" && pwd)
 work=${BENCH_DIR:-$(dirname "$LAMINA")/bench}/plate
 mkdir -p "$work"
 
-# openscad (ASCII STL), then admesh (binary), as run.sh makes its meshes
-make_mesh() { # name scad-source
-    local stl="$work/$1.stl"
-    [ -s "$stl" ] && return
-    printf '%s\n' "$2" >"$work/$1.scad"
-    openscad -q -o "$work/$1.ascii.stl" "$work/$1.scad"
-    admesh -b "$stl" "$work/$1.ascii.stl" >/dev/null
-    rm -f "$work/$1.ascii.stl"
-}
+# Meshes: openscad writes ASCII STL; admesh rewrites it as binary.
+. "$here/mesh.sh"
 # a gear ring: a 22 mm disc with 20 round teeth (24.4 mm across), a 10 mm
 # bore, H high; and a small ring, 15 mm across with a 6 mm bore
 gear() { # name height

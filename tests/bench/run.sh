@@ -20,14 +20,7 @@ if [ -n "$need" ]; then
 fi
 
 # Meshes: openscad writes ASCII STL; admesh rewrites it as binary.
-make_mesh() { # name scad-source
-    local stl="$work/$1.stl"
-    [ -s "$stl" ] && return
-    printf '%s\n' "$2" >"$work/$1.scad"
-    openscad -q -o "$work/$1.ascii.stl" "$work/$1.scad"
-    admesh -b "$stl" "$work/$1.ascii.stl" >/dev/null
-    rm -f "$work/$1.ascii.stl"
-}
+. "$here/mesh.sh"
 make_mesh sphere 'sphere(r=20, $fn=400);'
 make_mesh torus 'rotate_extrude($fn=425) translate([20,0,0]) circle(r=8, $fn=425);'
 
