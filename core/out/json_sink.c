@@ -526,3 +526,11 @@ int lam_json_consumer(lam_writer *w, lam_writer *script, lam_vec_consumer *out, 
                                .layer_end = j_layer_end, .end = j_end, .destroy = j_destroy };
     return LAM_OK;
 }
+
+/* Options are not read yet: everything is written. */
+int lam_json_consumer_opts(lam_writer *w, lam_writer *script, const lam_json_opts *o, lam_vec_consumer *out,
+                           lam_error *err)
+{
+    (void)o;
+    return lam_json_consumer(w, script, out, err);
+}

@@ -53,4 +53,16 @@
  * LAM_ENOMEM), which must outlive the consumer. */
 int lam_json_consumer(lam_writer *w, lam_writer *script, lam_vec_consumer *out, lam_error *err);
 
+/* What of the run the JSON holds (all zero: everything, as lam_json_consumer). */
+enum { LAM_JSON_VECTORS_ALL, LAM_JSON_VECTORS_SUMMARY, LAM_JSON_VECTORS_NONE };
+typedef struct lam_json_opts {
+    int vectors;             /* LAM_JSON_VECTORS_*: every vector, a summary per layer, or none */
+    int no_contours;         /* 1: leave the layers' contours out */
+    size_t first, last;      /* 1-based layers written, first..last; 0, 0: all */
+} lam_json_opts;
+
+/* lam_json_consumer writing what o asks for (NULL: everything). */
+int lam_json_consumer_opts(lam_writer *w, lam_writer *script, const lam_json_opts *o, lam_vec_consumer *out,
+                           lam_error *err);
+
 #endif

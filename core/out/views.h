@@ -15,6 +15,7 @@
 
 typedef struct lam_views {
     lam_writer *json;        /* the layer interchange JSON (json_sink.h), or NULL */
+    const struct lam_json_opts *json_opts; /* what the JSON holds (json_sink.h), NULL: everything */
     lam_writer *html;        /* the viewer page (html.h), or NULL */
     lam_svg *svg;            /* a sheet to draw the plan on (svg.h), or NULL */
     const lam_frame *frame;  /* with svg: the run's frame (names the axes) */
