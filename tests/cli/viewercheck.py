@@ -9,8 +9,10 @@ written from that page's description, not from the encoder.
                                   (kind, order, attributes, from and to within half a
                                   quantum in the layer plane, the jumps where the JSON
                                   has them); the page's lamina-run element: valid JSON,
-                                  vectors summarised, contours left out, its job, totals
-                                  and each layer's stats equal to the twin's. Prints
+                                  contours left out, its job, totals and each layer's
+                                  stats equal to the twin's, and each layer's vectors
+                                  summarised: the summary's groups (kind, attributes,
+                                  count, length) those of the twin's vectors. Prints
                                   "ok: L layers, C contours, V vectors (J jumps)" or up to
                                   20 differences, and exits 1 on any
   viewercheck.py json PAGE        one line a layer, "INDEX AREA SOLIDS HOLES PARENTS_OK"
@@ -270,10 +272,33 @@ def compare(page, twin, diff):
             diff("layer %s: the run element's stats differ from the JSON's" % b["index"])
         if "contours" in a:
             diff("layer %s: the run element holds its contours" % b["index"])
-        vs = a.get("vectors")
-        if isinstance(vs, list) and vs and isinstance(vs[0], dict) and "from" in vs[0]:
+        if "vectors" in a:
             diff("layer %s: the run element holds every vector, not a summary" % b["index"])
+        else:
+            summary_diff(a.get("summary"), b["vectors"], "layer %s" % b["index"], diff)
     return nc, nv, nj
+
+
+def summary_diff(summary, vectors, where, diff):
+    """the run element's summary of a layer (docs/json.md: a group per kind and
+    set of attributes, in the order of its first vector, its count and summed
+    length) against the twin's vectors grouped here"""
+    groups = {}
+    for v in vectors:
+        key = tuple(sorted((k, x) for k, x in v.items() if k not in ("from", "to", "order")))
+        g = groups.setdefault(key, [0, 0.0])
+        g[0] += 1
+        g[1] += sum((v["to"][i] - v["from"][i]) ** 2 for i in range(3)) ** 0.5
+    want = [(dict(k), n, length) for k, (n, length) in groups.items()]
+    got = summary if isinstance(summary, list) else []
+    if len(got) != len(want):
+        diff("%s: %d groups in the run element's summary, %d in the JSON's vectors" % (where, len(got), len(want)))
+        return
+    for g, (keys, n, length) in zip(got, want):
+        rest = {k: x for k, x in g.items() if k not in ("count", "length")}
+        if rest != keys or g.get("count") != n or abs(g.get("length", -1) - length) > 1e-9 * max(1, length):
+            diff("%s: the summary's group %s (%s, %s), the JSON's %s (%d, %.12g)"
+                 % (where, rest, g.get("count"), g.get("length"), keys, n, length))
 
 
 # ---- the layers' contours as geometry ---------------------------------------------
