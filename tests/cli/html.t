@@ -116,9 +116,10 @@ done
 # 0.05, lines 0.02 apart: about 70,000 hatch vectors, a 1.2 MB program)
 run "$LAMINA" slice "$D/gear.stl" -m cli-binary -w 0.05 -s hatch_strategy=lines -s hatch_distance=0.02 -q \
     --html "$D/big.html" -o "$D/big.cli"
-h=$(stat -c %s "$D/big.html") c=$(stat -c %s "$D/big.cli")
-ok $([ "$RC" -eq 0 ] && [ "$c" -gt 1000000 ] && [ "$h" -le $((2 * c)) ] && echo 0 || echo 1) \
-   "a hatched job's page ($h bytes) is at most twice its binary CLI ($c bytes)"
+is "$RC $ERR" "0 " "a hatched job on cli-binary with --html"
+h=$(stat -c %s "$D/big.html" 2>/dev/null || echo 0) c=$(stat -c %s "$D/big.cli" 2>/dev/null || echo 0)
+ok $([ "$c" -gt 1000000 ] && [ "$h" -gt 0 ] && [ "$h" -le $((2 * c)) ] && echo 0 || echo 1) \
+   "its page ($h bytes) is at most twice its binary CLI ($c bytes)"
 
 run "$LAMINA" slice "$PART" -w 0.5 --html "$PART" -o "$TMP/x.sls"
 like "$RC $ERR" "^2 lamina slice: --html .* is an input of this command" "--html onto the model: refused"
@@ -134,12 +135,13 @@ if [ -z "$CHROME" ]; then
     done_testing; exit
 fi
 W=800 H=600
+URL=$(python3 -c 'import pathlib, sys; print(pathlib.Path(sys.argv[1]).as_uri())' "$D/s.html") # the space quoted
 # shot HASH OUT: the page at #HASH, once the browser has run it to the end
 # (virtual time: no sleep, however loaded the machine)
 shot() {
     HOME="$TMP" timeout 300 "$CHROME" --headless --no-sandbox --disable-gpu --hide-scrollbars --no-first-run \
         --force-device-scale-factor=1 --user-data-dir="$TMP/chromium" --window-size=$W,$H \
-        --virtual-time-budget=30000 --screenshot="$2" "file://$D/s.html#$1" >/dev/null 2>&1
+        --virtual-time-budget=30000 --screenshot="$2" "$URL#$1" >/dev/null 2>&1
     [ -s "$2" ]
 }
 # check PNG Z: every grid point shows what the part at height Z must
