@@ -11,11 +11,11 @@ open: each of RUNS fresh browsers (default 3) navigates to the page and prints o
     first_ms F ready_ms R steps_ms S1,S2,... layers L
 
 F: lamina.firstDrawn, performance.now() when the viewer drew its first layer,
-counted from the navigation's start (docs/viewer.md); R: when lamina.ready was
-first seen true (the whole page parsed), on the same clock, to the poll's 20 ms;
-S: what lamina.show(K) returned (the milliseconds it took to draw layer K) for
-the last layer, the middle one, the first and the last again, once the page is
-ready. A page without the interface prints "first_ms none" and the browser's
+counted from the navigation's start (docs/viewer.md); R: lamina.loadedAt, when
+the viewer had read the run's JSON at the page's end (else when lamina.ready was
+first seen true, to the poll's 20 ms), on the same clock; S: what lamina.show(K)
+returned (the milliseconds it took to decode and draw layer K) for the last
+layer, the middle one, a quarter and three quarters up, once the page is in. A page without the interface prints "first_ms none" and the browser's
 load time instead. Waits poll the page (cdp.Browser.wait), never a fixed sleep;
 the timeout (600 s) only bounds a hung browser."""
 import json
@@ -49,9 +49,10 @@ def once(page):
         if first < 0:
             load = b.eval(s, "performance.now()")
             return "first_ms none load_ms %.0f (no lamina.firstDrawn in this page)" % load
-        ready = b.wait(s, "lamina.ready && performance.now()", timeout=600)
+        ready = b.wait(s, "lamina.ready && (lamina.loadedAt || performance.now())", timeout=600)
         n = b.eval(s, "JSON.parse(document.getElementById('lamina-head').textContent).layers")
-        steps = [b.eval(s, "lamina.show(%d)" % k) for k in (n, (n + 1) // 2, 1, n)]
+        # far layers, none shown before (so none decoded yet): the last, the middle, a quarter, three quarters
+        steps = [b.eval(s, "lamina.show(%d)" % k) for k in (n, (n + 1) // 2, max(1, n // 4), max(1, 3 * n // 4))]
         return "first_ms %.0f ready_ms %.0f steps_ms %s layers %d" % (
             first, ready, ",".join("%.0f" % x for x in steps), n)
     finally:
