@@ -36,6 +36,35 @@ int lam_buf_append(lam_buf *b, const void *data, size_t n)
     return LAM_OK;
 }
 
+int lam_buf_base64(lam_buf *b, const void *data, size_t n)
+{
+    static const char A[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    if (n / 3 >= ((size_t)-1 - 8) / 4) return LAM_ENOMEM;
+    size_t out = (n + 2) / 3 * 4;
+    int rc = lam_buf_reserve(b, out);
+    if (rc) return rc;
+    const unsigned char *p = data;
+    char *q = b->data + b->len;
+    size_t i = 0;
+    for (; i + 3 <= n; i += 3, q += 4) {
+        unsigned long t = (unsigned long)p[i] << 16 | (unsigned long)p[i + 1] << 8 | p[i + 2];
+        q[0] = A[t >> 18];
+        q[1] = A[t >> 12 & 63];
+        q[2] = A[t >> 6 & 63];
+        q[3] = A[t & 63];
+    }
+    if (i < n) {
+        unsigned long t = (unsigned long)p[i] << 16 | (i + 1 < n ? (unsigned long)p[i + 1] << 8 : 0);
+        q[0] = A[t >> 18];
+        q[1] = A[t >> 12 & 63];
+        q[2] = i + 1 < n ? A[t >> 6 & 63] : '=';
+        q[3] = '=';
+    }
+    b->len += out;
+    b->data[b->len] = '\0';
+    return LAM_OK;
+}
+
 int lam_buf_vprintf(lam_buf *b, const char *fmt, va_list ap)
 {
     va_list again;

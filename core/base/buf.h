@@ -43,6 +43,10 @@ int lam_buf_printf(lam_buf *b, const char *fmt, ...)
 /* lam_buf_printf with a va_list (ap is used once, as vsnprintf uses it). */
 int lam_buf_vprintf(lam_buf *b, const char *fmt, va_list ap);
 
+/* Append data[0..n) as base64 (RFC 4648's alphabet, '=' padding, no line
+ * breaks): 4 characters for every 3 bytes. LAM_OK or LAM_ENOMEM (b unchanged). */
+int lam_buf_base64(lam_buf *b, const void *data, size_t n);
+
 /* Forget the bytes held, keeping the memory for reuse. */
 void lam_buf_clear(lam_buf *b);
 

@@ -1,19 +1,21 @@
 /* The browser viewer of a planning run: one self-contained HTML file (no
- * network, no other file): the viewer's page (core/out/viewer.html, compiled
- * in at build time) with the run's layer interchange JSON (json_sink.h,
- * "lamina-run" version 1) in its <script type="application/json"
- * id="lamina-run"> element. The page draws it: a layer slider, zoom and
- * pan, toggles for contours, vectors and travel, each layer's figures. It
- * honours a URL hash `#layer=N` (1-based) with `contours=0|1`,
- * `vectors=0|1`, `travel=0|1`, and keeps it up to date.
+ * network, no other file): the viewer's page (core/out/viewer.html,
+ * compiled in at build time) with the run's data, laid out as
+ * docs/viewer.md says:
  *
- * The JSON is streamed as the run goes (the JSON sink writes each layer
- * when it is planned and forgets it), so memory does not grow with the
- * run; it is the page's only text from the run, and its strings write '<'
- * as \u003c (lam_json_consumer's script text: escape.h's LAM_ESC_JSON_SCRIPT), so no
- * "</script>" or "<!--" can end or change the element. The page's script
- * shows the run's strings (model path, machine, units) as text only
- * (textContent, document.title, canvas text), never as markup. */
+ *   - a head (`lamina-head`: the format, the coordinate quantum, the run's
+ *     extent in the layer plane, the names of kinds and attributes),
+ *   - each layer's contours and vectors as a binary block (vblock.h) in
+ *     base64, in its own element, written when the layer is planned, so
+ *     the page draws the first layer long before a big page is read;
+ *   - the run's JSON (json_sink.h) with its vectors summarised and its
+ *     contours left out (they are in the blocks): every layer's figures,
+ *     the job and the totals, written at the end.
+ *
+ * Memory: a layer's block while it is written, and the run's summary JSON
+ * (a few hundred bytes a layer) until the end. The page's only text from
+ * the run is JSON with '<' as \u003c and base64, so nothing in it can end
+ * an element early; the script shows the run's strings as text only. */
 #ifndef LAM_HTML_H
 #define LAM_HTML_H
 
@@ -21,13 +23,10 @@
 #include "vstream.h"
 #include "writer.h"
 
-/* The page around the run's JSON as two consumers of the plan's vector
- * stream (vstream.h; views.h puts them in the stream): head writes the
- * page up to the data when the job begins, tail the rest when it ends;
- * between them the JSON consumer (json_sink.h) writes the data to w with
- * its script escaping. w is borrowed (the caller commits or aborts it);
- * head's destroy frees both. Errors of their calls go to err, which must
- * outlive them. Errors: LAM_ENOMEM. */
-int lam_html_page(lam_writer *w, lam_vec_consumer *head, lam_vec_consumer *tail, lam_error *err);
+/* The page as one consumer of the plan's vector stream (vstream.h; views.h
+ * puts it in the stream), written to w as the run goes. w is borrowed (the
+ * caller commits or aborts it). Errors of its calls go to err, which must
+ * outlive it: LAM_EIO (w), LAM_ENOMEM, and the JSON's (json_sink.h). */
+int lam_html_consumer(lam_writer *w, lam_vec_consumer *out, lam_error *err);
 
 #endif

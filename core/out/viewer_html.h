@@ -5,8 +5,10 @@
 
 #include <stddef.h>
 
-/* Where the page takes the run's JSON: a line of its own in the template. */
-#define LAM_VIEWER_MARK "@LAMINA_RUN@"
+/* Where the page takes its head (before the viewer's script) and its data
+ * (after it): each on a line of its own in the template (docs/viewer.md). */
+#define LAM_VIEWER_HEAD "@LAMINA_HEAD@"
+#define LAM_VIEWER_DATA "@LAMINA_DATA@"
 
 extern const char lam_viewer_html[];      /* NUL-terminated */
 extern const size_t lam_viewer_html_len;

@@ -1,8 +1,8 @@
 /* The run's views: its JSON (--json), its viewer (--html, the same JSON
  * inside the page), its contact sheet's scan paths (--svg) and Lua's plan
  * data, all consumers of one vector stream (vstream.h): a planning run's
- * operations are decoded into vectors once, whatever views are asked for,
- * and the JSON text is made once when both --json and --html are. The
+ * operations are decoded into vectors once, whatever views are asked for
+ * (the page carries its own summary of the JSON, html.h). The
  * views' sink goes beside the program's in a tee (tee.h). */
 #ifndef LAM_VIEWS_H
 #define LAM_VIEWS_H

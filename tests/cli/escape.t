@@ -40,13 +40,19 @@ p = os.fsencode(sys.argv[1]).decode("utf-8", "replace")
 p = "".join("\ufffd" if ord(c) < 32 or 0x7f <= ord(c) <= 0x9f else c for c in p)
 print(ascii("lamina: %s (4 layers)" % p))' "$P")
 is "$(svgcheck texts "$TMP/p.svg" | sed -n 1p)" "$want" "the sheet's title is the path, as text, U+FFFD for what XML cannot hold"
-# the page: the viewer's own, byte for byte, around JSON holding no '<'
-run python3 -c 'import sys
+# the page: the viewer's own, byte for byte, around the run's data (docs/viewer.md):
+# a head and the run's JSON holding no '<', and base64 layer blocks
+run python3 -c 'import re, sys
 page = open(sys.argv[1], "rb").read()
-head, tail = open(sys.argv[2], "rb").read().split(b"@LAMINA_RUN@")
-data = page[len(head):len(page) - len(tail)]
-print(page.startswith(head), page.endswith(tail), len(data) > 100, b"<" not in data)' "$TMP/p.html" "$TESTS/../core/out/viewer.html"
-is "$OUT" "True True True True" "the HTML is core/out/viewer.html around the run's JSON, which holds no '<': no script but the viewer's"
+a, rest = open(sys.argv[2], "rb").read().split(b"@LAMINA_HEAD@")
+b, c = rest.split(b"@LAMINA_DATA@")
+head = re.match(rb"<script type=\"application/json\" id=\"lamina-head\">[^<]*</script>\n", page[len(a):])
+data = page[len(a) + len(head.group(0)) + len(b):len(page) - len(c)] if head else b""
+blocks = rb"(<script type=\"application/octet-stream\" id=\"lamina-layer-\d+\">[A-Za-z0-9+/=]*</script><script>lamina.arrived\(\d+\)</script>\n)*"
+run = rb"<script type=\"application/json\" id=\"lamina-run\">[^<]{100,}</script>\n<script>lamina.loaded\(\)</script>"
+print(page.startswith(a), page.endswith(c), bool(head) and page[len(a) + len(head.group(0)):].startswith(b),
+      re.fullmatch(blocks + run, data) is not None)' "$TMP/p.html" "$TESTS/../core/out/viewer.html"
+is "$OUT" "True True True True" "the HTML is core/out/viewer.html around its head, blocks and JSON, which hold no '<': no script but the viewer's"
 is "$(python3 -c 'import json, re, sys
 s = open(sys.argv[1], encoding="utf-8").read()
 print(ascii(json.loads(re.search(r"id=\"lamina-run\">(.*?)</script>", s, re.S).group(1))["job"]["model"]))' "$TMP/p.html")" \

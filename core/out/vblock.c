@@ -1,0 +1,155 @@
+/* The viewer's layer blocks; see vblock.h and docs/viewer.md. */
+#include "vblock.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "error.h"
+#include "grow.h"
+#include "profile_keys.h"
+
+void lam_vblock_init(lam_vblock *b, double quantum)
+{
+    memset(b, 0, sizeof *b);
+    b->quantum = quantum > 0 ? quantum : 1e-4;
+    b->run_kind = -1;
+}
+
+double lam_vblock_quantum(const char *units, const double box[4])
+{
+    double mm = lam_key_unit_mm(units), q = mm > 0 ? 1e-4 / mm : 1e-4, most = 0;
+    for (int k = 0; k < 4; k++)
+        if (isfinite(box[k]) && fabs(box[k]) > most) most = fabs(box[k]);
+    /* room for four times the extent: vectors a little outside the box
+     * (a jump, a LADRP move from the origin) keep their place */
+    double fit = 4 * most / (double)(LAM_VBLOCK_MAX_Q / 4);
+    return fit > q ? fit : q;
+}
+
+static void put_u(lam_vblock *b, lam_buf *to, unsigned long long x)
+{
+    unsigned char t[10];
+    size_t n = 0;
+    while (x >= 0x80) {
+        t[n++] = (unsigned char)(x | 0x80);
+        x >>= 7;
+    }
+    t[n++] = (unsigned char)x;
+    if (lam_buf_append(to, t, n)) b->failed = 1;
+}
+
+static unsigned long long zigzag(long long s)
+{
+    return ((unsigned long long)s << 1) ^ (unsigned long long)(s >> 63);
+}
+
+static long long quant(const lam_vblock *b, double x)
+{
+    double q = x / b->quantum;
+    if (!(q > -(double)LAM_VBLOCK_MAX_Q)) return isnan(q) ? 0 : -LAM_VBLOCK_MAX_Q;
+    if (q > (double)LAM_VBLOCK_MAX_Q) return LAM_VBLOCK_MAX_Q;
+    return llround(q);
+}
+
+/* The point (u, v) as its difference from the cursor, which moves there;
+ * the first number's low bit may carry a flag (shift 1) or not (0). */
+static void put_point(lam_vblock *b, lam_buf *to, double u, double v, int shift, int flag)
+{
+    long long qu = quant(b, u), qv = quant(b, v);
+    put_u(b, to, zigzag(qu - b->cu) << shift | (unsigned long long)flag);
+    put_u(b, to, zigzag(qv - b->cv));
+    b->cu = qu;
+    b->cv = qv;
+}
+
+void lam_vblock_contour(lam_vblock *b, const double *uv, size_t n, int solid, int depth)
+{
+    put_u(b, &b->contours, n);
+    put_u(b, &b->contours, (unsigned long long)(depth > 0 ? depth : 0) << 1 | (solid ? 1u : 0u));
+    for (size_t i = 0; i < n; i++) put_point(b, &b->contours, uv[2 * i], uv[2 * i + 1], 0, 0);
+    b->ncontours++;
+}
+
+/* The row of attributes a, added when new (the last one found first:
+ * consecutive vectors mostly share it). */
+static size_t row_of(lam_vblock *b, const lam_attrs *a)
+{
+    if (b->nrows && !memcmp(&b->rows[b->last_row], a, sizeof *a)) return b->last_row;
+    for (size_t k = 0; k < b->nrows; k++)
+        if (!memcmp(&b->rows[k], a, sizeof *a)) return b->last_row = k;
+    if (b->nrows == b->cap_rows) {
+        lam_attrs *r = lam_grow(b->rows, &b->cap_rows, b->nrows + 1, sizeof *b->rows, 8);
+        if (!r) {
+            b->failed = 1;
+            return 0;
+        }
+        b->rows = r;
+    }
+    b->rows[b->nrows] = *a;
+    return b->last_row = b->nrows++;
+}
+
+static void close_run(lam_vblock *b)
+{
+    if (!b->run_n) return;
+    put_u(b, &b->runs, b->run_n);
+    put_u(b, &b->runs, (unsigned long long)b->run_kind);
+    put_u(b, &b->runs, b->run_row);
+    if (lam_buf_append(&b->runs, b->run.data, b->run.len)) b->failed = 1;
+    lam_buf_clear(&b->run);
+    b->nruns++;
+    b->run_n = 0;
+}
+
+void lam_vblock_vector(lam_vblock *b, const lam_vec *v)
+{
+    if (v->kind == LAM_KIND_JUMP) {
+        b->jump = 1;
+        return;
+    }
+    size_t row = row_of(b, &v->attrs);
+    if (b->run_n && (v->kind != b->run_kind || row != b->run_row)) close_run(b);
+    b->run_kind = v->kind;
+    b->run_row = row;
+    put_point(b, &b->run, v->fuv[0], v->fuv[1], 1, b->jump);
+    put_point(b, &b->run, v->tuv[0], v->tuv[1], 0, 0);
+    b->jump = 0;
+    b->run_n++;
+}
+
+int lam_vblock_finish(lam_vblock *b, lam_buf *out)
+{
+    close_run(b);
+    put_u(b, out, b->nrows);
+    for (size_t k = 0; k < b->nrows; k++)
+        for (size_t i = 0; i < LAM_NATTRS; i++) put_u(b, out, zigzag(lam_attr_get(&b->rows[k], i)));
+    put_u(b, out, b->ncontours);
+    if (lam_buf_append(out, b->contours.data, b->contours.len)) b->failed = 1;
+    put_u(b, out, b->nruns);
+    if (lam_buf_append(out, b->runs.data, b->runs.len)) b->failed = 1;
+    return b->failed ? LAM_ENOMEM : LAM_OK;
+}
+
+void lam_vblock_reset(lam_vblock *b)
+{
+    b->cu = b->cv = 0;
+    b->nrows = b->last_row = 0;
+    lam_buf_clear(&b->contours);
+    lam_buf_clear(&b->runs);
+    lam_buf_clear(&b->run);
+    b->ncontours = b->nruns = b->run_n = 0;
+    b->run_kind = -1;
+    b->jump = 0;
+    b->failed = 0;
+}
+
+void lam_vblock_free(lam_vblock *b)
+{
+    if (!b) return;
+    free(b->rows);
+    lam_buf_free(&b->contours);
+    lam_buf_free(&b->runs);
+    lam_buf_free(&b->run);
+    memset(b, 0, sizeof *b);
+}
