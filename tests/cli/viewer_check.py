@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """The viewer's views against the test's own expectation (tests/cli/viewer.t).
 
-    viewer_check.py CHROME PAGE.html RUN.json CHECK [ARGS] [CHECK [ARGS] ...]
+    viewer_check.py CHROME PAGE.html RUN.json CHECK [ARGS] ... [page PAGE.html RUN.json CHECK ...]
 
 opens the page (lamina's --html) once in headless Chromium (cdp.py, an 800 x
 600 viewport) and runs each CHECK; RUN.json is the same run's --json, read
@@ -34,8 +34,10 @@ section), never from the viewer's own answers:
   timing MAX_FIRST MAX_STEP  time to the first drawn layer and the slowest step to
                           every other layer (ms), printed as a comment too
   early                   the first layer was drawn before the run's JSON arrived"""
+import base64
 import json
 import math
+import operator
 import os
 import re
 import sys
@@ -87,8 +89,15 @@ def png_rows(data):
             idat += body
         pos += 12 + n
     raw, stride, rows, prev = zlib.decompress(idat), w * bpp, [], bytearray(w * bpp)
+    wrap = list(range(256)) * 2
     for y in range(h):
         f, line = raw[y * (stride + 1)], bytearray(raw[y * (stride + 1) + 1:(y + 1) * (stride + 1)])
+        if f in (0, 2):  # none, up: the screenshots asked for speed are all "up" (C-level maps)
+            if f == 2:
+                line = bytearray(map(wrap.__getitem__, map(operator.add, line, prev)))
+            rows.append(line)
+            prev = line
+            continue
         for i in range(stride):
             a = line[i - bpp] if i >= bpp else 0
             b, c = prev[i], (prev[i - bpp] if i >= bpp else 0)
@@ -197,14 +206,17 @@ class Grid:
     def near(self, x, y, r):
         i0, i1 = int(math.floor((x - r) / self.cell)), int(math.floor((x + r) / self.cell))
         j0, j1 = int(math.floor((y - r) / self.cell)), int(math.floor((y + r) / self.cell))
-        out = {}
+        cand = {}
         for i in range(i0, i1 + 1):
             for j in range(j0, j1 + 1):
                 for s in self.cells.get((i, j), ()):
-                    d = seg_dist(x, y, s)
-                    if d <= r:
-                        out[id(s)] = (d, s)
-        return list(out.values())
+                    cand[id(s)] = s
+        out = []
+        for s in cand.values():
+            d = seg_dist(x, y, s)
+            if d <= r:
+                out.append((d, s))
+        return out
 
 
 def shade_of(p, c, tol=10):
@@ -265,7 +277,8 @@ class Page:
                     timeout=20)
 
     def shot(self):
-        return png_rows(self.b.screenshot(self.s))
+        data = self.b.send("Page.captureScreenshot", {"format": "png", "optimizeForSpeed": True}, session=self.s)["data"]
+        return png_rows(base64.b64decode(data))
 
     def mouse(self, kind, x, y, mods=0, button="none"):
         self.b.send("Input.dispatchMouseEvent", {"type": kind, "x": x, "y": y, "modifiers": mods, "button": button,
@@ -287,7 +300,7 @@ def colour_check(pg, run, mode, k, px=None):
     for u0, v0, u1, v1, v in run.exposed(k):
         a, b = to_px(u0, v0), to_px(u1, v1)
         segs.append((a[0], a[1], b[0], b[1], colour(v)))
-    g = Grid(segs, 8)
+    g = Grid(segs, 4)
     checked, wrong, ex = 0, 0, []
     for y in range(BAR_H + 4, H - INFO_H - 4, 8):
         for x in range(4, W - 4, 8):
@@ -508,14 +521,24 @@ def main():
     run = Run(runp)
     args = sys.argv[4:]
     pg = Page(chrome, page, run)
-    head_box = pg.js("JSON.parse(document.getElementById('lamina-head').textContent).box")
-    if any(abs(a - b) > 1e-9 * max(1, abs(b)) for a, b in zip(head_box, run.box)):
-        print("not ok the head's box %s is the run's extent %s" % (head_box, run.box))
+
+    def head_box():
+        box = pg.js("JSON.parse(document.getElementById('lamina-head').textContent).box")
+        if any(abs(a - b) > 1e-9 * max(1, abs(b)) for a, b in zip(box, run.box)):
+            print("not ok the head's box %s is the run's extent %s" % (box, run.box))
+    head_box()
     shots = {}
     try:
         while args:
             c = args.pop(0)
-            if c == "colour":
+            if c == "page":  # another page in the same browser
+                page, runp = args.pop(0), args.pop(0)
+                run = pg.run = Run(runp)
+                pg.url = "file://" + os.path.abspath(page)
+                pg.open("")
+                head_box()
+                shots = {}
+            elif c == "colour":
                 mode, k = args.pop(0), int(args.pop(0))
                 n, bad, ex, px = colour_check(pg, run, mode, k)
                 shots[(mode, k)] = px
