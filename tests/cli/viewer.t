@@ -80,9 +80,9 @@ is "$RC" 0 "a bigger job: slice --html, exit 0"
 # the T, layer 17: core in the stem, down-skin under the cap; 18: down-skin and up-skin.
 # The bigger job's bounds are the issue's (3 s, 200 ms) doubled: the machine is shared.
 relay < <(VC "$CHROME" "$TMP/tee.html" "$TMP/tee.json" colour region 17 colour region 18 colour order 18 \
-    wrong region order 18 pick 18 ruler \
+    wrong region order 18 pick 18 ruler legend region 17 \
     page "$J/plate.html" "$J/plate.json" colour part 2 colour style 2 colour laser 2 colour energy 2 \
     hotter 2 wrong laser part 2 wrong style laser 2 \
-    plot time 3 plot area 2 plot vectors 4 plot travel 1 plotclick 5 fields 2 pick 2 \
+    plot time 3 plot area 2 plot vectors 4 plot travel 1 plotclick 5 fields 2 pick 2 legend part 6 legend style 2 legend laser 2 \
     page "$TMP/big.html" "$TMP/big.json" timing 6000 400 early 2>&1)
 done_testing

@@ -31,6 +31,9 @@ section), never from the viewer's own answers:
                           the plane; the line is drawn in #e6007e
   fields LAYER            a build's lasers' fields: their dashed edges in the lasers'
                           colours
+  legend MODE LAYER       the legend of a category mode (part, style, laser, region):
+                          one swatch per value the layer's vectors have (and a build's
+                          every part or laser), named from the JSON, in its colour
   timing MAX_FIRST MAX_STEP  time to the first drawn layer and the slowest step to
                           every other layer (ms), printed as a comment too
   early                   the first layer was drawn before the run's JSON arrived"""
@@ -414,7 +417,7 @@ def pick_check(pg, run, k):
     pg.b.wait(pg.s, "document.getElementById('tip').style.display === 'block'", timeout=10)
     tip = pg.js("document.getElementById('tip').textContent")
     length = math.hypot(u1 - u0, v1 - v0)
-    want = ["part " + (run.name("part", part) or "part %d" % part), v["kind"], "order %d" % v["order"],
+    want = [("part " + run.name("part", part)) if run.name("part", part) else "part %d" % part, v["kind"], "order %d" % v["order"],
             "length %s" % ("%.4g" % length)]
     if run.build:
         want += ["style " + (run.name("style", v["style"]) or ""), "laser %d" % v["laser"]]
@@ -457,6 +460,42 @@ def ruler_check(pg, run):
     return "%s ruler: a shift-drag of %.1f px measures %.6g %s (drag / scale), drawn in #e6007e%s" % (
         "ok" if ok else "not ok", math.hypot(b[0] - a[0], b[1] - a[1]), want, run.job["units"],
         "" if ok else ": got %s, midpoint %s" % (got, mid))
+
+
+def legend_check(pg, run, mode, k):
+    pg.view("layer=%d&colour=%s" % (k, mode))
+    px = pg.shot()
+    g = pg.js("lamina.legend()")
+    key = {"region": "kind"}.get(mode, mode)
+    default = {"part": 1, "style": 0, "laser": 0, "kind": None}[key]
+    vals = set(v.get(key, default) for v in run.run["layers"][k - 1]["vectors"] if v["kind"] not in ("jump", "travel"))
+    if run.build and mode in ("part", "laser"):
+        vals |= set(x[mode] for x in run.build[mode + "s"])
+    kinds = ["contour", "core", "upskin", "downskin", "deposit", "travel", "jump"]
+
+    def label(v):
+        if mode == "region":
+            return v
+        if mode == "laser":
+            return "laser %d" % v
+        if mode == "style" and v == 0:
+            return "profile"
+        return run.name(mode, v) or "%s %d" % (mode, v)
+
+    def colour(v):
+        if mode == "region":
+            return rgb(REGION[v])
+        return rgb(PALETTE[(v - 1) % len(PALETTE)]) if v >= 1 else rgb(GREY)
+    order = sorted(vals, key=lambda v: kinds.index(v) if mode == "region" else v)
+    want = [label(v) for v in order]
+    got = [e["label"] for e in g["entries"]] if g and g.get("entries") else []
+    bad = [] if got == want else ["labels %s, expected %s" % (got, want)]
+    for v, e in zip(order, g["entries"] if got == want else []):
+        c = px(int(e["x"]), int(e["y"]))
+        if not close(c, colour(v), 3):
+            bad.append("%s's swatch %s, expected %s" % (e["label"], c, colour(v)))
+    return "%s legend by %s, layer %d: %s, each swatch in its colour%s" % (
+        "ok" if not bad else "not ok", mode, k, ", ".join(want), "" if not bad else ": " + "; ".join(bad))
 
 
 def fields_check(pg, run, k):
@@ -562,6 +601,9 @@ def main():
                     print(line)
             elif c == "ruler":
                 print(ruler_check(pg, run))
+            elif c == "legend":
+                mode, k = args.pop(0), int(args.pop(0))
+                print(legend_check(pg, run, mode, k))
             elif c == "fields":
                 print(fields_check(pg, run, int(args.pop(0))))
             elif c == "timing":
