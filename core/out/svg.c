@@ -422,9 +422,11 @@ static int sv_vector(void *ctx, const lam_vec *v)
 }
 
 /* Which of the layer's vectors its panel draws (svg.h): all of them up to
- * LAM_SVG_CELL_VECTORS; past it no travel or jump, every contour edge, and
- * every `stride`-th other vector (the first, then one in `stride`). */
-static size_t thin_stride(const lam_svg *s, size_t *ncontour)
+ * LAM_SVG_CELL_VECTORS; past it no travel or jump, every contour edge when
+ * they are at most half of it (*contours set) else none, and every
+ * `stride`-th other vector (the first, then one in `stride`), so that at
+ * most LAM_SVG_CELL_VECTORS are drawn. */
+static size_t thin_stride(const lam_svg *s, int *contours)
 {
     size_t nc = 0, nother = 0;
     for (size_t i = 0; i < s->nrv; i++) {
@@ -432,9 +434,9 @@ static size_t thin_stride(const lam_svg *s, size_t *ncontour)
         if (!strcmp(s->rv[i].kind, "contour")) nc++;
         else nother++;
     }
-    *ncontour = nc;
+    *contours = 2 * nc <= LAM_SVG_CELL_VECTORS;
     if (s->nrv <= LAM_SVG_CELL_VECTORS) return 1;
-    size_t room = LAM_SVG_CELL_VECTORS > 2 * nc ? LAM_SVG_CELL_VECTORS - nc : LAM_SVG_CELL_VECTORS / 2;
+    size_t room = *contours ? LAM_SVG_CELL_VECTORS - nc : LAM_SVG_CELL_VECTORS;
     return nother > room ? (nother + room - 1) / room : 1;
 }
 
@@ -484,13 +486,14 @@ static int sv_layer_end(void *ctx, const lam_layer_info *li, const lam_vec_stats
     lam_writer *w;
     int rc = lam_writer_memory(&w, s->err);
     if (rc) return rc;
-    size_t ncontour, drawn = 0, other = 0;
-    size_t stride = thin_stride(s, &ncontour);
+    int contours;
+    size_t drawn = 0, other = 0, stride = thin_stride(s, &contours);
     int thin = s->nrv > LAM_SVG_CELL_VECTORS;
     for (size_t i = 0; i < s->nrv; i++) {
         const rvec *r = &s->rv[i];
-        if (thin && !r->exposed) continue;
-        if (thin && strcmp(r->kind, "contour") && other++ % stride) continue;
+        int contour = !strcmp(r->kind, "contour");
+        if (thin && (!r->exposed || (contour && !contours))) continue;
+        if (thin && !contour && other++ % stride) continue;
         i = write_vector(s, w, i, &drawn);
     }
     panel *p = &s->panels[s->cur];

@@ -31,10 +31,12 @@
  * Level of detail. A contact sheet's cell cannot show thousands of 0.1 mm
  * hatch lines, and drawing them all made a 267-layer part's sheet hundreds
  * of megabytes. A layer of at most LAM_SVG_CELL_VECTORS vectors is drawn
- * whole; past it its panel draws every contour edge (a pass joined into one
- * path), no travel or jump, and of the other vectors the first and then
- * one in k, k the least that brings them within LAM_SVG_CELL_VECTORS less
- * the contour edges (at least half of it); the caption says how many were
+ * whole; past it its panel draws no travel or jump, every contour edge (a
+ * pass joined into one path) when they are at most half of
+ * LAM_SVG_CELL_VECTORS, else none (the section's outline shows where they
+ * run), and of the other vectors the first and then one in k, k the least
+ * that brings them within what is left: a panel draws at most
+ * LAM_SVG_CELL_VECTORS of its layer's vectors. The caption says how many were
  * drawn ("D drawn") and a note under the footer (class "note") says the
  * sheet was thinned. In every path (sections, holes, joined contours) a
  * point within 0.3 px of the last one drawn is left out.

@@ -89,6 +89,23 @@ C thinned thin.svg | grep -v note >thin2.txt
 is "$(awk '($1 <= 1000) != ($1 == $2)' thin2.txt)" "" "the thin part: panels of at most 1000 vectors drawn whole, others thinned"
 is "$(awk '$1 > 1000' thin2.txt | wc -l) $(awk '$1 <= 1000' thin2.txt | wc -l)" "1 9" "(one of its 10 layers is past 1000)"
 
+# 100 islands of 1 x 1 mm: two contour passes of 4 edges each, 800 edges, more than half the
+# budget: the panels draw no contour pass (the section outlines them), only one in k hatches
+python3 - >islands.ug <<'PY'
+for i in range(100):
+    x, y = 2 * (i % 10), 2 * (i // 10)
+    c = [(x, y), (x + 1, y), (x + 1, y + 1), (x, y + 1)]
+    print(" ".join("v p%d_%d %g %g %g;" % (i, k, c[k % 4][0], c[k % 4][1], 0.09 * (k // 4)) for k in range(8)))
+    f = [(0, 3, 2, 1), (4, 5, 6, 7), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6), (3, 0, 4, 7)]
+    print(" ".join("f q%d_%d (%s);" % (i, j, " ".join("p%d_%d" % (i, k) for k in q)) for j, q in enumerate(f)))
+PY
+run "$LAMINA" slice islands.ug -m lpbf-cli -w 0.03 -q -o islands.cli --svg islands.svg
+is "$RC $(C count islands.svg contour)" "0 0" "100 islands: no contour pass drawn"
+C thinned islands.svg | grep -v note >isl.txt
+is "$(awk '!($1 > 1000 && $2 <= 1000 && $3 == $2 && $3 > 100 && $4 == 0)' isl.txt)" "" \
+    "each island panel: over 1000 vectors, at most 1000 drawn, all of them hatches"
+is "$(grep -c 'class="section"' islands.svg)" 3 "the sections are drawn"
+
 # ---- held to --max-output: refused, no file ---------------------------------------
 prog=$(wc -c <c50.sls) svg=$(wc -c <c50.svg)
 ok $((svg > prog + 1000 ? 0 : 1)) "the 50-layer sheet ($svg bytes) is larger than its program ($prog)"
