@@ -67,6 +67,8 @@ run "$LAMINA" slice wide.ug -m lpbf-cli -s units=inch -w 0.03 -q -o wi.cli --svg
 is "$RC $(C scalebar wi.svg)" "0 10 inch 36" "a profile in inches: the bar says inch, 10 of them 36 px"
 run "$LAMINA" slice wide.ug -m creol-ladrp -w 0.1 -q -o wl.ladrp --svg wl.svg
 is "$RC $(C scalebar wl.svg)" "0 10 cm 36" "creol-ladrp's cm"
+run "$LAMINA" check wide.ug -m creol-ladrp --svg wc.svg
+like "$(C scalebar wc.svg)" "^10 cm [0-9]+$" "check --svg: the bar in the machine's cm too (was 'model units')"
 
 # ---- thinning: a 40 x 40 mm layer hatched at 0.1 mm is ~1600 vectors -------------
 box big 40 40 0.09
@@ -114,4 +116,14 @@ run "$LAMINA" slice cube.ug -w 0.4 --max-output $((prog + 1000)) -o c50.sls --sv
 like "$RC $ERR" "^1 lamina: c50\.svg: cannot write output: output exceeds the limit of $((prog + 1000)) bytes
 lamina: raise the limit with --max-output" "--svg past --max-output: exit 1, the limit named"
 is "$(ls | grep -c '^c50\.')" 0 "no sheet left, partial or whole, nor the program"
+# a build's sheet too
+printf 'machine: cli-ascii\nplate: {width: 100, depth: 100}\nparts:\n  - {model: cube.ug, units: mm}\n' > job.yaml
+run "$LAMINA" build job.yaml -s layer_width=0.4 -o b.cli --svg b.svg
+prog=$(wc -c <b.cli) svg=$(wc -c <b.svg)
+ok $((RC == 0 && svg > prog + 1000 ? 0 : 1)) "a build's sheet ($svg bytes) is larger than its program ($prog)"
+rm -f b.cli b.svg
+run "$LAMINA" build job.yaml -s layer_width=0.4 --max-output $((prog + 1000)) -o b.cli --svg b.svg
+like "$RC $ERR" "^1 lamina: b\.svg: cannot write output: output exceeds the limit of $((prog + 1000)) bytes" \
+    "build --svg past --max-output: exit 1, the limit named"
+is "$(ls | grep -c '^b\.')" 0 "... no sheet left"
 done_testing
