@@ -9,7 +9,7 @@
 --   A table as `{1, 2, key = value, ...}`: the array part (1, 2, ... up to
 --   the first nil) first and in order, then the other keys sorted (numbers,
 --   then strings, then booleans, then any other key in the order `next`
---   gives). Tables are read raw: no metamethod of theirs runs, except that
+--   gives); a key that is a short name is bare, any other `[key]`. Tables are read raw: no metamethod of theirs runs, except that
 --   a table or userdata whose metatable has `__tostring` or `__name` is
 --   shown as `tostring` makes it (a layer list: "12 layers of ..."). A
 --   table nested deeper than `depth` is `{...N}`, N its number of entries
@@ -101,7 +101,7 @@ local function atom(v, o)
 end
 
 local function key_text(k, o)
-    if type(k) == "string" and k:match("^[%a_][%w_]*$") and not reserved[k] then return k end
+    if type(k) == "string" and #k <= o.string and k:match("^[%a_][%w_]*$") and not reserved[k] then return k end
     return "[" .. atom(k, o) .. "]"
 end
 
@@ -178,7 +178,9 @@ local function layout(node, indent, width, out)
     out[#out + 1] = indent .. (node.prefix or "") .. "{"
     local inner, line = indent .. "  ", nil
     for _, it in ipairs(node.items) do
-        local piece = it.atom and (it.prefix or "") .. it.atom .. (it.note and "" or ",")
+        -- an entry that fits on a line joins a run of them
+        local one = flat(it, width - #inner - 1)
+        local piece = one and #inner + #one < width and one .. (it.note and "" or ",")
         if piece and line and #line + 1 + #piece <= width then
             line = line .. " " .. piece
         else
