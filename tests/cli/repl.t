@@ -5,7 +5,9 @@
 # (readline), Ctrl-C interrupting a Lua loop and a long slice and
 # abandoning a line, errors, Ctrl-D, and plain `lamina` on a terminal;
 # help(x) (also checked through a pipe against lua/API.md itself), Tab
-# completion, and a layer list's summary.
+# completion, and a layer list's summary; table results printed as data
+# (lamina.show: fields sorted, depth, length and size bounds, cycles) and
+# errors that list the valid keys listing every one of them.
 #
 # Independent of the checkout's path and of line wrapping: every program
 # runs in the test's own folder, where `models` is a link to the test
