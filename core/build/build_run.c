@@ -353,6 +353,33 @@ static void make_job(lam_build_run *r)
     r->job.nlabels = r->nlabels;
 }
 
+/* The job's exposures: each (style, region) some part's plan can have
+ * vectors of, by style number then region, with the values of the first
+ * part that has it (a style and a region give every part the same: the
+ * profile, the job's style named after the region or the part's own). */
+static int make_exposure(lam_build_run *r, lam_error *err)
+{
+    r->exposure = calloc(r->nstyles * LAM_REGIONS + 1, sizeof *r->exposure);
+    if (!r->exposure) return lam_error_nomem(err, "describing the build's exposures");
+    size_t n = 0;
+    for (size_t s = 1; s <= r->nstyles; s++)
+        for (int k = 0; k < LAM_REGIONS; k++)
+            for (size_t i = 0; i < r->nparts; i++) {
+                const lam_run_part *p = &r->parts[i];
+                if (p->style_id[k] != (int)s || !region_used(p, k)) continue;
+                const lam_scan_cfg *c = &p->po.scan;
+                const lam_exposure *e = &c->type[k].exposure;
+                r->exposure[n++] = (lam_job_exposure){
+                    .style = (long long)s, .region = k, .power = e->power, .speed = e->speed,
+                    .distance = k == LAM_KIND_CONTOUR ? p->po.bead : c->type[k].distance,
+                    .point_distance = e->point_distance, .exposure_time = e->exposure_time };
+                break;
+            }
+    r->job.exposure = r->exposure;
+    r->job.nexposure = n;
+    return LAM_OK;
+}
+
 static int setup(lam_build_run *r, const lam_load_opts *load, lam_model **models, lam_arrange_item *items,
                  lam_error *err)
 {
@@ -364,6 +391,7 @@ static int setup(lam_build_run *r, const lam_load_opts *load, lam_model **models
     if (!rc) rc = check_reach(r, err);
     if (!rc) rc = number_labels(r, err);
     if (!rc) make_job(r);
+    if (!rc) rc = make_exposure(r, err);
     if (!rc) rc = lam_build_run_json(r, err);
     r->lasers.part_centre = r->centres;
     r->lasers.nparts = r->nparts;
@@ -421,6 +449,7 @@ void lam_build_run_free(lam_build_run *r)
     free(r->label_of);
     free(r->parts);
     free(r->centres);
+    free(r->exposure);
     free(r->json);
     free(r);
 }

@@ -60,6 +60,7 @@ struct lam_build_run {
     size_t nlabels;
     lam_job_info job;
     char job_label[160];
+    lam_job_exposure *exposure; /* the job's (lam_job_info.exposure): per style and region */
     char *json;              /* the job's "build" member in the JSON (build_json.c) */
 };
 

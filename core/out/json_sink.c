@@ -47,6 +47,17 @@ typedef struct js {
         size_t len;
     } seen[4];
     unsigned nseen, next_seen;
+    lam_json_opts o;         /* what is written (first, last: 1..layers, last 0: to the end) */
+    int skip;                /* the layer being planned is not written (outside first..last) */
+    size_t written;          /* layers written */
+    /* SUMMARY: the layer's groups of vectors, in order of first appearance */
+    struct group {
+        int kind;
+        lam_attrs attrs;
+        size_t count;
+        double length;
+    } *groups;
+    size_t ngroups, cap_groups, last_group;
 } js;
 
 static int nomem(js *s) { return s->rc = lam_error_nomem(s->err, "writing the JSON"); }
@@ -181,6 +192,36 @@ static void nums(js *s, int first, const char *const *k, const double *x, size_t
     }
 }
 
+static void integer(js *s, long long x)
+{
+    char b[32];
+    put(s, (snprintf(b, sizeof b, "%lld", x), b));
+}
+
+/* An SLS run's exposures (job.exposure): each region's power, speed and
+ * distance, per build style in a build; point exposure's keys when it is on. */
+static void exposure_list(js *s, const lam_job_info *job)
+{
+    const lam_job_exposure *e = job->exposure ? job->exposure : job->own_exposure;
+    put(s, ",");
+    line(s);
+    put(s, "  ");
+    key(s, "exposure");
+    put(s, "[");
+    for (size_t i = 0; i < job->nexposure; i++) {
+        put(s, i ? ", {\"style\": " : "{\"style\": ");
+        integer(s, e[i].style);
+        put(s, ", \"region\": \"");
+        put(s, lam_kind_name(e[i].region));
+        put(s, "\"");
+        static const char *const keys[] = { "power", "speed", "distance", "point_distance", "exposure_time" };
+        nums(s, 0, keys, (const double[]){ e[i].power, e[i].speed, e[i].distance, e[i].point_distance,
+                                           e[i].exposure_time }, e[i].point_distance > 0 ? 5 : 3);
+        put(s, "}");
+    }
+    put(s, "]");
+}
+
 static void to_out(const js *s, double u, double v, double xyz[3])
 {
     if (s->frame_machine) {
@@ -262,6 +303,7 @@ static int j_begin(void *ctx, const lam_job_info *job)
     put(s, ", ");
     key(s, "bead");
     num(s, job->bead);
+    if (job->process && !strcmp(job->process, "sls")) exposure_list(s, job);
     if (job->repair) repair_obj(s, job->repair);
     if (job->json_extra) {
         put(s, ",");
@@ -275,21 +317,13 @@ static int j_begin(void *ctx, const lam_job_info *job)
     return s->rc;
 }
 
-static int j_layer(void *ctx, const lam_layer_info *li)
+/* A layer's section: each contour a line. */
+static void contours(js *s, const lam_layer_info *li)
 {
-    js *s = ctx;
-    s->cut = li->z;
-    put(s, s->layers ? "," : "");
-    line(s);
-    put(s, "  {\"index\": ");
-    size(s, li->index + 1);
-    static const char *const keys[] = { "z", "floor", "ceiling", "width" };
-    nums(s, 0, keys, (const double[]){ li->z, li->floor, li->ceiling, li->width }, 4);
-    if (li->has_cut) put(s, ", \"cut\": "), num(s, li->cut);
+    const lam_layer *L = li->section;
     put(s, ",");
     line(s);
     put(s, "   \"contours\": [");
-    const lam_layer *L = li->section;
     for (size_t k = 0; L && k < L->ncontours; k++) {
         const lam_contour *c = &L->contours[k];
         put(s, k ? "," : "");
@@ -303,11 +337,7 @@ static int j_layer(void *ctx, const lam_layer_info *li)
         else put(s, "null");
         put(s, ", \"area\": ");
         num(s, c->area);
-        if (li->section_part) {
-            char b[32];
-            put(s, ", \"part\": ");
-            put(s, (snprintf(b, sizeof b, "%lld", li->section_part[k]), b));
-        }
+        if (li->section_part) put(s, ", \"part\": "), integer(s, li->section_part[k]);
         put(s, ", \"points\": [");
         for (size_t i = 0; i < c->n; i++) {
             const double *uv = L->uv + 2 * (c->first + i);
@@ -318,12 +348,84 @@ static int j_layer(void *ctx, const lam_layer_info *li)
             if (s->b.len >= FLUSH_AT) flush(s);
         }
         put(s, "]}");
-        s->contours++;
     }
-    put(s, "],");
+    put(s, "]");
+}
+
+static int j_layer(void *ctx, const lam_layer_info *li)
+{
+    js *s = ctx;
+    s->cut = li->z;
+    size_t index = li->index + 1;
+    s->contours += li->section ? li->section->ncontours : 0; /* the run's, written or not */
+    s->skip = index < s->o.first || (s->o.last && index > s->o.last);
+    s->ngroups = s->last_group = 0;
+    if (s->skip) return s->rc;
+    put(s, s->written++ ? "," : "");
     line(s);
-    put(s, "   \"vectors\": [");
+    put(s, "  {\"index\": ");
+    size(s, index);
+    static const char *const keys[] = { "z", "floor", "ceiling", "width" };
+    nums(s, 0, keys, (const double[]){ li->z, li->floor, li->ceiling, li->width }, 4);
+    if (li->has_cut) put(s, ", \"cut\": "), num(s, li->cut);
+    if (!s->o.no_contours) contours(s, li);
+    if (s->o.vectors == LAM_JSON_VECTORS_ALL) {
+        put(s, ",");
+        line(s);
+        put(s, "   \"vectors\": [");
+    }
     return s->rc;
+}
+
+/* A vector's (or a summary group's) attributes: an attribute at its
+ * default is left out (vocab.h), but in a build (a style set): there every
+ * vector says its part, region, style and laser (docs/builds.md). */
+static void attrs_text(js *s, int kind, const lam_attrs *a)
+{
+    int build = a->style != 0;
+    if (build && kind < LAM_REGIONS) {
+        put(s, ", \"region\": \"");
+        put(s, lam_kind_name(kind));
+        put(s, "\"");
+    }
+    for (size_t i = 0; i < LAM_NATTRS; i++)
+        if (build || lam_attr_get(a, i) != lam_attr_default(i)) {
+            put(s, ", ");
+            key(s, lam_attr_key(i));
+            integer(s, lam_attr_get(a, i));
+        }
+}
+
+/* SUMMARY: the vector counted in its (kind, attributes) group; most
+ * vectors are in the group of the one before. */
+static void summarise(js *s, const lam_vec *v)
+{
+    struct group *g = s->ngroups ? &s->groups[s->last_group] : NULL;
+    if (!g || g->kind != v->kind || memcmp(&g->attrs, &v->attrs, sizeof g->attrs)) {
+        g = NULL;
+        for (size_t i = 0; i < s->ngroups && !g; i++)
+            if (s->groups[i].kind == v->kind && !memcmp(&s->groups[i].attrs, &v->attrs, sizeof v->attrs))
+                g = &s->groups[i];
+        if (!g) {
+            if (s->ngroups == s->cap_groups) {
+                size_t cap = s->cap_groups ? 2 * s->cap_groups : 16;
+                struct group *ng = realloc(s->groups, cap * sizeof *ng);
+                if (!ng) {
+                    nomem(s);
+                    return;
+                }
+                s->groups = ng;
+                s->cap_groups = cap;
+            }
+            g = &s->groups[s->ngroups++];
+            *g = (struct group){ .kind = v->kind, .attrs = v->attrs };
+        }
+        s->last_group = (size_t)(g - s->groups);
+    }
+    /* the length as vstream.c measures it for the layer's stats */
+    const double d[3] = { v->to[0] - v->from[0], v->to[1] - v->from[1], v->to[2] - v->from[2] };
+    g->count++;
+    g->length += sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
 }
 
 /* The plan's vectors come decoded by vstream.h, by the rules the SVG
@@ -331,6 +433,12 @@ static int j_layer(void *ctx, const lam_layer_info *li)
 static int j_vector(void *ctx, const lam_vec *v)
 {
     js *s = ctx;
+    s->vectors++;
+    if (s->skip || s->o.vectors == LAM_JSON_VECTORS_NONE) return s->rc;
+    if (s->o.vectors == LAM_JSON_VECTORS_SUMMARY) {
+        summarise(s, v);
+        return s->rc;
+    }
     put(s, v->order > 1 ? "," : "");
     line(s);
     put(s, "    {\"kind\": \"");
@@ -341,26 +449,33 @@ static int j_vector(void *ctx, const lam_vec *v)
     pt(s, v->to);
     put(s, ", \"order\": ");
     size(s, v->order);
-    /* an attribute at its default is left out (vocab.h), but in a build
-     * (a style set): there every vector says its part, region, style and
-     * laser (docs/builds.md) */
-    int build = v->attrs.style != 0;
-    if (build && v->kind < LAM_REGIONS) {
-        put(s, ", \"region\": \"");
-        put(s, lam_kind_name(v->kind));
-        put(s, "\"");
-    }
-    for (size_t i = 0; i < LAM_NATTRS; i++)
-        if (build || lam_attr_get(&v->attrs, i) != lam_attr_default(i)) {
-            char b[32];
-            put(s, ", ");
-            key(s, lam_attr_key(i));
-            put(s, (snprintf(b, sizeof b, "%lld", lam_attr_get(&v->attrs, i)), b));
-        }
+    attrs_text(s, v->kind, &v->attrs);
     put(s, "}");
-    s->vectors++;
     if (s->b.len >= FLUSH_AT) flush(s);
     return s->rc;
+}
+
+/* SUMMARY: the layer's groups, each a line. */
+static void summary(js *s)
+{
+    put(s, ",");
+    line(s);
+    put(s, "   \"summary\": [");
+    for (size_t i = 0; i < s->ngroups; i++) {
+        const struct group *g = &s->groups[i];
+        put(s, i ? "," : "");
+        line(s);
+        put(s, "    {\"kind\": \"");
+        put(s, lam_kind_name(g->kind));
+        put(s, "\"");
+        attrs_text(s, g->kind, &g->attrs);
+        put(s, ", \"count\": ");
+        size(s, g->count);
+        put(s, ", \"length\": ");
+        num(s, g->length);
+        put(s, "}");
+    }
+    put(s, "]");
 }
 
 static void time_object(js *s, const lam_scan_time *t)
@@ -377,37 +492,53 @@ static void time_object(js *s, const lam_scan_time *t)
 }
 
 /* A build layer's lasers: each one's time, exposure and jumps, and the
- * balance (the busiest over the ideal, lasers.h); totals kept for the end. */
+ * balance (the busiest over the ideal, lasers.h). */
 static void lasers_obj(js *s, const lam_layer_info *li)
 {
     put(s, ", \"lasers\": [");
     for (size_t l = 0; l < li->nlasers; l++) {
         const lam_scan_time *t = &li->lasers[l];
-        double x = t->exposure + t->jump;
         put(s, l ? ", {\"laser\": " : "{\"laser\": ");
         size(s, l + 1);
         static const char *const keys[] = { "time", "exposure", "jumps", "exposed" };
-        nums(s, 0, keys, (const double[]){ x, t->exposure, t->jump, t->exposure_length }, 4);
+        nums(s, 0, keys, (const double[]){ t->exposure + t->jump, t->exposure, t->jump, t->exposure_length }, 4);
         put(s, "}");
-        if (l < LAM_JSON_LASERS) s->laser_time[l] += x;
     }
-    if (li->nlasers > s->nlasers) s->nlasers = li->nlasers < LAM_JSON_LASERS ? li->nlasers : LAM_JSON_LASERS;
     put(s, "], \"balance\": ");
     num(s, li->balance);
 }
 
-/* A build layer's parts: each one's own time; totals kept for the end. */
+/* A build layer's parts: each one's own time. */
 static void parts_obj(js *s, const lam_layer_info *li)
 {
     put(s, ", \"parts\": [");
     for (size_t i = 0; i < li->nparts; i++) {
         const lam_part_time *p = &li->parts[i];
         put(s, i ? ", {\"part\": " : "{\"part\": ");
-        char b[32];
-        put(s, (snprintf(b, sizeof b, "%lld", p->part), b));
+        integer(s, p->part);
         put(s, ", \"time\": ");
         num(s, p->time);
         put(s, "}");
+    }
+    put(s, "]");
+}
+
+/* The layer in the run's totals, whether it is written or not: lengths,
+ * time, and a build's lasers' and parts' times. */
+static void add_totals(js *s, const lam_layer_info *li, const lam_vec_stats *st)
+{
+    s->layers++;
+    s->deposit_total += st->deposit_length;
+    s->travel_total += st->travel_length;
+    if (li->time) {
+        lam_scan_time_add(&s->time, li->time);
+        s->timed++;
+    }
+    for (size_t l = 0; l < li->nlasers && l < LAM_JSON_LASERS; l++)
+        s->laser_time[l] += li->lasers[l].exposure + li->lasers[l].jump;
+    if (li->nlasers > s->nlasers) s->nlasers = li->nlasers < LAM_JSON_LASERS ? li->nlasers : LAM_JSON_LASERS;
+    for (size_t i = 0; i < li->nparts; i++) {
+        const lam_part_time *p = &li->parts[i];
         if (p->part >= 1 && (size_t)p->part > s->nparts_time) {
             size_t n = (size_t)p->part;
             double *t = realloc(s->part_time, n * sizeof *t);
@@ -421,38 +552,34 @@ static void parts_obj(js *s, const lam_layer_info *li)
         }
         if (p->part >= 1) s->part_time[p->part - 1] += p->time;
     }
-    put(s, "]");
 }
 
 static int j_layer_end(void *ctx, const lam_layer_info *li, const lam_vec_stats *st)
 {
     js *s = ctx;
-    double area = 0;
-    for (size_t k = 0; li->section && k < li->section->ncontours; k++) area += li->section->contours[k].area;
-    put(s, "],");
-    line(s);
-    put(s, "   \"stats\": {\"area\": ");
-    num(s, area);
-    put(s, ", \"vectors\": ");
-    size(s, st->vectors);
-    put(s, ", \"deposit_length\": ");
-    num(s, st->deposit_length);
-    put(s, ", \"travel_length\": ");
-    num(s, st->travel_length);
-    put(s, ", \"time\": ");
-    if (li->time) {
-        num(s, lam_scan_time_total(li->time));
-        lam_scan_time_add(&s->time, li->time);
-        s->timed++;
-    } else {
-        put(s, "null");
+    if (!s->skip) {
+        double area = 0;
+        for (size_t k = 0; li->section && k < li->section->ncontours; k++) area += li->section->contours[k].area;
+        if (s->o.vectors == LAM_JSON_VECTORS_ALL) put(s, "]");
+        else if (s->o.vectors == LAM_JSON_VECTORS_SUMMARY) summary(s);
+        put(s, ",");
+        line(s);
+        put(s, "   \"stats\": {\"area\": ");
+        num(s, area);
+        put(s, ", \"vectors\": ");
+        size(s, st->vectors);
+        put(s, ", \"deposit_length\": ");
+        num(s, st->deposit_length);
+        put(s, ", \"travel_length\": ");
+        num(s, st->travel_length);
+        put(s, ", \"time\": ");
+        if (li->time) num(s, lam_scan_time_total(li->time));
+        else put(s, "null");
+        if (li->nlasers) lasers_obj(s, li);
+        if (li->nparts) parts_obj(s, li);
+        put(s, "}}");
     }
-    if (li->nlasers) lasers_obj(s, li);
-    if (li->nparts) parts_obj(s, li);
-    put(s, "}}");
-    s->layers++;
-    s->deposit_total += st->deposit_length;
-    s->travel_total += st->travel_length;
+    add_totals(s, li, st);
     flush(s); /* the layer is whole: out it goes */
     return s->rc;
 }
@@ -511,26 +638,31 @@ static void j_destroy(void *ctx)
     js *s = ctx;
     lam_buf_free(&s->b);
     free(s->part_time);
+    free(s->groups);
     free(s);
 }
 
 int lam_json_consumer(lam_writer *w, lam_writer *script, lam_vec_consumer *out, lam_error *err)
 {
+    return lam_json_consumer_opts(w, script, NULL, out, err);
+}
+
+int lam_json_consumer_opts(lam_writer *w, lam_writer *script, const lam_json_opts *o, lam_vec_consumer *out,
+                           lam_error *err)
+{
     memset(out, 0, sizeof *out);
+    if (o && ((o->vectors != LAM_JSON_VECTORS_ALL && o->vectors != LAM_JSON_VECTORS_SUMMARY &&
+               o->vectors != LAM_JSON_VECTORS_NONE) ||
+              (o->last && o->first > o->last)))
+        return lam_error_set(err, LAM_EUSAGE, NULL, 0, 0, "JSON options: vectors %d, layers %zu to %zu", o->vectors,
+                             o->first, o->last);
     js *s = calloc(1, sizeof *s);
     if (!s) return lam_error_nomem(err, "writing the JSON");
     s->w = w;
     s->script = script;
     s->err = err;
+    if (o) s->o = *o;
     *out = (lam_vec_consumer){ .ctx = s, .begin = j_begin, .layer = j_layer, .vector = j_vector,
                                .layer_end = j_layer_end, .end = j_end, .destroy = j_destroy };
     return LAM_OK;
-}
-
-/* Options are not read yet: everything is written. */
-int lam_json_consumer_opts(lam_writer *w, lam_writer *script, const lam_json_opts *o, lam_vec_consumer *out,
-                           lam_error *err)
-{
-    (void)o;
-    return lam_json_consumer(w, script, out, err);
 }

@@ -3,7 +3,8 @@
  * schema/lamina-run-1.schema.json and docs/json.md describes it; in short:
  *
  *   {"format": "lamina-run", "version": 1,
- *    "job": {model, machine, process, units, frame, axis, plane, bbox, layers, bead},
+ *    "job": {model, machine, process, units, frame, axis, plane, bbox, layers, bead,
+ *            exposure (SLS: [{style, region, power, speed, distance}, ...])},
  *    "layers": [{index (1-based), z, floor, ceiling, width,
  *                contours: [{id, solid, depth, parent, area, points}],
  *                vectors: [{kind, from, to, order}],
@@ -53,7 +54,18 @@
  * LAM_ENOMEM), which must outlive the consumer. */
 int lam_json_consumer(lam_writer *w, lam_writer *script, lam_vec_consumer *out, lam_error *err);
 
-/* What of the run the JSON holds (all zero: everything, as lam_json_consumer). */
+/* What of the run the JSON holds (all zero: everything, as lam_json_consumer;
+ * docs/json.md, "Smaller runs"):
+ *   vectors SUMMARY: no "vectors" key; after the contours "summary": one
+ *     {kind, <the attributes as the vectors carry them>, count, length}
+ *     per (kind, attributes) group of the layer's vectors, jumps included,
+ *     in the order of each group's first vector; NONE: neither key.
+ *   no_contours: no "contours" key (stats.area and totals.contours stay).
+ *   first, last: only layers first..last (1-based, the JSON's index) are
+ *     written; 0 for first: from the first, 0 for last: to the end. The
+ *     job and the totals describe the whole run (every layer is counted).
+ * SLS runs' job also has "exposure" (lam_job_info's exposures: style,
+ * region, power, speed, distance), whatever the options. */
 enum { LAM_JSON_VECTORS_ALL, LAM_JSON_VECTORS_SUMMARY, LAM_JSON_VECTORS_NONE };
 typedef struct lam_json_opts {
     int vectors;             /* LAM_JSON_VECTORS_*: every vector, a summary per layer, or none */
@@ -61,7 +73,9 @@ typedef struct lam_json_opts {
     size_t first, last;      /* 1-based layers written, first..last; 0, 0: all */
 } lam_json_opts;
 
-/* lam_json_consumer writing what o asks for (NULL: everything). */
+/* lam_json_consumer writing what o asks for (NULL: everything; o is
+ * copied). LAM_EUSAGE for a vectors value that is none of the three or
+ * first > last (last not 0). */
 int lam_json_consumer_opts(lam_writer *w, lam_writer *script, const lam_json_opts *o, lam_vec_consumer *out,
                            lam_error *err);
 

@@ -20,6 +20,17 @@ struct lam_layer;      /* slice.h */
 struct lam_scan_time;  /* hatch.h */
 struct lam_sink_fork;  /* below */
 
+/* One region's exposure in a powder-bed run (the JSON's job.exposure, for
+ * a viewer's energy density: power / (speed x distance)). */
+typedef struct lam_job_exposure {
+    long long style;         /* the vectors' `style` attribute: 0 outside a build, else the
+                                build style (core/build) the region is exposed with */
+    int region;              /* lam_vec_kind: LAM_KIND_CONTOUR .. LAM_KIND_DOWNSKIN */
+    double power, speed;     /* the profile's (hatch.h lam_exposure; speed 0: unknown) */
+    double distance;         /* a hatch region's hatch_distance; a contour's: the spot width */
+    double point_distance, exposure_time; /* point exposure (point_distance 0: continuous) */
+} lam_job_exposure;
+
 /* What a whole job looks like, for preambles and headers. */
 typedef struct lam_job_info {
     const char *name;        /* machine profile name */
@@ -44,6 +55,14 @@ typedef struct lam_job_info {
     size_t nlabels;
     const char *json_extra;  /* a build: more members of the JSON's job object, as JSON
                                 text (`"build": {...}`), or NULL */
+    /* SLS: the exposure of each region the plan can have vectors of,
+     * nexposure entries: exposure[] when not NULL (a build's, per style and
+     * region, the caller's), else own_exposure[] (lam_job_init fills it for
+     * a single part's run, style 0; kept in the struct so a copy of the
+     * job stays whole). LADRP: none (nexposure 0). */
+    const lam_job_exposure *exposure;
+    size_t nexposure;
+    lam_job_exposure own_exposure[LAM_REGIONS];
 } lam_job_info;
 
 /* The part's name for a job from a model's path: the file's name without

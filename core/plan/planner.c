@@ -85,6 +85,30 @@ static void job_bbox(const lam_slicer *s, const lam_model *m, const lam_plan_opt
     bb[5] = planes[lam_slicer_count(s)];
 }
 
+/* Whether a plan of cfg can have vectors of region k (a build's labels
+ * ask the same of each part: build_run.c). */
+static int region_used(const lam_scan_cfg *c, int k)
+{
+    if (k == LAM_KIND_CONTOUR) return c->contour_count > 0;
+    if (k != LAM_KIND_CORE && c->skin_layers == 0) return 0;
+    return c->type[k].strategy != LAM_HATCH_NONE;
+}
+
+/* A single part's run: each region's exposure, style 0 (the vectors'
+ * style attribute at its default). */
+static void job_exposure(lam_job_info *job, const lam_plan_opts *o)
+{
+    if (o->kind != LAM_PLAN_SLS) return;
+    for (int k = 0; k < LAM_REGIONS; k++) {
+        if (!region_used(&o->scan, k)) continue;
+        const lam_exposure *e = &o->scan.type[k].exposure;
+        job->own_exposure[job->nexposure++] = (lam_job_exposure){
+            .style = 0, .region = k, .power = e->power, .speed = e->speed,
+            .distance = k == LAM_KIND_CONTOUR ? o->bead : o->scan.type[k].distance,
+            .point_distance = e->point_distance, .exposure_time = e->exposure_time };
+    }
+}
+
 void lam_job_init(lam_job_info *job, const lam_plan_opts *o, size_t layers, const double bbox[6], double cut0,
                   const lam_frame *f, const char *label, const char *model)
 {
@@ -108,6 +132,7 @@ void lam_job_init(lam_job_info *job, const lam_plan_opts *o, size_t layers, cons
     } else {
         lam_frame_to_model(f, 0, 0, cut0, job->origin);
     }
+    job_exposure(job, o);
 }
 
 void lam_plan_job(const lam_slicer *s, const lam_model *m, const lam_plan_opts *o, lam_job_info *job,

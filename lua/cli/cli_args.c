@@ -4,6 +4,7 @@
 #include "pool.h"
 
 #include "cli.h"
+#include "json_sink.h"
 
 #include <ctype.h>
 #include <errno.h>
@@ -244,6 +245,70 @@ static int o_part(const char *cmd, args *a, const cli_opt *o, const char *opt, c
     return 0;
 }
 
+/* A layer number of --json-layers: digits, >= 1; "" is 0 (not given). */
+static int layer_number(const char *t, size_t n, size_t *out)
+{
+    unsigned long long x = 0;
+    for (size_t i = 0; i < n; i++) {
+        if (!isdigit((unsigned char)t[i]) || x > 1000000000000000ULL) return -1;
+        x = 10 * x + (unsigned)(t[i] - '0');
+    }
+    if (n && !x) return -1;
+    *out = (size_t)x;
+    return 0;
+}
+
+/* --json-layers A:B (1-based, inclusive; A: to the last layer, :B from the
+ * first); the end is checked against the run's layers by cli_json_opts */
+static int o_json_layers(const char *cmd, args *a, const cli_opt *o, const char *opt, const char *val)
+{
+    (void)o;
+    const char *colon = strchr(val, ':');
+    size_t x = 0, y = 0;
+    if (!colon || layer_number(val, (size_t)(colon - val), &x) || layer_number(colon + 1, strlen(colon + 1), &y))
+        return cli_usage(cmd, "%s takes A:B, A: or :B (layers A to B of the run, from 1) (got '%s')", opt, val);
+    if (y && x > y) return cli_usage(cmd, "%s %s: A:B needs A <= B", opt, val);
+    a->json_layers = val;
+    a->json_first = x;
+    a->json_last = y;
+    return 0;
+}
+
+static const char *const json_vector_modes[] = { "all", "summary", "none" }; /* LAM_JSON_VECTORS_* */
+
+/* --json-vectors all|summary|none */
+static int o_json_vectors(const char *cmd, args *a, const cli_opt *o, const char *opt, const char *val)
+{
+    (void)o;
+    for (size_t i = 0; i < sizeof json_vector_modes / sizeof *json_vector_modes; i++)
+        if (!strcmp(val, json_vector_modes[i])) return a->json_vectors = json_vector_modes[i], 0;
+    return cli_usage(cmd, "%s takes all, summary or none (got '%s')", opt, val);
+}
+
+/* --json-contours all|none */
+static int o_json_contours(const char *cmd, args *a, const cli_opt *o, const char *opt, const char *val)
+{
+    (void)o;
+    if (strcmp(val, "all") && strcmp(val, "none")) return cli_usage(cmd, "%s takes all or none (got '%s')", opt, val);
+    a->json_contours = val;
+    return 0;
+}
+
+int cli_json_opts(const char *cmd, const args *a, size_t layers, lam_json_opts *o)
+{
+    memset(o, 0, sizeof *o);
+    for (size_t i = 0; a->json_vectors && i < sizeof json_vector_modes / sizeof *json_vector_modes; i++)
+        if (!strcmp(a->json_vectors, json_vector_modes[i])) o->vectors = (int)i;
+    o->no_contours = a->json_contours && !strcmp(a->json_contours, "none");
+    o->first = a->json_first;
+    o->last = a->json_last;
+    size_t end = o->last ? o->last : o->first;
+    if (end > layers)
+        return cli_usage(cmd, "--json-layers %s: the run has %zu layer%s (A:B needs 1 <= A <= B <= %zu)",
+                         a->json_layers, layers, layers == 1 ? "" : "s", layers);
+    return EXIT_OK;
+}
+
 /* --units: a name of the profile key `units` (the one table, lam_unit_mm) */
 static int o_units(const char *cmd, args *a, const cli_opt *o, const char *opt, const char *val)
 {
@@ -297,6 +362,9 @@ static const cli_opt options[] = {
     { "output", 'o', OPT_PLAN | OPT_OUTPUT, "FILE", o_output, F(out) },
     { "svg", 0, OPT_SVG, "FILE", o_output, F(svg) },
     { "json", 0, OPT_JSON_FILE, "FILE", o_output, F(json_out) },
+    { "json-layers", 0, OPT_JSON_FILE, "A:B", o_json_layers, 0 },
+    { "json-vectors", 0, OPT_JSON_FILE, "all|summary|none", o_json_vectors, 0 },
+    { "json-contours", 0, OPT_JSON_FILE, "all|none", o_json_contours, 0 },
     { "html", 0, OPT_PLAN, "FILE", o_output, F(html) },
     { "layers", 0, OPT_PART, "A:B|K/N", o_part, 0 },
     { "layout", 0, OPT_BUILD, "FILE", o_output, F(layout) },
@@ -546,6 +614,9 @@ int cli_parse_args(const char *cmd, const char *usage_text, unsigned groups, int
     unsigned otherwise = groups & (OPT_PLAN | OPT_JOBS) ? lam_online_cores() : 0;
     if (!a->threads && (rc = cli_threads_env(cmd, otherwise, &a->threads))) return rc;
     if ((rc = one_stdout(cmd, groups, a))) return rc;
+    if ((a->json_layers || a->json_vectors || a->json_contours) && !a->json_out)
+        return cli_usage(cmd, "%s says what --json FILE holds: give --json FILE too",
+                         a->json_layers ? "--json-layers" : a->json_vectors ? "--json-vectors" : "--json-contours");
     int width = 0;
     for (size_t i = 0; i < a->nsets; i++) width |= a->sets[i].key->offset == offsetof(lam_profile, layer_width);
     if ((a->so.widths || a->so.planes) && width) return cli_usage(cmd, "give one of -w, --widths and --planes");

@@ -72,6 +72,11 @@ typedef struct args {
      * which knows the machine. */
     lam_xform xform;
     const char *units;
+    /* slice, build: what --json FILE holds (cli_json_opts) */
+    const char *json_layers;  /* --json-layers as given (NULL: every layer) */
+    size_t json_first, json_last; /* its A and B (0: from the first, to the last layer) */
+    const char *json_vectors; /* --json-vectors as given (NULL: all) */
+    const char *json_contours; /* --json-contours as given (NULL: all) */
 } args;
 
 /* Parse argv[1..] for command cmd, accepting the option groups in
@@ -101,6 +106,12 @@ int cli_profile(const char *cmd, args *a, lam_profile **out, lam_plan_opts *po);
  * --translate/--place converted for `machine` (its units and plate; NULL:
  * millimetres, no plate). (cli_load.c) */
 int cli_load_model(const args *a, const lam_profile *machine, struct lam_model **m, lam_error *err);
+
+/* What --json holds (json_sink.h's lam_json_opts) as --json-layers,
+ * --json-vectors and --json-contours say, the range checked against the run's `layers` (a
+ * usage error of cmd, EXIT_USAGE, for one past its end). */
+struct lam_json_opts;
+int cli_json_opts(const char *cmd, const args *a, size_t layers, struct lam_json_opts *o);
 
 /* The profile values of the command line applied to p (machines --show). */
 int cli_apply_sets(const char *cmd, const args *a, lam_profile *p);

@@ -15,6 +15,7 @@
 #include "profile.h"
 #include "progress.h"
 #include "tee.h"
+#include "json_sink.h"
 #include "svg.h"
 #include "views.h"
 #include "writer.h"
@@ -27,10 +28,16 @@ static const char usage_text[] =
     "usage: lamina build JOB.yaml [-o FILE] [--json FILE] [--html FILE] [--svg FILE] [--layout FILE]\n"
     "                             [-s KEY=VALUE ...] [-j N] [--max-output SIZE] [-q | -v]\n"
     "                             [--layers A:B|K/N -o PART]\n"
+    "                             [--json-layers A:B] [--json-vectors all|summary|none]\n"
+    "                             [--json-contours all|none]\n"
     "  JOB.yaml         the build: machine, parts, styles (docs/builds.md)\n"
     "  -o, --output     the plate's program (default: standard output)\n"
     "      --json       the run as JSON: the build, each layer's vectors with their part,\n"
     "                   style and laser, each layer's time per laser and per part\n"
+    "      --json-layers  only layers A to B in the JSON (from 1; A: or :B for the rest)\n"
+    "      --json-vectors every vector (all, the default), a summary per layer (summary:\n"
+    "                   count and length of each kind) or none\n"
+    "      --json-contours the layers' contours in the JSON (all, the default) or none\n"
     "      --html       a viewer of the run\n"
     "      --svg        a contact sheet of the plate's layers and their scan paths\n"
     "      --layout     an SVG of the plate: footprints, names, the lasers' fields\n"
@@ -143,6 +150,8 @@ static int open_outputs(bjob *j)
 {
     const args *a = &j->a;
     const lam_profile *p = j->b->profile;
+    lam_json_opts jo;
+    if (a->json_out && cli_json_opts("build", a, lam_build_run_layers(j->run), &jo)) return EXIT_USAGE;
     if (cli_writer("-o", a->out, &j->w, &j->err) || (a->json_out && cli_writer("--json", a->json_out, &j->jw, &j->err)) ||
         (a->html && cli_writer("--html", a->html, &j->hw, &j->err)))
         return cli_fail_cmd("build", &j->err);
@@ -154,7 +163,8 @@ static int open_outputs(bjob *j)
     if (lam_program_sink(p->writer, &p->dialect, j->w, &j->sink, &j->err)) return cli_fail_cmd("build", &j->err);
     if (a->svg && open_svg(j)) return cli_fail(&j->err);
     if (!j->jw && !j->hw && !j->svg) return EXIT_OK;
-    lam_views views = { .json = j->jw, .html = j->hw, .svg = j->svg, .frame = lam_build_run_frame(j->run) };
+    lam_views views = { .json = j->jw, .json_opts = j->jw ? &jo : NULL, .html = j->hw, .svg = j->svg,
+                        .frame = lam_build_run_frame(j->run) };
     lam_sink all[2] = { j->sink };
     int rc = lam_views_sink(&views, &all[1], &j->err);
     if (!rc && (rc = lam_tee_sink(all, 2, &j->sink, &j->err))) all[1].destroy(all[1].ctx);
@@ -189,10 +199,13 @@ static int commit(lam_writer **w, lam_error *err)
 
 static int commit_outputs(bjob *j)
 {
-    int rc = commit(&j->w, &j->err);
+    /* the sheet first: it is the one written only now, so the one that can
+     * still pass --max-output, and then no program is left either */
+    int rc = LAM_OK;
+    if (j->svg && cli_save_svg(j->svg, j->a.svg, j->a.max_output, &j->err)) rc = cli_fail_cmd("build", &j->err);
+    if (!rc) rc = commit(&j->w, &j->err);
     if (!rc) rc = commit(&j->jw, &j->err);
     if (!rc) rc = commit(&j->hw, &j->err);
-    if (!rc && j->svg && cli_save_svg(j->svg, j->a.svg, &j->err)) rc = cli_fail_cmd("build", &j->err);
     if (!rc && j->a.layout) rc = cli_build_layout(j->run, j->b->profile, j->a.layout, &j->err);
     return rc;
 }

@@ -12,6 +12,7 @@
 #include "cli_join.h"
 #include "dialect.h"
 #include "fmt.h"
+#include "json_sink.h"
 #include "views.h"
 #include "model.h"
 #include "planner.h"
@@ -38,6 +39,8 @@ static const char usage_text[] =
     "                          [--beam-offset] [--frame model|machine] [--fill evenodd|nonzero]\n"
     "                          [--validate] [--max-layers N] [--max-output SIZE] [-j N]\n"
     "                          [--svg FILE] [--html FILE] [--json FILE] [-o FILE] [-q | -v]\n"
+    "                          [--json-layers A:B] [--json-vectors all|summary|none]\n"
+    "                          [--json-contours all|none]\n"
     "                          [--layers A:B|K/N]\n"
     "  -m, --machine    machine profile: a shipped name (see 'lamina machines') or a path\n"
     "                   (default: the thesis's SLS contours)\n"
@@ -58,6 +61,10 @@ static const char usage_text[] =
     "      --html       write a viewer of the run: one HTML file to open in a browser\n"
     "      --json       write the run as JSON (layer interchange, docs/json.md): the job,\n"
     "                   each layer's contours and planned vectors, lengths and build time\n"
+    "      --json-layers  only layers A to B in the JSON (from 1; A: or :B for the rest)\n"
+    "      --json-vectors every vector (all, the default), a summary per layer (summary:\n"
+    "                   count and length of each kind) or none\n"
+    "      --json-contours the layers' contours in the JSON (all, the default) or none\n"
     "  -o, --output     program file (default: standard output)\n"
     "  -q, --quiet      no progress line and no notes; warnings and errors only\n"
     "  -v, --verbose    every per-layer note, and the time each stage takes\n"
@@ -126,10 +133,10 @@ static int on_layer(void *ctx, const lam_layer *L, lam_error *err)
 /* The program's sink and the views (--json, --svg, --html: views.h, one
  * vector stream decoded once) fed by one plan: *sink becomes a tee that
  * owns them both. On failure *sink is left as it was. */
-static int tee_outputs(lam_sink *sink, lam_writer *jw, report *rep, const args *a, lam_slicer *s,
-                       const lam_plan_opts *po, lam_error *err)
+static int tee_outputs(lam_sink *sink, lam_writer *jw, const lam_json_opts *jo, report *rep, const args *a,
+                       lam_slicer *s, const lam_plan_opts *po, lam_error *err)
 {
-    lam_views views = { .json = jw };
+    lam_views views = { .json = jw, .json_opts = jo };
     int rc = cli_view_open(&rep->view, a, s, po, &views, err);
     if (rc || !(views.json || views.html || views.svg)) return rc;
     lam_sink all[2] = { *sink };
@@ -151,6 +158,7 @@ typedef struct job {
     lam_plan_opts po;
     lam_scan_time est;
     lam_ladrp_stats ladrp;   /* LADRP: the run's moves, for the estimate */
+    lam_json_opts jopts;     /* what --json holds */
 } job;
 
 /* The profile, the model, the slicer and (--validate) the rays: every input
@@ -183,6 +191,7 @@ static int open_inputs(job *j)
 static int open_outputs(job *j)
 {
     const args *a = &j->a;
+    if (a->json_out && cli_json_opts("slice", a, lam_slicer_count(j->s), &j->jopts)) return EXIT_USAGE;
     if (cli_writer("-o", a->out, &j->w, &j->err) || (a->json_out && cli_writer("--json", a->json_out, &j->jw, &j->err)))
         return cli_fail_cmd("slice", &j->err);
     unsigned long long limit = a->max_output ? a->max_output : LAM_DEFAULT_MAX_OUTPUT;
@@ -192,7 +201,7 @@ static int open_outputs(job *j)
     j->po.totals = &j->ladrp;
     if (a->layers) return cli_part_setup(&j->a, j->prof, j->s, &j->po, j->w, &j->sink);
     int rc = lam_program_sink(j->prof->writer, &j->prof->dialect, j->w, &j->sink, &j->err);
-    if (!rc) rc = tee_outputs(&j->sink, j->jw, &j->rep, a, j->s, &j->po, &j->err);
+    if (!rc) rc = tee_outputs(&j->sink, j->jw, &j->jopts, &j->rep, a, j->s, &j->po, &j->err);
     if (rc) return cli_fail_cmd("slice", &j->err);
     /* the estimate in the program's own bytes (the defaults if the
      * writer cannot be sampled: it then fails the run itself) */
