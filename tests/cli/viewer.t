@@ -7,7 +7,8 @@
 # palettes and layout), and the time to the first layer and to step.
 # Jobs: the T (tests/models/recipes/tee.ug: a core in the stem, down-skin
 # under the cap, up-skin on it) and a plate of three parts, three build
-# styles of known power, speed and hatch distance, two lasers.
+# styles of known power, speed and hatch distance (the energy view reads
+# the run's job.exposure), two lasers.
 . "$(dirname "$0")/lib.sh"
 CHROME=$(command -v chromium || command -v chromium-browser)
 if [ -z "$CHROME" ]; then
@@ -58,16 +59,6 @@ parts:
 EOF
 run "$LAMINA" build "$J/plate.yaml" -o "$J/plate.cli" --json "$J/plate.json" --html "$J/plate.html"
 is "$RC" 0 "the plate: build --html --json, exit 0"
-# the energy view reads job.exposure; until the run carries it the test gives the page
-# the table of the job's own styles (power / speed / hatch distance above)
-table=$(python3 -c '
-import json, sys
-run = json.load(open(sys.argv[1]))
-known = {"cool": (100, 1000, 0.25), "hot": (400, 500, 0.2), "mid": (200, 1000, 0.25)}
-print(json.dumps([{"style": s["style"], "region": r, "power": known[s["name"]][0], "speed": known[s["name"]][1],
-                   "distance": known[s["name"]][2]} for s in run["job"]["build"]["styles"] if s["name"] in known
-                  for r in ("core", "upskin", "downskin")]))' "$J/plate.json")
-VC --inject "$J/plate.html" "$J/plate.json" "$table"
 
 # ---- a bigger job: time to the first layer, and to step ----------------------------
 "${CB[@]}" stl box "$TMP/big.stl" 40 40 3
@@ -80,9 +71,9 @@ is "$RC" 0 "a bigger job: slice --html, exit 0"
 # the T, layer 17: core in the stem, down-skin under the cap; 18: down-skin and up-skin.
 # The bigger job's bounds are the issue's (3 s, 200 ms) doubled: the machine is shared.
 relay < <(VC "$CHROME" "$TMP/tee.html" "$TMP/tee.json" colour region 17 colour region 18 colour order 18 \
-    wrong region order 18 pick 18 ruler legend region 17 \
+    wrong region order 18 pick 18 ruler legend region 17 scale order 18 \
     page "$J/plate.html" "$J/plate.json" colour part 2 colour style 2 colour laser 2 colour energy 2 \
     hotter 2 wrong laser part 2 wrong style laser 2 \
-    plot time 3 plot area 2 plot vectors 4 plot travel 1 plotclick 5 fields 2 pick 2 legend part 6 legend style 2 legend laser 2 \
+    plot time 3 plot area 2 plot vectors 4 plot travel 1 plotclick 5 fields 2 pick 2 legend part 6 legend style 2 legend laser 2 scale energy 2 \
     page "$TMP/big.html" "$TMP/big.json" timing 6000 400 early 2>&1)
 done_testing

@@ -34,6 +34,9 @@ section), never from the viewer's own answers:
   legend MODE LAYER       the legend of a category mode (part, style, laser, region):
                           one swatch per value the layer's vectors have (and a build's
                           every part or laser), named from the JSON, in its colour
+  scale MODE LAYER        the legend of order or energy: its range is the JSON's (the
+                          layer's orders; the smallest and largest P/(v h) of the
+                          exposure table), its bar's ends in the scale's end colours
   timing MAX_FIRST MAX_STEP  time to the first drawn layer and the slowest step to
                           every other layer (ms), printed as a comment too
   early                   the first layer was drawn before the run's JSON arrived"""
@@ -498,6 +501,30 @@ def legend_check(pg, run, mode, k):
         "ok" if not bad else "not ok", mode, k, ", ".join(want), "" if not bad else ": " + "; ".join(bad))
 
 
+def scale_check(pg, run, mode, k):
+    pg.view("layer=%d&colour=%s" % (k, mode))
+    px = pg.shot()
+    g = pg.js("lamina.legend()")
+    if mode == "energy":
+        _, lo, hi = run.energy_table()
+        stops, nb = HEAT_STOPS, NB_HEAT
+    else:
+        lo = 1
+        hi = max(v["order"] for v in run.run["layers"][k - 1]["vectors"] if v["kind"] != "jump")
+        stops, nb = ORDER_STOPS, NB_ORDER
+    bad = []
+    if not g or abs(g.get("min", -1) - lo) > 1e-9 * abs(lo) or abs(g.get("max", -1) - hi) > 1e-9 * abs(hi):
+        bad.append("range %s .. %s, expected %s .. %s" % (g and g.get("min"), g and g.get("max"), lo, hi))
+    else:
+        b = g["bar"]
+        for t, x in ((0.5 / nb, b["x"] + 1), (1 - 0.5 / nb, b["x"] + b["w"] - 2)):
+            c = px(int(x), int(b["y"] + b["h"] / 2))
+            if not close(c, grad(stops, t), 3):
+                bad.append("bar at x %d: %s, expected %s" % (x, c, grad(stops, t)))
+    return "%s legend of %s, layer %d: %.4g .. %.4g, the bar from the scale's first colour to its last%s" % (
+        "ok" if not bad else "not ok", mode, k, lo, hi, "" if not bad else ": " + "; ".join(bad))
+
+
 def fields_check(pg, run, k):
     pg.view("layer=%d&vectors=0&contours=0&travel=0" % k)
     px = pg.shot()
@@ -538,24 +565,7 @@ def timing(pg, run, max_first, max_step):
         "ok" if ok else "not ok", max_first, first, max_step, worst)
 
 
-def inject(page, runp, table):
-    """give a run (its page and its JSON) an exposure table, when lamina's JSON has none yet"""
-    run = json.load(open(runp))
-    if run["job"].get("exposure"):
-        return
-    run["job"]["exposure"] = json.loads(table)
-    json.dump(run, open(runp, "w"))
-    s = open(page, encoding="utf-8").read()
-    m = re.search(r'(<script type="application/json" id="lamina-run">)(.*?)(</script>)', s, re.S)
-    r = json.loads(m.group(2))
-    r["job"]["exposure"] = run["job"]["exposure"]
-    s = s[:m.start(2)] + json.dumps(r).replace("<", "\\u003c") + s[m.end(2):]
-    open(page, "w", encoding="utf-8").write(s)
-
-
 def main():
-    if sys.argv[1] == "--inject":
-        return inject(*sys.argv[2:5])
     chrome, page, runp = sys.argv[1:4]
     run = Run(runp)
     args = sys.argv[4:]
@@ -604,6 +614,9 @@ def main():
             elif c == "legend":
                 mode, k = args.pop(0), int(args.pop(0))
                 print(legend_check(pg, run, mode, k))
+            elif c == "scale":
+                mode, k = args.pop(0), int(args.pop(0))
+                print(scale_check(pg, run, mode, k))
             elif c == "fields":
                 print(fields_check(pg, run, int(args.pop(0))))
             elif c == "timing":
