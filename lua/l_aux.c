@@ -119,13 +119,24 @@ int lam_lua_fail(lua_State *L, const lam_error *err)
     return 2;
 }
 
+/* The message whole, however long (an unknown option's error lists every
+ * valid key): formatted on the C stack when it fits, else in a buffer of
+ * the size it needs (in a box: freed by the collector after the error). */
 int lam_lua_opterror(lua_State *L, int arg, const char *fmt, ...)
 {
-    char msg[512];
-    va_list ap;
+    void **box = lam_lua_newbox(L); /* before va_start: it may raise */
+    char small[512];
+    va_list ap, again;
     va_start(ap, fmt);
-    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_copy(again, ap);
+    int n = vsnprintf(small, sizeof small, fmt, ap);
     va_end(ap);
+    const char *msg = n < 0 ? "(the message could not be formatted)" : small;
+    if (n >= (int)sizeof small && (*box = malloc((size_t)n + 1))) {
+        vsnprintf(*box, (size_t)n + 1, fmt, again);
+        msg = *box;
+    }
+    va_end(again);
     return luaL_argerror(L, arg, msg);
 }
 
@@ -183,21 +194,21 @@ void lam_lua_checkkeys(lua_State *L, int t, int arg, const char *const *allowed)
         int found = 0;
         for (size_t i = 0; allowed[i] && !found; i++) found = strcmp(allowed[i], k) == 0;
         if (!found) {
-            char list[400];
-            size_t n = 0;
-            list[0] = '\0';
-            for (size_t i = 0; allowed[i] && n + 1 < sizeof list; i++) {
-                int w = snprintf(list + n, sizeof list - n, "%s%s", i ? ", " : "", allowed[i]);
-                if (w < 0) break;
-                n += (size_t)w;
-            }
             char b[64], hint[80] = "";
+            lam_lua_describe(L, -1, b, sizeof b);
             size_t n_allowed = 0;
             while (allowed[n_allowed]) n_allowed++;
             const char *best = lam_key_nearest(k, allowed, n_allowed);
             if (best) snprintf(hint, sizeof hint, "did you mean '%s'? ", best);
-            lam_lua_opterror(L, arg, "unknown option %s (%soptions: %s)", lam_lua_describe(L, -1, b, sizeof b), hint,
-                             list);
+            /* every key, whatever their number (a Lua buffer: no fixed size) */
+            luaL_Buffer list;
+            luaL_buffinit(L, &list);
+            for (size_t i = 0; allowed[i]; i++) {
+                if (i) luaL_addstring(&list, ", ");
+                luaL_addstring(&list, allowed[i]);
+            }
+            luaL_pushresult(&list);
+            lam_lua_opterror(L, arg, "unknown option %s (%soptions: %s)", b, hint, lua_tostring(L, -1));
         }
     }
 }
@@ -236,15 +247,16 @@ int lam_lua_choicefield(lua_State *L, int t, int arg, const char *key, const cha
                 return 1;
             }
     }
-    char list[200], b[64];
-    size_t n = 0;
-    list[0] = '\0';
-    for (int k = 0; names[k] && n + 1 < sizeof list; k++) {
-        int w = snprintf(list + n, sizeof list - n, "%s%s", k ? (names[k + 1] ? ", " : " or ") : "", names[k]);
-        if (w < 0) break;
-        n += (size_t)w;
+    char b[64];
+    lam_lua_describe(L, -1, b, sizeof b);
+    luaL_Buffer list; /* every name, whatever their number */
+    luaL_buffinit(L, &list);
+    for (int k = 0; names[k]; k++) {
+        if (k) luaL_addstring(&list, names[k + 1] ? ", " : " or ");
+        luaL_addstring(&list, names[k]);
     }
-    return lam_lua_opterror(L, arg, "%s must be %s, got %s", key, list, lam_lua_describe(L, -1, b, sizeof b));
+    luaL_pushresult(&list);
+    return lam_lua_opterror(L, arg, "%s must be %s, got %s", key, lua_tostring(L, -1), b);
 }
 
 int lam_lua_boolfield(lua_State *L, int t, int arg, const char *key, int *v)

@@ -10,9 +10,13 @@
 #include "vstream.h"
 
 #define PANEL 200.0   /* panel size in px */
-#define PAD 10.0
-#define LABEL 18.0
+#define PAD ((double)LAM_SVG_CELL_GAP)
+#define LABEL LAM_SVG_CAPTION_BAND
 #define FOOT 34.0     /* the scale bar and the axes, below the panels */
+#define NOTE 16.0     /* the thinning note, below the footer, when a panel was thinned */
+#define TOP 34.0      /* the title, above the panels */
+#define CHAR_EM 0.6   /* estimated width of a character, in font sizes (svg.h) */
+#define MIN_STEP 0.3  /* px: a point nearer than this to the last one drawn is not drawn */
 
 /* Colours: solids are filled (strongly on a sheet of contours, with a tint
  * under scan paths), holes show the white background and a red outline;
@@ -33,6 +37,7 @@ typedef struct panel {
     size_t nmarks;
     char *vec;        /* the scan paths' SVG elements, owned (NULL: none planned) */
     size_t nvec;
+    size_t ndrawn;    /* of the layer's vectors, those drawn (< nvec: thinned) */
 } panel;
 
 /* A vector of the layer being planned, kept until the layer ends (its
@@ -52,6 +57,7 @@ struct lam_svg {
     char *units;      /* of the job (the sink's begin), owned; NULL unknown */
     char axis[2][8];  /* names of the layer frame's u and v axes */
     int vectors;      /* a sink feeds scan paths */
+    int thinned;      /* some panel's vectors were thinned (LAM_SVG_CELL_VECTORS) */
     /* the sink's layer */
     long cur;         /* panel, -1: not drawn */
     rvec *rv;
@@ -85,6 +91,13 @@ int lam_svg_new(size_t nlayers, const double uvbox[4], const char *title, lam_sv
     return LAM_OK;
 }
 
+int lam_svg_set_units(lam_svg *s, const char *units, lam_error *err)
+{
+    free(s->units);
+    s->units = units && units[0] ? strdup(units) : NULL;
+    return units && units[0] && !s->units ? lam_error_nomem(err, "naming the scale bar's units") : LAM_OK;
+}
+
 static long find_panel(const lam_svg *s, size_t index)
 {
     size_t lo = 0, hi = s->npanels;
@@ -108,6 +121,22 @@ static double scale_of(const lam_svg *s)
     return d > 0 ? (PANEL - 2 * PAD) / d : 1;
 }
 
+/* One contour as path data, relative to the panel's inner origin, v
+ * flipped; a point nearer than MIN_STEP px to the last one written is left
+ * out (a contact sheet cannot show it, and a finely tessellated section
+ * would otherwise cost its every point). */
+static void write_ring(lam_writer *w, const lam_svg *s, const lam_layer *L, const lam_contour *c, int first)
+{
+    double sc = scale_of(s), lx = 0, ly = 0;
+    for (size_t j = 0; j < c->n; j++) {
+        double x = (L->uv[2 * (c->first + j)] - s->box[0]) * sc, y = (s->box[3] - L->uv[2 * (c->first + j) + 1]) * sc;
+        if (j && j + 1 < c->n && fabs(x - lx) < MIN_STEP && fabs(y - ly) < MIN_STEP) continue;
+        lam_writer_printf(w, "%s%.2f %.2f", j ? " L" : (first ? "M" : " M"), x, y);
+        lx = x, ly = y;
+    }
+    lam_writer_write(w, " Z", 2);
+}
+
 int lam_svg_add(lam_svg *s, const lam_layer *L, lam_error *err)
 {
     long k = find_panel(s, L->index);
@@ -115,31 +144,15 @@ int lam_svg_add(lam_svg *s, const lam_layer *L, lam_error *err)
     lam_writer *w;
     int rc = lam_writer_memory(&w, err);
     if (rc) return rc;
-    double sc = scale_of(s);
     /* the even-odd path of the section first, then "|" and the holes alone */
-    /* coordinates relative to the panel's inner origin; v flipped */
-    for (size_t i = 0; i < L->ncontours; i++) {
-        const lam_contour *c = &L->contours[i];
-        for (size_t j = 0; j < c->n; j++) {
-            double u = L->uv[2 * (c->first + j)], v = L->uv[2 * (c->first + j) + 1];
-            lam_writer_printf(w, "%s%.2f %.2f", j ? " L" : (i ? " M" : "M"), (u - s->box[0]) * sc,
-                              (s->box[3] - v) * sc);
-        }
-        lam_writer_write(w, " Z", 2);
-    }
+    for (size_t i = 0; i < L->ncontours; i++) write_ring(w, s, L, &L->contours[i], i == 0);
     lam_writer_write(w, "|", 1);
     int first = 1;
-    for (size_t i = 0; i < L->ncontours; i++) {
-        const lam_contour *c = &L->contours[i];
-        if (c->kind != LAM_HOLE) continue;
-        for (size_t j = 0; j < c->n; j++) {
-            double u = L->uv[2 * (c->first + j)], v = L->uv[2 * (c->first + j) + 1];
-            lam_writer_printf(w, "%s%.2f %.2f", j ? " L" : (first ? "M" : " M"), (u - s->box[0]) * sc,
-                              (s->box[3] - v) * sc);
+    for (size_t i = 0; i < L->ncontours; i++)
+        if (L->contours[i].kind == LAM_HOLE) {
+            write_ring(w, s, L, &L->contours[i], first);
             first = 0;
         }
-        lam_writer_write(w, " Z", 2);
-    }
     panel *p = &s->panels[k];
     free(p->path);
     p->index = L->index;
@@ -173,9 +186,39 @@ static double nice_length(double most)
     return most >= 5 * p ? 5 * p : most >= 2 * p ? 2 * p : p;
 }
 
-static void write_footer(const lam_svg *s, lam_writer *w, double y)
+/* The font size, at most `most` px, at which n characters are estimated
+ * (CHAR_EM) to fit `width` px; a tenth of a pixel, rounded down. */
+static double fit_font(size_t n, double width, double most)
 {
-    double sc = scale_of(s);
+    double f = n ? width / (CHAR_EM * (double)n) : most;
+    return f < most ? floor(f * 10) / 10 : most;
+}
+
+/* The footer's parts' places (px from the sheet's left): the scale bar's
+ * start and its length, its label's start, the legend's start; and the
+ * footer's estimated right end. */
+typedef struct footer {
+    double sc, len, bar, label, legend, right;
+} footer;
+
+static footer footer_of(const lam_svg *s)
+{
+    footer f;
+    f.sc = scale_of(s);
+    f.len = nice_length(60 / f.sc);
+    f.bar = PAD + 60;
+    f.label = f.bar + f.len * f.sc + 6;
+    char num[32];
+    int n = snprintf(num, sizeof num, "%g ", f.len);
+    /* the label's estimated width (11 px), then a gap */
+    f.legend = f.label + CHAR_EM * 11 * (double)(n + strlen(s->units ? s->units : "model units")) + 20;
+    f.right = s->vectors ? f.legend + 230 : f.legend;
+    return f;
+}
+
+static void write_footer(const lam_svg *s, lam_writer *w, double y, double width)
+{
+    footer f = footer_of(s);
     /* axes: u to the right, v up (the panels' orientation) */
     lam_writer_printf(w,
                       "<g class=\"axes\" font-family=\"sans-serif\" font-size=\"11\" fill=\"#222\" stroke=\"#222\">\n"
@@ -186,18 +229,16 @@ static void write_footer(const lam_svg *s, lam_writer *w, double y)
     lam_writer_printf(w, "</text><text x=\"%.0f\" y=\"%.0f\" stroke=\"none\">", PAD - 3, y);
     lam_esc_write(w, s->axis[1], LAM_ESC_XML);
     lam_writer_printf(w, "</text>\n</g>\n");
-    double len = nice_length(60 / sc);
-    double x = PAD + 60;
     lam_writer_printf(w,
                       "<line class=\"scalebar\" x1=\"%.3f\" y1=\"%.0f\" x2=\"%.3f\" y2=\"%.0f\" stroke=\"#222\" "
                       "stroke-width=\"2\"/>\n"
                       "<text class=\"scalebar\" x=\"%.3f\" y=\"%.0f\" font-family=\"sans-serif\" font-size=\"11\" "
                       "fill=\"#222\">%g ",
-                      x, y + 26, x + len * sc, y + 26, x + len * sc + 6, y + 30, len);
+                      f.bar, y + 26, f.bar + f.len * f.sc, y + 26, f.label, y + 30, f.len);
     lam_esc_write(w, s->units ? s->units : "model units", LAM_ESC_XML);
     lam_writer_printf(w, "</text>\n");
     if (s->vectors) {
-        x += len * sc + 80;
+        double x = f.legend;
         lam_writer_printf(w,
                           "<g class=\"legend\" font-family=\"sans-serif\" font-size=\"11\" fill=\"#222\">"
                           "<defs><linearGradient id=\"order\"><stop offset=\"0\" stop-color=\"#0d0887\"/>"
@@ -209,66 +250,130 @@ static void write_footer(const lam_svg *s, lam_writer *w, double y)
                           "<text x=\"%.0f\" y=\"%.0f\">travel</text></g>\n",
                           x, y + 21, x + 64, y + 30, x + 150, y + 26, x + 184, y + 30);
     }
+    if (s->thinned) {
+        char note[200];
+        size_t n = (size_t)snprintf(note, sizeof note,
+                                    "Thinned: a panel draws at most %d of its layer's vectors (see the captions)",
+                                    LAM_SVG_CELL_VECTORS);
+        lam_writer_printf(w, "<text class=\"note\" x=\"%.0f\" y=\"%.0f\" font-family=\"sans-serif\" "
+                             "font-size=\"%.1f\" fill=\"#222\">%s</text>\n",
+                          PAD, y + FOOT + 11, fit_font(n, width - 2 * PAD, 11), note);
+    }
+}
+
+/* The title, sized to the sheet's width (the caption rule, svg.h). */
+static void write_title(const lam_svg *s, lam_writer *w, double width)
+{
+    char tail[80];
+    if (s->npanels < s->nlayers)
+        snprintf(tail, sizeof tail, " (%zu of %zu layers shown, evenly chosen)", s->npanels, s->nlayers);
+    else
+        snprintf(tail, sizeof tail, " (%zu layer%s)", s->nlayers, s->nlayers == 1 ? "" : "s");
+    /* bytes, not characters: a UTF-8 title is estimated wider than it is */
+    double f = fit_font(strlen(s->title) + strlen(tail), width - 2 * PAD, 15);
+    lam_writer_printf(w, "<text class=\"title\" x=\"%.0f\" y=\"22\" font-family=\"sans-serif\" font-size=\"%.1f\" "
+                         "fill=\"#222\">",
+                      PAD, f);
+    lam_esc_write(w, s->title, LAM_ESC_XML);
+    lam_writer_printf(w, "%s</text>\n", tail);
+}
+
+/* A panel's caption's two lines (svg.h); returns the longer's length. */
+static size_t caption_lines(const lam_svg *s, size_t k, char l1[64], char l2[128])
+{
+    const panel *p = &s->panels[k];
+    size_t n1 = (size_t)snprintf(l1, 64, "layer %zu  h=%.4g", s->wanted[k] + 1, p->cut);
+    size_t n2 = (size_t)snprintf(l2, 128, "(%zu contour%s", p->ncontours, p->ncontours == 1 ? "" : "s");
+    if (p->vec) n2 += (size_t)snprintf(l2 + n2, 128 - n2, ", %zu vector%s", p->nvec, p->nvec == 1 ? "" : "s");
+    if (p->vec && p->ndrawn < p->nvec) n2 += (size_t)snprintf(l2 + n2, 128 - n2, ", %zu drawn", p->ndrawn);
+    n2 += (size_t)snprintf(l2 + n2, 128 - n2, ")");
+    return n1 > n2 ? n1 : n2;
+}
+
+/* The captions' font size: the largest at which every panel's longer line
+ * fits its cell (one size for the sheet, so the captions read alike). */
+static double caption_font(const lam_svg *s)
+{
+    size_t most = 0;
+    for (size_t k = 0; k < s->npanels; k++) {
+        char l1[64], l2[128];
+        size_t n = caption_lines(s, k, l1, l2);
+        if (n > most) most = n;
+    }
+    return fit_font(most, PANEL - 2 * LAM_SVG_CAPTION_MARGIN, LAM_SVG_CAPTION_FONT);
+}
+
+/* A panel's caption at font size f: two lines below its drawing. */
+static void write_caption(const lam_svg *s, lam_writer *w, size_t k, double f)
+{
+    char l1[64], l2[128];
+    caption_lines(s, k, l1, l2);
+    double y1 = PANEL + LAM_SVG_CAPTION_MARGIN + f, y2 = y1 + 1.3 * f;
+    lam_writer_printf(w,
+                      "<g class=\"caption\" font-family=\"sans-serif\" font-size=\"%.1f\" fill=\"#222\">"
+                      "<text x=\"%d\" y=\"%.2f\">%s</text><text x=\"%d\" y=\"%.2f\">%s</text></g>\n",
+                      f, LAM_SVG_CAPTION_MARGIN, y1, l1, LAM_SVG_CAPTION_MARGIN, y2, l2);
+}
+
+/* A panel: its frame, the section, the holes' outlines, the scan paths and
+ * the marks, clipped to the frame (the caption's band stays its own), then
+ * the caption. */
+static void write_panel(const lam_svg *s, lam_writer *w, size_t k, double x, double y, double font)
+{
+    const panel *p = &s->panels[k];
+    lam_writer_printf(w,
+                      "<g transform=\"translate(%.0f %.0f)\">\n"
+                      "<rect width=\"%.0f\" height=\"%.0f\" fill=\"#ffffff\" stroke=\"#bbbbbb\"/>\n"
+                      "<g class=\"drawing\" clip-path=\"url(#cell)\">\n",
+                      x, y, PANEL, PANEL);
+    const char *holes = p->path ? strchr(p->path, '|') : NULL;
+    int nsec = p->path ? (int)(holes ? (size_t)(holes - p->path) : strlen(p->path)) : 0;
+    if (nsec)
+        lam_writer_printf(w,
+                          "<path class=\"section\" transform=\"translate(%.0f %.0f)\" fill=\"%s\" "
+                          "fill-rule=\"evenodd\" stroke=\"" SOLID_LINE "\" stroke-width=\"0.5\" d=\"%.*s\"/>\n",
+                          PAD, PAD, s->vectors ? TINT : FILL, nsec, p->path);
+    if (holes && holes[1])
+        lam_writer_printf(w,
+                          "<path class=\"hole\" transform=\"translate(%.0f %.0f)\" fill=\"none\" "
+                          "stroke=\"" HOLE_LINE "\" stroke-width=\"0.8\" d=\"%s\"/>\n",
+                          PAD, PAD, holes + 1);
+    if (p->vec)
+        lam_writer_printf(w,
+                          "<g class=\"scan\" transform=\"translate(%.0f %.0f)\" fill=\"none\" stroke-width=\"0.8\" "
+                          "stroke-linecap=\"round\">\n%s</g>\n",
+                          PAD, PAD, p->vec);
+    double sc = scale_of(s);
+    for (size_t i = 0; i < p->nmarks; i++)
+        lam_writer_printf(w, "<circle cx=\"%.2f\" cy=\"%.2f\" r=\"5\" fill=\"none\" stroke=\"#d62728\" "
+                             "stroke-width=\"2\"/>\n",
+                          PAD + (p->marks[2 * i] - s->box[0]) * sc, PAD + (s->box[3] - p->marks[2 * i + 1]) * sc);
+    lam_writer_printf(w, "</g>\n");
+    write_caption(s, w, k, font);
+    lam_writer_printf(w, "</g>\n");
 }
 
 int lam_svg_write(const lam_svg *s, lam_writer *w)
 {
     size_t np = s->npanels ? s->npanels : 1;
     size_t cols = (size_t)ceil(sqrt((double)np));
-    if (s->vectors && cols < 2) cols = 2; /* room for the legend */
     size_t rows = (np + cols - 1) / cols;
-    double cw = PANEL + PAD, ch = PANEL + LABEL + PAD, top = 34;
-    double width = PAD + cols * cw, height = top + rows * ch + FOOT;
+    double cw = PANEL + PAD, ch = PANEL + LABEL + PAD;
+    double width = PAD + (double)cols * cw, height = TOP + (double)rows * ch + FOOT + (s->thinned ? NOTE : 0);
+    double fr = footer_of(s).right + PAD;
+    if (width < fr) width = ceil(fr); /* room for the scale bar's label and the legend */
     lam_writer_printf(w,
                       "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
                       "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%.0f\" height=\"%.0f\" "
                       "viewBox=\"0 0 %.0f %.0f\">\n"
-                      "<rect width=\"100%%\" height=\"100%%\" fill=\"#ffffff\"/>\n"
-                      "<text x=\"%.0f\" y=\"22\" font-family=\"sans-serif\" font-size=\"15\" fill=\"#222\">",
-                      width, height, width, height, PAD);
-    lam_esc_write(w, s->title, LAM_ESC_XML);
-    if (s->npanels < s->nlayers)
-        lam_writer_printf(w, " (%zu of %zu layers shown, evenly chosen)", s->npanels, s->nlayers);
-    else
-        lam_writer_printf(w, " (%zu layer%s)", s->nlayers, s->nlayers == 1 ? "" : "s");
-    lam_writer_printf(w, "</text>\n");
-    for (size_t k = 0; k < s->npanels; k++) {
-        const panel *p = &s->panels[k];
-        double x = PAD + (double)(k % cols) * cw, y = top + (double)(k / cols) * ch;
-        lam_writer_printf(w,
-                          "<g transform=\"translate(%.0f %.0f)\">\n"
-                          "<rect width=\"%.0f\" height=\"%.0f\" fill=\"#ffffff\" stroke=\"#bbbbbb\"/>\n",
-                          x, y, PANEL, PANEL);
-        const char *holes = p->path ? strchr(p->path, '|') : NULL;
-        int nsec = p->path ? (int)(holes ? (size_t)(holes - p->path) : strlen(p->path)) : 0;
-        if (nsec)
-            lam_writer_printf(w,
-                              "<path class=\"section\" transform=\"translate(%.0f %.0f)\" fill=\"%s\" "
-                              "fill-rule=\"evenodd\" stroke=\"" SOLID_LINE "\" stroke-width=\"0.5\" d=\"%.*s\"/>\n",
-                              PAD, PAD, s->vectors ? TINT : FILL, nsec, p->path);
-        if (holes && holes[1])
-            lam_writer_printf(w,
-                              "<path class=\"hole\" transform=\"translate(%.0f %.0f)\" fill=\"none\" "
-                              "stroke=\"" HOLE_LINE "\" stroke-width=\"0.8\" d=\"%s\"/>\n",
-                              PAD, PAD, holes + 1);
-        if (p->vec)
-            lam_writer_printf(w,
-                              "<g class=\"scan\" transform=\"translate(%.0f %.0f)\" fill=\"none\" stroke-width=\"0.8\" "
-                              "stroke-linecap=\"round\">\n%s</g>\n",
-                              PAD, PAD, p->vec);
-        double sc = scale_of(s);
-        for (size_t i = 0; i < p->nmarks; i++)
-            lam_writer_printf(w, "<circle cx=\"%.2f\" cy=\"%.2f\" r=\"5\" fill=\"none\" stroke=\"#d62728\" "
-                                 "stroke-width=\"2\"/>\n",
-                              PAD + (p->marks[2 * i] - s->box[0]) * sc, PAD + (s->box[3] - p->marks[2 * i + 1]) * sc);
-        lam_writer_printf(w,
-                          "<text x=\"2\" y=\"%.0f\" font-family=\"sans-serif\" font-size=\"12\" fill=\"#222\">"
-                          "layer %zu  h=%.4g  (%zu contour%s",
-                          PANEL + 14, s->wanted[k] + 1, p->cut, p->ncontours, p->ncontours == 1 ? "" : "s");
-        if (p->vec) lam_writer_printf(w, ", %zu vector%s", p->nvec, p->nvec == 1 ? "" : "s");
-        lam_writer_printf(w, ")</text>\n</g>\n");
-    }
-    write_footer(s, w, top + rows * ch);
+                      "<defs><clipPath id=\"cell\"><rect width=\"%.0f\" height=\"%.0f\"/></clipPath></defs>\n"
+                      "<rect width=\"100%%\" height=\"100%%\" fill=\"#ffffff\"/>\n",
+                      width, height, width, height, PANEL, PANEL);
+    write_title(s, w, width);
+    double font = caption_font(s);
+    for (size_t k = 0; k < s->npanels; k++)
+        write_panel(s, w, k, PAD + (double)(k % cols) * cw, TOP + (double)(k / cols) * ch, font);
+    write_footer(s, w, TOP + (double)rows * ch, width);
     return lam_writer_printf(w, "</svg>\n");
 }
 
@@ -288,9 +393,7 @@ static void order_colour(double t, char out[8])
 static int sv_begin(void *ctx, const lam_job_info *job)
 {
     lam_svg *s = ctx;
-    free(s->units);
-    s->units = job->units && job->units[0] ? strdup(job->units) : NULL;
-    return job->units && job->units[0] && !s->units ? lam_error_nomem(s->err, "drawing the scale bar") : LAM_OK;
+    return lam_svg_set_units(s, job->units, s->err);
 }
 
 static int sv_layer(void *ctx, const lam_layer_info *li)
@@ -318,8 +421,63 @@ static int sv_vector(void *ctx, const lam_vec *v)
     return LAM_OK;
 }
 
-/* One element per vector (class: its kind), in the layer's order; the
- * edges of a contour pass, one after the other, make one path. */
+/* Which of the layer's vectors its panel draws (svg.h): all of them up to
+ * LAM_SVG_CELL_VECTORS; past it no travel or jump, every contour edge when
+ * they are at most half of it (*contours set) else none, and every
+ * `stride`-th other vector (the first, then one in `stride`), so that at
+ * most LAM_SVG_CELL_VECTORS are drawn. */
+static size_t thin_stride(const lam_svg *s, int *contours)
+{
+    size_t nc = 0, nother = 0;
+    for (size_t i = 0; i < s->nrv; i++) {
+        if (!s->rv[i].exposed) continue;
+        if (!strcmp(s->rv[i].kind, "contour")) nc++;
+        else nother++;
+    }
+    *contours = 2 * nc <= LAM_SVG_CELL_VECTORS;
+    if (s->nrv <= LAM_SVG_CELL_VECTORS) return 1;
+    size_t room = *contours ? LAM_SVG_CELL_VECTORS - nc : LAM_SVG_CELL_VECTORS;
+    return nother > room ? (nother + room - 1) / room : 1;
+}
+
+/* Vector i (and the contour edges that continue it, joined into one path)
+ * as an element; returns the last vector's index and adds the vectors
+ * drawn to *drawn. */
+static size_t write_vector(const lam_svg *s, lam_writer *w, size_t i, size_t *drawn)
+{
+    double sc = scale_of(s);
+#define X(p) (((p)[0] - s->box[0]) * sc)
+#define Y(p) ((s->box[3] - (p)[1]) * sc)
+    const rvec *r = &s->rv[i];
+    char col[8];
+    order_colour(s->nrv > 1 ? (double)i / (double)(s->nrv - 1) : 0, col);
+    lam_writer_write(w, "<path class=\"", 13);
+    lam_esc_write(w, r->kind, LAM_ESC_XML);
+    (*drawn)++;
+    if (!r->exposed) {
+        lam_writer_printf(w, "\" stroke=\"" TRAVEL "\" stroke-dasharray=\"2 1.5\" d=\"M%.2f %.2fL%.2f %.2f\"/>\n",
+                          X(r->a), Y(r->a), X(r->b), Y(r->b));
+        return i;
+    }
+    lam_writer_printf(w, "\" stroke=\"%s\" d=\"M%.2f %.2fL%.2f %.2f", col, X(r->a), Y(r->a), X(r->b), Y(r->b));
+    double lx = X(r->b), ly = Y(r->b);
+    while (!strcmp(r->kind, "contour") && i + 1 < s->nrv && !strcmp(s->rv[i + 1].kind, "contour") &&
+           s->rv[i + 1].a[0] == r->b[0] && s->rv[i + 1].a[1] == r->b[1]) {
+        r = &s->rv[++i];
+        (*drawn)++;
+        /* a point the panel cannot tell from the last one drawn is left out */
+        if (fabs(X(r->b) - lx) < MIN_STEP && fabs(Y(r->b) - ly) < MIN_STEP) continue;
+        lam_writer_printf(w, "L%.2f %.2f", X(r->b), Y(r->b));
+        lx = X(r->b), ly = Y(r->b);
+    }
+#undef X
+#undef Y
+    lam_writer_printf(w, "\"/>\n");
+    return i;
+}
+
+/* One element per vector drawn (class: its kind), in the layer's order;
+ * the edges of a contour pass, one after the other, make one path. */
 static int sv_layer_end(void *ctx, const lam_layer_info *li, const lam_vec_stats *st)
 {
     (void)li;
@@ -328,36 +486,24 @@ static int sv_layer_end(void *ctx, const lam_layer_info *li, const lam_vec_stats
     lam_writer *w;
     int rc = lam_writer_memory(&w, s->err);
     if (rc) return rc;
-    double sc = scale_of(s);
-#define X(p) (((p)[0] - s->box[0]) * sc)
-#define Y(p) ((s->box[3] - (p)[1]) * sc)
+    int contours;
+    size_t drawn = 0, other = 0, stride = thin_stride(s, &contours);
+    int thin = s->nrv > LAM_SVG_CELL_VECTORS;
     for (size_t i = 0; i < s->nrv; i++) {
         const rvec *r = &s->rv[i];
-        char col[8];
-        order_colour(s->nrv > 1 ? (double)i / (double)(s->nrv - 1) : 0, col);
-        lam_writer_write(w, "<path class=\"", 13);
-        lam_esc_write(w, r->kind, LAM_ESC_XML);
-        if (!r->exposed)
-            lam_writer_printf(w, "\" stroke=\"" TRAVEL "\" stroke-dasharray=\"2 1.5\" d=\"M%.2f %.2fL%.2f %.2f\"/>\n",
-                              X(r->a), Y(r->a), X(r->b), Y(r->b));
-        else {
-            lam_writer_printf(w, "\" stroke=\"%s\" d=\"M%.2f %.2fL%.2f %.2f", col, X(r->a), Y(r->a), X(r->b), Y(r->b));
-            while (!strcmp(r->kind, "contour") && i + 1 < s->nrv && !strcmp(s->rv[i + 1].kind, "contour") &&
-                   s->rv[i + 1].a[0] == r->b[0] && s->rv[i + 1].a[1] == r->b[1]) {
-                r = &s->rv[++i];
-                lam_writer_printf(w, "L%.2f %.2f", X(r->b), Y(r->b));
-            }
-            lam_writer_printf(w, "\"/>\n");
-        }
+        int contour = !strcmp(r->kind, "contour");
+        if (thin && (!r->exposed || (contour && !contours))) continue;
+        if (thin && !contour && other++ % stride) continue;
+        i = write_vector(s, w, i, &drawn);
     }
-#undef X
-#undef Y
     panel *p = &s->panels[s->cur];
     free(p->vec);
     p->vec = NULL;
     size_t len;
     rc = lam_writer_take(w, &p->vec, &len, s->err);
     p->nvec = st->vectors;
+    p->ndrawn = thin ? drawn : p->nvec;
+    if (thin) s->thinned = 1;
     return rc;
 }
 

@@ -181,7 +181,8 @@ int lam_program_costs(const struct lam_profile *p, const lam_job_info *job, lam_
  * the stage starting at the model origin in the plane of the first layer
  * planned, cut height cut0. f (the run's frame: always set), label (NULL:
  * "part") and model (the model's path, or NULL) are borrowed, as o's
- * strings. */
+ * strings. SLS: also the exposures of the regions the plan can make (the
+ * JSON's job.exposure), from o's scan settings. */
 void lam_job_init(lam_job_info *job, const lam_plan_opts *o, size_t layers, const double bbox[6], double cut0,
                   const lam_frame *f, const char *label, const char *model);
 

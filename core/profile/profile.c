@@ -348,6 +348,23 @@ static void keys_in(const char *section, keyset *ks)
 
 /* Check the keys of mapping m: scalars, known (names[0..n)), no duplicates.
  * where: "" for the top level, else "raster" / "dialect". */
+/* names, comma-separated, into out (size bytes, sized so the message
+ * around it fits a lam_error): when they do not all fit, whole names only
+ * and "and N more (lamina machines --keys)", never a name cut short. */
+static void key_list(const char *const *names, size_t nn, char *out, size_t size)
+{
+    static const char more[] = ", and %zu more (lamina machines --keys)";
+    size_t len = 0, j = 0;
+    out[0] = '\0';
+    for (; j < nn; j++) {
+        size_t need = strlen(names[j]) + (j ? 2 : 0), room = size - len - 1;
+        /* room for this name and, unless it is the last, the tail */
+        if (need > room || (j + 1 < nn && need + sizeof more + 8 > room)) break;
+        len += (size_t)snprintf(out + len, size - len, "%s%s", j ? ", " : "", names[j]);
+    }
+    if (j < nn) snprintf(out + len, size - len, more, nn - j);
+}
+
 static int check_keys(const src *s, const yaml_node_t *m, const char *where, const char *const *names, size_t nn)
 {
     for (yaml_node_pair_t *pr = m->data.mapping.pairs.start; pr < m->data.mapping.pairs.top; pr++) {
@@ -359,11 +376,8 @@ static int check_keys(const src *s, const yaml_node_t *m, const char *where, con
         size_t i = 0;
         while (i < nn && strcmp(names[i], key) != 0) i++;
         if (i == nn) {
-            char allowed[1200] = "";
-            for (size_t j = 0; j < nn && strlen(allowed) + strlen(names[j]) + 3 < sizeof allowed; j++) {
-                if (j) strcat(allowed, ", ");
-                strcat(allowed, names[j]);
-            }
+            char allowed[700];
+            key_list(names, nn, allowed, sizeof allowed);
             const char *best = lam_key_nearest(key, names, nn);
             char hint[80] = "";
             if (best) snprintf(hint, sizeof hint, "did you mean '%s'? ", best);

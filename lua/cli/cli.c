@@ -3,6 +3,7 @@
 #include "dialect.h"
 #include "fmt.h"
 #include "model.h"
+#include "planner.h"
 #include "pool.h"
 #include "svg.h"
 #include "writer.h"
@@ -97,11 +98,12 @@ int cli_output_check(const char *opt, const char *path, lam_error *err)
     return path && strcmp(path, "-") ? name_option(opt, path, lam_writer_check(path, err), err) : LAM_OK;
 }
 
-int cli_save_svg(const lam_svg *svg, const char *path, lam_error *err)
+int cli_save_svg(const lam_svg *svg, const char *path, unsigned long long max_output, lam_error *err)
 {
     lam_writer *w;
     int rc = cli_writer("--svg", path, &w, err);
     if (rc) return rc;
+    lam_writer_set_limit(w, max_output ? max_output : LAM_DEFAULT_MAX_OUTPUT);
     lam_svg_write(svg, w);
     return lam_writer_commit(w, err);
 }

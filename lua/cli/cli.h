@@ -49,9 +49,10 @@ int cli_output_check(const char *opt, const char *path, lam_error *err);
  * there: LAM_EUSAGE when it was sent (> or >>) to a file the command read. */
 int cli_stdout_check(lam_error *err);
 
-/* Write svg to an output option's path (cli_writer): whole or not at all. */
+/* Write svg to an output option's path (cli_writer): whole or not at all,
+ * and at most max_output bytes (--max-output; 0: LAM_DEFAULT_MAX_OUTPUT). */
 struct lam_svg;
-int cli_save_svg(const struct lam_svg *svg, const char *path, lam_error *err);
+int cli_save_svg(const struct lam_svg *svg, const char *path, unsigned long long max_output, lam_error *err);
 
 int cmd_info(int argc, char **argv);
 int cmd_join(int argc, char **argv);

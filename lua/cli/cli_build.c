@@ -199,10 +199,13 @@ static int commit(lam_writer **w, lam_error *err)
 
 static int commit_outputs(bjob *j)
 {
-    int rc = commit(&j->w, &j->err);
+    /* the sheet first: it is the one written only now, so the one that can
+     * still pass --max-output, and then no program is left either */
+    int rc = LAM_OK;
+    if (j->svg && cli_save_svg(j->svg, j->a.svg, j->a.max_output, &j->err)) rc = cli_fail_cmd("build", &j->err);
+    if (!rc) rc = commit(&j->w, &j->err);
     if (!rc) rc = commit(&j->jw, &j->err);
     if (!rc) rc = commit(&j->hw, &j->err);
-    if (!rc && j->svg && cli_save_svg(j->svg, j->a.svg, &j->err)) rc = cli_fail_cmd("build", &j->err);
     if (!rc && j->a.layout) rc = cli_build_layout(j->run, j->b->profile, j->a.layout, &j->err);
     return rc;
 }

@@ -23,7 +23,7 @@ static const char usage_text[] =
     "downward faces steeper than its max_overhang_deg (when the profile sets it).\n"
     "-a gives the build direction (default z). Exit 3 when any rule is violated.\n";
 
-static int draw(const args *a, lam_model *m, const lam_drc_result *res, lam_error *err)
+static int draw(const args *a, lam_model *m, const lam_drc_result *res, const char *units, lam_error *err)
 {
     lam_slicer *s = NULL;
     lam_svg *svg = NULL;
@@ -34,6 +34,7 @@ static int draw(const args *a, lam_model *m, const lam_drc_result *res, lam_erro
         char title[600];
         snprintf(title, sizeof title, "lamina check: %s (%zu violation%s ringed)", a->path, res->n, res->n == 1 ? "" : "s");
         rc = lam_svg_new(lam_slicer_count(s), box, title, &svg, err);
+        if (!rc) rc = lam_svg_set_units(svg, units, err); /* the scale bar's */
     }
     const lam_frame *f = s ? lam_slicer_frame(s) : NULL;
     const double *planes = s ? lam_slicer_planes(s) : NULL;
@@ -55,7 +56,7 @@ static int draw(const args *a, lam_model *m, const lam_drc_result *res, lam_erro
         rc = lam_svg_add(svg, L, err);
         lam_layer_free(L);
     }
-    if (!rc) rc = cli_save_svg(svg, a->svg, err);
+    if (!rc) rc = cli_save_svg(svg, a->svg, a->max_output, err);
     lam_svg_free(svg);
     lam_slicer_free(s);
     return rc;
@@ -164,7 +165,7 @@ int cmd_check(int argc, char **argv)
         goto done;
     }
     report(&a, m, prof, &o, &res);
-    if (a.svg && draw(&a, m, &res, &err)) {
+    if (a.svg && draw(&a, m, &res, prof->units, &err)) {
         rc = cli_fail_limit(&err, 0, CLI_RAISE_LAYERS);
         goto done;
     }

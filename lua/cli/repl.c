@@ -20,6 +20,10 @@
  *   fields and methods (complete.h) through the editor's
  *   rl_attempted_completion_function, when the library has it.
  *
+ * - A table result prints as lamina.show's summary of it (lua/lamina/show.lua:
+ *   sorted keys, depth, length and size limits); one with __tostring or
+ *   __name, and every other value, as print shows it.
+ *
  * Without a terminal on standard input there is no prompt and no banner:
  * statements are read line by line and values printed, so the loop can be
  * driven from a pipe. */
@@ -367,19 +371,68 @@ static int loadline(repl *r)
     return status;
 }
 
-/* Print the values from base on with the global print (__tostring). */
+/* ---- printing results ---------------------------------------------------- */
+
+#define SHOW_KEY "lamina.repl.show" /* registry: lamina.show's value function */
+
+/* Keep lamina.show.value for printing tables (lua/lamina/show.lua),
+ * required once when the prompt starts, so a script that changes require
+ * or package.path later does not change how results print. */
+static int load_show(lua_State *L)
+{
+    lua_getglobal(L, "require");
+    lua_pushliteral(L, "lamina.show");
+    lua_call(L, 1, 1);
+    lua_getfield(L, -1, "value");
+    luaL_checktype(L, -1, LUA_TFUNCTION);
+    lua_setfield(L, LUA_REGISTRYINDEX, SHOW_KEY);
+    return 0;
+}
+
+/* A table that has no text of its own: no __tostring, no __name (a layer
+ * list has both, and prints its summary through __tostring). */
+static int plain_table(lua_State *L, int i)
+{
+    if (lua_type(L, i) != LUA_TTABLE) return 0;
+    for (int k = 0; k < 2; k++) {
+        if (luaL_getmetafield(L, i, k ? "__name" : "__tostring") != LUA_TNIL) {
+            lua_pop(L, 1);
+            return 0;
+        }
+    }
+    return 1;
+}
+
+/* The results (the arguments) through the global print, as lua.c does,
+ * each plain table first turned into lamina.show's summary of it. */
+static int print_values(lua_State *L)
+{
+    int n = lua_gettop(L);
+    int show = lua_getfield(L, LUA_REGISTRYINDEX, SHOW_KEY) == LUA_TFUNCTION;
+    for (int i = 1; show && i <= n; i++) {
+        if (!plain_table(L, i)) continue;
+        lua_pushvalue(L, n + 1);
+        lua_pushvalue(L, i);
+        lua_call(L, 1, 1);
+        lua_replace(L, i);
+    }
+    lua_settop(L, n);
+    lua_getglobal(L, "print");
+    lua_insert(L, 1);
+    lua_call(L, n, 0);
+    return 0;
+}
+
+/* Print the values from base on; Ctrl-C interrupts it (a huge table). */
 static void print_results(repl *r)
 {
     lua_State *L = r->L;
     int n = lua_gettop(L) - r->base + 1;
     if (n <= 0) return;
     luaL_checkstack(L, LUA_MINSTACK, "too many results to print");
-    lua_getglobal(L, "print");
+    lua_pushcfunction(L, print_values);
     lua_insert(L, r->base);
-    if (lua_pcall(L, n, 0, 0) != LUA_OK) {
-        fprintf(stderr, "error calling 'print' (%s)\n", lua_tostring(L, -1));
-        lua_pop(L, 1);
-    }
+    if (lam_cli_docall(L, n, 0) != LUA_OK) lam_cli_report(L, 0);
     fflush(stdout);
 }
 
@@ -392,6 +445,11 @@ static int repl_loop(lua_State *L)
     r.base = lua_gettop(L) + 1;
     r.tty = isatty(STDIN_FILENO);
     lam_help_open(L);
+    lua_pushcfunction(L, load_show);
+    if (lua_pcall(L, 0, 0, 0) != LUA_OK) { /* tables then print as print shows them */
+        fprintf(stderr, "lamina repl: lamina.show did not load (%s)\n", lua_tostring(L, -1));
+        lua_pop(L, 1);
+    }
     complete_L = L;
     if (r.tty) load_editor(&r.ed);
     struct sigaction sa, old;

@@ -200,3 +200,7 @@ bash "$here/scaling.sh" "$LAMINA"
 # Build plates (issue 25): a plate of 25 parts against the parts alone, peak
 # memory against parts x layers, hatch vectors a second: tests/bench/plate.sh.
 bash "$here/plate.sh" "$LAMINA"
+
+# The JSON writer against the program writer, per byte (issue 26):
+# tests/bench/json_speed.sh.
+bash "$here/json_speed.sh" "$LAMINA"

@@ -5,7 +5,9 @@
 # JSON of the same run, by this test's own Python (summary counts and
 # lengths, layers and totals), or read from the machine profile as `lamina
 # machines --show` and the job file give it (exposures); the default output
-# is byte for byte the one without the options.
+# is byte for byte the one without the options, and its numbers are the
+# shortest that read back as Python's repr writes them (the JSON writer's
+# own number formatting, issue 26).
 . "$(dirname "$0")/lib.sh"
 
 SCHEMA="$TESTS/../schema/lamina-run-1.schema.json"
@@ -122,6 +124,18 @@ def build_exposure(show, job, run, hatch):
     listed = {(e["style"], e["region"]) for e in got}
     assert used == listed, "vectors use %s, listed %s" % (sorted(used), sorted(listed))
 
+def shortest(run, least):
+    """Every number of run's text with a point or an exponent is the
+    shortest that reads back as its double, as Python's repr writes it
+    (David Gay's algorithm: an independent formatter); at least `least`."""
+    import re
+    n = long = 0
+    for t in re.findall(r'(?<![\w."])-?\d+\.\d+(?:e[-+]\d+)?|(?<![\w."])-?\d+e[-+]\d+', open(run).read()):
+        n += 1
+        long += len(re.sub(r'^[-0.]*|e.*$|\.', '', t)) >= 16
+        assert repr(float(t)) == t, "%s is not %s" % (t, repr(float(t)))
+    assert n >= int(least) and long >= n // 4, "only %d numbers, %d of 16 or 17 digits" % (n, long)
+
 try:
     globals()[sys.argv[1]](*sys.argv[2:])
 except AssertionError as e:
@@ -174,6 +188,8 @@ is "$(jq -c '[.layers[].index, (.layers[0] | has("summary"), has("vectors"))]' b
 
 run "${CHECK[@]}" valid "$SCHEMA" full.json sum.json none.json bare.json part.json both.json
 is "$RC $ERR" "0 " "every one of them is valid against the schema"
+run "${CHECK[@]}" shortest full.json 20000
+is "$RC $OUT" "0 " "its numbers are the shortest that read back (hatch ends at 67 degrees: 16 and 17 digits)"
 run python3 "$TESTS/cli/jsoncheck.py" "$SCHEMA" full.json --cli full.cli
 is "$RC $OUT" "0 " "the default JSON still passes jsoncheck.py"
 

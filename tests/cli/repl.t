@@ -5,7 +5,9 @@
 # (readline), Ctrl-C interrupting a Lua loop and a long slice and
 # abandoning a line, errors, Ctrl-D, and plain `lamina` on a terminal;
 # help(x) (also checked through a pipe against lua/API.md itself), Tab
-# completion, and a layer list's summary.
+# completion, and a layer list's summary; table results printed as data
+# (lamina.show: fields sorted, depth, length and size bounds, cycles) and
+# errors that list the valid keys listing every one of them.
 #
 # Independent of the checkout's path and of line wrapping: every program
 # runs in the test's own folder, where `models` is a link to the test
@@ -181,6 +183,15 @@ wait_for r '^12[[:space:]]+12$'
 ok $? "and is still a list"
 prompt r
 
+# a table result prints its fields (lua/API.md's plan.time example: one
+# layer, 8 hatch lines of 2 at speed 2, contour 8 at speed 4, 5 s recoat)
+type_line r 'p = lamina.machine("cli-ascii"):plan(c:slice{width = 2}, {hatch_strategy = "lines", hatch_distance = 0.25, hatch_angle = 0, speed = 2, ["contour.speed"] = 4, jump_speed = 10, jump_delay = 0.01, recoat_time = 5})'
+prompt r
+type_line r 'p.time'
+wait_for r 'total = 15\.2675' && wait_for r 'vectors = 8' && ! screen r | grep -q 'table: 0x'
+rc=$?; ok $rc "a table result (p.time) prints its fields on the terminal"; show_on_failure $rc r
+prompt r
+
 if [ $editing -eq 1 ]; then
     # Tab completes globals' fields, and methods of a userdata after ':'
     tm send-keys -t r -l 'lamina.lo'
@@ -287,5 +298,94 @@ like "$(cat "$TMP/help.out")" '^help: .bbox. is in model:bbox, layer:bbox, conto
 like "$(cat "$TMP/help.out")" '^Conventions$' "help of a topic"
 like "$(cat "$TMP/help.out")" "^help: no help for 'nothing_like_it'" "help of nothing known says so"
 like "$(cat "$TMP/help.out")" '^  .*plan:layer' "help() lists the topics"
+
+# ---- tables print as data (lamina.show), through a pipe ------------------
+# Each case prints "== NAME" first; section NAME is what came after it.
+cat >"$TMP/show.in" <<'EOF'
+c = lamina.load("models/thesis_cube.ug")
+p = lamina.machine("cli-ascii"):plan(c:slice{width = 2}, {hatch_strategy = "lines", hatch_distance = 0.25, hatch_angle = 0, speed = 2, ["contour.speed"] = 4, jump_speed = 10, jump_delay = 0.01, recoat_time = 5})
+print("== time")
+p.time
+q = lamina.machine("cli-ascii"):plan(c:slice{width = 0.25}, {hatch_strategy = "lines", hatch_distance = 0.5, hatch_angle = 0, layer_angle_increment = 0, hatch_order = "unidirectional"})
+print("== layer")
+q:layer(5)
+print("== nested")
+{a = {b = {c = {d = 1}}}}
+print("== long")
+(function() local t = {} for i = 1, 100 do t[i] = i end return t end)()
+print("== cycle")
+t = {name = "loop"} t.self = t t.list = {t}
+t
+print("== huge")
+h = {} for i = 1, 5000 do h["k" .. i] = {} for j = 1, 20 do h["k" .. i][j] = ("w"):rep(30) .. j end end
+h
+print("== huge_all")
+#require("lamina.show").value(h, {lines = math.huge, bytes = math.huge}):gsub("[^\n]", "") + 1
+print("== several")
+=p.time.vectors, {1, 2}, "plain"
+print("== named")
+setmetatable({}, {__name = "thing"})
+print("== end")
+EOF
+(cd "$TMP" && "$LAMINA" repl <"$TMP/show.in" >"$TMP/show.out" 2>"$TMP/show.err")
+is "$?" 0 "the table cases run through a pipe"
+[ -s "$TMP/show.err" ] && sed 's/^/#   err: /' "$TMP/show.err" | head -5
+case_out() { awk -v want="== $1" '/^== /{on = ($0 == want); next} on' "$TMP/show.out"; }
+# one line: the summary with its line breaks and indentation taken out
+flat() { tr '\n' ' ' | tr -s ' ' | sed 's/{ /{/g; s/ }/}/g; s/ $//'; }
+
+out=$(case_out time)
+# the values of API.md's example: jumps 0.125 + 7 x 0.25 at 10/s plus 8 x 0.01 s
+for kv in 'contours = 1' 'exposed = 24' 'exposure = 10' 'hatched = 16' 'jumped = 1.875' 'jumps = 0.2675' \
+          'layers = {15.2675}' 'recoat = 5' 'total = 15.2675' 'vectors = 8'; do
+    printf '%s' "$out" | grep -qF -- "$kv" || { echo "# p.time lacks '$kv'"; false; } || break
+done
+ok $? "p.time prints its fields and values"
+keys=$(printf '%s' "$out" | grep -oE '[a-z_]+ =' | tr -d ' =' | tr '\n' ' ')
+is "$keys" "contours exposed exposure hatched jumped jumps layers recoat total vectors " "p.time's keys are sorted"
+like "$out" '\A\{' "p.time: a table's summary, not table: 0x..."
+
+out=$(case_out layer | flat)
+# layer 5 of 8 (2 tall, width 0.25): a 2 x 2 square, one contour of 4
+# points (8 numbers and kind, depth, order: 11 entries) and 4 hatch lines
+# 0.5 apart ({u0, v0, u1, v1, kind, order}: 6; the angle 0 on every
+# layer), deposit 8 + 4 x 2
+like "$out" 'index = 5[,}]' "p:layer(5) prints its index"
+like "$out" 'deposit = 16[,}]' "and its deposit"
+like "$out" 'contours = \{\{\.\.\.11\}\}' "its contours, deeper than two levels, as {...N}"
+like "$out" 'vectors = \{\{\.\.\.6\}, \{\.\.\.6\}, \{\.\.\.6\}, \{\.\.\.6\}\}' "its vectors the same way"
+is "$(case_out nested)" "{a = {b = {...1}}}" "a nested table is cut at depth 2, with the count"
+is "$(case_out long | flat)" "{$(seq -s ', ' 1 20), ... (80 more)}" "a long array: 20 items and the count of the rest"
+is "$(case_out cycle)" '{list = {<cycle>}, name = "loop", self = <cycle>}' "a cyclic table prints, cycles marked"
+out=$(case_out huge)
+n=$(printf '%s\n' "$out" | wc -l)
+bytes=$(printf '%s\n' "$out" | wc -c)
+[ "$n" -le 40 ] && [ "$bytes" -le 4096 ]
+ok $? "a huge table prints at most 40 lines and 4 KB ($n lines, $bytes bytes)"
+left=$(printf '%s\n' "$out" | tail -1 | sed -n 's/^\.\.\. (\([0-9]*\) more lines)$/\1/p')
+all=$(case_out huge_all)
+is "$((n - 1 + ${left:-0}))" "$all" "and its last line counts the lines left out"
+like "$(printf '%s\n' "$out" | sed -n 2p)" '^  k1 = \{$' "the huge table's keys come sorted"
+is "$(case_out several)" "8	{1, 2}	plain" "several results: a table as data, the others as print shows them"
+like "$(case_out named)" '^thing: 0x' "a table with __name prints as tostring makes it"
+
+# ---- errors that list the valid keys list all of them -------------------
+# override's keys: those lamina.machine_keys() documents as not fixed and
+# not loader-only, but lists (gas_flow, lasers), which override refuses
+want=$("$LAMINA" -e 'for _, k in ipairs(lamina.machine_keys()) do
+  if not k.fixed and not k.loader and k.type ~= "numbers" and k.type ~= "lasers" then print(k.lua) end end' | sort)
+printf 'lamina.machine("cli-ascii"):override{speeeed = 1}\n' | "$LAMINA" repl >"$TMP/keys.out" 2>&1
+msg=$(head -1 "$TMP/keys.out")
+like "$msg" "options: [a-z_.]+(, [a-z_.]+)*\)\)$" "override's unknown-key error ends after its last key"
+got=$(printf '%s' "$msg" | sed -n 's/.*options: \(.*\)))$/\1/p' | tr -d ' ' | tr ',' '\n' | sort)
+is "$got" "$want" "and lists every key override takes, each whole ($(printf '%s\n' "$want" | wc -l) keys)"
+# a profile's unknown key: the top-level keys of lamina machines --keys's
+# table (its first table; a dotted key's section once) and the alias it names
+want=$("$LAMINA" machines --keys | awk '/^$/ {exit} {print}' | sed -n 's/^| `\([^`]*\)`.*/\1/p' | sed 's/\..*//' |
+       awk '!s[$0]++'; "$LAMINA" machines --keys | awk '/^$/ {exit} {print}' | sed -n 's/.*Also `\([a-z_]*\)`.*/\1/p')
+printf 'name: x\nprocess: sls\nspot_width: 0.1\nnot_a_key: 1\n' >"$TMP/bad.yaml"
+msg=$("$LAMINA" -e "print(select(2, lamina.machine('$TMP/bad.yaml')))" 2>&1)
+got=$(printf '%s' "$msg" | sed -n 's/.*allowed: \(.*\))$/\1/p' | tr -d ' ' | tr ',' '\n' | sort)
+is "$got" "$(printf '%s\n' "$want" | sort)" "a profile's unknown-key error lists every top-level key"
 
 done_testing
