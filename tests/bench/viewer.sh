@@ -90,7 +90,7 @@ plate() {
                a, am, ac, b, bm, bc, (b / a - 1) * 100, (bc / ac - 1) * 100, b <= 1.3 * a ? "PASS" : "FAIL"
         printf "  peak memory %.1f MB without, %.1f MB with --html (medians of %d alternating runs, -j 2)\n", ak / 1024, bk / 1024, n }'
     opened "$work/b.html" "the plate's page"
-    rm -f "$work/a.cli" "$work/b.cli"
+    rm -f "$work/a.cli" "$work/b.cli" "$work/b.html"
 }
 
 # ---- (b) the gearwheel-sized job -------------------------------------------------
