@@ -5,10 +5,9 @@ written from that page's description, not from the encoder.
 
   viewercheck.py compare PAGE JSON  every layer's block against the --json twin of the
                                   same run: contours (solid, depth, points, inside the
-                                  head's box), vectors
-                                  (kind, order, attributes, from and to within half a
-                                  quantum in the layer plane, the jumps where the JSON
-                                  has them); the page's lamina-run element: valid JSON,
+                                  head's box), vectors (kind, order, attributes, from and
+                                  to within half a quantum in the layer plane, the jumps
+                                  where the JSON has them); the page's lamina-run element: valid JSON,
                                   contours left out, its job, totals and each layer's
                                   stats equal to the twin's, and each layer's vectors
                                   summarised: the summary's groups (kind, attributes,
