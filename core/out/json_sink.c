@@ -61,7 +61,7 @@ typedef struct js {
         size_t count;
         double length;
     } *groups;
-    size_t ngroups, cap_groups, last_group;
+    size_t ngroups, cap_groups, last_group, prev_group;
 } js;
 
 /* ---- numbers ------------------------------------------------------------------ */
@@ -521,7 +521,7 @@ static int j_layer(void *ctx, const lam_layer_info *li)
     size_t index = li->index + 1;
     s->contours += li->section ? li->section->ncontours : 0; /* the run's, written or not */
     s->skip = index < s->o.first || (s->o.last && index > s->o.last);
-    s->ngroups = s->last_group = 0;
+    s->ngroups = s->last_group = s->prev_group = 0;
     if (s->skip) return s->rc;
     put(s, s->written++ ? "," : "");
     line(s);
@@ -558,16 +558,22 @@ static void attrs_text(js *s, int kind, const lam_attrs *a)
         }
 }
 
+static int in_group(const struct group *g, const lam_vec *v)
+{
+    return g->kind == v->kind && !memcmp(&g->attrs, &v->attrs, sizeof v->attrs);
+}
+
 /* SUMMARY: the vector counted in its (kind, attributes) group; most
- * vectors are in the group of the one before. */
+ * vectors are in the group of the one before or the one before that (a
+ * hatching alternates jump, hatch, jump), so those two are tried first. */
 static void summarise(js *s, const lam_vec *v)
 {
     struct group *g = s->ngroups ? &s->groups[s->last_group] : NULL;
-    if (!g || g->kind != v->kind || memcmp(&g->attrs, &v->attrs, sizeof g->attrs)) {
-        g = NULL;
+    if (!g || !in_group(g, v)) {
+        size_t before = s->last_group;
+        g = s->ngroups && in_group(&s->groups[s->prev_group], v) ? &s->groups[s->prev_group] : NULL;
         for (size_t i = 0; i < s->ngroups && !g; i++)
-            if (s->groups[i].kind == v->kind && !memcmp(&s->groups[i].attrs, &v->attrs, sizeof v->attrs))
-                g = &s->groups[i];
+            if (in_group(&s->groups[i], v)) g = &s->groups[i];
         if (!g) {
             if (s->ngroups == s->cap_groups) {
                 size_t cap = s->cap_groups ? 2 * s->cap_groups : 16;
@@ -583,11 +589,10 @@ static void summarise(js *s, const lam_vec *v)
             *g = (struct group){ .kind = v->kind, .attrs = v->attrs };
         }
         s->last_group = (size_t)(g - s->groups);
+        s->prev_group = before;
     }
-    /* the length as vstream.c measures it for the layer's stats */
-    const double d[3] = { v->to[0] - v->from[0], v->to[1] - v->from[1], v->to[2] - v->from[2] };
     g->count++;
-    g->length += sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    g->length += v->length; /* as vstream.c measures it for the layer's stats */
 }
 
 /* The plan's vectors come decoded by vstream.h, by the rules the SVG

@@ -27,16 +27,31 @@ double lam_vblock_quantum(const char *units, const double box[4])
     return fit > q ? fit : q;
 }
 
-static void put_u(lam_vblock *b, lam_buf *to, unsigned long long x)
+/* A varint at q, which has room for 10 bytes; returns the byte after it. */
+static unsigned char *varint(unsigned char *q, unsigned long long x)
 {
-    unsigned char t[10];
-    size_t n = 0;
     while (x >= 0x80) {
-        t[n++] = (unsigned char)(x | 0x80);
+        *q++ = (unsigned char)(x | 0x80);
         x >>= 7;
     }
-    t[n++] = (unsigned char)x;
-    if (lam_buf_append(to, t, n)) b->failed = 1;
+    *q++ = (unsigned char)x;
+    return q;
+}
+
+/* Room for n more bytes at the end of to, or NULL (b failed). */
+static unsigned char *room(lam_vblock *b, lam_buf *to, size_t n)
+{
+    if (lam_buf_reserve(to, n)) {
+        b->failed = 1;
+        return NULL;
+    }
+    return (unsigned char *)to->data + to->len;
+}
+
+static void put_u(lam_vblock *b, lam_buf *to, unsigned long long x)
+{
+    unsigned char *q = room(b, to, 10);
+    if (q) to->len = (size_t)(varint(q, x) - (unsigned char *)to->data);
 }
 
 static unsigned long long zigzag(long long s)
@@ -49,18 +64,29 @@ static long long quant(const lam_vblock *b, double x)
     double q = x / b->quantum;
     if (!(q > -(double)LAM_VBLOCK_MAX_Q)) return isnan(q) ? 0 : -LAM_VBLOCK_MAX_Q;
     if (q > (double)LAM_VBLOCK_MAX_Q) return LAM_VBLOCK_MAX_Q;
-    return llround(q);
+    /* llround's rounding (half away from zero), without its call: q - r is
+     * exact below 2^52 */
+    long long r = (long long)q;
+    double f = q - (double)r;
+    return r + (f >= 0.5) - (f <= -0.5);
 }
 
-/* The point (u, v) as its difference from the cursor, which moves there;
- * the first number's low bit may carry a flag (shift 1) or not (0). */
-static void put_point(lam_vblock *b, lam_buf *to, double u, double v, int shift, int flag)
+/* The point (u, v) at q as its difference from the cursor, which moves
+ * there; the first number's low bit may carry a flag (shift 1) or not (0). */
+static unsigned char *point(lam_vblock *b, unsigned char *q, double u, double v, int shift, int flag)
 {
     long long qu = quant(b, u), qv = quant(b, v);
-    put_u(b, to, zigzag(qu - b->cu) << shift | (unsigned long long)flag);
-    put_u(b, to, zigzag(qv - b->cv));
+    q = varint(q, zigzag(qu - b->cu) << shift | (unsigned long long)flag);
+    q = varint(q, zigzag(qv - b->cv));
     b->cu = qu;
     b->cv = qv;
+    return q;
+}
+
+static void put_point(lam_vblock *b, lam_buf *to, double u, double v, int shift, int flag)
+{
+    unsigned char *q = room(b, to, 20);
+    if (q) to->len = (size_t)(point(b, q, u, v, shift, flag) - (unsigned char *)to->data);
 }
 
 void lam_vblock_contour(lam_vblock *b, const double *uv, size_t n, int solid, int depth)
@@ -112,8 +138,12 @@ void lam_vblock_vector(lam_vblock *b, const lam_vec *v)
     if (b->run_n && (v->kind != b->run_kind || row != b->run_row)) close_run(b);
     b->run_kind = v->kind;
     b->run_row = row;
-    put_point(b, &b->run, v->fuv[0], v->fuv[1], 1, b->jump);
-    put_point(b, &b->run, v->tuv[0], v->tuv[1], 0, 0);
+    /* both points in one reservation: this runs once a vector */
+    unsigned char *q = room(b, &b->run, 40);
+    if (q) {
+        q = point(b, q, v->fuv[0], v->fuv[1], 1, b->jump);
+        b->run.len = (size_t)(point(b, q, v->tuv[0], v->tuv[1], 0, 0) - (unsigned char *)b->run.data);
+    }
     b->jump = 0;
     b->run_n++;
 }

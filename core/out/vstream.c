@@ -27,12 +27,15 @@ static int emit(vstream *s, int kind, const lam_attrs *a, int always, const doub
     memcpy(s->puv, uv, sizeof s->puv);
     s->have_pos = 1;
     int exposed = lam_kind_exposed(kind);
-    double len = sqrt((v.to[0] - v.from[0]) * (v.to[0] - v.from[0]) + (v.to[1] - v.from[1]) * (v.to[1] - v.from[1]) +
-                      (v.to[2] - v.from[2]) * (v.to[2] - v.from[2]));
-    if (!exposed && !always && len == 0) return LAM_OK;
+    double l2 = (v.to[0] - v.from[0]) * (v.to[0] - v.from[0]) + (v.to[1] - v.from[1]) * (v.to[1] - v.from[1]) +
+                (v.to[2] - v.from[2]) * (v.to[2] - v.from[2]);
+    /* the test on the square: the square root (a long wait) is not on its path */
+    if (!exposed && !always && l2 == 0) return LAM_OK;
+    double len = sqrt(l2);
     v.kind = kind;
     v.attrs = *a;
     v.exposed = exposed;
+    v.length = len;
     v.order = ++s->order;
     s->st.vectors++;
     if (exposed) s->st.deposit_length += len;

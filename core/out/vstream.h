@@ -27,6 +27,7 @@ typedef struct lam_vec {
     double fuv[2], tuv[2];   /* the same in the layer frame */
     size_t order;            /* 1-based within the layer */
     int exposed;             /* 1 laser on / deposit, 0 travel or jump */
+    double length;           /* |to - from|, as the layer's stats add it */
 } lam_vec;
 
 /* A layer's figures, given at its end. */
