@@ -204,3 +204,7 @@ bash "$here/plate.sh" "$LAMINA"
 # The JSON writer against the program writer, per byte (issue 26):
 # tests/bench/json_speed.sh.
 bash "$here/json_speed.sh" "$LAMINA"
+
+# The viewer's page (issue 26): its size against the binary CLI, its write
+# time, and its opening in headless Chromium: tests/bench/viewer.sh.
+bash "$here/viewer.sh" "$LAMINA"
