@@ -6,55 +6,7 @@
 # hand-computed layer, and the CLI round trip.
 . "$TESTS/cli/lib.sh"
 export LAMINA_MACHINES="$M/machines"
-# hatchcheck.py in one Python for the whole test (a start costs more than
-# most checks, some 30 of them): each request runs the script afresh (runpy)
-# with its arguments, each ended by a NUL byte after their count on a line;
-# its standard output and error come back, then a line SERVE_END STATUS
-HC_SERVE='import contextlib, io, runpy, sys, traceback
-script, inp, out = sys.argv[1], sys.stdin.buffer, sys.stdout
-while True:
-    line = inp.readline()
-    if not line:
-        break
-    args = []
-    for _ in range(int(line)):
-        a = b""
-        while not a.endswith(b"\0"):
-            c = inp.read(1)
-            if not c:
-                sys.exit(0)
-            a += c
-        args.append(a[:-1].decode())
-    buf, rc = io.StringIO(), 0
-    sys.argv = [script] + args
-    try:
-        with contextlib.redirect_stdout(buf), contextlib.redirect_stderr(buf):
-            runpy.run_path(script, run_name="__main__")
-    except SystemExit as e:
-        if e.code is None or isinstance(e.code, int):
-            rc = e.code or 0
-        else:
-            buf.write(str(e.code) + "\n")
-            rc = 1
-    except Exception:
-        buf.write(traceback.format_exc())
-        rc = 1
-    text = buf.getvalue()
-    out.write(text + ("\n" if text and not text.endswith("\n") else "") + "\x1eSERVE_END %d\n" % rc)
-    out.flush()'
-coproc HC { exec python3 -c "$HC_SERVE" "$TESTS/cli/hatchcheck.py"; }
-CHECK() { # CHECK ARGS...: hatchcheck.py ARGS in the server; its output, its exit status
-    local line rc=1
-    printf '%s\n' "$#" >&"${HC[1]}" && printf '%s\0' "$@" >&"${HC[1]}" || return 1
-    while IFS= read -r line <&"${HC[0]}"; do
-        if [[ $line == $'\x1e'SERVE_END\ * ]]; then
-            rc=${line##* }
-            break
-        fi
-        printf '%s\n' "$line"
-    done
-    return "$rc"
-}
+CHECK() { python3 "$TESTS/cli/hatchcheck.py" "$@"; } # a function: the path may hold spaces
 
 # ---- golden programs: the thesis cube ([-1,1]^3), one layer cut at z = 0 ----
 # hatch distance 0.25 at 0 degrees: lines at y = (k + 1/2) 0.25, k = -4..3,
