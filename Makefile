@@ -237,11 +237,20 @@ $(BUILD)/tests/plugins/%.so: tests/plugins/%.c core/lamina_plugin.h tests/plugin
 	@mkdir -p $(dir $@)
 	$(CC) $(CPPFLAGS) $(CFLAGS) -fPIC -shared -o $@ $< $(LDFLAGS)
 
-# CHECK_TESTS: the test programs prove runs (all of them unless given)
+# CHECK_TESTS: the test programs prove runs (all of them unless given).
+# CHECK_JOBS=2 (CHECK_JOBS=1: one at a time): two streams side by side, each
+# test after the other within its stream. One stream is long_path.t, which
+# reruns every command-line test from another path, with the two tests that
+# make and install in the checkout itself (install.t, rock.t; long_path.t
+# runs them too, so they must never overlap it); the other is every other
+# test. The two are about as long (long_path.t is the command-line tests
+# once more), so the suite takes about half its serial time on two cores.
 CHECK_TESTS ?= $(UNIT_BIN) $(sort $(wildcard tests/cli/*.t)) tests/fuzz/fuzz.t
+CHECK_JOBS ?= 2
+CHECK_RULES := --rules='seq=tests/cli/{install,long_path,rock}.t' --rules='seq=**'
 check: all $(UNIT_BIN) $(TEST_PLUGIN_SO) $(FUZZ_BIN) man
 	LAMINA="$(CURDIR)/$(LAMINA)" TESTS="$(CURDIR)/tests" BUILD="$(CURDIR)/$(BUILD)" LAZY=$(LAZY) \
-	  prove --exec '' $(CHECK_TESTS)
+	  prove --exec '' -j$(CHECK_JOBS) $(CHECK_RULES) $(CHECK_TESTS)
 
 test: deps
 	@$(MAKE) --no-print-directory check

@@ -24,6 +24,9 @@ Commands:
   styles RUN.json PROG.cli SPEC... NAME:REGION=POWER/SPEED: the part's region
                                    uses that exposure (a name prefix: NAME_*)
   layout SVG RUN.json              one footprint and name per part, the fields
+  py CODE ARGS...                  run CODE (the test's own computations), sys.argv[1:] ARGS
+  serve                            the commands above from standard input, one
+                                   Python for a whole test (see serve())
 """
 import json
 import math
@@ -700,8 +703,8 @@ def layout(svg, run):
                 fail("layout: laser %d's field drawn at %r, expected %r" % (las["laser"], r, want))
 
 
-def main():
-    cmd, args = sys.argv[1], sys.argv[2:]
+def command(cmd, args):
+    """one command of the checker; its failures go to FAILS"""
     if cmd == "selftest":
         selftest()
     elif cmd == "stl":
@@ -731,13 +734,70 @@ def main():
         styles_cmd(load(args[0]), args[1], args[2:])
     elif cmd == "layout":
         layout(args[0], load(args[1]))
+    elif cmd == "py":  # py CODE ARGS...: a computation of the test's, sys.argv[1:] = ARGS
+        sys.argv = ["-c"] + args[1:]
+        exec(args[0], {"__name__": "__main__"})
     else:
         raise SystemExit("check_build.py: unknown command " + cmd)
+
+
+def report():
+    """print the failures; the exit status"""
     for f in FAILS[:20]:
         print(f)
     if len(FAILS) > 20:
         print("... and %d more" % (len(FAILS) - 20))
-    sys.exit(1 if FAILS else 0)
+    return 1 if FAILS else 0
+
+
+def serve():
+    """serve: the commands from standard input, one Python for the whole test
+    (a start costs more than most checks). A request is its argument count on
+    a line, then the arguments, each ended by a NUL byte; the answer is the
+    command's standard output, then a line SERVE_END followed by its exit
+    status (what one process per command would have printed and returned;
+    an exception's traceback goes to standard error, status 1)"""
+    import contextlib
+    import io
+    import traceback
+    inp, out = sys.stdin.buffer, sys.stdout
+    while True:
+        line = inp.readline()
+        if not line:
+            return
+        args = []
+        for _ in range(int(line)):
+            a = b""
+            while not a.endswith(b"\0"):
+                c = inp.read1(1) if hasattr(inp, "read1") else inp.read(1)
+                if not c:
+                    return
+                a += c
+            args.append(a[:-1].decode())
+        FAILS.clear()
+        buf = io.StringIO()
+        try:
+            with contextlib.redirect_stdout(buf):
+                command(args[0], args[1:])
+                rc = report()
+        except SystemExit as e:
+            rc = e.code if isinstance(e.code, int) else 1
+            if not isinstance(e.code, int) and e.code is not None:
+                sys.stderr.write(str(e.code) + "\n")
+        except Exception:
+            traceback.print_exc()
+            rc = 1
+        text = buf.getvalue()
+        out.write(text + ("" if text.endswith("\n") or not text else "\n") + "\x1eSERVE_END %d\n" % rc)
+        out.flush()
+
+
+def main():
+    cmd, args = sys.argv[1], sys.argv[2:]
+    if cmd == "serve":
+        return serve()
+    command(cmd, args)
+    sys.exit(report())
 
 
 if __name__ == "__main__":

@@ -12,28 +12,48 @@
 # errors point at their line and column. The jobs live in a folder with a
 # space in its name and lamina runs from another one (models are found
 # from the job's folder). Models are a few mm high at 0.5 mm layers, hatch
-# distance 1: every run takes well under a second.
+# distance 1: every run takes well under a second. The checker is one Python
+# for the whole test (check_build.py serve: a start cost more than most
+# checks, 0.2-0.35 s each, some 80 of them).
 . "$(dirname "$0")/lib.sh"
 
-CB=(python3 "$TESTS/build/check_build.py")
+coproc CBS { exec python3 "$TESTS/build/check_build.py" serve; }
+cb() { # cb COMMAND ARGS...: check_build.py COMMAND ARGS in the server; sets RC, OUT and ERR as run would
+    local line out=""
+    RC=1
+    printf '%s\n' "$#" >&"${CBS[1]}" && printf '%s\0' "$@" >&"${CBS[1]}" || { OUT="" ERR="no checker"; return; }
+    while IFS= read -r line <&"${CBS[0]}"; do
+        if [[ $line == $'\x1e'SERVE_END\ * ]]; then
+            RC=${line##* }
+            break
+        fi
+        out+=$line$'\n'
+    done
+    while [[ $out == *$'\n' ]]; do out=${out%$'\n'}; done
+    OUT=$out ERR=""
+}
+cbo() { # cbo COMMAND ARGS...: cb, its output on standard output (for $(...))
+    cb "$@"
+    printf '%s\n' "$OUT"
+}
 J="$TMP/job dir"
 mkdir -p "$J" "$TMP/cwd"
 cd "$TMP/cwd" || exit 1
 
-run "${CB[@]}" selftest
+cb selftest
 is "$RC $OUT" "0 " "checker: its geometry and time parsing on hand-worked cases"
 
-"${CB[@]}" stl cyl "$J/cyl.stl" 20 2      # 40 mm across, 48 sides, 4 layers
-"${CB[@]}" stl cyl "$J/tall.stl" 8 4      # 16 mm across, 8 layers (a core between the skins)
-"${CB[@]}" stl cyl "$J/pin.stl" 3 3       # 6 mm across
-"${CB[@]}" stl box "$J/box.stl" 30 20 3
-"${CB[@]}" stl box "$J/big.stl" 100 100 1
-"${CB[@]}" stl ell "$J/ell.stl" 30 25 8 3 # an L: 30 x 25, arms 8 wide
-"${CB[@]}" stl ell "$J/ella.stl" 30 25 8 3 ascii # the same as ASCII STL
+cb stl cyl "$J/cyl.stl" 20 2      # 40 mm across, 48 sides, 4 layers
+cb stl cyl "$J/tall.stl" 8 4      # 16 mm across, 8 layers (a core between the skins)
+cb stl cyl "$J/pin.stl" 3 3       # 6 mm across
+cb stl box "$J/box.stl" 30 20 3
+cb stl box "$J/big.stl" 100 100 1
+cb stl ell "$J/ell.stl" 30 25 8 3 # an L: 30 x 25, arms 8 wide
+cb stl ell "$J/ella.stl" 30 25 8 3 ascii # the same as ASCII STL
 # the sections' areas, by hand: a 48-gon of radius r is 24 r^2 sin(7.5 deg);
 # the L is 30 x 8 + 17 x 8; the box 30 x 20
-A_CYL=$(python3 -c 'import math; print(24 * 400 * math.sin(math.pi / 24))')
-A_PIN=$(python3 -c 'import math; print(24 * 9 * math.sin(math.pi / 24))')
+A_CYL=$(cbo py 'import math; print(24 * 400 * math.sin(math.pi / 24))')
+A_PIN=$(cbo py 'import math; print(24 * 9 * math.sin(math.pi / 24))')
 
 # the head of every job: coarse hatches so that the runs stay small
 HEAD0='machine: lpbf-cli
@@ -79,10 +99,10 @@ parts:
   - {model: pin.stl, at: [235, 235]}   # fixed place: centre of its footprint box"
 build grid --layout "$J/grid.svg"
 is "$RC" 0 "25 cylinders and a fixed pin: exit 0"
-run "${CB[@]}" arrange "$J/grid.json" 250x250 5 5 26 pin=235,235 "cyl~$A_CYL" "pin~$A_PIN"
+cb arrange "$J/grid.json" 250x250 5 5 26 pin=235,235 "cyl~$A_CYL" "pin~$A_PIN"
 # neighbours' centres 45 apart, each outer pass's vertex (at angle 0) half a spot
 # (0.04) inside the model's edges, 0.04 / cos 3.75 deg inside its radius 20
-D=$(python3 -c 'import math; print("%.6f" % (45 - 2 * (20 - 0.04 / math.cos(math.pi / 48))))')
+D=$(cbo py 'import math; print("%.6f" % (45 - 2 * (20 - 0.04 / math.cos(math.pi / 48))))')
 is "$RC $OUT" "0 # closest contours $D apart: parts 1 and 2" \
     "25 cylinders: inside the margin, contours >= 5 apart ($D), the pin at (235, 235), outlines = the sections less the beam offset"
 
@@ -97,7 +117,7 @@ parts:
   - {model: box.stl, at: [30, 220], name: fixed_b}"
 build mixed
 is "$RC" 0 "mixed sizes: exit 0"
-run "${CB[@]}" arrange "$J/mixed.json" 250x250 5 5 20 fixed_a=120.25,200.5 fixed_b=30,220 ell~376 box~600 \
+cb arrange "$J/mixed.json" 250x250 5 5 20 fixed_a=120.25,200.5 fixed_b=30,220 ell~376 box~600 \
     fixed_b~600 "cyl~$A_CYL"
 like "$RC $OUT" '^0 # closest contours 5\.\d+ apart' "mixed sizes: inside the margin, >= 5 apart, fixed parts where the job says, outlines = sections"
 
@@ -114,17 +134,17 @@ parts:
   - {model: pin.stl, at: [-60.5, 20.25], name: side}"
 build round --layout "$J/round.svg"
 is "$RC" 0 "round plate: exit 0"
-run "${CB[@]}" arrange "$J/round.json" d200 5 8 12 centre=0,0 side=-60.5,20.25 ell~376 box~600 "cyl~$A_CYL"
+cb arrange "$J/round.json" d200 5 8 12 centre=0,0 side=-60.5,20.25 ell~376 box~600 "cyl~$A_CYL"
 like "$RC $OUT" '^0 # closest contours 8\.\d+ apart' "round plate: within 95 of the centre, >= 8 apart, fixed parts honoured"
 
 # edge cases of the packing. 44 mm cylinders: 5 x 44 + 4 x 5 = 240 fills the plate
 # less its margins exactly, so 25 fit and not 26
-"${CB[@]}" stl cyl "$J/c44.stl" 22 1
-"${CB[@]}" stl box "$J/sq.stl" 20 20 1
+cb stl cyl "$J/c44.stl" 22 1
+cb stl box "$J/sq.stl" 20 20 1
 job exact "$HEAD
 parts: [{model: c44.stl, copies: 25}]"
 build exact -q
-run "${CB[@]}" arrange "$J/exact.json" 250x250 5 5 25
+cb arrange "$J/exact.json" 250x250 5 5 25
 like "$RC $OUT" '^0 # closest contours 5\.08' "25 cylinders of 44 mm exactly filling 240 mm: all fit, inside, apart"
 job exact26 "$HEAD
 parts: [{model: c44.stl, copies: 26}]"
@@ -133,7 +153,7 @@ like "$RC $(cat "$J/exact26.err")" '^1 lamina: only 25 of 26 parts fit' "26 of t
 # 20 mm squares on the round plate: a square grid of pitch 25 centred on the plate
 # holds as many as the corners within 95 of the centre allow (counted here); the
 # packing must place at least as many
-N=$(python3 -c 'import math
+N=$(cbo py 'import math
 print(max(sum(all(math.hypot(o + 25 * i + a, o + 25 * j + b) <= 95 for a in (-10, 10) for b in (-10, 10))
               for i in range(-5, 6) for j in range(-5, 6)) for o in (0, 12.5)))')
 job roundsq "$HEAD
@@ -141,7 +161,7 @@ plate: {diameter: 200, margin: 5}
 lasers: [{field: [-100, -100, 100, 100]}]
 parts: [{model: sq.stl, copies: $N}]"
 build roundsq -q
-run "${CB[@]}" arrange "$J/roundsq.json" d200 5 5 "$N" sq~400
+cb arrange "$J/roundsq.json" d200 5 5 "$N" sq~400
 like "$RC $OUT" '^0 # closest contours 5\.08' "round plate: $N squares (a centred grid's count) fit, inside, apart"
 job fixnear "$HEAD
 parts: [{model: pin.stl, at: [50, 50]}, {model: pin.stl, at: [60.5, 50], name: near}]"
@@ -153,8 +173,8 @@ is "$(ls "$J" | grep -c '^fixnear\.\(cli\|json\)$')" 0 "fixed parts too close: n
 
 # units and scale: a cylinder of radius 0.5 in (12.7 mm, 0.1 in high), a 10 x 5 x 1
 # box scaled 2 (20 x 10 x 2), the same turned; -s spacing=10 over the machine's 5
-"${CB[@]}" stl cyl "$J/inch.stl" 0.5 0.1
-"${CB[@]}" stl box "$J/b10.stl" 10 5 1
+cb stl cyl "$J/inch.stl" 0.5 0.1
+cb stl box "$J/b10.stl" 10 5 1
 job units "$HEAD
 parts: [{model: inch.stl, units: in, name: inch}, {model: b10.stl, scale: 2, name: twice},
         {model: b10.stl, scale: 2, rotate: z:90, name: turned}]"
@@ -162,8 +182,8 @@ build units -q -s spacing=10
 is "$(jq -c '[.job.build.spacing, [.job.build.parts[] | [((.box[2] - .box[0]) * 1e6 | round), ((.box[3] - .box[1]) * 1e6 | round), .layers[1]]]]' "$J/units.json")" \
     '[10,[[25400000,25400000,6],[20000000,10000000,4],[10000000,20000000,4]]]' \
     "units: in and scale: 2: footprints 25.4 x 25.4, 20 x 10, 10 x 20; 2.54 mm high in 6 layers, 2 mm in 4"
-run "${CB[@]}" arrange "$J/units.json" 250x250 5 10 3 \
-    "inch~$(python3 -c 'import math; print(24 * 12.7 ** 2 * math.sin(math.pi / 24))')" twice~200 turned~200
+cb arrange "$J/units.json" 250x250 5 10 3 \
+    "inch~$(cbo py 'import math; print(24 * 12.7 ** 2 * math.sin(math.pi / 24))')" twice~200 turned~200
 like "$RC $OUT" '^0 # closest contours 10\.08' "units, scale, -s spacing=10: inside, 10 apart, the sections' areas"
 
 # the same L as ASCII STL (integer corners: the same in float32): the same program
@@ -177,10 +197,10 @@ ok $? "round plate with the L read from ASCII STL: the same program"
 job pair "$HEAD
 parts: [{model: pin.stl, copies: 2}]"
 build pair -q
-run "${CB[@]}" arrange "$J/pair.json" 250x250 5 5 2
+cb arrange "$J/pair.json" 250x250 5 5 2
 like "$RC $OUT" '^0 # closest contours 5\.08\d* apart' "two pins: 5 + 2 x 0.04 apart"
 perl -pe 's/"(from|to)": \[([-\d.e]+)/sprintf(q("%s": [%.17g), $1, $2 - 3)/ge if /"part": 2,/' "$J/pair.json" >"$TMP/moved.json"
-run "${CB[@]}" arrange "$TMP/moved.json" 250x250 5 5 2
+cb arrange "$TMP/moved.json" 250x250 5 5 2
 like "$RC $OUT" '^1 (?s:.*)parts 1 and 2: contours 2\.08\d* apart, closer than the spacing 5' \
     "checker: two parts 2 mm apart fail the spacing"
 
@@ -220,18 +240,18 @@ for spec in 'careful|style: {core: fine}, model: tall.stl' 'lifted|z: 1, rotate:
     job "alone_$name" "$HEAD
 $STYLES
 parts:
-  - {${spec#*|}, name: $name, at: [$("${CB[@]}" at "$J/styled.json" "$name")]}"
+  - {${spec#*|}, name: $name, at: [$(cbo at "$J/styled.json" "$name")]}"
     build "alone_$name" -q
-    run "${CB[@]}" alone "$J/styled.json" "$name" "$J/alone_$name.json"
+    cb alone "$J/styled.json" "$name" "$J/alone_$name.json"
     is "$RC $OUT" "0 " "part $name on the plate = planned alone at its at: every vector, in order, its style"
 done
 is "$(jq -c '[.job.build.parts[] | select(.name == "quick" or .name == "lifted") | .layers]' "$J/styled.json")" \
     '[[1,8],[3,8]]' "parts' layers: quick 0 .. 4 mm is layers 1 .. 8, lifted (z 1, 3 mm high) 3 .. 8"
-run "${CB[@]}" alone "$J/styled.json" careful "$J/alone_lifted.json"
+cb alone "$J/styled.json" careful "$J/alone_lifted.json"
 like "$RC $OUT" '^1 part careful: alone at' "checker: another part's program fails"
 
 # ---- 3. four lasers ----------------------------------------------------------------
-run "${CB[@]}" balance "$J/grid.json" "$J/grid.cli" 0.05
+cb balance "$J/grid.json" "$J/grid.cli" 0.05
 like "$RC $OUT" '^0 # worst balance' "four lasers over the plate: each layer's busiest <= 1.05 ideal + its largest block"
 job mix4 "$HEAD
 lasers: [{field: [0, 0, 250, 250]}, {field: [0, 0, 250, 250]}, {field: [0, 0, 250, 250]}, {field: [0, 0, 250, 250]}]
@@ -241,19 +261,19 @@ parts:
   - {model: tall.stl, copies: 3}
   - {model: pin.stl, at: [235, 235]}"
 build mix4
-run "${CB[@]}" balance "$J/mix4.json" "$J/mix4.cli" 0.05
+cb balance "$J/mix4.json" "$J/mix4.cli" 0.05
 like "$RC $OUT" '^0 # worst balance' "four lasers, mixed parts: busiest <= 1.05 ideal + one block"
 # a part of the plate planned alone with the same four lasers: the same vectors (as sets:
 # the lasers share them differently)
 job alone4 "$HEAD
 $(grep '^lasers:' "$J/grid.yaml")
 parts:
-  - {model: cyl.stl, name: cyl_13, at: [$("${CB[@]}" at "$J/grid.json" cyl_13)]}"
+  - {model: cyl.stl, name: cyl_13, at: [$(cbo at "$J/grid.json" cyl_13)]}"
 build alone4 -q
-run "${CB[@]}" alone "$J/grid.json" cyl_13 "$J/alone4.json"
+cb alone "$J/grid.json" cyl_13 "$J/alone4.json"
 is "$RC $OUT" "0 " "four lasers: cyl_13 of the plate = cyl_13 alone with the same lasers (sets of vectors)"
 for n in grid mix4; do
-    run "${CB[@]}" gas "$J/$n.json"
+    cb gas "$J/$n.json"
     is "$RC $OUT" "0 " "$n: each laser's parts downstream first (gas flow -x: smallest x first; ties by number)"
 done
 # quadrant fields (the middle column of cylinders, x 95 .. 135, is cut at x = 125),
@@ -266,48 +286,48 @@ parts:
   - {model: pin.stl, at: [235, 235]}"
 build quad --layout "$J/quad.svg"
 is "$RC" 0 "quadrant fields: exit 0"
-run "${CB[@]}" fields "$J/quad.json"
+cb fields "$J/quad.json"
 is "$RC $OUT" "0 " "quadrant fields: every vector inside its laser's field"
-run "${CB[@]}" gas "$J/quad.json"
+cb gas "$J/quad.json"
 is "$RC $OUT" "0 " "quadrant fields, gas towards +y: each laser's parts largest y first"
 job quad1 "$(grep -v '^lasers:' "$J/quad.yaml")"
 build quad1 -q
 job aloneq "$HEAD
 $(grep '^lasers:\|^gas_flow:' "$J/quad.yaml")
 parts:
-  - {model: cyl.stl, name: cyl_13, at: [$("${CB[@]}" at "$J/quad.json" cyl_13)]}"
+  - {model: cyl.stl, name: cyl_13, at: [$(cbo at "$J/quad.json" cyl_13)]}"
 build aloneq -q
-run "${CB[@]}" alone "$J/quad.json" cyl_13 "$J/aloneq.json"
+cb alone "$J/quad.json" cyl_13 "$J/aloneq.json"
 is "$RC $OUT" "0 " "quadrant fields: cyl_13 (x 95 .. 135, cut at 125) of the plate = alone with the same fields"
-run "${CB[@]}" lengths "$J/quad.json" "$J/quad1.json"
+cb lengths "$J/quad.json" "$J/quad1.json"
 is "$RC $OUT" "0 " "quadrant fields: every part's exposed length per kind and layer = one laser's (nothing lost at the cuts)"
 # the first contour vector of laser 1 (one vector a line) given to laser 4
 perl -pe 'if (!$done && /"kind": "contour".*"laser": 1,/) { s/"laser": 1,/"laser": 4,/; $done = 1 }' "$J/quad.json" \
     >"$TMP/swapped.json"
-run "${CB[@]}" fields "$TMP/swapped.json"
+cb fields "$TMP/swapped.json"
 like "$RC $OUT" '^1 layer 1: a contour vector of part \d+ on laser 4 at' "checker: a vector given to another quadrant's laser fails"
 
 # ---- 4. layer heights -------------------------------------------------------------
 for n in grid quad styled; do
-    run "${CB[@]}" layers "$J/$n.json" "$J/$n.cli" 0.5
+    cb layers "$J/$n.json" "$J/$n.cli" 0.5
     is "$RC $OUT" "0 " "$n: \$\$LAYER k at k x 0.5, JSON z = top, cut = middle of floor and ceiling"
-    run "${CB[@]}" labels "$J/$n.json" "$J/$n.cli"
+    cb labels "$J/$n.json" "$J/$n.cli"
     is "$RC $OUT" "0 " "$n: the program's \$\$LABEL table = the JSON's, blocks' ids = the vectors' labels, PART:STYLE:LASER"
 done
 sed 's|^\$\$LAYER/1\.00000$|$$LAYER/1.10000|' "$J/grid.cli" >"$TMP/bad.cli"
-run "${CB[@]}" layers "$J/grid.json" "$TMP/bad.cli" 0.5
+cb layers "$J/grid.json" "$TMP/bad.cli" 0.5
 like "$RC $OUT" '^1 \$\$LAYER #2 at 1\.1, the layer.s top is 1' "checker: a \$\$LAYER off by 0.1 fails"
 job quarter "$(sed 's/^layer_width: 0.5/layer_width: 0.25/' "$J/one.yaml")"
 build quarter -q
-run "${CB[@]}" layers "$J/quarter.json" "$J/quarter.cli" 0.25
+cb layers "$J/quarter.json" "$J/quarter.cli" 0.25
 is "$RC $OUT" "0 " "layer width 0.25: 12 layers of the 3 mm pin at k x 0.25"
 build one -q -s layer_width=1.5
-run "${CB[@]}" layers "$J/one.json" "$J/one.cli" 1.5
+cb layers "$J/one.json" "$J/one.cli" 1.5
 is "$RC $OUT" "0 " "-s layer_width=1.5 over the job's: 2 layers at 1.5 and 3"
 
 # ---- 5. times ------------------------------------------------------------------------
 for n in grid quad mixed round; do
-    run "${CB[@]}" time "$J/$n.json" "$J/$n.err" 8
+    cb time "$J/$n.json" "$J/$n.err" 8
     like "$RC $OUT" '^0 # ' "$n: printed time = sum of each layer's busiest laser + 8 s recoat = JSON total"
 done
 # slow speeds for days and hours, a pin without recoat for tenths of a second
@@ -319,7 +339,7 @@ downskin: {hatch_distance: 1, speed: $sp}
 speed: $sp
 parts: [{model: tall.stl}]"
     build "slow$sp"
-    run "${CB[@]}" time "$J/slow$sp.json" "$J/slow$sp.err" 8
+    cb time "$J/slow$sp.json" "$J/slow$sp.err" 8
     like "$RC $OUT" "^0 # $([ "$sp" = 0.5 ] && echo '1 h \d+ min \d+ s' || echo '\d+ d \d+ h \d+ min') = " \
         "speed $sp mm/s: the printed time ($([ "$sp" = 0.5 ] && echo 'h min s' || echo 'd h min')) = the layers' sum"
 done
@@ -327,10 +347,10 @@ job fastpin "$HEAD
 recoat_time: 0
 parts: [{model: pin.stl}]"
 build fastpin
-run "${CB[@]}" time "$J/fastpin.json" "$J/fastpin.err" 0
+cb time "$J/fastpin.json" "$J/fastpin.err" 0
 like "$RC $OUT" '^0 # \d\.\d s = ' "a pin, no recoat: tenths of a second, = the layers' sum"
 build fastpin -s recoat_time=2.5
-run "${CB[@]}" time "$J/fastpin.json" "$J/fastpin.err" 2.5
+cb time "$J/fastpin.json" "$J/fastpin.err" 2.5
 like "$RC $OUT" '^0 # \d+ s = ' "-s recoat_time=2.5: 6 layers x 2.5 s recoat in the total"
 job nospeed "$HEAD0
 speed: 0
@@ -342,7 +362,7 @@ build nospeed
 like "$RC $(cat "$J/nospeed.err")" '^0 lamina: .*nospeed\.yaml: 1 part, 6 layers, 1 laser, (?s:.*)estimated build time unknown: lpbf-cli sets no speeds$' \
     "no speeds: the time is unknown"
 printf 'lamina: x: estimated build time 9 s (scanning' >"$TMP/wrong.err"
-run "${CB[@]}" time "$J/fastpin.json" "$TMP/wrong.err" 2.5
+cb time "$J/fastpin.json" "$TMP/wrong.err" 2.5
 like "$RC $OUT" '^1 (?s:.*)printed .9 s.' "checker: a wrong printed time fails"
 
 # ---- 6. determinism -----------------------------------------------------------------------
@@ -359,7 +379,7 @@ ok $? "quadrant fields (cut vectors): -j 4 = -j 1"
 
 # ---- 7. job file errors --------------------------------------------------------------
 pos() { # pos FILE TEXT: LINE:COL (1-based) of TEXT's first occurrence
-    python3 -c 'import sys
+    cbo py 'import sys
 t = open(sys.argv[1]).read(); i = t.index(sys.argv[2])
 print("%d:%d" % (t.count("\n", 0, i) + 1, i - t.rfind("\n", 0, i)))' "$1" "$2"
 }
@@ -458,7 +478,7 @@ jerr e_reach "$T" "$(pos "$TMP/t" '{model'): part pin_1 .* is not within the las
 # lpbf-cli: contour 120 W 600 mm/s, upskin 150/700, downskin 100/1200; the job's
 # core style 250/1000 replaces the profile's core (200/900) for every part that
 # names no other; fast 300/1400 on every region of quick; fine 150/500 on careful's core
-run "${CB[@]}" styles "$J/styled.json" "$J/styled.cli" quick:contour=300/1400 quick:core=300/1400 \
+cb styles "$J/styled.json" "$J/styled.cli" quick:contour=300/1400 quick:core=300/1400 \
     quick:upskin=300/1400 quick:downskin=300/1400 careful:core=150/500 careful:contour=120/600 \
     careful:upskin=150/700 careful:downskin=100/1200 tall:core=250/1000 tall:contour=120/600 \
     box:contour=120/600 box:downskin=100/1200 lifted:contour=120/600
@@ -473,14 +493,14 @@ is "$(jq -r '[.job.build.labels[].name | select(startswith("quick:") or startswi
 # the same plate without the core style: the plain parts' core is the profile's 200/900
 job plain "$(grep -v '^  core: {power: 250' "$J/styled.yaml")"
 build plain -q
-run "${CB[@]}" styles "$J/plain.json" "$J/plain.cli" tall:core=200/900 careful:core=150/500
+cb styles "$J/plain.json" "$J/plain.cli" tall:core=200/900 careful:core=150/500
 is "$RC $OUT" "0 " "styles: without a core style the parts' core is the profile's own"
-run "${CB[@]}" styles "$J/plain.json" "$J/plain.cli" tall:core=250/1000
+cb styles "$J/plain.json" "$J/plain.cli" tall:core=250/1000
 like "$RC $OUT" '^1 tall_\d:core:1 core: core power 200 speed 900, expected power 250' "checker: a wrong exposure fails"
 
 # ---- 9. --layout ----------------------------------------------------------------------
 for n in grid quad round; do
-    run "${CB[@]}" layout "$J/$n.svg" "$J/$n.json"
+    cb layout "$J/$n.svg" "$J/$n.json"
     is "$RC $OUT" "0 " "$n --layout: one footprint and one name per part, one field per laser where it is"
 done
 is "$(grep -c 'class="part"' "$J/grid.svg") $(grep -c 'class="field"' "$J/quad.svg")" "26 4" \
@@ -489,9 +509,9 @@ is "$(grep -c 'class="part"' "$J/grid.svg") $(grep -c 'class="field"' "$J/quad.s
 # -v: a line per layer, its lasers' times and balance, as the JSON has them
 run "$LAMINA" build "$J/quad.yaml" -v -o "$J/quadv.cli"
 is "$(printf '%s\n' "$ERR" | grep -c '^lamina: .*quad\.yaml: layer [0-9]*: .*; laser 1 .*, laser 4 .*; balance [0-9.]*$')" \
-    "$(python3 -c 'import json,sys; print(len(json.load(open(sys.argv[1]))["layers"]))' "$J/quad.json")" \
+    "$(cbo py 'import json,sys; print(len(json.load(open(sys.argv[1]))["layers"]))' "$J/quad.json")" \
     "-v: one line per layer with the four lasers' times and the balance"
-first=$(python3 -c 'import json,sys; print("%.3f" % json.load(open(sys.argv[1]))["layers"][0]["stats"]["balance"])' "$J/quad.json")
+first=$(cbo py 'import json,sys; print("%.3f" % json.load(open(sys.argv[1]))["layers"][0]["stats"]["balance"])' "$J/quad.json")
 like "$ERR" "layer 1: .*; balance $first" "-v: layer 1's balance is the JSON's ($first)"
 
 # ---- the README's example plate (examples/plate.yaml), coarse (layers, hatches) to be quick ----
@@ -500,7 +520,7 @@ run "$LAMINA" build "$EX" -s layer_width=2 -s hatch_distance=1 -s skin_layers=0 
     --json "$J/example.json" --layout "$J/example.svg"
 is "$RC" 0 "examples/plate.yaml builds (its models from the job's folder)"
 like "$ERR" "11 parts, 10 layers, 2 lasers" "examples/plate.yaml: 11 parts, 20 mm at 2 mm, 2 lasers"
-run "${CB[@]}" layout "$J/example.svg" "$J/example.json"
+cb layout "$J/example.svg" "$J/example.json"
 is "$RC $OUT" "0 " "examples/plate.yaml: the layout shows every part and both fields"
 
 done_testing

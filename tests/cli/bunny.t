@@ -31,16 +31,21 @@ is "$(jq -c '[.boundary_edges, .nonmanifold_edges]' <<<"$OUT")" "[0,0]" "the rep
 
 # ---- sliced as a user would: --units m, 0.5 mm layers, along z (the
 # default), y (the bunny's up: the open bottom first) and two oblique axes
-for ax in z y 1,1,1 0.3,-0.5,0.8; do
+axes=(z y 1,1,1 0.3,-0.5,0.8)
+# the bunny's extent along each axis in metres, from the file itself (one read of it)
+declare -A spans
+i=0
+while IFS= read -r line; do spans[${axes[i]}]=$line; i=$((i + 1)); done < <("${OM[@]}" extent "$B" "${axes[@]}")
+for ax in "${axes[@]}"; do
     run "$LAMINA" slice "$B" --units m -w 0.5 -a "$ax" --json "$TMP/b.json" -o "$TMP/b.sls"
     is "$RC" 0 "bunny --units m -w 0.5 along $ax: exit 0"
     [ "$RC" = 0 ] || echo "$ERR" | head -3 | sed 's/^/# /'
     ok "$(grep -Eq 'stayed open|could not be closed' <<<"$ERR"; [ $? -ne 0 ]; echo $?)" "... no outline stayed open"
     like "$ERR" "repaired: filled $loops holes \\(223 boundary edges\\)" "... stderr says the repair"
     # the bunny's extent along the axis in millimetres, from the file itself
-    span=$("${OM[@]}" extent "$B" "$ax")
+    span=${spans[$ax]}
     ext=$(jq .extent <<<"$span") lo=$(jq '.min * 1000' <<<"$span") hi=$(jq '.max * 1000' <<<"$span")
-    layers=$(python3 -c "import math; print(math.ceil($ext * 1000 / 0.5 - 1e-9))")
+    layers=$(jq -n "$ext * 1000 / 0.5 - 1e-9 | ceil")
     # one read of the run's 30 MB: per layer its index, cut, contours, area
     jq -c '{units: .job.units, width: .layers[0].width,
             layers: [.layers[] | {index, z, n: (.contours | length), area: .stats.area}]}' "$TMP/b.json" >"$TMP/b.sum"
@@ -52,7 +57,7 @@ for ax in z y 1,1,1 0.3,-0.5,0.8; do
             | select(.n == 0 or .area <= 0) | .index] | join(",")' -r "$TMP/b.sum")" "" \
         "... every layer cut within the bunny has material"
     is "$(jq --argjson lo "$lo" --argjson hi "$hi" '[.layers[] | select(.z <= $lo or .z >= $hi) | .index] | join(",")' -r "$TMP/b.sum")" \
-        "$(python3 -c "print($layers if ($layers - 0.5) * 0.5 > $ext * 1000 else '')")" \
+        "$(jq -rn "if ($layers - 0.5) * 0.5 > $ext * 1000 then $layers else \"\" end")" \
         "... only a last layer thinner than half the width is cut outside it"
     is "$(jq -c '[.units, .width]' "$TMP/b.sum")" '["mm",0.5]' "... in millimetres"
     run "${OM[@]}" check "$R" "$TMP/b.json" --scale 1000

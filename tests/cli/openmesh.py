@@ -23,8 +23,8 @@ Pure Python 3, deterministic (seeded), none of lamina's code:
   openmesh.py edges STL        facets, vertices, boundary and non-manifold
                                edges (exact weld) and the boundary's
                                connected pieces (loops), as JSON
-  openmesh.py extent STL AXIS  the mesh's lowest and highest point and extent
-                               along AXIS (x|y|z|dx,dy,dz), as JSON
+  openmesh.py extent STL AXIS...  the mesh's lowest and highest point and extent
+                               along each AXIS (x|y|z|dx,dy,dz), as JSON, a line each
   openmesh.py ply2stl IN.ply OUT.stl|OUT.obj
       an ASCII PLY (x y z first, faces as lists) as binary STL (triangles;
       polygons fanned) or as OBJ (the PLY's coordinate text kept)
@@ -578,10 +578,12 @@ def main(argv):
     if len(argv) == 3 and argv[1] == "edges":
         print(json.dumps(edge_counts(read_stl(argv[2])), sort_keys=True))
         return 0
-    if len(argv) == 4 and argv[1] == "extent":
-        d = parse_axis(argv[3])
-        hs = [dot(p, d) for t in read_stl(argv[2]) for p in t]
-        print(json.dumps({"min": min(hs), "max": max(hs), "extent": max(hs) - min(hs)}))
+    if len(argv) >= 4 and argv[1] == "extent":
+        tris = read_stl(argv[2])  # once for all the axes: a large mesh takes a while
+        for ax in argv[3:]:
+            d = parse_axis(ax)
+            hs = [dot(p, d) for t in tris for p in t]
+            print(json.dumps({"min": min(hs), "max": max(hs), "extent": max(hs) - min(hs)}))
         return 0
     if len(argv) == 4 and argv[1] == "ply2stl":
         ply_convert(argv[2], argv[3])

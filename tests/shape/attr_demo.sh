@@ -12,7 +12,9 @@ T=$(mktemp -d)
 trap 'rm -rf "$T"' EXIT
 n=0 failed=0
 ok() { n=$((n + 1)); if [ "$1" -eq 0 ]; then echo "ok $n - $2"; else echo "not ok $n - $2"; failed=$((failed + 1)); fi; }
-(cd "$SRC" && git ls-files -z | xargs -0 cp --parents -t "$T/") 2>/dev/null || cp -r "$SRC/." "$T/"
+# the sources with their times (cp -p), so that a build of the tree seeds
+# the copy's (below)
+(cd "$SRC" && git ls-files -z | xargs -0 cp -p --parents -t "$T/") 2>/dev/null || cp -rp "$SRC/." "$T/"
 mkdir -p "$T/orig" && cp "$T/core/plan/vocab.h" "$T/core/plan/plan_sls.c" "$T/core/plan/plan_ladrp.c" "$T/orig/"
 sed -i 's|^#define LAM_ATTRS(X) \(.*\))$|#define LAM_ATTRS(X) \1) X(demo, "demo", 0, "a test'"'"'s attribute")|' "$T/core/plan/vocab.h"
 sed -i 's|^\(    memset(&st->time, 0, sizeof st->time);\)$|    st->attrs.demo = (long long)L->index + 7;\n\1|' "$T/core/plan/plan_sls.c"
@@ -21,9 +23,23 @@ changed=0
 for f in vocab.h plan_sls.c plan_ladrp.c; do cmp -s "$T/orig/$f" "$T/core/plan/$f" || changed=$((changed + 1)); done
 [ "$changed" -eq 3 ]; ok $? "the attribute is three edits, in vocab.h, plan_sls.c and plan_ladrp.c"
 rm -rf "$T/orig"
-make -C "$T" -j2 LAZY=1 BUILD="$T/build" "$T/build/lamina" >"$T/make.log" 2>&1
+# The tree's build (BUILD, as make check names it: build or build-san, with
+# make check's LAZY) seeds the copy's: its objects and their .d files, older
+# than the three edited files, so make recompiles exactly the objects the
+# edits reach (about 70 of 120) and links. Without one, from nothing.
+B=${BUILD:+$(basename "$BUILD")}
+if { [ "$B" = build ] || [ "$B" = build-san ]; } && [ -x "$BUILD/lamina" ]; then
+    san=0
+    [ "$B" = build-san ] && san=1
+    mkdir -p "$T/$B"
+    find "$BUILD/" -mindepth 1 -maxdepth 1 ! -name tests -exec cp -a -t "$T/$B/" {} +
+    (unset MAKEFLAGS MFLAGS MAKELEVEL; make -C "$T" -j2 LAZY="${LAZY:-1}" BUILD="$B" SAN=$san "$B/lamina") >"$T/make.log" 2>&1
+else
+    B=build
+    (unset MAKEFLAGS MFLAGS MAKELEVEL; make -C "$T" -j2 LAZY=1 BUILD="$T/build" "$T/build/lamina") >"$T/make.log" 2>&1
+fi
 ok $? "the copy builds" || { tail -20 "$T/make.log" | sed 's/^/# /'; echo "1..$n"; exit 1; }
-L=$T/build/lamina M=$SRC/tests/models
+L=$T/$B/lamina M=$SRC/tests/models
 cd "$T" || exit 1
 "$L" slice "$M/thesis_cube_hole.ug" -q -m lpbf-cli -w 0.5 -s hatch_strategy=lines -o prog --json run.json --html run.html
 ok $? "an SLS run with --json and --html"
