@@ -519,25 +519,7 @@ size_t lam_dialect_number(char *out, double x)
         prec = exp10 + 1;
     }
     if (exp10 < -4 || exp10 >= 17) return sci(out, neg, d, prec, exp10);
-    size_t k = 0;
-    if (neg) out[k++] = '-';
-    if (exp10 < 0) {
-        out[k++] = '0';
-        out[k++] = '.';
-        for (int i = 0; i < -exp10 - 1; i++) out[k++] = '0';
-        memcpy(out + k, d, (size_t)prec);
-        k += (size_t)prec;
-    } else {
-        memcpy(out + k, d, (size_t)exp10 + 1);
-        k += (size_t)exp10 + 1;
-        if (prec > exp10 + 1) {
-            out[k++] = '.';
-            memcpy(out + k, d + exp10 + 1, (size_t)(prec - exp10 - 1));
-            k += (size_t)(prec - exp10 - 1);
-        }
-    }
-    out[k] = '\0';
-    return k;
+    return lam_dialect_plain(out, neg, d, prec, exp10);
 }
 
 /* 1 when the fixed rendering s (from lam_fmt_fixed) is "-0", "-0.000...". */
@@ -683,4 +665,27 @@ void lam_template_render(const lam_template *t, const lam_tvals *v, lam_tbuf *b,
 {
     if (v->labels && v->nlabels) render_labels(t, v, b);
     else render_segs(t, 0, t->nsegs, v, b, rel, has_rel);
+}
+
+size_t lam_dialect_plain(char *out, int neg, const char *d, int prec, int exp10)
+{
+    size_t k = 0;
+    if (neg) out[k++] = '-';
+    if (exp10 < 0) {
+        out[k++] = '0';
+        out[k++] = '.';
+        for (int i = 0; i < -exp10 - 1; i++) out[k++] = '0';
+        memcpy(out + k, d, (size_t)prec);
+        k += (size_t)prec;
+    } else {
+        memcpy(out + k, d, (size_t)exp10 + 1);
+        k += (size_t)exp10 + 1;
+        if (prec > exp10 + 1) {
+            out[k++] = '.';
+            memcpy(out + k, d + exp10 + 1, (size_t)(prec - exp10 - 1));
+            k += (size_t)(prec - exp10 - 1);
+        }
+    }
+    out[k] = '\0';
+    return k;
 }

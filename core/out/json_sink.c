@@ -180,25 +180,7 @@ static size_t number_text(char *out, double x)
         return lam_dialect_number(out, x);
     while (prec > 1 && d[prec - 1] == '0') prec--;
     if (exp10 < -4 || exp10 >= 15 || prec < exp10 + 1) return lam_dialect_number(out, x);
-    size_t k = 0;
-    if (signbit(x)) out[k++] = '-';
-    if (exp10 < 0) {
-        out[k++] = '0';
-        out[k++] = '.';
-        for (int i = 0; i < -exp10 - 1; i++) out[k++] = '0';
-        memcpy(out + k, d, (size_t)prec);
-        k += (size_t)prec;
-    } else {
-        memcpy(out + k, d, (size_t)exp10 + 1);
-        k += (size_t)exp10 + 1;
-        if (prec > exp10 + 1) {
-            out[k++] = '.';
-            memcpy(out + k, d + exp10 + 1, (size_t)(prec - exp10 - 1));
-            k += (size_t)(prec - exp10 - 1);
-        }
-    }
-    out[k] = '\0';
-    return k;
+    return lam_dialect_plain(out, signbit(x) != 0, d, prec, exp10);
 }
 
 static int nomem(js *s) { return s->rc = lam_error_nomem(s->err, "writing the JSON"); }

@@ -43,7 +43,6 @@ section), never from the viewer's own answers:
 import base64
 import json
 import math
-import operator
 import os
 import re
 import sys
@@ -51,6 +50,7 @@ import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from cdp import Browser  # noqa: E402
+from pixel import decode_png  # noqa: E402
 
 W, H = 800, 600
 BAR_H, INFO_H, PLOT_H, MARGIN = 40, 28, 150, 20
@@ -82,43 +82,8 @@ def close(a, b, tol=6):
 
 
 def png_rows(data):
-    import struct
-    import zlib
-    pos, idat = 8, b""
-    while pos < len(data):
-        n, kind = struct.unpack(">I4s", data[pos:pos + 8])
-        body = data[pos + 8:pos + 8 + n]
-        if kind == b"IHDR":
-            w, h, _, ctype = struct.unpack(">IIBB", body[:10])
-            bpp = 3 if ctype == 2 else 4
-        elif kind == b"IDAT":
-            idat += body
-        pos += 12 + n
-    raw, stride, rows, prev = zlib.decompress(idat), w * bpp, [], bytearray(w * bpp)
-    wrap = list(range(256)) * 2
-    for y in range(h):
-        f, line = raw[y * (stride + 1)], bytearray(raw[y * (stride + 1) + 1:(y + 1) * (stride + 1)])
-        if f in (0, 2):  # none, up: the screenshots asked for speed are all "up" (C-level maps)
-            if f == 2:
-                line = bytearray(map(wrap.__getitem__, map(operator.add, line, prev)))
-            rows.append(line)
-            prev = line
-            continue
-        for i in range(stride):
-            a = line[i - bpp] if i >= bpp else 0
-            b, c = prev[i], (prev[i - bpp] if i >= bpp else 0)
-            if f == 1:
-                line[i] = (line[i] + a) & 255
-            elif f == 2:
-                line[i] = (line[i] + b) & 255
-            elif f == 3:
-                line[i] = (line[i] + (a + b) // 2) & 255
-            elif f == 4:
-                p = a + b - c
-                pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
-                line[i] = (line[i] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
-        rows.append(line)
-        prev = line
+    """a screenshot's pixels: (x, y) -> (r, g, b)"""
+    rows, bpp = decode_png(data)
     return lambda x, y: tuple(rows[y][x * bpp:x * bpp + 3])
 
 
