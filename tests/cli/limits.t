@@ -121,15 +121,17 @@ like "$RC $ERR" "^1 lamina: the job would write about [0-9.]+ [GT]B .*hatch vect
     "hatch_distance 2e-5: 5000 times the lines, refused before planning"
 
 # ---- the other outputs ---------------------------------------------------------
-# --json and --html write every vector as an object with its kind and ends:
-# several times the CLI program's bytes. Each is estimated by its own
-# writer and held to --max-output as the program is.
-"$LAMINA" slice "$M/frame_island.stl" -m lpbf-cli -w 0.5 -q -o fr.cli --json fr.json --html fr.html --svg fr.svg
+# --json writes every vector as an object with its kind and ends; the
+# viewer's page is compact (smaller than a hatched program: docs/viewer.md)
+# but carries its own 40 kB script: both several times a contour-only CLI
+# program's bytes. Each is estimated by its own writer and held to
+# --max-output as the program is.
+"$LAMINA" slice "$M/frame_island.stl" -m cli-ascii -w 0.5 -q -o fr.cli --json fr.json --html fr.html --svg fr.svg
 prog=$(wc -c <fr.cli) json=$(wc -c <fr.json) html=$(wc -c <fr.html) svg=$(wc -c <fr.svg)
 ok $((json > 2 * prog && html > 2 * prog ? 0 : 1)) "the JSON ($json) and the viewer ($html) are over twice the program ($prog)"
 rm -f fr.*
 for o in json html; do
-    run "$LAMINA" slice "$M/frame_island.stl" -m lpbf-cli -w 0.5 --max-output $((2 * prog)) -o fr.cli --$o fr.$o
+    run "$LAMINA" slice "$M/frame_island.stl" -m cli-ascii -w 0.5 --max-output $((2 * prog)) -o fr.cli --$o fr.$o
     like "$RC $ERR" "^1 lamina: --$o fr\.$o would write about [0-9.]+ [kM]B \(40 layers, .*\), more than the limit of [0-9.]+ [kM]B
 lamina: raise the limit with --max-output SIZE" "--$o: refused before planning when its estimate passes --max-output"
     ok $(ls | grep -q '^fr\.' && echo 1 || echo 0) "--$o: no file written"
