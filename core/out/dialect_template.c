@@ -13,6 +13,7 @@
 
 #include "fmt.h"
 #include "lexnum.h"
+#include "shortest.h"
 
 /* ---- commands and fields ---------------------------------------------- */
 
@@ -471,6 +472,8 @@ size_t lam_dialect_number(char *out, double x)
      * are the fewest digits, and that rounding is the one %e would give:
      * lam_fmt_fixed prints it without printf. Up to 16 digits, while q
      * stays exact; beyond, the general way below. */
+    size_t fast = lam_shortest_plain(out, x); /* this, and the rest, without printf */
+    if (fast) return fast;
     static const double p10[] = { 1, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15 };
     if (fabs(x) >= 1e-4 && fabs(x) < 1e15) {
         unsigned long long q;
@@ -519,7 +522,7 @@ size_t lam_dialect_number(char *out, double x)
         prec = exp10 + 1;
     }
     if (exp10 < -4 || exp10 >= 17) return sci(out, neg, d, prec, exp10);
-    return lam_dialect_plain(out, neg, d, prec, exp10);
+    return lam_shortest_layout(out, neg, d, prec, exp10);
 }
 
 /* 1 when the fixed rendering s (from lam_fmt_fixed) is "-0", "-0.000...". */
@@ -665,27 +668,4 @@ void lam_template_render(const lam_template *t, const lam_tvals *v, lam_tbuf *b,
 {
     if (v->labels && v->nlabels) render_labels(t, v, b);
     else render_segs(t, 0, t->nsegs, v, b, rel, has_rel);
-}
-
-size_t lam_dialect_plain(char *out, int neg, const char *d, int prec, int exp10)
-{
-    size_t k = 0;
-    if (neg) out[k++] = '-';
-    if (exp10 < 0) {
-        out[k++] = '0';
-        out[k++] = '.';
-        for (int i = 0; i < -exp10 - 1; i++) out[k++] = '0';
-        memcpy(out + k, d, (size_t)prec);
-        k += (size_t)prec;
-    } else {
-        memcpy(out + k, d, (size_t)exp10 + 1);
-        k += (size_t)exp10 + 1;
-        if (prec > exp10 + 1) {
-            out[k++] = '.';
-            memcpy(out + k, d + exp10 + 1, (size_t)(prec - exp10 - 1));
-            k += (size_t)(prec - exp10 - 1);
-        }
-    }
-    out[k] = '\0';
-    return k;
 }

@@ -55,11 +55,6 @@ void lam_dialect_free(lam_dialect *d);
  * Returns the length. */
 size_t lam_dialect_number(char *buf, double x);
 
-/* Lay out the significant digits d[0..prec) of a number whose first digit
- * is at the power exp10 (-1 < exp10 + 1 <= prec or exp10 < 0) as a plain
- * decimal with no exponent, '-' first when neg: "0.00125", "12.5", "125".
- * out holds at least prec + |exp10| + 4 bytes; returns the length. */
-size_t lam_dialect_plain(char *out, int neg, const char *d, int prec, int exp10);
 
 /* ---- rendering (for the dialect sink) ---------------------------------- */
 
