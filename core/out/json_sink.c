@@ -10,6 +10,7 @@
 #include "dialect.h"
 #include "escape.h"
 #include "fmt.h"
+#include "grow.h"
 #include "hatch.h"
 #include "repair.h"
 #include "slice.h"
@@ -438,14 +439,12 @@ static void summarise(js *s, const lam_vec *v)
             if (in_group(&s->groups[i], v)) g = &s->groups[i];
         if (!g) {
             if (s->ngroups == s->cap_groups) {
-                size_t cap = s->cap_groups ? 2 * s->cap_groups : 16;
-                struct group *ng = realloc(s->groups, cap * sizeof *ng);
+                struct group *ng = lam_grow(s->groups, &s->cap_groups, s->ngroups + 1, sizeof *ng, 16);
                 if (!ng) {
                     nomem(s);
                     return;
                 }
                 s->groups = ng;
-                s->cap_groups = cap;
             }
             g = &s->groups[s->ngroups++];
             *g = (struct group){ .kind = v->kind, .attrs = v->attrs };
