@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The viewer's views (issue 26) in headless Chromium, driven over the
-# DevTools pipe (cdp.py) by viewer_check.py: every colouring mode, every
+# DevTools pipe (cdp.py) by viewerbrowser.py: every colouring mode, every
 # plot, the hover, the ruler and the lasers' fields, each a screenshot whose
 # pixels are checked against the test's own expectation from the same run's
 # --json (which vector passes where, in which colour by the documented
@@ -15,8 +15,8 @@ if [ -z "$CHROME" ]; then
     echo "1..0 # skip chromium is not installed (make deps could not install it)"
     exit 0
 fi
-VC() { python3 "$TESTS/cli/viewer_check.py" "$@"; }
-# relay viewer_check.py's "ok ..." / "not ok ...: why" lines as tests
+VC() { python3 "$TESTS/cli/viewerbrowser.py" "$@"; }
+# relay viewerbrowser.py's "ok ..." / "not ok ...: why" lines as tests
 relay() {
     local line
     while IFS= read -r line; do
@@ -24,7 +24,7 @@ relay() {
         "ok "*) ok 0 "${line#ok }" ;;
         "not ok "*) ok 1 "${line#not ok }" ;;
         "#"*) echo "$line" ;;
-        *) ok 1 "viewer_check.py said: $line" ;;
+        *) ok 1 "viewerbrowser.py said: $line" ;;
         esac
     done
 }

@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
-"""The viewer's views against the test's own expectation (tests/cli/viewer.t).
+"""The viewer's views in the browser against the test's own expectation
+(tests/cli/viewer.t; viewercheck.py is the page's data, decoded without a browser).
 
-    viewer_check.py CHROME PAGE.html RUN.json CHECK [ARGS] ... [page PAGE.html RUN.json CHECK ...]
+    viewerbrowser.py CHROME PAGE.html RUN.json CHECK [ARGS] ... [page PAGE.html RUN.json CHECK ...]
 
 opens the page (lamina's --html) once in headless Chromium (cdp.py, an 800 x
 600 viewport) and runs each CHECK; RUN.json is the same run's --json, read
@@ -221,7 +222,7 @@ def seg_dist(x, y, s):
 
 class Page:
     def __init__(self, chrome, page, run):
-        self.dir = tempfile.mkdtemp(prefix="viewer_check.")
+        self.dir = tempfile.mkdtemp(prefix="viewerbrowser.")
         self.b = Browser(chrome, self.dir, W, H)
         self.s = self.b.page()
         self.b.send("Emulation.setDeviceMetricsOverride",
@@ -598,7 +599,7 @@ def main():
                 print("%s the first layer was drawn (%.0f ms) before the run's JSON was read (%.0f ms)" % (
                     "ok" if t[0] is not None and t[0] < t[1] else "not ok", t[0] or -1, t[1] or -1))
             else:
-                raise SystemExit("viewer_check.py: unknown check " + c)
+                raise SystemExit("viewerbrowser.py: unknown check " + c)
     finally:
         pg.close()
 
