@@ -59,6 +59,7 @@ int lam_geos_load(lam_error *err);
     X(GEOSPolygonize_r)                       \
     X(GEOSUnaryUnion_r)                       \
     X(GEOSUnaryUnionPrec_r)                   \
+    X(GEOSUnionPrec_r)                        \
     X(GEOS_finish_r)                          \
     X(GEOS_init_r)                            \
     X(GEOSisEmpty_r)                          \
@@ -108,6 +109,7 @@ LAM_GEOS_FUNCS(LAM_LAZYLIB_EXTERN)
 #define GEOSPolygonize_r lam_dl_GEOSPolygonize_r
 #define GEOSUnaryUnion_r lam_dl_GEOSUnaryUnion_r
 #define GEOSUnaryUnionPrec_r lam_dl_GEOSUnaryUnionPrec_r
+#define GEOSUnionPrec_r lam_dl_GEOSUnionPrec_r
 #define GEOS_finish_r lam_dl_GEOS_finish_r
 #define GEOS_init_r lam_dl_GEOS_init_r
 #define GEOSisEmpty_r lam_dl_GEOSisEmpty_r

@@ -180,6 +180,16 @@ GEOSGeometry *lam_geos_offset(lam_geos *c, const GEOSGeometry *a, double d)
     return lam_geos_valid(c, GEOSBufferWithStyle_r(c->h, a, d, 8, GEOSBUF_CAP_FLAT, GEOSBUF_JOIN_MITRE, 2.0));
 }
 
+GEOSGeometry *lam_geos_grow(lam_geos *c, const GEOSGeometry *a, double d)
+{
+    return lam_geos_valid(c, GEOSBufferWithStyle_r(c->h, a, d, 16, GEOSBUF_CAP_ROUND, GEOSBUF_JOIN_ROUND, 2.0));
+}
+
+GEOSGeometry *lam_geos_union(lam_geos *c, const GEOSGeometry *a, const GEOSGeometry *b)
+{
+    return GEOSUnionPrec_r(c->h, a, b, c->grid);
+}
+
 GEOSGeometry *lam_geos_layer_region(lam_geos *c, const lam_layer *L)
 {
     size_t n = L->ncontours;

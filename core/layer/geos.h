@@ -63,6 +63,13 @@ GEOSGeometry *lam_geos_difference(lam_geos *g, const GEOSGeometry *a, const GEOS
  * booleans that follow. NULL when GEOS fails. */
 GEOSGeometry *lam_geos_offset(lam_geos *g, const GEOSGeometry *a, double d);
 
+/* Region a (valid) grown by d >= 0 with round joins (16 segments a quarter
+ * circle, inside the true circle: never more than d), made valid: the
+ * points within d of a. NULL when GEOS fails. */
+GEOSGeometry *lam_geos_grow(lam_geos *g, const GEOSGeometry *a, double d);
+/* a united with b by snap-rounding on g->grid (a and b valid). NULL when
+ * GEOS fails. */
+GEOSGeometry *lam_geos_union(lam_geos *g, const GEOSGeometry *a, const GEOSGeometry *b);
 /* Growable lam_loops being filled from GEOS output. */
 typedef struct lam_loops_builder {
     lam_loops loops;         /* owned until taken */

@@ -342,27 +342,25 @@ static int j_begin(void *ctx, const lam_job_info *job)
     return s->rc;
 }
 
-/* A layer's section: each contour a line. */
-static void contours(js *s, const lam_layer_info *li)
+/* Contours of L as lines, numbered from id0 + 1; region: a "region" key
+ * (the support's), part: each contour's part (a build), or NULL. */
+static void contour_lines(js *s, const lam_layer *L, size_t id0, const char *region, const long long *part)
 {
-    const lam_layer *L = li->section;
-    put(s, ",");
-    line(s);
-    put(s, "   \"contours\": [");
     for (size_t k = 0; L && k < L->ncontours; k++) {
         const lam_contour *c = &L->contours[k];
-        put(s, k ? "," : "");
+        put(s, k || id0 ? "," : "");
         line(s);
         put(s, "    {\"id\": ");
-        size(s, k + 1);
+        size(s, id0 + k + 1);
+        if (region) put(s, ", \"region\": \""), put(s, region), put(s, "\"");
         put(s, c->kind == LAM_SOLID ? ", \"solid\": true, \"depth\": " : ", \"solid\": false, \"depth\": ");
         size(s, c->depth > 0 ? (size_t)c->depth : 0);
         put(s, ", \"parent\": ");
-        if (c->parent >= 0) size(s, (size_t)c->parent + 1);
+        if (c->parent >= 0) size(s, id0 + (size_t)c->parent + 1);
         else put(s, "null");
         put(s, ", \"area\": ");
         num(s, c->area);
-        if (li->section_part) put(s, ", \"part\": "), integer(s, li->section_part[k]);
+        if (part) put(s, ", \"part\": "), integer(s, part[k]);
         put(s, ", \"points\": [");
         for (size_t i = 0; i < c->n; i++) {
             const double *uv = L->uv + 2 * (c->first + i);
@@ -374,6 +372,18 @@ static void contours(js *s, const lam_layer_info *li)
         }
         put(s, "]}");
     }
+}
+
+/* A layer's section, then its support region (region "support"): each
+ * contour a line. */
+static void contours(js *s, const lam_layer_info *li)
+{
+    put(s, ",");
+    line(s);
+    put(s, "   \"contours\": [");
+    size_t n = li->section ? li->section->ncontours : 0;
+    contour_lines(s, li->section, 0, NULL, li->section_part);
+    contour_lines(s, li->support, n, lam_kind_name(LAM_KIND_SUPPORT), NULL);
     put(s, "]");
 }
 
@@ -383,6 +393,7 @@ static int j_layer(void *ctx, const lam_layer_info *li)
     s->cut = li->z;
     size_t index = li->index + 1;
     s->contours += li->section ? li->section->ncontours : 0; /* the run's, written or not */
+    s->contours += li->support ? li->support->ncontours : 0;
     s->skip = index < s->o.first || (s->o.last && index > s->o.last);
     s->ngroups = s->last_group = s->prev_group = 0;
     if (s->skip) return s->rc;

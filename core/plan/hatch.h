@@ -78,6 +78,21 @@ typedef struct lam_scan {
     lam_exposure exposure;
 } lam_scan;
 
+/* Supports (support.h): what holds a part's overhangs up. */
+typedef enum lam_support_type { LAM_SUPPORT_NONE, LAM_SUPPORT_BLOCK, LAM_SUPPORT_GRID, LAM_SUPPORT_LINES } lam_support_type;
+
+typedef struct lam_support_cfg {
+    int type;                /* lam_support_type */
+    double angle;            /* the steepest overhang built without support, degrees from
+                                the vertical (90: none needs support) */
+    double gap_xy, gap_z;    /* kept between support and the part: across, below it */
+    double min_area;         /* a support region smaller than this is not made */
+    double spacing;          /* between the support's walls */
+    double height;           /* builds: the part raised this much above the plate */
+    double teeth_height, teeth_width, teeth_spacing; /* walls reaching into the part */
+    double perf_width, perf_spacing; /* square windows in the walls (0: none) */
+} lam_support_cfg;
+
 /* Everything hatching a layer needs. */
 typedef struct lam_scan_cfg {
     lam_scan type[LAM_REGIONS];  /* [LAM_KIND_CONTOUR]: only its exposure is used */
@@ -88,6 +103,7 @@ typedef struct lam_scan_cfg {
     int contours_first;
     int skin_layers;         /* 0: no skins (everything is core) */
     double jump_speed, jump_delay, recoat_time;
+    lam_support_cfg support; /* type[LAM_KIND_SUPPORT] is its exposure */
 } lam_scan_cfg;
 
 /* Whether cfg hatches anything: some hatch type's strategy is not none. */

@@ -77,6 +77,8 @@ typedef struct lam_layer_info {
     double width, floor, ceiling;
     const struct lam_layer *section; /* the layer's section as sliced (its contours before
                                         any offset), or NULL; valid until layer_end returns */
+    const struct lam_layer *support; /* the layer's support region (support.h), or NULL:
+                                        the JSON's contours of region "support" */
     const struct lam_scan_time *time; /* at layer_end of an SLS plan whose estimate means
                                          something (lam_scan_estimates): the layer's
                                          estimate; NULL otherwise */

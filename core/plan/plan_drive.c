@@ -16,6 +16,7 @@
  *  - LADRP: where the stage stands when the layer starts (the nearest
  *    island first, travel lengths): see lam_plan_drive. */
 #include "plan_drive.h"
+#include "support.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -75,9 +76,10 @@ static void copy_error(lam_error *to, const lam_error *from)
     if (to) memcpy(to, from, sizeof *to);
 }
 
-static lam_layer_info info(const lam_layer *L)
+static lam_layer_info info(const run *r, const lam_layer *L)
 {
-    lam_layer_info li = { .index = L->index, .z = L->cut, .width = L->width, .floor = L->floor, .ceiling = L->ceiling, .section = L };
+    lam_layer_info li = { .index = L->index, .z = L->cut, .width = L->width, .floor = L->floor, .ceiling = L->ceiling, .section = L,
+                          .support = lam_supports_region(r->o->supports, L->index) };
     return li;
 }
 
@@ -161,7 +163,7 @@ static int serial(run *r)
         span(r, i, 0, &lo, &hi);
         if ((rc = serial_layers(r, lo, hi, near))) break;
         if (src->stop && (rc = src->stop(src->user, i))) break;
-        lam_layer_info li = info(near[i - lo]);
+        lam_layer_info li = info(r, near[i - lo]);
         /* before the range only LADRP's islands need planning (they go
          * nearest first from the stage); otherwise a layer leaves only
          * the laser off behind (SLS: nothing) */
@@ -286,7 +288,7 @@ static int produce(void *ctx, unsigned worker, size_t i)
     /* a forked sink formats the layer here, whole; other sinks get the
      * recording replayed */
     lam_sink rs = r->text ? w->text.sink : lam_record_sink(&R->ops, r->sink);
-    lam_layer_info li = info(near[i - lo]);
+    lam_layer_info li = info(r, near[i - lo]);
     R->has_text = r->text;
     if (r->text) {
         w->text.start(rs.ctx, &R->plan_err);
@@ -332,7 +334,7 @@ static int write_layer(run *r, size_t i, result *R)
     const lam_sink *sink = r->sink;
     int ladrp = r->o->kind == LAM_PLAN_LADRP;
     int same = !ladrp || (!memcmp(R->entry, r->pos, sizeof r->pos) && R->entry_laser == r->laser);
-    lam_layer_info li = info(R->L);
+    lam_layer_info li = info(r, R->L);
     lam_ladrp_stats ls = R->stats;
     int text = R->has_text && same, rc;
     if (text) {

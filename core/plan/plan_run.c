@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "planner.h"
+#include "support.h"
 
 typedef struct sweep {
     lam_slicer *sc;          /* this worker's sweep (a fork, or the run's own) */
@@ -108,6 +109,27 @@ static lam_layer *src_take(void *ctx, unsigned worker, size_t j)
     return w->cache[--w->count];
 }
 
+/* The run's supports, when its plan asks for them and none were given:
+ * every layer sliced on the calling thread first (the sweep goes from the
+ * top down), then dropped. *out NULL: none asked for. */
+static int run_supports(lam_slicer *s, const lam_plan_opts *o, lam_supports **out, lam_error *err)
+{
+    *out = NULL;
+    if (o->kind != LAM_PLAN_SLS || o->supports || o->scan.support.type == LAM_SUPPORT_NONE) return LAM_OK;
+    size_t n = lam_slicer_count(s), got = 0;
+    lam_layer **L = calloc(n + 1, sizeof *L);
+    if (!L) return lam_error_nomem(err, "making supports");
+    int rc = LAM_OK;
+    lam_slicer_seek(s, 0);
+    while (got < n && !(rc = lam_slicer_next(s, &L[got], err)) && L[got]) got++;
+    lam_slicer_seek(s, 0);
+    if (!rc && got < n) rc = lam_error_set(err, LAM_EGEOM, NULL, 0, 0, "supports: the run ended at layer %zu", got);
+    if (!rc) rc = lam_supports_make((const lam_layer *const *)L, n, &o->scan.support, out, err);
+    for (size_t i = 0; i < got; i++) lam_layer_free(L[i]);
+    free(L);
+    return rc;
+}
+
 int lam_plan_run(lam_slicer *s, const lam_model *m, const lam_plan_opts *o, const lam_sink *sink,
                  lam_layer_cb cb, void *cbctx, lam_error *err)
 {
@@ -124,6 +146,8 @@ int lam_plan_run(lam_slicer *s, const lam_model *m, const lam_plan_opts *o, cons
      * job is spread over processes and machines already */
     lam_plan_opts ro = *o;
     if (o->layer_count || (est.layers && est.bytes / (double)est.layers > LAM_THREAD_LAYER_MAX)) ro.threads = 1;
+    lam_supports *sup = NULL;
+    if (!rc && !(rc = run_supports(s, o, &sup, err)) && sup) ro.supports = sup;
     slicer_src ss = { s, o->kind == LAM_PLAN_SLS && o->scan.skin_layers > 0 ? (size_t)o->scan.skin_layers : 0,
                       NULL, 0 };
     lam_plan_source src;
@@ -143,6 +167,7 @@ int lam_plan_run(lam_slicer *s, const lam_model *m, const lam_plan_opts *o, cons
     src.user = cbctx;
     if (!rc) rc = lam_plan_drive(&src, sink, err);
     if (!rc && sink->end) rc = sink->end(sink->ctx);
+    lam_supports_free(sup);
     if (rc && err && err->code == LAM_OK) lam_error_set(err, rc, NULL, 0, 0, "planning failed");
     /* geometry that fails says which model (its message: the layer and the stage) */
     if (rc && err && err->code == LAM_EGEOM && !err->file[0] && m && m->path)

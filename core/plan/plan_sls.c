@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "offset.h"
+#include "support.h"
 
 void lam_sls_state_init(lam_sls_state *st)
 {
@@ -16,6 +17,7 @@ void lam_sls_state_init(lam_sls_state *st)
 void lam_sls_state_free(lam_sls_state *st)
 {
     lam_hatches_free(&st->hatches);
+    lam_hatches_free(&st->support);
 }
 
 static void to_out(const lam_layer *L, const lam_frame *f, const lam_plan_opts *o, double u, double v, double *xyz)
@@ -131,6 +133,12 @@ int lam_plan_sls_layer(const lam_layer *L, const lam_layer *const *below, size_t
         if (lam_scan_hatches(&o->scan) || o->scan.skin_layers > 0)
             rc = lam_hatch_layer(L, below, nbelow, above, nabove, &o->scan, &st->hatches, err);
         h = &st->hatches;
+    }
+    if (!rc && o->supports) {
+        /* supports first: they stand under the part's overhangs */
+        lam_hatches_clear(&st->support);
+        rc = lam_support_vectors(o->supports, L->index, &o->scan.support, &st->support, err);
+        if (!rc) rc = emit_hatches(L, &st->support, f, o, sink, st, err);
     }
     if (!rc && o->scan.contours_first) rc = contour_passes(L, f, o, sink, st, err);
     if (!rc) rc = emit_hatches(L, h, f, o, sink, st, err);

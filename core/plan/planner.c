@@ -90,6 +90,7 @@ static void job_bbox(const lam_slicer *s, const lam_model *m, const lam_plan_opt
 static int region_used(const lam_scan_cfg *c, int k)
 {
     if (k == LAM_KIND_CONTOUR) return c->contour_count > 0;
+    if (k == LAM_KIND_SUPPORT) return c->support.type != LAM_SUPPORT_NONE;
     if (k != LAM_KIND_CORE && c->skin_layers == 0) return 0;
     return c->type[k].strategy != LAM_HATCH_NONE;
 }
@@ -104,7 +105,8 @@ static void job_exposure(lam_job_info *job, const lam_plan_opts *o)
         const lam_exposure *e = &o->scan.type[k].exposure;
         job->own_exposure[job->nexposure++] = (lam_job_exposure){
             .style = 0, .region = k, .power = e->power, .speed = e->speed,
-            .distance = k == LAM_KIND_CONTOUR ? o->bead : o->scan.type[k].distance,
+            .distance = k == LAM_KIND_CONTOUR ? o->bead : k == LAM_KIND_SUPPORT ? o->scan.support.spacing
+                                                                                : o->scan.type[k].distance,
             .point_distance = e->point_distance, .exposure_time = e->exposure_time };
     }
 }

@@ -85,6 +85,9 @@ typedef struct lam_plan_opts {
                                     and time (hatch.h); the planner sets
                                     scan.compensation: half the spot with
                                     beam_offset, else 0 */
+    const struct lam_supports *supports; /* SLS: the run's supports (support.h), by layer
+                                    index, or NULL: their walls are exposed before
+                                    each layer's part (scan.support's type) */
     lam_scan_time *time;         /* SLS: if not NULL, the job's estimate is added here */
     double *layer_time;          /* SLS (lam_plan_run): if not NULL, room for every
                                     layer: each one's estimate, seconds */
@@ -236,6 +239,7 @@ typedef struct lam_sls_state {
     int have_pos;
     lam_scan_time time;      /* the last layer planned */
     lam_hatches hatches;     /* the last layer's hatch vectors (owned) */
+    lam_hatches support;     /* the last layer's support vectors (owned) */
 } lam_sls_state;
 
 void lam_sls_state_init(lam_sls_state *st);

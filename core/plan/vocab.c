@@ -4,7 +4,7 @@
 #include <string.h>
 
 static const char *const kind_names[LAM_KINDS] = { "contour", "core", "upskin", "downskin",
-                                                   "deposit", "travel", "jump" };
+                                                   "support", "deposit", "travel", "jump" };
 
 const char *lam_kind_name(int kind)
 {

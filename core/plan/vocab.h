@@ -22,6 +22,7 @@ typedef enum lam_vec_kind {
     LAM_KIND_CORE,           /* hatch vectors of the core */
     LAM_KIND_UPSKIN,         /* hatch vectors under the part's top surfaces */
     LAM_KIND_DOWNSKIN,       /* hatch vectors over its overhangs */
+    LAM_KIND_SUPPORT,        /* support walls under overhangs (support.h): lines, no contour */
     LAM_REGIONS,             /* the number of regions */
     LAM_KIND_DEPOSIT = LAM_REGIONS, /* LADRP: a stage move with the laser on */
     LAM_KIND_TRAVEL,         /* LADRP: a stage move with the laser off */
@@ -29,8 +30,8 @@ typedef enum lam_vec_kind {
     LAM_KINDS
 } lam_vec_kind;
 
-/* The kind's name: "contour", "core", "upskin", "downskin", "deposit",
- * "travel", "jump"; "?" for a value outside the enum. */
+/* The kind's name: "contour", "core", "upskin", "downskin", "support",
+ * "deposit", "travel", "jump"; "?" for a value outside the enum. */
 const char *lam_kind_name(int kind);
 
 /* The kind named by the first len bytes of name, or -1. */

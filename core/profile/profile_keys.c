@@ -29,6 +29,7 @@ static const char *const first_line_choices[] = { "edge", "center", NULL };     
 static const char *const strategy_choices[] = { "none", "lines", "stripes", "islands", NULL }; /* lam_strategy */
 static const char *const order_choices[] = { "meander", "unidirectional", "greedy", NULL };    /* lam_hatch_order */
 static const char *const island_order_choices[] = { "sequential", "checker", "random", NULL }; /* lam_island_order */
+static const char *const support_choices[] = { "none", "block", "grid", "lines", NULL };         /* lam_support_type */
 
 /* The least hatch distance, stripe width and island size: a millionth of
  * a unit (1 nm in mm), below any scanner's step in any unit lamina knows.
@@ -78,6 +79,40 @@ static const char *const island_order_choices[] = { "sequential", "checker", "ra
     SCAN(sec, T, "seed", seed, LAM_KEY_INTEGER, 0, 0, 2147483647, NULL, "0",                                    \
          who ": seed of the random island order (the same seed, the same program)"),                          \
     EXPOSURE_ROWS(sec, T, who)
+
+/* The support keys (support.h, docs/supports.md): read by the SLS planner. */
+#define SUPPORT_ROW(key, f, ty, l, h, ch, dflt, text)                                                         \
+    { .name = key, .type = ty, .flags = LAM_KEY_PLAN, .lo = l, .hi = h, .choices = ch, .def = dflt,           \
+      .offset = AT(scan.support.f), .planner = LAM_READ_SLS, .doc = text }
+#define SUPPORT_ROWS                                                                                           \
+    SUPPORT_ROW("support_type", type, LAM_KEY_CHOICE, 0, 0, support_choices, "none",                           \
+                "sls: supports under overhangs: none, block (a grid of walls with its outline), grid (walls "    \
+                "both ways) or lines (walls one way)"),                                                        \
+    SUPPORT_ROW("support_angle", angle, LAM_KEY_NUMBER, 0, 90, NULL, "45",                                     \
+                "sls: the steepest overhang built without support, degrees from the vertical (45: a "          \
+                "45-degree chamfer builds; 90: nothing needs support)"),                                       \
+    SUPPORT_ROW("support_gap_xy", gap_xy, LAM_KEY_NUMBER, 0, HUGE_VAL, NULL, "0",                              \
+                "sls: least distance from a support to the part's walls beside it (beyond the overhang's own " \
+                "reach)"),                                                                                     \
+    SUPPORT_ROW("support_gap_z", gap_z, LAM_KEY_NUMBER, 0, HUGE_VAL, NULL, "0",                                \
+                "sls: supports stop this far below the part (whole layers; no teeth then)"),                   \
+    SUPPORT_ROW("support_min_area", min_area, LAM_KEY_NUMBER, 0, HUGE_VAL, NULL, "0",                          \
+                "sls: support regions smaller than this are not made (square units)"),                         \
+    SUPPORT_ROW("support_spacing", spacing, LAM_KEY_NUMBER, LAM_HATCH_MIN, HUGE_VAL, NULL, "1",                \
+                "sls: distance between support walls"),                                                        \
+    SUPPORT_ROW("support_height", height, LAM_KEY_NUMBER, 0, HUGE_VAL, NULL, "0",                              \
+                "builds: parts stand this high on supports above the plate"),                                  \
+    SUPPORT_ROW("support_teeth.height", teeth_height, LAM_KEY_NUMBER, 0, HUGE_VAL, NULL, "0",                  \
+                "sls: how far the support's walls reach up into the part (0: no teeth)"),                      \
+    SUPPORT_ROW("support_teeth.width", teeth_width, LAM_KEY_NUMBER, 0, HUGE_VAL, NULL, "0.5",                  \
+                "sls: a tooth's length along its wall"),                                                       \
+    SUPPORT_ROW("support_teeth.spacing", teeth_spacing, LAM_KEY_NUMBER, 0, HUGE_VAL, NULL, "1",                \
+                "sls: from one tooth to the next along a wall (at most `width`: one unbroken wall)"),          \
+    SUPPORT_ROW("support_perforation.width", perf_width, LAM_KEY_NUMBER, 0, HUGE_VAL, NULL, "0",               \
+                "sls: side of the square windows cut into the walls to let powder out (0: none)"),             \
+    SUPPORT_ROW("support_perforation.spacing", perf_spacing, LAM_KEY_NUMBER, 0, HUGE_VAL, NULL, "2",           \
+                "sls: from one window to the next, along a wall and upwards"),                                 \
+    EXPOSURE_ROWS("support.", LAM_KIND_SUPPORT, "sls, supports")
 
 #define TEMPLATE(c, key, when)                                                                                 \
     { .name = "dialect." key, .type = LAM_KEY_TEMPLATE, .flags = LAM_KEY_FIXED | LAM_KEY_OPTIONAL, .cmd = c, \
@@ -179,6 +214,7 @@ const lam_key lam_profile_keys[] = {
     EXPOSURE_ROWS("contour.", LAM_KIND_CONTOUR, "sls, contour passes"),
     HATCH_ROWS("upskin.", LAM_KIND_UPSKIN, "sls, up-skin"),
     HATCH_ROWS("downskin.", LAM_KIND_DOWNSKIN, "sls, down-skin"),
+    SUPPORT_ROWS,
     { .name = "plate.width", .type = LAM_KEY_NUMBER, .flags = LAM_KEY_ABOVE | LAM_KEY_OPTIONAL, .lo = 0,
       .hi = HUGE_VAL, .offset = AT(plate_width),
       .doc = "builds: a rectangular build plate's width (x); plate coordinates start at its front-left corner (with "

@@ -1,0 +1,409 @@
+/* Support regions: the top-down sweep of support.h, and what does not
+ * stand on a run's layers. */
+#include "support.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "contour.h"
+#include "geos.h"
+
+struct lam_supports {
+    size_t n;
+    lam_layer **region, **teeth; /* n each, NULL: none */
+    double *area;
+};
+
+double lam_support_reach(double width, double angle)
+{
+    if (angle >= 90) return HUGE_VAL;
+    return width * tan(angle * (3.14159265358979323846 / 180.0));
+}
+
+lam_supports *lam_supports_new(size_t n)
+{
+    lam_supports *s = calloc(1, sizeof *s);
+    if (!s) return NULL;
+    s->n = n;
+    s->region = calloc(n + 1, sizeof *s->region);
+    s->teeth = calloc(n + 1, sizeof *s->teeth);
+    s->area = calloc(n + 1, sizeof *s->area);
+    if (!s->region || !s->teeth || !s->area) {
+        lam_supports_free(s);
+        return NULL;
+    }
+    return s;
+}
+
+void lam_supports_free(lam_supports *s)
+{
+    if (!s) return;
+    for (size_t i = 0; i < s->n; i++) {
+        if (s->region) lam_layer_free(s->region[i]);
+        if (s->teeth) lam_layer_free(s->teeth[i]);
+    }
+    free(s->region);
+    free(s->teeth);
+    free(s->area);
+    free(s);
+}
+
+static double layer_area(const lam_layer *L)
+{
+    double a = 0;
+    for (size_t k = 0; L && k < L->ncontours; k++) a += L->contours[k].area;
+    return a;
+}
+
+int lam_supports_set(lam_supports *s, size_t i, lam_layer *R)
+{
+    if (i >= s->n) {
+        lam_layer_free(R);
+        return LAM_EUSAGE;
+    }
+    lam_layer_free(s->region[i]);
+    s->region[i] = R && R->ncontours ? R : (lam_layer_free(R), NULL);
+    s->area[i] = layer_area(s->region[i]);
+    return LAM_OK;
+}
+
+size_t lam_supports_count(const lam_supports *s)
+{
+    return s ? s->n : 0;
+}
+
+const lam_layer *lam_supports_region(const lam_supports *s, size_t i)
+{
+    return s && i < s->n ? s->region[i] : NULL;
+}
+
+const lam_layer *lam_supports_teeth(const lam_supports *s, size_t i)
+{
+    return s && i < s->n ? s->teeth[i] : NULL;
+}
+
+double lam_supports_area(const lam_supports *s, size_t i)
+{
+    return s && i < s->n ? s->area[i] : 0;
+}
+
+int lam_supports_any(const lam_supports *s)
+{
+    for (size_t i = 0; s && i < s->n; i++)
+        if (s->region[i]) return 1;
+    return 0;
+}
+
+/* ---- the sweep ------------------------------------------------------------ */
+
+typedef struct sweep {
+    lam_geos g;
+    const lam_layer *const *layers;
+    size_t n;
+    const lam_support_cfg *cfg;
+    GEOSGeometry **part;     /* each layer's region */
+    GEOSGeometry **sup;      /* each layer's support (NULL: none) */
+    const char *stage;
+    size_t at;               /* the layer being made */
+} sweep;
+
+static void drop(sweep *w, GEOSGeometry *x)
+{
+    if (x) GEOSGeom_destroy_r(w->g.h, x);
+}
+
+static int empty(sweep *w, const GEOSGeometry *x)
+{
+    return !x || GEOSisEmpty_r(w->g.h, x);
+}
+
+/* The reach used: a millionth more (support.h), and a few grid cells. */
+static double reach_of(const sweep *w, size_t upper)
+{
+    double r = lam_support_reach(w->layers[upper]->width, w->cfg->angle);
+    return r + fmax(1e-6 * r, 64 * w->g.grid);
+}
+
+/* x without its polygons of less than min_area (and the rounding's
+ * slivers: under a millionth of the reach's square); taken. */
+static GEOSGeometry *keep_large(sweep *w, GEOSGeometry *x, double tiny)
+{
+    if (!x) return NULL;
+    double least = fmax(w->cfg->min_area, tiny);
+    int n = GEOSGetNumGeometries_r(w->g.h, x), keep = 0;
+    GEOSGeometry **parts = calloc((size_t)n + 1, sizeof *parts);
+    if (!parts) {
+        drop(w, x);
+        return NULL;
+    }
+    for (int i = 0; i < n; i++) {
+        const GEOSGeometry *p = GEOSGetGeometryN_r(w->g.h, x, i);
+        double a = 0;
+        if (GEOSGeomTypeId_r(w->g.h, p) != GEOS_POLYGON || !GEOSArea_r(w->g.h, p, &a) || a < least) continue;
+        parts[keep++] = GEOSGeom_clone_r(w->g.h, p);
+    }
+    drop(w, x);
+    GEOSGeometry *r = GEOSGeom_createCollection_r(w->g.h, GEOS_MULTIPOLYGON, parts, (unsigned)keep);
+    free(parts);
+    return r;
+}
+
+/* S[k] from S[k+1], P[k+1] and P[k] (support.h). */
+static int sweep_layer(sweep *w, size_t k)
+{
+    w->at = k;
+    GEOSGeometry *above = w->part[k + 1], *u = NULL, *held = NULL, *rest = NULL;
+    double r = reach_of(w, k + 1);
+    if (w->sup[k + 1] && !(above = u = lam_geos_union(&w->g, w->part[k + 1], w->sup[k + 1]))) return LAM_EGEOM;
+    if (empty(w, above)) {
+        drop(w, u);
+        return LAM_OK;
+    }
+    w->stage = "reach";
+    int rc = LAM_OK;
+    if (!(held = isinf(r) ? NULL : lam_geos_grow(&w->g, w->part[k], r)) && !isinf(r)) rc = LAM_EGEOM;
+    if (!rc && held) {
+        w->stage = "support";
+        if (!(rest = lam_geos_difference(&w->g, above, held))) rc = LAM_EGEOM;
+    }
+    if (!rc && rest && w->cfg->gap_xy > r) {
+        w->stage = "gap";
+        GEOSGeometry *gap = lam_geos_grow(&w->g, w->part[k], w->cfg->gap_xy), *x = NULL;
+        if (!gap || !(x = lam_geos_difference(&w->g, rest, gap))) rc = LAM_EGEOM;
+        drop(w, gap);
+        drop(w, rest);
+        rest = x;
+    }
+    drop(w, u);
+    drop(w, held);
+    if (!rc && rest) {
+        w->sup[k] = keep_large(w, rest, 1e-6 * r * r);
+        if (!w->sup[k]) rc = LAM_EGEOM;
+        else if (GEOSisEmpty_r(w->g.h, w->sup[k])) drop(w, w->sup[k]), w->sup[k] = NULL;
+    }
+    return rc;
+}
+
+/* x as a layer like L (index, heights), or NULL (x NULL: none). */
+static int to_layer(sweep *w, const GEOSGeometry *x, const lam_layer *L, lam_layer **out, lam_error *err)
+{
+    *out = NULL;
+    if (empty(w, x)) return LAM_OK;
+    lam_layer *R = calloc(1, sizeof *R);
+    if (!R) return lam_error_nomem(err, "making supports");
+    R->index = L->index;
+    R->floor = L->floor;
+    R->ceiling = L->ceiling;
+    R->width = L->width;
+    R->cut = L->cut;
+    lam_loops_builder b = { 0 };
+    int rc = lam_geos_add_polygons(&w->g, x, &b);
+    if (!rc) rc = lam_contours_assign(R, &b.loops, err);
+    lam_loops_builder_free(&b);
+    if (rc || !R->ncontours) {
+        lam_layer_free(R);
+        return rc == LAM_ENOMEM ? lam_error_nomem(err, "making supports") : rc;
+    }
+    *out = R;
+    return LAM_OK;
+}
+
+/* The union of the parts of layers lo .. hi-1 (hi <= n), NULL if none. */
+static GEOSGeometry *parts_union(sweep *w, size_t lo, size_t hi, int *rc)
+{
+    GEOSGeometry *acc = NULL;
+    for (size_t j = lo; j < hi && !*rc; j++) {
+        if (empty(w, w->part[j])) continue;
+        GEOSGeometry *x = acc ? lam_geos_union(&w->g, acc, w->part[j]) : GEOSGeom_clone_r(w->g.h, w->part[j]);
+        if (!x) *rc = LAM_EGEOM;
+        drop(w, acc);
+        acc = x;
+    }
+    return acc;
+}
+
+/* support_gap_z: layer k's support minus the parts of the layers above
+ * it within the gap. */
+static int clear_below_part(sweep *w, size_t k, size_t layers)
+{
+    if (!w->sup[k] || !layers) return LAM_OK;
+    int rc = LAM_OK;
+    size_t hi = k + 1 + layers < w->n ? k + 1 + layers : w->n;
+    GEOSGeometry *over = parts_union(w, k + 1, hi, &rc), *x = NULL;
+    if (!rc && over && !(x = lam_geos_difference(&w->g, w->sup[k], over))) rc = LAM_EGEOM;
+    drop(w, over);
+    if (x) {
+        drop(w, w->sup[k]);
+        w->sup[k] = x;
+    }
+    return rc;
+}
+
+/* Layer i's teeth: its part over the contacts (S[j] n P[j+1]) of the
+ * `layers` layers below it. */
+static int teeth_of(sweep *w, size_t i, size_t layers, GEOSGeometry **out)
+{
+    *out = NULL;
+    GEOSGeometry *acc = NULL;
+    int rc = LAM_OK;
+    for (size_t j = i > layers ? i - layers : 0; j < i && !rc; j++) {
+        if (!w->sup[j] || empty(w, w->part[j + 1])) continue;
+        GEOSGeometry *c = lam_geos_intersection(&w->g, w->sup[j], w->part[j + 1]), *x = NULL;
+        if (!c) rc = LAM_EGEOM;
+        else if (!(x = acc ? lam_geos_union(&w->g, acc, c) : GEOSGeom_clone_r(w->g.h, c))) rc = LAM_EGEOM;
+        drop(w, c);
+        drop(w, acc);
+        acc = x;
+    }
+    if (!rc && acc && !(*out = lam_geos_intersection(&w->g, acc, w->part[i]))) rc = LAM_EGEOM;
+    drop(w, acc);
+    return rc;
+}
+
+static size_t whole_layers(double height, double width)
+{
+    if (!(height > 0) || !(width > 0)) return 0;
+    double n = ceil(height / width - 1e-9);
+    return n > 1e6 ? 1000000 : (size_t)n;
+}
+
+/* The regions and teeth into s, from the swept w. */
+static int regions(sweep *w, lam_supports *s, lam_error *err)
+{
+    int rc = LAM_OK;
+    double width = w->n ? w->layers[0]->width : 0;
+    size_t gap = whole_layers(w->cfg->gap_z, width), teeth = gap ? 0 : whole_layers(w->cfg->teeth_height, width);
+    for (size_t i = 0; i < w->n && !rc; i++) {
+        GEOSGeometry *t = NULL;
+        w->at = i;
+        w->stage = "teeth";
+        if (teeth && (rc = teeth_of(w, i, teeth, &t))) break;
+        rc = to_layer(w, t, w->layers[i], &s->teeth[i], err);
+        drop(w, t);
+    }
+    for (size_t k = 0; k < w->n && !rc; k++) {
+        w->at = k;
+        w->stage = "gap below the part";
+        if ((rc = clear_below_part(w, k, gap))) break;
+        rc = to_layer(w, w->sup[k], w->layers[k], &s->region[k], err);
+        s->area[k] = layer_area(s->region[k]);
+    }
+    return rc;
+}
+
+static int sweep_start(sweep *w, lam_error *err)
+{
+    int rc = lam_geos_init(&w->g, err);
+    if (rc) return rc;
+    double m = 0;
+    for (size_t i = 0; i < w->n; i++) m = fmax(m, lam_geos_layer_magnitude(w->layers[i]));
+    w->g.grid = lam_geos_grid(m);
+    w->part = calloc(w->n + 1, sizeof *w->part);
+    w->sup = calloc(w->n + 1, sizeof *w->sup);
+    if (!w->part || !w->sup) return lam_error_nomem(err, "making supports");
+    w->stage = "region";
+    for (size_t i = 0; i < w->n; i++) {
+        w->at = i;
+        if (!(w->part[i] = lam_geos_layer_region(&w->g, w->layers[i]))) return LAM_EGEOM;
+    }
+    return LAM_OK;
+}
+
+static void sweep_finish(sweep *w)
+{
+    for (size_t i = 0; i < w->n; i++) {
+        if (w->part) drop(w, w->part[i]);
+        if (w->sup) drop(w, w->sup[i]);
+    }
+    free(w->part);
+    free(w->sup);
+    lam_geos_finish(&w->g);
+}
+
+static int geom_error(sweep *w, int rc, lam_error *err)
+{
+    if (rc == LAM_EGEOM && (!err || err->code == LAM_OK))
+        lam_error_set(err, rc, NULL, 0, 0, "layer %zu: supports: %s: GEOS: %s", w->at + 1, w->stage,
+                      w->g.msg[0] ? w->g.msg : "failed");
+    return rc;
+}
+
+int lam_supports_make(const lam_layer *const *layers, size_t n, const lam_support_cfg *cfg, lam_supports **out,
+                      lam_error *err)
+{
+    *out = NULL;
+    lam_supports *s = lam_supports_new(n);
+    if (!s) return lam_error_nomem(err, "making supports");
+    sweep w;
+    memset(&w, 0, sizeof w);
+    w.layers = layers;
+    w.n = n;
+    w.cfg = cfg;
+    int rc = sweep_start(&w, err);
+    for (size_t k = n > 1 ? n - 1 : 0; k-- > 0 && !rc;) rc = sweep_layer(&w, k);
+    if (!rc) rc = regions(&w, s, err);
+    geom_error(&w, rc, err);
+    sweep_finish(&w);
+    if (rc) {
+        lam_supports_free(s);
+        return rc;
+    }
+    *out = s;
+    return LAM_OK;
+}
+
+/* ---- what does not stand --------------------------------------------------- */
+
+/* a (taken) united with layer R's region, or a itself without R */
+static GEOSGeometry *with(sweep *w, GEOSGeometry *a, const lam_layer *R)
+{
+    if (!R || !a) return a;
+    GEOSGeometry *r = lam_geos_layer_region(&w->g, R), *x = r ? lam_geos_union(&w->g, a, r) : NULL;
+    drop(w, r);
+    drop(w, a);
+    return x;
+}
+
+/* The area of `top` beyond reach r of `base`. */
+static int beyond(sweep *w, const GEOSGeometry *top, const GEOSGeometry *base, double r, double *area)
+{
+    *area = 0;
+    if (isinf(r) || empty(w, top)) return LAM_OK;
+    GEOSGeometry *held = lam_geos_grow(&w->g, base, r), *x = held ? lam_geos_difference(&w->g, top, held) : NULL;
+    int rc = x ? LAM_OK : LAM_EGEOM;
+    x = x ? keep_large(w, x, 1e-6 * r * r) : NULL;
+    if (!rc && !(x && GEOSArea_r(w->g.h, x, area))) rc = LAM_EGEOM;
+    drop(w, held);
+    drop(w, x);
+    return rc;
+}
+
+int lam_supports_unsupported(const lam_layer *const *layers, size_t n, const lam_supports *s, double angle,
+                             double *over, double *left, lam_error *err)
+{
+    sweep w;
+    memset(&w, 0, sizeof w);
+    lam_support_cfg cfg = { .angle = angle };
+    w.layers = layers;
+    w.n = n;
+    w.cfg = &cfg;
+    int rc = sweep_start(&w, err);
+    GEOSGeometry *below = NULL;
+    for (size_t i = 0; i < n && !rc; i++) {
+        w.at = i;
+        w.stage = "overhang";
+        over[i] = left[i] = 0;
+        double r = reach_of(&w, i);
+        GEOSGeometry *both = with(&w, GEOSGeom_clone_r(w.g.h, w.part[i]), lam_supports_region(s, i));
+        if (!both) rc = LAM_EGEOM;
+        if (!rc && i) rc = beyond(&w, w.part[i], w.part[i - 1], r, &over[i]);
+        if (!rc && i) rc = s ? beyond(&w, both, below, r, &left[i]) : (left[i] = over[i], LAM_OK);
+        drop(&w, below);
+        below = both;
+    }
+    drop(&w, below);
+    geom_error(&w, rc, err);
+    sweep_finish(&w);
+    return rc;
+}
