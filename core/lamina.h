@@ -56,6 +56,7 @@
 #include "vocab.h"
 #include "plan.h"
 #include "hatch.h"
+#include "support.h"
 #include "dialect_template.h"
 #include "dialect.h"
 #include "profile.h"

@@ -35,6 +35,7 @@
 #include "profile.h"
 #include "profile_keys.h"
 #include "slice.h"
+#include "support.h"
 
 #include "version.h"
 
@@ -232,6 +233,9 @@ lmodel *lam_lua_checkmodel(lua_State *L, int idx);
 void lam_lua_model_free(lua_State *L, lmodel *u);
 lam_layer *lam_lua_checklayer(lua_State *L, int idx);
 lrun *lam_lua_layerrun(lua_State *L, int idx);   /* run of the layer at idx */
+/* Push a layer of the run of the layer at `like`, holding `taken` (its
+ * finalizer frees it); charged to a sandbox (raises past its memory). */
+void lam_lua_pushlayer(lua_State *L, int like, lam_layer *taken);
 /* Item i (0-based) of the list at index `list` as a live layer: pushed and
  * its lam_layer returned; anything else raises an error on argument `arg`
  * ("layers[3] must be a lamina.layer, got string"). */
@@ -311,6 +315,17 @@ void lam_lua_check_readers(lua_State *L, int arg, const lam_lua_overrides *o, co
 /* Push the value of row k in p, as Lua sees it: nil for an optional value
  * not given. */
 void lam_lua_push_key(lua_State *L, const lam_profile *p, const lam_key *k);
+
+/* Supports (l_support.c). machine:plan's `supports` option of the options
+ * table at opts for the layers at `layers`: the recipe's regions read (its
+ * generator called, on this thread, before planning), kept in a box pushed
+ * on the stack (its finalizer frees them); *box NULL when the option is
+ * absent. lam_lua_supports_auto then makes lamina's own into an empty box
+ * when machine p asks for them. model:supports{layers =, machine =, ...}. */
+lam_supports **lam_lua_supports_option(lua_State *L, int opts, int layers);
+int lam_lua_supports_auto(lam_supports **box, const lam_layer *const *ls, size_t n, const lam_profile *p,
+                          lam_error *err);
+int lam_lua_supports(lua_State *L);
 
 /* Lua control of an SLS plan's hatching (l_hatch.c), from machine:plan's
  * options `layer` (function(layer, i) -> the keys to change for that

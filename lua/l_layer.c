@@ -297,6 +297,20 @@ lam_layer *lam_lua_layeritem(lua_State *L, int list, int arg, size_t i)
     return lam_lua_checklayer(L, -1);
 }
 
+void lam_lua_pushlayer(lua_State *L, int like, lam_layer *taken)
+{
+    like = lua_absindex(L, like);
+    llayer *lu = lua_newuserdatauv(L, sizeof *lu, 2);
+    lu->tag = LAM_TAG_LAYER;
+    lu->L = taken;
+    lu->charged = 0;
+    luaL_setmetatable(L, LAM_LAYER);
+    lua_getiuservalue(L, like, 1);
+    lua_setiuservalue(L, -2, 1);
+    if (!lam_lua_charge(L, &lu->charged, layer_bytes(taken)))
+        lam_lua_memory_raise(L, "a layer of %zu contours does not fit", taken->ncontours);
+}
+
 lrun *lam_lua_layerrun(lua_State *L, int idx)
 {
     lua_getiuservalue(L, idx, 1);

@@ -121,11 +121,13 @@ static void layer_opts(void *ctx, size_t i, lam_plan_opts *oi)
     const planctx *c = ctx;
     unsigned threads = oi->threads;
     unsigned long long max_output = oi->max_output;
+    const lam_supports *sup = oi->supports;
     lam_profile pi = *c->p;
     lam_lua_hatch_profile(c->ctl, i, &pi);
     lam_lua_plan_opts(&pi, oi);
     oi->threads = threads;
     oi->max_output = max_output;
+    oi->supports = sup;
 }
 
 static const lam_hatches *given(void *ctx, size_t i)
@@ -222,7 +224,7 @@ static const lam_error *read_args(lua_State *L, planargs *a)
     if (!lua_isnoneornil(L, 3)) {
         luaL_checktype(L, 3, LUA_TTABLE);
         a->ctl = lam_lua_hatch_split(L, 3); /* at 4 (or nil) */
-        static const char *const own[] = { "max_output", "threads", NULL }; /* read here, not profile keys */
+        static const char *const own[] = { "max_output", "threads", "supports", NULL }; /* not profile keys */
         lam_lua_read_overrides(L, 3, 3, LAM_KEY_PLAN, own, &a->ovr); /* may run metamethods: before any pointer */
         lam_lua_check_readers(L, 3, &a->ovr, &lam_lua_checkmachine(L, 1)->p);
         if (lam_lua_numfield(L, 3, 3, "max_output", &a->max_output) && !(a->max_output >= 1 && a->max_output < 1.8e19))
@@ -333,6 +335,7 @@ int lam_lua_plan(lua_State *L)
     const lam_error *e = read_args(L, &a);
     if (e) return lam_lua_fail(L, e);
     lua_settop(L, 4);
+    lam_supports **sup = lam_lua_supports_option(L, 3, 2); /* at 5: the recipe's regions, or lamina's below */
     int collected = 0;
 again:;
     lua_Unsigned nl = lua_rawlen(L, 2);
@@ -348,6 +351,8 @@ again:;
     const lrun *run = check_layers(L, ls, n);
     lam_plan_opts o;
     lam_lua_plan_opts(&p, &o);
+    if (lam_lua_supports_auto(sup, ls, n, &p, &j->err)) return lam_lua_fail(L, &j->err);
+    o.supports = *sup;
     o.max_output = (unsigned long long)a.max_output;
     lam_job_info job;
     plan_job(&job, &o, run, ls, n);
@@ -368,7 +373,7 @@ again:;
         /* garbage objects may hold the room: collect (no pointer is kept
          * across it: everything is taken again) and try once more; so does
          * a plan stopped for memory below, once */
-        lua_settop(L, 4);
+        lua_settop(L, 5);
         lua_gc(L, LUA_GCCOLLECT);
         collected = 1;
         goto again;
@@ -389,7 +394,7 @@ again:;
                                            "passed the %zu bytes left", room);
         /* garbage objects may hold the room: drop this attempt (the job's
          * and the plan's finalizers free it), collect, plan once more */
-        lua_settop(L, 4);
+        lua_settop(L, 5);
         lua_gc(L, LUA_GCCOLLECT);
         collected = 1;
         goto again;

@@ -81,6 +81,7 @@ static const luaL_Reg model_methods[] = {
     { "slice", lam_lua_slice },
     { "validate", lam_lua_validate },
     { "check", lam_lua_check },
+    { "supports", lam_lua_supports },
     { NULL, NULL },
 };
 

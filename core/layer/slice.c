@@ -483,6 +483,32 @@ int lam_slicer_fork(const lam_slicer *s, lam_slicer **out, lam_error *err)
  * drops keeping order): so dropping the passed ones from the active set and
  * appending the edges scheduled in between that have not passed gives the
  * very set, and the very order, a sweep from layer 0 would have. */
+int lam_slicer_all(lam_slicer *s, lam_layer ***out, size_t *n, lam_error *err)
+{
+    *out = NULL;
+    *n = 0;
+    size_t want = lam_slicer_count(s), got = 0;
+    lam_layer **L = calloc(want + 1, sizeof *L);
+    if (!L) return lam_error_nomem(err, "slicing the run");
+    int rc = LAM_OK;
+    lam_slicer_seek(s, 0);
+    while (got < want && !(rc = lam_slicer_next(s, &L[got], err)) && L[got]) got++;
+    lam_slicer_seek(s, 0);
+    if (rc) {
+        lam_layers_free(L, got);
+        return rc;
+    }
+    *out = L;
+    *n = got;
+    return LAM_OK;
+}
+
+void lam_layers_free(lam_layer **layers, size_t n)
+{
+    for (size_t i = 0; layers && i < n; i++) lam_layer_free(layers[i]);
+    free(layers);
+}
+
 void lam_slicer_seek(lam_slicer *s, size_t i)
 {
     if (i > s->nlayers) i = s->nlayers;

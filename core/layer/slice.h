@@ -136,6 +136,14 @@ size_t lam_slicer_bytes(const lam_slicer *s);
  * It starts at layer 0; free it with lam_slicer_free. */
 int lam_slicer_fork(const lam_slicer *s, lam_slicer **out, lam_error *err);
 
+/* Every layer of s's run, sliced on the calling thread from the first
+ * (s is left at its start): *out holds *n layers, the caller's
+ * (lam_layers_free). Errors: those of lam_slicer_next, LAM_ENOMEM. */
+int lam_slicer_all(lam_slicer *s, lam_layer ***out, size_t *n, lam_error *err);
+
+/* Free layers[0..n) and the array. */
+void lam_layers_free(lam_layer **layers, size_t n);
+
 /* Make layer i (<= count) the next lam_slicer_next returns. Forward it
  * costs the edges scheduled in between, backward a sweep from the start;
  * the layers come out bit for bit as from a sweep that never jumped. */

@@ -116,17 +116,11 @@ static int run_supports(lam_slicer *s, const lam_plan_opts *o, lam_supports **ou
 {
     *out = NULL;
     if (o->kind != LAM_PLAN_SLS || o->supports || o->scan.support.type == LAM_SUPPORT_NONE) return LAM_OK;
-    size_t n = lam_slicer_count(s), got = 0;
-    lam_layer **L = calloc(n + 1, sizeof *L);
-    if (!L) return lam_error_nomem(err, "making supports");
-    int rc = LAM_OK;
-    lam_slicer_seek(s, 0);
-    while (got < n && !(rc = lam_slicer_next(s, &L[got], err)) && L[got]) got++;
-    lam_slicer_seek(s, 0);
-    if (!rc && got < n) rc = lam_error_set(err, LAM_EGEOM, NULL, 0, 0, "supports: the run ended at layer %zu", got);
+    lam_layer **L = NULL;
+    size_t n = 0;
+    int rc = lam_slicer_all(s, &L, &n, err);
     if (!rc) rc = lam_supports_make((const lam_layer *const *)L, n, &o->scan.support, out, err);
-    for (size_t i = 0; i < got; i++) lam_layer_free(L[i]);
-    free(L);
+    lam_layers_free(L, n);
     return rc;
 }
 

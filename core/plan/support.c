@@ -279,15 +279,16 @@ static int regions(sweep *w, lam_supports *s, lam_error *err)
         w->at = i;
         w->stage = "teeth";
         if (teeth && (rc = teeth_of(w, i, teeth, &t))) break;
-        rc = to_layer(w, t, w->layers[i], &s->teeth[i], err);
+        rc = to_layer(w, t, w->layers[i], &s->teeth[w->layers[i]->index], err);
         drop(w, t);
     }
     for (size_t k = 0; k < w->n && !rc; k++) {
         w->at = k;
         w->stage = "gap below the part";
         if ((rc = clear_below_part(w, k, gap))) break;
-        rc = to_layer(w, w->sup[k], w->layers[k], &s->region[k], err);
-        s->area[k] = layer_area(s->region[k]);
+        size_t at = w->layers[k]->index;
+        rc = to_layer(w, w->sup[k], w->layers[k], &s->region[at], err);
+        s->area[at] = layer_area(s->region[at]);
     }
     return rc;
 }
@@ -329,11 +330,20 @@ static int geom_error(sweep *w, int rc, lam_error *err)
     return rc;
 }
 
+/* Room for the layers' run indices: the largest, plus one. */
+static size_t index_room(const lam_layer *const *layers, size_t n)
+{
+    size_t m = 0;
+    for (size_t i = 0; i < n; i++)
+        if (layers[i]->index + 1 > m) m = layers[i]->index + 1;
+    return m;
+}
+
 int lam_supports_make(const lam_layer *const *layers, size_t n, const lam_support_cfg *cfg, lam_supports **out,
                       lam_error *err)
 {
     *out = NULL;
-    lam_supports *s = lam_supports_new(n);
+    lam_supports *s = lam_supports_new(index_room(layers, n));
     if (!s) return lam_error_nomem(err, "making supports");
     sweep w;
     memset(&w, 0, sizeof w);
@@ -395,7 +405,7 @@ int lam_supports_unsupported(const lam_layer *const *layers, size_t n, const lam
         w.stage = "overhang";
         over[i] = left[i] = 0;
         double r = reach_of(&w, i);
-        GEOSGeometry *both = with(&w, GEOSGeom_clone_r(w.g.h, w.part[i]), lam_supports_region(s, i));
+        GEOSGeometry *both = with(&w, GEOSGeom_clone_r(w.g.h, w.part[i]), lam_supports_region(s, layers[i]->index));
         if (!both) rc = LAM_EGEOM;
         if (!rc && i) rc = beyond(&w, w.part[i], w.part[i - 1], r, &over[i]);
         if (!rc && i) rc = s ? beyond(&w, both, below, r, &left[i]) : (left[i] = over[i], LAM_OK);

@@ -38,14 +38,16 @@ typedef struct lam_supports lam_supports;
  * w * tan(angle); HUGE_VAL from 90 degrees on. */
 double lam_support_reach(double width, double angle);
 
-/* The supports of one run's layers[0..n) (bottom to top, every layer of
- * the run, one frame) under cfg (cfg->type is not looked at: regions are
- * made for any type). *out is the caller's (lam_supports_free). Errors:
- * LAM_ENOMEM, LAM_EGEOM (the layer and the stage in err). */
+/* The supports of layers[0..n) of one run (bottom to top, one frame; each
+ * stands on the one before it: every layer of the run, or the subset a
+ * recipe plans) under cfg (cfg->type is not looked at: regions are made
+ * for any type), kept by each layer's run index (lam_layer.index). *out is
+ * the caller's (lam_supports_free). Errors: LAM_ENOMEM, LAM_EGEOM (the
+ * layer and the stage in err). */
 int lam_supports_make(const lam_layer *const *layers, size_t n, const lam_support_cfg *cfg, lam_supports **out,
                       lam_error *err);
 
-/* n layers without support, for a caller that sets its own regions
+/* Run indices 0 .. n-1 without support, for a caller that sets its own regions
  * (lam_supports_set: Lua's support generators). NULL: out of memory. */
 lam_supports *lam_supports_new(size_t n);
 
@@ -54,10 +56,10 @@ lam_supports *lam_supports_new(size_t n);
  * range). */
 int lam_supports_set(lam_supports *s, size_t i, lam_layer *R);
 
-/* The layers s covers. */
+/* The run indices s covers (0 .. count-1). */
 size_t lam_supports_count(const lam_supports *s);
 
-/* Layer i's support region and its teeth (inside the part), or NULL when
+/* The support region and the teeth of the layer of run index i (inside the part), or NULL when
  * it has none (i out of range: NULL). Borrowed from s. */
 const lam_layer *lam_supports_region(const lam_supports *s, size_t i);
 const lam_layer *lam_supports_teeth(const lam_supports *s, size_t i);
@@ -78,7 +80,7 @@ void lam_supports_free(lam_supports *s);
 int lam_supports_unsupported(const lam_layer *const *layers, size_t n, const lam_supports *s, double angle,
                              double *over, double *left, lam_error *err);
 
-/* Layer i's support vectors under cfg into out (appended, kind
+/* The support vectors of the layer of run index i under cfg into out (appended, kind
  * LAM_KIND_SUPPORT): walls support_spacing apart on the grid of the run's
  * plane (lines: along u; grid and block: along u and v; block also the
  * region's outline), with windows where support_perforation asks, and

@@ -101,7 +101,7 @@ static const char *const support_choices[] = { "none", "block", "grid", "lines",
     SUPPORT_ROW("support_spacing", spacing, LAM_KEY_NUMBER, LAM_HATCH_MIN, HUGE_VAL, NULL, "1",                \
                 "sls: distance between support walls"),                                                        \
     SUPPORT_ROW("support_height", height, LAM_KEY_NUMBER, 0, HUGE_VAL, NULL, "0",                              \
-                "builds: parts stand this high on supports above the plate"),                                  \
+                "sls: builds stand parts this high on supports above the plate"),                                  \
     SUPPORT_ROW("support_teeth.height", teeth_height, LAM_KEY_NUMBER, 0, HUGE_VAL, NULL, "0",                  \
                 "sls: how far the support's walls reach up into the part (0: no teeth)"),                      \
     SUPPORT_ROW("support_teeth.width", teeth_width, LAM_KEY_NUMBER, 0, HUGE_VAL, NULL, "0.5",                  \

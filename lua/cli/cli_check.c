@@ -6,6 +6,7 @@
 #include "cli.h"
 #include "repair_note.h"
 #include "cli_args.h"
+#include "cli_overhang.h"
 #include "drc.h"
 #include "fmt.h"
 #include "model.h"
@@ -19,8 +20,10 @@
 static const char usage_text[] =
     "usage: lamina check MODEL -m MACHINE [-s KEY=VALUE ...] [-a AXIS] [-w WIDTH ...] [--json]\n"
     "                          [--svg FILE]\n"
-    "Design-rule check: walls thinner than the machine's bead (or spot) width, and\n"
-    "downward faces steeper than its max_overhang_deg (when the profile sets it).\n"
+    "Design-rule check: walls thinner than the machine's bead (or spot) width,\n"
+    "downward faces steeper than its max_overhang_deg (when the profile sets it), and\n"
+    "for a powder-bed machine each layer's overhang that stands on nothing within\n"
+    "support_angle of the layer below, with the supports its support_type makes.\n"
     "-a gives the build direction (default z). Exit 3 when any rule is violated.\n";
 
 static int draw(const args *a, lam_model *m, const lam_drc_result *res, const char *units, lam_error *err)
@@ -84,7 +87,7 @@ static void json_violation(const lam_violation *x, size_t i, const char *where)
 /* The report of res (the rules o of profile prof) on standard output: text
  * or, with --json, JSON. */
 static void report(const args *a, const lam_model *m, const lam_profile *prof, const lam_drc_opts *o,
-                   const lam_drc_result *res)
+                   const lam_drc_result *res, const cli_overhangs *ov)
 {
     if (a->json) {
         fputs("{\"model\":", stdout);
@@ -116,8 +119,11 @@ static void report(const args *a, const lam_model *m, const lam_profile *prof, c
         }
     }
     if (a->json) {
-        fprintf(stdout, "],\"samples\":%zu}\n", res->samples);
+        fprintf(stdout, "],\"samples\":%zu", res->samples);
+        cli_overhangs_print(ov, a->path, 1);
+        fputs("}\n", stdout);
     } else {
+        cli_overhangs_print(ov, a->path, 0);
         printf("%s: %zu violation%s of %s's rules (min_wall %s", a->path, res->n, res->n == 1 ? "" : "s", prof->name,
                LAM_NUM(o->min_wall));
         if (o->max_overhang_deg > 0) printf(", max_overhang %s degrees", LAM_NUM(o->max_overhang_deg));
@@ -164,12 +170,20 @@ int cmd_check(int argc, char **argv)
         rc = cli_fail(&err);
         goto done;
     }
-    report(&a, m, prof, &o, &res);
+    cli_overhangs ov;
+    if (cli_overhangs_run(&a, m, prof, &ov, &err)) {
+        cli_overhangs_free(&ov);
+        rc = cli_fail_limit(&err, 0, CLI_RAISE_LAYERS);
+        goto done;
+    }
+    report(&a, m, prof, &o, &res, &ov);
+    size_t bad = ov.bad;
+    cli_overhangs_free(&ov);
     if (a.svg && draw(&a, m, &res, prof->units, &err)) {
         rc = cli_fail_limit(&err, 0, CLI_RAISE_LAYERS);
         goto done;
     }
-    rc = res.n ? EXIT_CHECK : EXIT_OK;
+    rc = res.n || bad ? EXIT_CHECK : EXIT_OK;
 done:
     fflush(stdout);
     lam_drc_result_free(&res);
