@@ -37,6 +37,9 @@ typedef struct slot {
     lam_layer sec;           /* the parts' sections together (the JSON's contours) */
     long long *sec_part;     /* the part of each of its contours */
     size_t sec_cap, pts_cap;
+    lam_layer sup;           /* the parts' support regions together (the JSON's, region support) */
+    long long *sup_part;
+    size_t sup_cap, sup_pts_cap;
     lam_error err;
 } slot;
 
@@ -182,26 +185,27 @@ static int slot_note_part(slot *s, size_t pi, const lam_scan_time *t, lam_error 
     return LAM_OK;
 }
 
-/* Part pi's section L appended to the layer's sections. */
-static int add_section(slot *s, const lam_layer *L, size_t pi, lam_error *err)
+/* Part pi's contours L appended to m (with each contour's part in *part;
+ * cap, pts_cap: the arrays' room). */
+static int add_contours(lam_layer *m, long long **part, size_t *cap_c, size_t *cap_p, const lam_layer *L, size_t pi,
+                        lam_error *err)
 {
-    lam_layer *m = &s->sec;
     size_t nc = m->ncontours + L->ncontours, np = m->npoints + L->npoints;
-    if (nc > s->sec_cap) {
-        size_t cap = lam_grow_cap(s->sec_cap, nc, 16, sizeof *m->contours);
+    if (nc > *cap_c) {
+        size_t cap = lam_grow_cap(*cap_c, nc, 16, sizeof *m->contours);
         lam_contour *c = cap ? realloc(m->contours, cap * sizeof *c) : NULL;
-        long long *pp = c ? realloc(s->sec_part, cap * sizeof *pp) : NULL;
+        long long *pp = c ? realloc(*part, cap * sizeof *pp) : NULL;
         if (c) m->contours = c;
-        if (pp) s->sec_part = pp;
+        if (pp) *part = pp;
         if (!pp) return lam_error_nomem(err, "planning a build");
-        s->sec_cap = cap;
+        *cap_c = cap;
     }
-    if (np > s->pts_cap) {
-        size_t cap = lam_grow_cap(s->pts_cap, np, 64, 2 * sizeof *m->uv);
+    if (np > *cap_p) {
+        size_t cap = lam_grow_cap(*cap_p, np, 64, 2 * sizeof *m->uv);
         double *uv = cap ? realloc(m->uv, 2 * cap * sizeof *uv) : NULL;
         if (!uv) return lam_error_nomem(err, "planning a build");
         m->uv = uv;
-        s->pts_cap = cap;
+        *cap_p = cap;
     }
     if (L->npoints) memcpy(m->uv + 2 * m->npoints, L->uv, 2 * L->npoints * sizeof *m->uv);
     for (size_t k = 0; k < L->ncontours; k++) {
@@ -209,11 +213,21 @@ static int add_section(slot *s, const lam_layer *L, size_t pi, lam_error *err)
         c.first += m->npoints;
         if (c.parent >= 0) c.parent += (long)m->ncontours;
         m->contours[m->ncontours + k] = c;
-        s->sec_part[m->ncontours + k] = (long long)pi + 1;
+        (*part)[m->ncontours + k] = (long long)pi + 1;
     }
     m->ncontours = nc;
     m->npoints = np;
     return LAM_OK;
+}
+
+/* Part pi's section L (and its support region on the part's layer j)
+ * appended to the layer's. */
+static int add_section(slot *s, const lam_run_part *p, size_t j, const lam_layer *L, size_t pi, lam_error *err)
+{
+    int rc = add_contours(&s->sec, &s->sec_part, &s->sec_cap, &s->pts_cap, L, pi, err);
+    const lam_layer *R = lam_supports_region(p->supports, j);
+    if (!rc && R) rc = add_contours(&s->sup, &s->sup_part, &s->sup_cap, &s->sup_pts_cap, R, pi, err);
+    return rc;
 }
 
 /* Every operation's CLI id from its (part, style, laser). */
@@ -243,6 +257,7 @@ static int plan_layer(drive *d, unsigned wi, size_t k, slot *s)
     s->nparts = 0;
     s->cut = plate_cut(r, k);
     s->sec.ncontours = s->sec.npoints = 0;
+    s->sup.ncontours = s->sup.npoints = 0;
     int rc = LAM_OK;
     for (size_t pi = 0; pi < r->nparts && !rc; pi++) {
         const lam_run_part *p = &r->parts[pi];
@@ -260,7 +275,7 @@ static int plan_layer(drive *d, unsigned wi, size_t k, slot *s)
                                    p->name, k + 1, e.msg);
         if (!rc) s->cut = lam_slicer_cut(p->slicer, k - p->first);
         if (!rc) rc = slot_note_part(s, pi, &t, &s->err);
-        if (!rc) rc = add_section(s, L, pi, &s->err);
+        if (!rc) rc = add_section(s, p, k - p->first, L, pi, &s->err);
     }
     if (!rc) rc = lam_lasers_share(&r->lasers, &d->cfg, &w->collect, &s->out, s->lasers, &s->err);
     if (!rc) rc = label_blocks(r, &s->out, &s->err);
@@ -347,7 +362,8 @@ static int write_layer(drive *d, size_t k, const slot *s)
     sec.ceiling = top;
     sec.width = r->width;
     lam_layer_info li = { .index = k, .z = top, .width = r->width, .floor = sec.floor, .ceiling = top,
-                          .section = &sec, .has_cut = 1, .cut = s->cut, .section_part = s->sec_part };
+                          .section = &sec, .has_cut = 1, .cut = s->cut, .section_part = s->sec_part,
+                          .support = s->sup.ncontours ? &s->sup : NULL, .support_part = s->sup_part };
     const lam_sink *sk = d->sink;
     int rc = d->o->section ? d->o->section(d->o->user, &sec, d->err) : LAM_OK;
     if (!rc && sk->layer) rc = sk->layer(sk->ctx, &li);
@@ -415,6 +431,9 @@ static void drive_close(drive *d)
         free(d->slots[k].sec.uv);
         free(d->slots[k].sec.contours);
         free(d->slots[k].sec_part);
+        free(d->slots[k].sup.uv);
+        free(d->slots[k].sup.contours);
+        free(d->slots[k].sup_part);
     }
     free(d->ws);
     free(d->slots);

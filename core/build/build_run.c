@@ -123,12 +123,37 @@ static int load_all(lam_build_run *r, const lam_load_opts *load, lam_model **mod
     return LAM_OK;
 }
 
+/* Whether the build's machine makes supports. */
+static int supported(const lam_build_run *r)
+{
+    return r->b->profile->process == LAM_PROCESS_SLS && r->b->profile->scan.support.type != LAM_SUPPORT_NONE;
+}
+
+/* The part's supports (support.h) over its run, from the plate up. */
+static int support_part(lam_run_part *p, lam_error *err)
+{
+    if (p->po.scan.support.type == LAM_SUPPORT_NONE) return LAM_OK;
+    lam_layer **L = NULL;
+    size_t n = 0;
+    int rc = lam_slicer_all(p->slicer, &L, &n, err);
+    if (!rc) rc = lam_supports_make((const lam_layer *const *)L, n, &p->po.scan.support, &p->supports, err);
+    lam_layers_free(L, n);
+    if (rc && err) {
+        char msg[sizeof err->msg];
+        snprintf(msg, sizeof msg, "%s", err->msg);
+        lam_error_set(err, rc, NULL, 0, 0, "part %s: %s", p->name, msg);
+    }
+    p->po.supports = p->supports;
+    return rc;
+}
+
 /* Planes k w for the plate layers the part reaches. */
 static int slice_part(lam_build_run *r, lam_run_part *p, lam_error *err)
 {
     const double *bb = p->model->stats.bbox;
     double w = r->width;
-    size_t first = (size_t)floor(bb[2] / w + 1e-9);
+    /* with supports a part's run starts at the plate: they stand on it */
+    size_t first = supported(r) ? 0 : (size_t)floor(bb[2] / w + 1e-9);
     size_t end = (size_t)ceil(bb[5] / w - 1e-9);
     if (end <= first) end = first + 1;
     if (end - first > LAM_DEFAULT_MAX_LAYERS)
@@ -215,6 +240,7 @@ static int region_used(const lam_run_part *p, int k)
 {
     const lam_scan_cfg *c = &p->po.scan;
     if (k == LAM_KIND_CONTOUR) return c->contour_count > 0;
+    if (k == LAM_KIND_SUPPORT) return c->support.type != LAM_SUPPORT_NONE;
     if (k != LAM_KIND_CORE && c->skin_layers == 0) return 0;
     return c->type[k].strategy != LAM_HATCH_NONE;
 }
@@ -315,10 +341,12 @@ static int place_parts(lam_build_run *r, lam_model **models, const lam_arrange_i
         /* the same arithmetic for a fixed part and an arranged one, so a
          * part planned alone at the place it got here is the same part */
         double c[2] = { (it->box[0] + it->box[2]) / 2, (it->box[1] + it->box[3]) / 2 };
-        double d[3] = { it->at[0] - c[0], it->at[1] - c[1], spec->z };
+        double raise = supported(r) ? r->b->profile->scan.support.height : 0; /* support_height */
+        double d[3] = { it->at[0] - c[0], it->at[1] - c[1], spec->z + raise };
         int rc = moved_copy(models[p->spec], d, &p->model, err);
         if (!rc) rc = slice_part(r, p, err);
         if (!rc) rc = style_part(r, p, err);
+        if (!rc) rc = support_part(p, err);
         if (rc) return rc;
         const double *bb = p->model->stats.bbox;
         double box[4] = { bb[0], bb[1], bb[3], bb[4] };
@@ -371,7 +399,8 @@ static int make_exposure(lam_build_run *r, lam_error *err)
                 const lam_exposure *e = &c->type[k].exposure;
                 r->exposure[n++] = (lam_job_exposure){
                     .style = (long long)s, .region = k, .power = e->power, .speed = e->speed,
-                    .distance = k == LAM_KIND_CONTOUR ? p->po.bead : c->type[k].distance,
+                    .distance = k == LAM_KIND_CONTOUR ? p->po.bead
+                                : k == LAM_KIND_SUPPORT ? c->support.spacing : c->type[k].distance,
                     .point_distance = e->point_distance, .exposure_time = e->exposure_time };
                 break;
             }
@@ -439,6 +468,7 @@ void lam_build_run_free(lam_build_run *r)
 {
     if (!r) return;
     for (size_t i = 0; r->parts && i < r->nparts; i++) {
+        lam_supports_free(r->parts[i].supports);
         lam_slicer_free(r->parts[i].slicer);
         lam_model_free(r->parts[i].model);
     }

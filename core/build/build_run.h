@@ -19,6 +19,7 @@
 #include "plan.h"
 #include "planner.h"
 #include "slice.h"
+#include "support.h"
 
 /* One part on the plate (a copy of a job's part). */
 typedef struct lam_run_part {
@@ -31,7 +32,8 @@ typedef struct lam_run_part {
     double at[2];            /* its centre */
     double zmax;             /* its top */
     lam_profile styled;      /* the machine with the part's styles (strings borrowed) */
-    lam_plan_opts po;        /* its planning options */
+    lam_plan_opts po;        /* its planning options (po.supports: supports) */
+    lam_supports *supports;  /* its supports by its own layer index, or NULL (owned) */
     int style_id[LAM_REGIONS]; /* the style number of each region */
     lam_scan_time time;      /* its share of the estimate (exposure and jumps of its own
                                 blocks, as if one laser did it all), filled by planning */

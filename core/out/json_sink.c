@@ -383,7 +383,7 @@ static void contours(js *s, const lam_layer_info *li)
     put(s, "   \"contours\": [");
     size_t n = li->section ? li->section->ncontours : 0;
     contour_lines(s, li->section, 0, NULL, li->section_part);
-    contour_lines(s, li->support, n, lam_kind_name(LAM_KIND_SUPPORT), NULL);
+    contour_lines(s, li->support, n, lam_kind_name(LAM_KIND_SUPPORT), li->support_part);
     put(s, "]");
 }
 

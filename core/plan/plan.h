@@ -93,6 +93,7 @@ typedef struct lam_layer_info {
     const struct lam_part_time *parts; /* at layer_end of a build: each part's time */
     size_t nparts;
     const long long *section_part; /* a build: the part of each of section's contours */
+    const long long *support_part; /* a build: the part of each of support's contours */
     double balance;          /* a build, at layer_end: the busiest laser over the ideal (lasers.h) */
 } lam_layer_info;
 
