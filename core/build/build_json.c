@@ -78,8 +78,8 @@ static void part(lam_buf *b, const lam_build_run *r, size_t i)
     lam_buf_printf(b, ", \"box\": ");
     nums(b, p->box, 4);
     lam_buf_printf(b, ", \"layers\": [%zu, %zu], \"styles\": {", p->first + 1, p->first + p->count);
-    for (int k = 0; k < LAM_REGIONS; k++)
-        lam_buf_printf(b, "%s\"%s\": %d", k ? ", " : "", lam_kind_name(k), p->style_id[k]);
+    for (int k = 0; k < LAM_REGIONS; k++) /* a region without a style (support, none made): left out */
+        if (p->style_id[k]) lam_buf_printf(b, "%s\"%s\": %d", k ? ", " : "", lam_kind_name(k), p->style_id[k]);
     lam_buf_printf(b, "}}");
 }
 

@@ -179,17 +179,22 @@ static int slice_part(lam_build_run *r, lam_run_part *p, lam_error *err)
 
 /* ---- styles ---------------------------------------------------------------- */
 
-/* Style numbers: the regions' own first, then the job's other styles. */
+/* Style numbers: the part regions' own first (contour, core, upskin,
+ * downskin: 1 to 4), then the job's other styles, then the support's when
+ * the machine makes supports (last, so a build without supports numbers
+ * its styles as before supports existed). */
 static int number_styles(lam_build_run *r, lam_error *err)
 {
     const lam_build *b = r->b;
     r->styles = calloc(LAM_REGIONS + b->nstyles, sizeof *r->styles);
     if (!r->styles) return lam_error_nomem(err, "numbering build styles");
-    for (int k = 0; k < LAM_REGIONS; k++)
+    for (int k = 0; k < LAM_KIND_SUPPORT; k++)
         if (!(r->styles[r->nstyles++] = dup(lam_kind_name(k)))) return lam_error_nomem(err, "numbering build styles");
     for (size_t i = 0; i < b->nstyles; i++)
         if (lam_region_find(b->styles[i].name) < 0 && !(r->styles[r->nstyles++] = dup(b->styles[i].name)))
             return lam_error_nomem(err, "numbering build styles");
+    if (supported(r) && !(r->styles[r->nstyles++] = dup(lam_kind_name(LAM_KIND_SUPPORT))))
+        return lam_error_nomem(err, "numbering build styles");
     return LAM_OK;
 }
 
@@ -212,8 +217,10 @@ static int style_part(lam_build_run *r, lam_run_part *p, lam_error *err)
         int d = lam_build_style_find(b, lam_kind_name(k));
         if (spec->style[k] < 0 && d >= 0) defaults[k] = &b->styles[d];
         if (spec->style[k] >= 0) own[k] = &b->styles[spec->style[k]];
-        p->style_id[k] = own[k] ? style_number(r, own[k]->name) : k + 1;
-        if (own[k] && lam_region_find(own[k]->name) >= 0) p->style_id[k] = lam_region_find(own[k]->name) + 1;
+        p->style_id[k] = style_number(r, own[k] ? own[k]->name : lam_kind_name(k));
+        if (own[k] && lam_region_find(own[k]->name) >= 0)
+            p->style_id[k] = style_number(r, lam_kind_name(lam_region_find(own[k]->name)));
+        if (k == LAM_KIND_SUPPORT && !supported(r)) p->style_id[k] = 0; /* no supports: no style */
     }
     lam_profile tmp;
     int rc = lam_build_styled_profile(b->profile, defaults, 0, b->path, &tmp, err);

@@ -376,7 +376,7 @@ static int check_keys(const src *s, const yaml_node_t *m, const char *where, con
         size_t i = 0;
         while (i < nn && strcmp(names[i], key) != 0) i++;
         if (i == nn) {
-            char allowed[700];
+            char allowed[900];
             key_list(names, nn, allowed, sizeof allowed);
             const char *best = lam_key_nearest(key, names, nn);
             char hint[80] = "";

@@ -123,11 +123,11 @@ static void report(const args *a, const lam_model *m, const lam_profile *prof, c
         cli_overhangs_print(ov, a->path, 1);
         fputs("}\n", stdout);
     } else {
-        cli_overhangs_print(ov, a->path, 0);
         printf("%s: %zu violation%s of %s's rules (min_wall %s", a->path, res->n, res->n == 1 ? "" : "s", prof->name,
                LAM_NUM(o->min_wall));
         if (o->max_overhang_deg > 0) printf(", max_overhang %s degrees", LAM_NUM(o->max_overhang_deg));
         printf(")\n");
+        cli_overhangs_print(ov, a->path, 0);
     }
 }
 

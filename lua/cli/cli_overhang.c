@@ -98,9 +98,11 @@ void cli_overhangs_print(const cli_overhangs *o, const char *path, int json)
     if (o->bad)
         printf("%s: unsupported overhangs on %zu layer%s, %.6g %s\xc2\xb2 in all (supports: %s)\n", path, o->bad,
                o->bad == 1 ? "" : "s", total, o->units, o->type);
-    else
+    else if (with)
         printf("%s: every overhang stands (support_angle %s; supports: %s, on %zu layer%s, %.6g %s\xc2\xb2)\n",
                path, LAM_NUM(o->angle), o->type, with, with == 1 ? "" : "s", area, o->units);
+    else
+        printf("%s: every overhang stands (support_angle %s; no support needed)\n", path, LAM_NUM(o->angle));
 }
 
 void cli_overhangs_free(cli_overhangs *o)
