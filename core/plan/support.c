@@ -125,28 +125,53 @@ static double reach_of(const sweep *w, size_t upper)
     return r + fmax(1e-6 * r, 64 * w->g.grid);
 }
 
+/* The polygons of x (a polygon, or any collection of them and of lines
+ * and points, nested), each of at least `least` area, appended to parts. */
+static int add_areal(sweep *w, const GEOSGeometry *x, double least, GEOSGeometry ***parts, size_t *n, size_t *cap)
+{
+    int type = GEOSGeomTypeId_r(w->g.h, x);
+    if (type == GEOS_MULTIPOLYGON || type == GEOS_GEOMETRYCOLLECTION) {
+        int m = GEOSGetNumGeometries_r(w->g.h, x), rc = LAM_OK;
+        for (int i = 0; i < m && !rc; i++) rc = add_areal(w, GEOSGetGeometryN_r(w->g.h, x, i), least, parts, n, cap);
+        return rc;
+    }
+    double a = 0;
+    if (type != GEOS_POLYGON || !GEOSArea_r(w->g.h, x, &a) || a < least || a == 0) return LAM_OK;
+    if (*n == *cap) {
+        size_t c = *cap ? 2 * *cap : 16;
+        GEOSGeometry **p = realloc(*parts, c * sizeof *p);
+        if (!p) return LAM_ENOMEM;
+        *parts = p;
+        *cap = c;
+    }
+    GEOSGeometry *copy = GEOSGeom_clone_r(w->g.h, x);
+    if (!copy) return LAM_EGEOM;
+    (*parts)[(*n)++] = copy;
+    return LAM_OK;
+}
+
+/* x (taken) as a multipolygon of its polygons of at least `least` area:
+ * an overlay's result may hold lines and points where regions touch, which
+ * the next overlay refuses ("mixed-dimension"). NULL when GEOS fails. */
+static GEOSGeometry *areal(sweep *w, GEOSGeometry *x, double least)
+{
+    if (!x) return NULL;
+    GEOSGeometry **parts = NULL;
+    size_t n = 0, cap = 0;
+    int rc = add_areal(w, x, least, &parts, &n, &cap);
+    drop(w, x);
+    GEOSGeometry *r = rc ? NULL : GEOSGeom_createCollection_r(w->g.h, GEOS_MULTIPOLYGON, parts, (unsigned)n);
+    if (!r)
+        for (size_t i = 0; i < n; i++) drop(w, parts[i]);
+    free(parts);
+    return r;
+}
+
 /* x without its polygons of less than min_area (and the rounding's
  * slivers: under a millionth of the reach's square); taken. */
 static GEOSGeometry *keep_large(sweep *w, GEOSGeometry *x, double tiny)
 {
-    if (!x) return NULL;
-    double least = fmax(w->cfg->min_area, tiny);
-    int n = GEOSGetNumGeometries_r(w->g.h, x), keep = 0;
-    GEOSGeometry **parts = calloc((size_t)n + 1, sizeof *parts);
-    if (!parts) {
-        drop(w, x);
-        return NULL;
-    }
-    for (int i = 0; i < n; i++) {
-        const GEOSGeometry *p = GEOSGetGeometryN_r(w->g.h, x, i);
-        double a = 0;
-        if (GEOSGeomTypeId_r(w->g.h, p) != GEOS_POLYGON || !GEOSArea_r(w->g.h, p, &a) || a < least) continue;
-        parts[keep++] = GEOSGeom_clone_r(w->g.h, p);
-    }
-    drop(w, x);
-    GEOSGeometry *r = GEOSGeom_createCollection_r(w->g.h, GEOS_MULTIPOLYGON, parts, (unsigned)keep);
-    free(parts);
-    return r;
+    return areal(w, x, fmax(w->cfg->min_area, tiny));
 }
 
 /* S[k] from S[k+1], P[k+1] and P[k] (support.h). */
@@ -155,21 +180,22 @@ static int sweep_layer(sweep *w, size_t k)
     w->at = k;
     GEOSGeometry *above = w->part[k + 1], *u = NULL, *held = NULL, *rest = NULL;
     double r = reach_of(w, k + 1);
-    if (w->sup[k + 1] && !(above = u = lam_geos_union(&w->g, w->part[k + 1], w->sup[k + 1]))) return LAM_EGEOM;
+    if (w->sup[k + 1] && !(above = u = areal(w, lam_geos_union(&w->g, w->part[k + 1], w->sup[k + 1]), 0)))
+        return LAM_EGEOM;
     if (empty(w, above)) {
         drop(w, u);
         return LAM_OK;
     }
     w->stage = "reach";
     int rc = LAM_OK;
-    if (!(held = isinf(r) ? NULL : lam_geos_grow(&w->g, w->part[k], r)) && !isinf(r)) rc = LAM_EGEOM;
+    if (!(held = isinf(r) ? NULL : areal(w, lam_geos_grow(&w->g, w->part[k], r), 0)) && !isinf(r)) rc = LAM_EGEOM;
     if (!rc && held) {
         w->stage = "support";
         if (!(rest = lam_geos_difference(&w->g, above, held))) rc = LAM_EGEOM;
     }
     if (!rc && rest && w->cfg->gap_xy > r) {
         w->stage = "gap";
-        GEOSGeometry *gap = lam_geos_grow(&w->g, w->part[k], w->cfg->gap_xy), *x = NULL;
+        GEOSGeometry *gap = areal(w, lam_geos_grow(&w->g, w->part[k], w->cfg->gap_xy), 0), *x = NULL;
         if (!gap || !(x = lam_geos_difference(&w->g, rest, gap))) rc = LAM_EGEOM;
         drop(w, gap);
         drop(w, rest);
@@ -215,7 +241,7 @@ static GEOSGeometry *parts_union(sweep *w, size_t lo, size_t hi, int *rc)
     GEOSGeometry *acc = NULL;
     for (size_t j = lo; j < hi && !*rc; j++) {
         if (empty(w, w->part[j])) continue;
-        GEOSGeometry *x = acc ? lam_geos_union(&w->g, acc, w->part[j]) : GEOSGeom_clone_r(w->g.h, w->part[j]);
+        GEOSGeometry *x = areal(w, acc ? lam_geos_union(&w->g, acc, w->part[j]) : GEOSGeom_clone_r(w->g.h, w->part[j]), 0);
         if (!x) *rc = LAM_EGEOM;
         drop(w, acc);
         acc = x;
@@ -231,7 +257,7 @@ static int clear_below_part(sweep *w, size_t k, size_t layers)
     int rc = LAM_OK;
     size_t hi = k + 1 + layers < w->n ? k + 1 + layers : w->n;
     GEOSGeometry *over = parts_union(w, k + 1, hi, &rc), *x = NULL;
-    if (!rc && over && !(x = lam_geos_difference(&w->g, w->sup[k], over))) rc = LAM_EGEOM;
+    if (!rc && over && !(x = areal(w, lam_geos_difference(&w->g, w->sup[k], over), 0))) rc = LAM_EGEOM;
     drop(w, over);
     if (x) {
         drop(w, w->sup[k]);
@@ -249,14 +275,14 @@ static int teeth_of(sweep *w, size_t i, size_t layers, GEOSGeometry **out)
     int rc = LAM_OK;
     for (size_t j = i > layers ? i - layers : 0; j < i && !rc; j++) {
         if (!w->sup[j] || empty(w, w->part[j + 1])) continue;
-        GEOSGeometry *c = lam_geos_intersection(&w->g, w->sup[j], w->part[j + 1]), *x = NULL;
+        GEOSGeometry *c = areal(w, lam_geos_intersection(&w->g, w->sup[j], w->part[j + 1]), 0), *x = NULL;
         if (!c) rc = LAM_EGEOM;
-        else if (!(x = acc ? lam_geos_union(&w->g, acc, c) : GEOSGeom_clone_r(w->g.h, c))) rc = LAM_EGEOM;
+        else if (!(x = areal(w, acc ? lam_geos_union(&w->g, acc, c) : GEOSGeom_clone_r(w->g.h, c), 0))) rc = LAM_EGEOM;
         drop(w, c);
         drop(w, acc);
         acc = x;
     }
-    if (!rc && acc && !(*out = lam_geos_intersection(&w->g, acc, w->part[i]))) rc = LAM_EGEOM;
+    if (!rc && acc && !(*out = areal(w, lam_geos_intersection(&w->g, acc, w->part[i]), 0))) rc = LAM_EGEOM;
     drop(w, acc);
     return rc;
 }
@@ -306,7 +332,7 @@ static int sweep_start(sweep *w, lam_error *err)
     w->stage = "region";
     for (size_t i = 0; i < w->n; i++) {
         w->at = i;
-        if (!(w->part[i] = lam_geos_layer_region(&w->g, w->layers[i]))) return LAM_EGEOM;
+        if (!(w->part[i] = areal(w, lam_geos_layer_region(&w->g, w->layers[i]), 0))) return LAM_EGEOM;
     }
     return LAM_OK;
 }
@@ -369,7 +395,7 @@ int lam_supports_make(const lam_layer *const *layers, size_t n, const lam_suppor
 static GEOSGeometry *with(sweep *w, GEOSGeometry *a, const lam_layer *R)
 {
     if (!R || !a) return a;
-    GEOSGeometry *r = lam_geos_layer_region(&w->g, R), *x = r ? lam_geos_union(&w->g, a, r) : NULL;
+    GEOSGeometry *r = lam_geos_layer_region(&w->g, R), *x = r ? areal(w, lam_geos_union(&w->g, a, r), 0) : NULL;
     drop(w, r);
     drop(w, a);
     return x;
@@ -380,7 +406,8 @@ static int beyond(sweep *w, const GEOSGeometry *top, const GEOSGeometry *base, d
 {
     *area = 0;
     if (isinf(r) || empty(w, top)) return LAM_OK;
-    GEOSGeometry *held = lam_geos_grow(&w->g, base, r), *x = held ? lam_geos_difference(&w->g, top, held) : NULL;
+    GEOSGeometry *held = areal(w, lam_geos_grow(&w->g, base, r), 0);
+    GEOSGeometry *x = held ? lam_geos_difference(&w->g, top, held) : NULL;
     int rc = x ? LAM_OK : LAM_EGEOM;
     x = x ? keep_large(w, x, 1e-6 * r * r) : NULL;
     if (!rc && !(x && GEOSArea_r(w->g.h, x, area))) rc = LAM_EGEOM;
