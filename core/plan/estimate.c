@@ -17,6 +17,7 @@
 #include "fmt.h"
 #include "plugin.h"
 #include "profile.h"
+#include "support.h"
 
 static const double PI = 3.14159265358979323846;
 
@@ -104,8 +105,36 @@ static void hatch_counts(const lam_layer *L, const lam_scan *sc, double area, do
     }
 }
 
+/* A support region R's walls (support.h): lines across each direction as
+ * hatch lines are counted, one block each; a block's outline a vector an
+ * edge; windows cut a wall every perf_spacing. Teeth are a few layers of
+ * walls inside the part: not counted. */
+static void add_support(lam_job_estimate *e, const lam_support_cfg *c, const lam_layer *R, double wgt)
+{
+    int dirs = c->type == LAM_SUPPORT_LINES ? 1 : 2;
+    for (int k = 0; k < dirs; k++) {
+        double cross, along, across, area = 0;
+        boundary(R, 90.0 * k, &cross, &along, &across);
+        for (size_t i = 0; i < R->ncontours; i++) area += R->contours[i].area;
+        double vec = cross / c->spacing / 2;
+        if (c->perf_width > 0 && c->perf_spacing > c->perf_width) vec += area / c->spacing / c->perf_spacing;
+        e->vectors += wgt * vec;
+        e->blocks += wgt;
+    }
+    if (c->type == LAM_SUPPORT_BLOCK) {
+        e->vectors += wgt * (double)R->npoints;
+        e->blocks += wgt;
+    }
+}
+
 static void add_sls(lam_job_estimate *e, const lam_plan_opts *o, const lam_layer *L, size_t nlayers, double wgt)
 {
+    const lam_layer *R = lam_supports_region(o->supports, L->index);
+    if (R && o->scan.support.spacing > 0) {
+        lam_support_cfg c = o->scan.support;
+        if (c.type == LAM_SUPPORT_NONE) c.type = LAM_SUPPORT_BLOCK; /* a recipe's regions (plan_sls.c) */
+        add_support(e, &c, R, wgt);
+    }
     int passes = o->scan.contour_count > 0 ? o->scan.contour_count : 0;
     e->contours += wgt * (double)L->ncontours * passes;
     e->points += wgt * (double)L->npoints * passes;

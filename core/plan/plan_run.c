@@ -109,10 +109,7 @@ static lam_layer *src_take(void *ctx, unsigned worker, size_t j)
     return w->cache[--w->count];
 }
 
-/* The run's supports, when its plan asks for them and none were given:
- * every layer sliced on the calling thread first (the sweep goes from the
- * top down), then dropped. *out NULL: none asked for. */
-static int run_supports(lam_slicer *s, const lam_plan_opts *o, lam_supports **out, lam_error *err)
+int lam_plan_supports(lam_slicer *s, const lam_plan_opts *o, lam_supports **out, lam_error *err)
 {
     *out = NULL;
     if (o->kind != LAM_PLAN_SLS || o->supports || o->scan.support.type == LAM_SUPPORT_NONE) return LAM_OK;
@@ -127,21 +124,31 @@ static int run_supports(lam_slicer *s, const lam_plan_opts *o, lam_supports **ou
 int lam_plan_run(lam_slicer *s, const lam_model *m, const lam_plan_opts *o, const lam_sink *sink,
                  lam_layer_cb cb, void *cbctx, lam_error *err)
 {
+    /* the estimate before anything is sliced whole, then again with the
+     * supports' walls (they need every layer: planning's cost, not the
+     * estimate's) */
     lam_job_estimate est;
     lam_plan_estimate(s, o, &est);
     if (lam_plan_check_estimate(&est, o, o->max_output, err)) return LAM_ELIMIT;
+    lam_supports *sup = NULL;
+    int rc = lam_plan_supports(s, o, &sup, err);
+    lam_plan_opts so = *o;
+    so.supports = sup ? sup : o->supports;
+    o = &so;
+    if (!rc && sup) {
+        lam_plan_estimate(s, o, &est);
+        if (lam_plan_check_estimate(&est, o, o->max_output, err)) rc = LAM_ELIMIT;
+    }
     lam_job_info job;
     char label[128];
     lam_plan_job(s, m, o, &job, label);
-    int rc = sink->begin ? sink->begin(sink->ctx, &job) : LAM_OK;
+    if (!rc && sink->begin) rc = sink->begin(sink->ctx, &job);
     /* a worker holds a whole layer's operations until it is written: layers
      * estimated beyond LAM_THREAD_LAYER_MAX are streamed on one thread; a
      * part (a layer range) is planned on one thread too: parts are how a
      * job is spread over processes and machines already */
     lam_plan_opts ro = *o;
     if (o->layer_count || (est.layers && est.bytes / (double)est.layers > LAM_THREAD_LAYER_MAX)) ro.threads = 1;
-    lam_supports *sup = NULL;
-    if (!rc && !(rc = run_supports(s, o, &sup, err)) && sup) ro.supports = sup;
     slicer_src ss = { s, o->kind == LAM_PLAN_SLS && o->scan.skin_layers > 0 ? (size_t)o->scan.skin_layers : 0,
                       NULL, 0 };
     lam_plan_source src;

@@ -106,6 +106,15 @@ typedef struct lam_plan_opts {
                                     nearest the stage the layer before left. */
 } lam_plan_opts;
 
+struct lam_supports;
+
+/* The supports a plan of slicer s's run makes (support.h), when o is SLS,
+ * its scan.support.type is not none and o->supports gives none: every
+ * layer sliced on the calling thread (s is left at its start; the sweep
+ * goes from the top down), then dropped. *out NULL: none asked for; the
+ * caller's otherwise (lam_supports_free). Errors: the slicer's, GEOS's. */
+int lam_plan_supports(lam_slicer *s, const lam_plan_opts *o, struct lam_supports **out, lam_error *err);
+
 /* Defaults: SLS, bead 1, rates 0, model frame, edge, 0 degrees, alternate;
  * one contour pass, contours first, no hatching. */
 void lam_plan_opts_init(lam_plan_opts *o);

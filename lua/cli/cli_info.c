@@ -7,6 +7,7 @@
 #include "repair.h"
 #include "repair_note.h"
 #include "cli_args.h"
+#include "support.h"
 #include "model.h"
 #include "fmt.h"
 #include "planner.h"
@@ -45,6 +46,12 @@ static int measure(const char *cmd, args *a, const lam_model *m, sizes *z)
         lam_plan_job(s, m, &po, &cj, label);
         lam_program_costs(prof, &cj, &po.costs, NULL);
         lam_plan_estimate(s, &po, &z->est);
+        lam_supports *sup = NULL; /* the estimate counts the supports' walls (slicing every layer) */
+        if (!lam_plan_supports(s, &po, &sup, NULL) && sup) {
+            po.supports = sup;
+            lam_plan_estimate(s, &po, &z->est);
+        }
+        lam_supports_free(sup);
         z->sliced = 1;
         snprintf(z->machine, sizeof z->machine, "%s", prof->name ? prof->name : "lamina");
     }
