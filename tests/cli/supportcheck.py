@@ -21,11 +21,15 @@ layer frame: u, v the plane, w the height).
       has part directly above it (beyond T) on any of the N layers above
   supportcheck.py none JSON
       no support contours, no support vectors
+  supportcheck.py area JSON [--min A]
+      prints every layer's support area (its own shoelace over the support
+      contours, even-odd), to 0.01, one line; with A: fails when a support
+      piece (a solid support contour less its holes) is below A
   supportcheck.py at JSON LAYER U V
       prints what layer LAYER (1-based) has at (U, V): part, support or
       nothing (a probe for the models' known places)
 Failures are printed (layer, point, distance) and the exit status is 1;
-the last line is a summary."""
+the last line is a summary. Exit 2: a usage error or a JSON it cannot read."""
 import argparse
 import json
 import math
@@ -136,11 +140,22 @@ class Layer:
         return min(self.part.bdist(x, y, d), self.sup.bdist(x, y, d))
 
 
+def die(msg):
+    """a usage or input error: exit 2 (1 is a check that failed)"""
+    print("supportcheck: %s" % msg, file=sys.stderr)
+    sys.exit(2)
+
+
 def load(path, h):
     with open(path) as f:
         d = json.load(f)
     if d.get("job", {}).get("frame") != "machine":
-        sys.exit("supportcheck: %s: slice with --set frame=machine (the layer frame)" % path)
+        die("%s: slice with --set frame=machine (the layer frame)" % path)
+    for L in d["layers"]:  # the layer frame: one height w a layer
+        ws = [p[2] for c in L["contours"] for p in c["points"]]
+        ws += [v[e][2] for v in L["vectors"] for e in ("from", "to")]
+        if ws and max(ws) - min(ws) > 1e-6 * (1 + abs(max(ws))):
+            die("%s: layer %d's points are not in one plane w = const (the layer frame?)" % (path, L["index"]))
     layers = [Layer(L, h) for L in d["layers"]]
     return d, layers
 
@@ -360,6 +375,34 @@ def cmd_none(a):
     return rep.done("%d layers" % len(layers))
 
 
+def shoelace(r):
+    return 0.5 * sum(r[i - 1][0] * r[i][1] - r[i][0] * r[i - 1][1] for i in range(len(r)))
+
+
+def cmd_area(a):
+    with open(a.json) as f:
+        d = json.load(f)
+    out, small = [], []
+    for L in d["layers"]:
+        sup = [c for c in L["contours"] if c.get("region") == "support"]
+        tot = 0.0
+        piece = {}
+        for c in sup:
+            A = abs(shoelace([(p[0], p[1]) for p in c["points"]]))
+            tot += A if c["solid"] else -A
+            if c["solid"]:
+                piece[c["id"]] = piece.get(c["id"], 0.0) + A
+            elif c.get("parent") is not None:
+                piece[c["parent"]] = piece.get(c["parent"], 0.0) - A
+        out.append("%.2f" % (tot + 0.0))
+        if a.min is not None:
+            small += ["layer %d: a support piece of %.6f" % (L["index"], v) for v in piece.values() if v < a.min]
+    print(" ".join(out))
+    for m in small[:10]:
+        print("# FAIL %s below %g" % (m, a.min))
+    return 1 if small else 0
+
+
 def cmd_at(a):
     d, layers = load(a.json, a.cell)
     L = next((L for L in layers if L.index == a.layer), None)
@@ -395,13 +438,20 @@ def main():
     p.set_defaults(fn=cmd_gapz)
     p = sub.add_parser("none"); common(p)
     p.set_defaults(fn=cmd_none)
+    p = sub.add_parser("area"); common(p)
+    p.add_argument("--min", type=float, default=None)
+    p.set_defaults(fn=cmd_area)
     p = sub.add_parser("at"); common(p)
     p.add_argument("layer", type=int)
     p.add_argument("u", type=float)
     p.add_argument("v", type=float)
     p.set_defaults(fn=cmd_at)
     a = ap.parse_args()
-    sys.exit(a.fn(a))
+    try:
+        rc = a.fn(a)
+    except (OSError, ValueError, KeyError, TypeError, IndexError) as e:
+        die("%s: %s: %s" % (a.json, type(e).__name__, e))
+    sys.exit(rc)
 
 
 if __name__ == "__main__":
