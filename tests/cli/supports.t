@@ -66,13 +66,15 @@ jq '.layers[5].contours |= map(select(.region != "support"))' "$TMP/t.json" >"$T
 expect fail "tee: support vectors of layer 6 outside its (removed) support region" vectors "$TMP/cut.json"
 
 # ---- support types (-w 1) and angles (-w 0.75) ----------------------------
+# (block along both axes above; grid oblique, lines along z: the walls
+# run along the layer frame's u and v either way)
 for t in grid lines; do
+    ax=$OBL
+    [ $t = lines ] && ax=0,0,1
     for m in tee arch sphere bracket float; do
-        for ax in 0,0,1 $OBL; do
-            sl $m "$TMP/$m.json" -a $ax -w 1 --set support_type=$t
-            expect pass "$m, axis $ax, $t: stands" stands "$TMP/$m.json"
-            [ $ax = $OBL ] || expect pass "$m, axis $ax, $t: support vectors in the support region" vectors "$TMP/$m.json"
-        done
+        sl $m "$TMP/$m.json" -a $ax -w 1 --set support_type=$t
+        expect pass "$m, axis $ax, $t: stands" stands "$TMP/$m.json"
+        expect pass "$m, axis $ax, $t: support vectors in the support region" vectors "$TMP/$m.json"
     done
 done
 for ang in 30 60; do
@@ -243,6 +245,19 @@ ok $? "tee: the printed estimate is longer with supports ($s1 s) than without ($
 got=$(jq -n --slurpfile a "$TMP/ts.json" --slurpfile b "$TMP/tn.json" \
     '[($a[0].totals.time.total > $b[0].totals.time.total), ($a[0].totals.time.exposure > $b[0].totals.time.exposure), ($a[0].totals.time.recoat == $b[0].totals.time.recoat)]' | tr -d ' \n')
 is "$got" "[true,true,true]" "tee: the JSON's total and exposure times grow with supports, recoating does not"
+
+# the support is exposed at the support's speed: the exposure time grows by
+# the walls' length over it, the deposit length by the walls' length (the
+# part's own vectors the same either way); the total is the layers' sum
+got=$(jq -n --slurpfile a "$TMP/ts.json" --slurpfile b "$TMP/tn.json" '
+    ([$a[0].layers[].vectors[] | select(.kind == "support") | [.to[0] - .from[0], .to[1] - .from[1], .to[2] - .from[2]]
+      | (.[0] * .[0] + .[1] * .[1] + .[2] * .[2] | sqrt)] | add) as $len
+    | ($a[0].job.exposure[] | select(.region == "support") | .speed) as $v
+    | [$len > 0,
+       (($a[0].totals.time.exposure - $b[0].totals.time.exposure) - $len / $v | fabs < 1e-6),
+       (($a[0].totals.deposit_length - $b[0].totals.deposit_length) - $len | fabs < 1e-6),
+       ($a[0].totals.time.total - ([$a[0].layers[].stats.time] | add) | fabs < 1e-6)]' | tr -d ' \n')
+is "$got" "[true,true,true,true]" "tee: exposure + support length / support speed, deposit + support length, total = the layers' sum"
 
 # ---- the support's exposure ------------------------------------------------
 "$LAMINA" slice "$TMP/tee.stl" -m lpbf-cli -w 0.5 --set support_type=block --set support.speed=1234 \
