@@ -62,7 +62,6 @@ done
 sl tee "$TMP/t.json" -w 0.5 --set support_type=block
 jq '.layers[5].contours |= map(select(.region != "support"))' "$TMP/t.json" >"$TMP/cut.json"
 expect fail "tee: the JSON without layer 6's support contours does not stand" stands "$TMP/cut.json"
-jq '.layers[5].contours |= map(select(.region != "support"))' "$TMP/t.json" >"$TMP/cut.json"
 expect fail "tee: support vectors of layer 6 outside its (removed) support region" vectors "$TMP/cut.json"
 
 # ---- support types (-w 1) and angles (-w 0.75) ----------------------------
@@ -86,6 +85,13 @@ done
 # supports for 60 degrees do not hold at 30 (the angle is read)
 sl sphere "$TMP/s.json" -w 0.5 --set support_type=block --set support_angle=60
 expect fail "sphere, support_angle=60: does not stand at 30 degrees" stands "$TMP/s.json" --angle 30
+
+# layers of different widths: each layer's reach from its own width
+W=$(perl -e 'print join ",", map { (0.5, 1.5, 0.25, 0.75, 1)[$_ % 5] } 0 .. 39')
+for m in tee sphere bracket; do
+    sl $m "$TMP/$m.json" -a $OBL --widths $W --set support_type=block
+    expect pass "$m, axis $OBL, --widths 0.5,1.5,0.25,0.75,1,...: stands, r_k = w_k tan 45" stands "$TMP/$m.json"
+done
 
 # ---- where the support is: the models' known places (u = x, v = y along z)
 probe() { # probe JSON LAYER U V EXPECTED DESCRIPTION
