@@ -55,10 +55,12 @@ cb stl ell "$J/ella.stl" 30 25 8 3 ascii # the same as ASCII STL
 A_CYL=$(cbo py 'import math; print(24 * 400 * math.sin(math.pi / 24))')
 A_PIN=$(cbo py 'import math; print(24 * 9 * math.sin(math.pi / 24))')
 
-# the head of every job: coarse hatches so that the runs stay small
+# the head of every job: coarse hatches so that the runs stay small, and
+# no supports (lpbf-cli makes them: the supported builds are at the end)
 HEAD0='machine: lpbf-cli
 layer_width: 0.5
-hatch_distance: 1'
+hatch_distance: 1
+support_type: none'
 HEAD="$HEAD0
 upskin: {hatch_distance: 1}
 downskin: {hatch_distance: 1}"
@@ -357,6 +359,7 @@ speed: 0
 contour: {speed: 0}
 upskin: {speed: 0}
 downskin: {speed: 0}
+support: {speed: 0}
 parts: [{model: pin.stl}]"
 build nospeed
 like "$RC $(cat "$J/nospeed.err")" '^0 lamina: .*nospeed\.yaml: 1 part, 6 layers, 1 laser, (?s:.*)estimated build time unknown: lpbf-cli sets no speeds$' \
@@ -522,5 +525,48 @@ is "$RC" 0 "examples/plate.yaml builds (its models from the job's folder)"
 like "$ERR" "11 parts, 10 layers, 2 lasers" "examples/plate.yaml: 11 parts, 20 mm at 2 mm, 2 lasers"
 cb layout "$J/example.svg" "$J/example.json"
 is "$RC $OUT" "0 " "examples/plate.yaml: the layout shows every part and both fields"
+
+# ---- 10. supports: each part's own, from the plate up ---------------------------------
+# two tees (tests/cli/supportgen.py: a 5 mm stem 10 high under a 20 x 8 bar
+# 4 thick) on lpbf-cli's block supports, raised by support_height 2: every
+# layer of each part's run stands (supportcheck.py, its own polygons), the
+# run starts on the plate (layers 1 .. 2 / 0.5 = 4 are support alone, under
+# the stem's whole footprint), support contours carry their part, every
+# support vector lies in its part's footprint box (what the arrangement
+# keeps apart), and the printed time is the layers' sum with the supports
+# in it, more than without them.
+python3 "$TESTS/cli/supportgen.py" tee "$J/tee.stl"
+job teesup "machine: lpbf-cli
+layer_width: 0.5
+hatch_distance: 1
+support_height: 2
+recoat_time: 0
+support_teeth: {height: 0}
+spacing: 5
+parts:
+  - {model: tee.stl, copies: 2}"
+build teesup
+is "$RC" 0 "supported tees: exit 0"
+python3 "$TESTS/cli/supportcheck.py" stands "$J/teesup.json" >"$J/stands.out" 2>&1
+ok $? "supported tees: every point of every layer stands on the layer below ($(tail -1 "$J/stands.out"))"
+is "$(jq -c '[.job.build.parts[].layers[0]]' "$J/teesup.json")" "[1,1]" "supported tees: each part's run starts on the plate"
+is "$(jq -c '[.layers[] | select([.contours[] | select(.region == null)] | length == 0) | .index]' "$J/teesup.json")" \
+   "[1,2,3,4]" "supported tees: layers 1 .. 4 hold supports only (the parts raised by 2 mm)"
+is "$(jq -c '[.layers[0].contours[] | select(.region == "support") | .part] | unique' "$J/teesup.json")" "[1,2]" \
+   "supported tees: the support contours say their part"
+out=$(jq -r '.job.build.parts as $p | .layers[].vectors[] | select(.kind == "support") | . as $v | $p[$v.part - 1].box as $b
+  | select($v.from[0] < $b[0] - 1e-9 or $v.from[0] > $b[2] + 1e-9 or $v.from[1] < $b[1] - 1e-9 or $v.from[1] > $b[3] + 1e-9
+      or $v.to[0] < $b[0] - 1e-9 or $v.to[0] > $b[2] + 1e-9 or $v.to[1] < $b[1] - 1e-9 or $v.to[1] > $b[3] + 1e-9) | .order' "$J/teesup.json" | head -3)
+is "$out" "" "supported tees: every support vector within its part's footprint box"
+is "$(jq '[.layers[].vectors[] | select(.kind == "support")] | length > 100' "$J/teesup.json")" true \
+   "supported tees: support vectors are planned"
+cb time "$J/teesup.json" "$J/teesup.err" 0
+like "$RC $OUT" '^0 # ' "supported tees: the printed time is the layers' sum (supports in it)"
+cp "$J/teesup.yaml" "$J/teenone.yaml"
+printf 'support_type: none\n' >>"$J/teenone.yaml"
+build teenone
+with=$(jq '.totals.time.total' "$J/teesup.json") without=$(jq '.totals.time.total' "$J/teenone.json")
+ok "$(cbo py "import sys; print(0 if float(sys.argv[1]) > float(sys.argv[2]) else 1)" "$with" "$without")" \
+   "supported tees: the build takes longer with supports ($with s) than without ($without s)"
 
 done_testing

@@ -129,7 +129,7 @@ done
 like "$line" 'estimated build time 2 d [0-9]+ h [0-9]+ min \(' "a build over a day: days, hours and minutes"
 
 # ---- no speeds: unknown, not 0 s -------------------------------------------
-nospeed=(-s speed=0 -s contour.speed=0 -s upskin.speed=0 -s downskin.speed=0)
+nospeed=(-s speed=0 -s contour.speed=0 -s upskin.speed=0 -s downskin.speed=0 -s support.speed=0)
 run "$LAMINA" slice "$cube" -m lpbf-cli "${nospeed[@]}" -o "$TMP/n.cli" --json "$TMP/n.json"
 line=$(grep 'estimated build time' <<<"$ERR")
 is "$line" "$(ref sls "$TMP/n.json" "$line" lpbf-cli)" "lpbf-cli without speeds: lengths, and the time unknown"

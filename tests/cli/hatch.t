@@ -134,12 +134,14 @@ check "$TMP/torus.stl" -w 0.25 "${skin[@]}" -s skin_layers=3 -- --distance 0.1 -
 check "$M/frame_island.ug" -w 2 -s hatch_strategy=lines -s hatch_distance=0.5 -s skin_layers=1 -- --distance 0.5 --skins 1
 "$LAMINA" slice "$TMP/torus.stl" -m cli-kinds -w 0.25 "${skin[@]}" -s skin_layers=3 -o "$TMP/k.cli" 2>/dev/null
 kinds=$(grep '^//' "$TMP/k.cli" | sort -u | tr '\n' ' ')
-is "$kinds" "//core// //downskin// //upskin// " "torus: core, up-skin and down-skin blocks"
+# (and the supports of the shipped powder-bed profiles: the torus's lower
+# half overhangs, down to the plate)
+is "$kinds" "//core// //downskin// //support// //upskin// " "torus: core, up-skin and down-skin blocks, and supports"
 # skins get their section's values, the rest the top level's
 run "$LAMINA" slice "$TMP/torus.stl" -m lpbf-cli -w 0.25 -o "$TMP/l.cli"
 is "$RC" 0 "lpbf-cli: exit 0"
-like "$(grep '^//' "$TMP/l.cli" | sort -u)" '^//contour power 120 speed 600//\n//core power 200 speed 900//\n//downskin power 100 speed 1200//\n//upskin power 150 speed 700//$' \
-    "lpbf-cli: each vector type with its own exposure"
+like "$(grep '^//' "$TMP/l.cli" | sort -u)" '^//contour power 120 speed 600//\n//core power 200 speed 900//\n//downskin power 100 speed 1200//\n//support power 150 speed 1500//\n//upskin power 150 speed 700//$' \
+    "lpbf-cli: each vector type with its own exposure (supports: lpbf-cli's support section)"
 
 # ---- the build-time estimate, by hand ------------------------------------
 # The cube's one layer, hatch distance 0.25: the contour (perimeter 8) at

@@ -149,7 +149,9 @@ def die(msg):
 def load(path, h):
     with open(path) as f:
         d = json.load(f)
-    if d.get("job", {}).get("frame") != "machine":
+    job = d.get("job", {})
+    plate = job.get("layer_frame") == {"u": [1, 0, 0], "v": [0, 1, 0], "w": [0, 0, 1]} and "build" in job
+    if job.get("frame") != "machine" and not plate:  # a build's plate frame is the layer frame
         die("%s: slice with --set frame=machine (the layer frame)" % path)
     for L in d["layers"]:  # the layer frame: one height w a layer
         ws = [p[2] for c in L["contours"] for p in c["points"]]
