@@ -29,8 +29,8 @@ run "$LAMINA" slice "$TMP/torus.stl" -m lpbf-cli -w 0.25 --json "$TMP/c.json" -o
 is "$RC" 0 "hatched lpbf-cli: exit 0"
 run "${CHECK[@]}" "$TMP/c.json" --cli "$TMP/c.cli"
 is "$RC $OUT" "0 " "lpbf-cli: valid, as many hatch vectors as the CLI program's \$\$HATCHES"
-is "$(jq -c '[.layers[].vectors[].kind] | unique' "$TMP/c.json")" '["contour","core","downskin","jump","upskin"]' \
-    "lpbf-cli: contour passes, core and skin hatches, jumps"
+is "$(jq -c '[.layers[].vectors[].kind] | unique' "$TMP/c.json")" '["contour","core","downskin","jump","support","upskin"]' \
+    "lpbf-cli: contour passes, core and skin hatches, jumps, and supports under the torus's lower half"
 like "$(jq -c '[.totals.time.total > 0, .layers[0].stats.time > 0]' "$TMP/c.json")" '^\[true,true\]$' "lpbf-cli: the time estimate"
 
 run "$LAMINA" slice "$TMP/torus.stl" -a 1,2,3 -w 0.5 --json "$TMP/d.json" -o "$TMP/d.sls"

@@ -100,6 +100,9 @@ def exposure(show, run):
     for r in ("upskin", "downskin"):
         want.append({"style": 0, "region": r, "power": p[r]["power"], "speed": p[r]["speed"],
                      "distance": p[r]["hatch_distance"]})
+    if p["support_type"] != "none":  # its walls: the support section's exposure, support_spacing apart
+        want.append({"style": 0, "region": "support", "power": p["support"]["power"], "speed": p["support"]["speed"],
+                     "distance": p["support_spacing"]})
     got = load(run)["job"]["exposure"]
     assert got == want, "got %s\nwant %s" % (got, want)
 
@@ -116,6 +119,11 @@ def build_exposure(show, job, run, hatch):
             {"style": 5, "region": "core", "power": fine["power"], "speed": fine["speed"],
              "distance": fine["hatch_distance"]}]
     R = load(run)
+    if p["support_type"] != "none":  # the support's style is numbered last: after the job's
+        names = {s["name"]: s["style"] for s in R["job"]["build"]["styles"]}
+        assert max(names.values()) == names["support"], names
+        want.append({"style": names["support"], "region": "support", "power": p["support"]["power"],
+                     "speed": p["support"]["speed"], "distance": p["support_spacing"]})
     got = R["job"]["exposure"]
     assert got == want, "got %s\nwant %s" % (got, want)
     names = {s["style"]: s["name"] for s in R["job"]["build"]["styles"]}

@@ -151,8 +151,9 @@ def main():
                 fail("%s: parent %r at depth %d" % (cw, par, c["depth"]))
             if par is not None and not (par < c["id"] and L["contours"][par - 1]["depth"] == c["depth"] - 1):
                 fail("%s: parent %r is not an earlier contour one level up" % (cw, par))
-            net += c["area"]
-            all_contours.append((L, c))
+            if c.get("region") is None:  # the section's (support regions follow it: docs/supports.md)
+                net += c["area"]
+                all_contours.append((L, c))
         if abs(net - L["stats"]["area"]) > 1e-9 * max(1.0, abs(net)):
             fail("%s: stats.area %r, its contours sum to %r" % (where, L["stats"]["area"], net))
         dep = trav = 0.0
@@ -164,7 +165,7 @@ def main():
                 trav += n
             else:
                 dep += n
-            if vec["kind"] in ("core", "upskin", "downskin"):
+            if vec["kind"] in ("core", "upskin", "downskin", "support"):  # the program's $$HATCHES
                 hatch_vectors += 1
             if "--inside" in opts and vec["kind"] == "deposit":
                 mid = [(a + b) / 2 for a, b in zip(vec["from"], vec["to"])]

@@ -8,9 +8,10 @@ local cube = M .. "thesis_cube.ug" -- [-1, 1]^3
 local eps = 1e-9
 
 -- ---- four copies on a plate ------------------------------------------------------
--- a cube scaled by 4 is 8 x 8 x 8; lpbf-cli keeps parts 5 apart (spacing)
+-- a cube scaled by 4 is 8 x 8 x 8; lpbf-cli keeps parts 5 apart (spacing);
+-- no supports here (they have their own test at the end)
 local p = assert(lamina.build{machine = "lpbf-cli", layer_width = 0.5, plate = {width = 100, depth = 100, margin = 5},
-                              parts = {{model = cube, copies = 4, scale = 4}}})
+                              support_type = "none", parts = {{model = cube, copies = 4, scale = 4}}})
 T.like(tostring(p), "^lamina%.plan %(lpbf%-cli, sls, 16 layers", "a lamina.plan: 8 mm of 0.5 mm layers")
 T.is(p.layers, 16, "p.layers: the plate's layers")
 T.is(#p.parts, 4, "four parts on the plate")
@@ -71,7 +72,8 @@ T.ok(seen[1] and seen[2] and seen[3] and seen[4], "layer 1 has operations of all
 T.is(p:layer(17), nil, "no layer 17")
 
 T.is(lamina.build{machine = "lpbf-cli", layer_width = 0.5, plate = {width = 100, depth = 100, margin = 5}, threads = 3,
-                  parts = {{model = cube, copies = 4, scale = 4}}}:text(), p:text(), "threads = 3: the same program")
+                  support_type = "none", parts = {{model = cube, copies = 4, scale = 4}}}:text(), p:text(),
+     "threads = 3: the same program")
 
 -- ---- the same job as `lamina build` of YAML -------------------------------------------
 local LAMINA = os.getenv("LAMINA")
@@ -87,6 +89,7 @@ local yq = '"' .. cube:gsub('[\\"]', "\\%0") .. '"'
 local yaml = ([[
 machine: lpbf-cli
 layer_width: 0.25
+support_type: none
 plate: {width: 120, depth: 100, margin: 4}
 spacing: 3
 gas_flow: [1, 0]
@@ -102,7 +105,8 @@ parts:
   - {model: CUBE, units: cm, scale: 0.2, z: 1}
 ]]):gsub("CUBE", function() return yq end)
 local job = {
-  machine = "lpbf-cli", layer_width = 0.25, plate = {width = 120, depth = 100, margin = 4}, spacing = 3,
+  machine = "lpbf-cli", layer_width = 0.25, support_type = "none", plate = {width = 120, depth = 100, margin = 4},
+  spacing = 3,
   gas_flow = {1, 0}, lasers = {{field = {0, 0, 70, 100}}, {field = {50, 0, 120, 100}}}, hatch_strategy = "lines",
   contour = {power = 110},
   styles = {fast = {power = 300, speed = 1400}, slow = {hatch_distance = 0.2, speed = 500}},
@@ -205,7 +209,7 @@ T.fails("exceeds the limit of 1000 bytes %(raise the limit with the option max_o
 local code = [[
 local cube, w = ...
 return lamina.build{machine = "lpbf-cli", layer_width = w, plate = {width = 100, depth = 100, margin = 5},
-                    parts = {{model = cube, scale = 4, copies = 4}}}]]
+                    support_type = "none", parts = {{model = cube, scale = 4, copies = 4}}}]]
 local ok, none, msg = lamina.sandbox{code = code, args = {cube, 0.5}, allow = "."}
 T.ok(ok and none == nil and tostring(msg):find("outside the sandbox's readable directories", 1, true),
      "sandboxed: a model outside the readable directories is refused", msg)
@@ -224,5 +228,29 @@ local none5, err5 = lamina.sandbox{code = [[
                       args = {cube}, allow = M, memory = 2e6}
 T.ok(none5 == nil and tostring(err5):find("memory limit exceeded: lamina.build: the plate's 2000 parts", 1, true),
      "the sandbox's memory counts the plate's models and slicers", err5)
+
+-- ---- supports: a lifted cube stands on them ------------------------------------
+-- the 4 mm cube 1 above the plate (units cm, scale 0.2, z 1), 0.25 layers:
+-- lpbf-cli's block supports fill its whole footprint from the plate up, so
+-- its run starts at plate layer 1; the 4 layers under it are support alone,
+-- of its 16 mm2 footprint less nothing (the layer below holds none of it)
+local sb = assert(lamina.build{machine = "lpbf-cli", layer_width = 0.25, support_teeth = {height = 0},
+                               parts = {{model = cube, units = "cm", scale = 0.2, z = 1}}})
+T.ok(sb.parts[1].layers[1] == 1 and sb.parts[1].layers[2] == 20, "supports: the lifted cube's run is plate layers 1 to 20",
+     sb.parts[1].layers[1] .. ".." .. sb.parts[1].layers[2])
+local kinds, under = {}, true
+for i = 1, 4 do
+  for _, v in ipairs(sb:layer(i).vectors) do
+    kinds[v.kind] = true
+    under = under and v.kind == "support" or v.kind == "jump"
+  end
+end
+T.ok(kinds.support and under, "supports: layers 1 to 4 hold support walls only")
+local st = table.concat(sb.styles, ",")
+T.is(st, "contour,core,upskin,downskin,support", "supports: the support's style numbered last")
+local nb = assert(lamina.build{machine = "lpbf-cli", layer_width = 0.25, support_type = "none",
+                               parts = {{model = cube, units = "cm", scale = 0.2, z = 1}}})
+T.ok(sb.time.total > nb.time.total, "supports: the build's time holds them",
+     ("%g s with, %g s without"):format(sb.time.total, nb.time.total))
 
 T.done()
