@@ -440,7 +440,7 @@ def legend_check(pg, run, mode, k):
     vals = set(v.get(key, default) for v in run.run["layers"][k - 1]["vectors"] if v["kind"] not in ("jump", "travel"))
     if run.build and mode in ("part", "laser"):
         vals |= set(x[mode] for x in run.build[mode + "s"])
-    kinds = ["contour", "core", "upskin", "downskin", "deposit", "travel", "jump"]
+    kinds = ["contour", "core", "upskin", "downskin", "support", "deposit", "travel", "jump"]
 
     def label(v):
         if mode == "region":
