@@ -40,6 +40,9 @@ typedef struct slot {
     lam_layer sup;           /* the parts' support regions together (the JSON's, region support) */
     long long *sup_part;
     size_t sup_cap, sup_pts_cap;
+    lam_layer over;          /* ... and their overhangs (region overhang) */
+    long long *over_part;
+    size_t over_cap, over_pts_cap;
     lam_error err;
 } slot;
 
@@ -225,8 +228,9 @@ static int add_contours(lam_layer *m, long long **part, size_t *cap_c, size_t *c
 static int add_section(slot *s, const lam_run_part *p, size_t j, const lam_layer *L, size_t pi, lam_error *err)
 {
     int rc = add_contours(&s->sec, &s->sec_part, &s->sec_cap, &s->pts_cap, L, pi, err);
-    const lam_layer *R = lam_supports_region(p->supports, j);
+    const lam_layer *R = lam_supports_region(p->supports, j), *O = lam_supports_overhang(p->supports, j);
     if (!rc && R) rc = add_contours(&s->sup, &s->sup_part, &s->sup_cap, &s->sup_pts_cap, R, pi, err);
+    if (!rc && O) rc = add_contours(&s->over, &s->over_part, &s->over_cap, &s->over_pts_cap, O, pi, err);
     return rc;
 }
 
@@ -258,6 +262,7 @@ static int plan_layer(drive *d, unsigned wi, size_t k, slot *s)
     s->cut = plate_cut(r, k);
     s->sec.ncontours = s->sec.npoints = 0;
     s->sup.ncontours = s->sup.npoints = 0;
+    s->over.ncontours = s->over.npoints = 0;
     int rc = LAM_OK;
     for (size_t pi = 0; pi < r->nparts && !rc; pi++) {
         const lam_run_part *p = &r->parts[pi];
@@ -363,7 +368,8 @@ static int write_layer(drive *d, size_t k, const slot *s)
     sec.width = r->width;
     lam_layer_info li = { .index = k, .z = top, .width = r->width, .floor = sec.floor, .ceiling = top,
                           .section = &sec, .has_cut = 1, .cut = s->cut, .section_part = s->sec_part,
-                          .support = s->sup.ncontours ? &s->sup : NULL, .support_part = s->sup_part };
+                          .support = s->sup.ncontours ? &s->sup : NULL, .support_part = s->sup_part,
+                          .overhang = s->over.ncontours ? &s->over : NULL, .overhang_part = s->over_part };
     const lam_sink *sk = d->sink;
     int rc = d->o->section ? d->o->section(d->o->user, &sec, d->err) : LAM_OK;
     if (!rc && sk->layer) rc = sk->layer(sk->ctx, &li);
@@ -434,6 +440,9 @@ static void drive_close(drive *d)
         free(d->slots[k].sup.uv);
         free(d->slots[k].sup.contours);
         free(d->slots[k].sup_part);
+        free(d->slots[k].over.uv);
+        free(d->slots[k].over.contours);
+        free(d->slots[k].over_part);
     }
     free(d->ws);
     free(d->slots);

@@ -102,6 +102,13 @@ static int p_layer(void *ctx, const lam_layer_info *li)
         const lam_contour *c = &L->contours[k];
         lam_vblock_contour(&p->vb, L->uv + 2 * c->first, c->n, c->kind == LAM_SOLID, c->depth);
     }
+    const lam_layer *marks[2] = { li->support, li->overhang };
+    for (int m = 0; m < 2; m++)
+        for (size_t k = 0; marks[m] && k < marks[m]->ncontours; k++) {
+            const lam_contour *c = &marks[m]->contours[k];
+            lam_vblock_mark(&p->vb, m ? LAM_VBLOCK_OVERHANG : LAM_VBLOCK_SUPPORT, marks[m]->uv + 2 * c->first, c->n,
+                            c->kind == LAM_SOLID, c->depth);
+        }
     return p->json.layer(p->json.ctx, li);
 }
 

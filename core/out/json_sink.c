@@ -374,16 +374,17 @@ static void contour_lines(js *s, const lam_layer *L, size_t id0, const char *reg
     }
 }
 
-/* A layer's section, then its support region (region "support"): each
- * contour a line. */
+/* A layer's section, then its support region (region "support") and its
+ * overhang (region "overhang"): each contour a line. */
 static void contours(js *s, const lam_layer_info *li)
 {
     put(s, ",");
     line(s);
     put(s, "   \"contours\": [");
-    size_t n = li->section ? li->section->ncontours : 0;
+    size_t n = li->section ? li->section->ncontours : 0, ns = li->support ? li->support->ncontours : 0;
     contour_lines(s, li->section, 0, NULL, li->section_part);
     contour_lines(s, li->support, n, lam_kind_name(LAM_KIND_SUPPORT), li->support_part);
+    contour_lines(s, li->overhang, n + ns, "overhang", li->overhang_part);
     put(s, "]");
 }
 
@@ -394,6 +395,7 @@ static int j_layer(void *ctx, const lam_layer_info *li)
     size_t index = li->index + 1;
     s->contours += li->section ? li->section->ncontours : 0; /* the run's, written or not */
     s->contours += li->support ? li->support->ncontours : 0;
+    s->contours += li->overhang ? li->overhang->ncontours : 0;
     s->skip = index < s->o.first || (s->o.last && index > s->o.last);
     s->ngroups = s->last_group = s->prev_group = 0;
     if (s->skip) return s->rc;

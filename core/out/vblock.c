@@ -89,6 +89,24 @@ static void put_point(lam_vblock *b, lam_buf *to, double u, double v, int shift,
     if (q) to->len = (size_t)(point(b, q, u, v, shift, flag) - (unsigned char *)to->data);
 }
 
+void lam_vblock_mark(lam_vblock *b, int region, const double *uv, size_t n, int solid, int depth)
+{
+    /* the marks' own cursor: they are encoded as they come (with the layer)
+     * and written after the vectors */
+    long long cu = b->cu, cv = b->cv;
+    b->cu = b->mu;
+    b->cv = b->mv;
+    put_u(b, &b->marks, (unsigned long long)region);
+    put_u(b, &b->marks, n);
+    put_u(b, &b->marks, (unsigned long long)(depth > 0 ? depth : 0) << 1 | (solid ? 1u : 0u));
+    for (size_t i = 0; i < n; i++) put_point(b, &b->marks, uv[2 * i], uv[2 * i + 1], 0, 0);
+    b->mu = b->cu;
+    b->mv = b->cv;
+    b->cu = cu;
+    b->cv = cv;
+    b->nmarks++;
+}
+
 void lam_vblock_contour(lam_vblock *b, const double *uv, size_t n, int solid, int depth)
 {
     put_u(b, &b->contours, n);
@@ -158,6 +176,10 @@ int lam_vblock_finish(lam_vblock *b, lam_buf *out)
     if (lam_buf_append(out, b->contours.data, b->contours.len)) b->failed = 1;
     put_u(b, out, b->nruns);
     if (lam_buf_append(out, b->runs.data, b->runs.len)) b->failed = 1;
+    if (b->nmarks) {
+        put_u(b, out, b->nmarks);
+        if (lam_buf_append(out, b->marks.data, b->marks.len)) b->failed = 1;
+    }
     return b->failed ? LAM_ENOMEM : LAM_OK;
 }
 
@@ -168,6 +190,9 @@ void lam_vblock_reset(lam_vblock *b)
     lam_buf_clear(&b->contours);
     lam_buf_clear(&b->runs);
     lam_buf_clear(&b->run);
+    lam_buf_clear(&b->marks);
+    b->nmarks = 0;
+    b->mu = b->mv = 0;
     b->ncontours = b->nruns = b->run_n = 0;
     b->run_kind = -1;
     b->jump = 0;
@@ -181,5 +206,6 @@ void lam_vblock_free(lam_vblock *b)
     lam_buf_free(&b->contours);
     lam_buf_free(&b->runs);
     lam_buf_free(&b->run);
+    lam_buf_free(&b->marks);
     memset(b, 0, sizeof *b);
 }

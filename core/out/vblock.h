@@ -32,6 +32,9 @@ typedef struct lam_vblock {
     size_t nrows, cap_rows, last_row;
     lam_buf contours, runs, run; /* encoded parts; run: the open run's vectors */
     size_t ncontours, nruns, run_n;
+    lam_buf marks;           /* the marked regions (support, overhang), their own cursor */
+    size_t nmarks;
+    long long mu, mv;
     int run_kind;
     size_t run_row;
     int jump;                /* a jump came: the next vector has the flag */
@@ -49,6 +52,14 @@ double lam_vblock_quantum(const char *units, const double box[4]);
 /* Add a section contour of n points uv (2 doubles each, no repeated
  * closing point): solid or hole, at nesting depth. */
 void lam_vblock_contour(lam_vblock *b, const double *uv, size_t n, int solid, int depth);
+
+/* The regions a block may mark (docs/viewer.md): numbers in the page. */
+enum { LAM_VBLOCK_SUPPORT = 1, LAM_VBLOCK_OVERHANG = 2 };
+
+/* Add a contour of a marked region (LAM_VBLOCK_SUPPORT, _OVERHANG), as
+ * lam_vblock_contour: written after the vectors, a block without marks
+ * ends at its vectors as before. */
+void lam_vblock_mark(lam_vblock *b, int region, const double *uv, size_t n, int solid, int depth);
 
 /* Add the stream's next vector (vstream.h), in order. Jumps are not
  * written as vectors: they become the flag of the vector after them. */

@@ -79,6 +79,8 @@ typedef struct lam_layer_info {
                                         any offset), or NULL; valid until layer_end returns */
     const struct lam_layer *support; /* the layer's support region (support.h), or NULL:
                                         the JSON's contours of region "support" */
+    const struct lam_layer *overhang; /* what of its part needs support (support.h), or
+                                         NULL: the JSON's contours of region "overhang" */
     const struct lam_scan_time *time; /* at layer_end of an SLS plan whose estimate means
                                          something (lam_scan_estimates): the layer's
                                          estimate; NULL otherwise */
@@ -94,6 +96,7 @@ typedef struct lam_layer_info {
     size_t nparts;
     const long long *section_part; /* a build: the part of each of section's contours */
     const long long *support_part; /* a build: the part of each of support's contours */
+    const long long *overhang_part; /* a build: the part of each of overhang's contours */
     double balance;          /* a build, at layer_end: the busiest laser over the ideal (lasers.h) */
 } lam_layer_info;
 

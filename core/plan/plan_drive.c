@@ -79,7 +79,8 @@ static void copy_error(lam_error *to, const lam_error *from)
 static lam_layer_info info(const run *r, const lam_layer *L)
 {
     lam_layer_info li = { .index = L->index, .z = L->cut, .width = L->width, .floor = L->floor, .ceiling = L->ceiling, .section = L,
-                          .support = lam_supports_region(r->o->supports, L->index) };
+                          .support = lam_supports_region(r->o->supports, L->index),
+                          .overhang = lam_supports_overhang(r->o->supports, L->index) };
     return li;
 }
 

@@ -11,7 +11,7 @@
 
 struct lam_supports {
     size_t n;
-    lam_layer **region, **teeth; /* n each, NULL: none */
+    lam_layer **region, **teeth, **over; /* n each, NULL: none */
     double *area;
 };
 
@@ -28,8 +28,9 @@ lam_supports *lam_supports_new(size_t n)
     s->n = n;
     s->region = calloc(n + 1, sizeof *s->region);
     s->teeth = calloc(n + 1, sizeof *s->teeth);
+    s->over = calloc(n + 1, sizeof *s->over);
     s->area = calloc(n + 1, sizeof *s->area);
-    if (!s->region || !s->teeth || !s->area) {
+    if (!s->region || !s->teeth || !s->over || !s->area) {
         lam_supports_free(s);
         return NULL;
     }
@@ -42,9 +43,11 @@ void lam_supports_free(lam_supports *s)
     for (size_t i = 0; i < s->n; i++) {
         if (s->region) lam_layer_free(s->region[i]);
         if (s->teeth) lam_layer_free(s->teeth[i]);
+        if (s->over) lam_layer_free(s->over[i]);
     }
     free(s->region);
     free(s->teeth);
+    free(s->over);
     free(s->area);
     free(s);
 }
@@ -83,6 +86,11 @@ const lam_layer *lam_supports_teeth(const lam_supports *s, size_t i)
     return s && i < s->n ? s->teeth[i] : NULL;
 }
 
+const lam_layer *lam_supports_overhang(const lam_supports *s, size_t i)
+{
+    return s && i < s->n ? s->over[i] : NULL;
+}
+
 double lam_supports_area(const lam_supports *s, size_t i)
 {
     return s && i < s->n ? s->area[i] : 0;
@@ -104,6 +112,7 @@ typedef struct sweep {
     const lam_support_cfg *cfg;
     GEOSGeometry **part;     /* each layer's region */
     GEOSGeometry **sup;      /* each layer's support (NULL: none) */
+    GEOSGeometry **over;     /* each layer's overhang: its part beyond the reach of the part below */
     const char *stage;
     size_t at;               /* the layer being made */
 } sweep;
@@ -192,6 +201,10 @@ static int sweep_layer(sweep *w, size_t k)
     if (!rc && held) {
         w->stage = "support";
         if (!(rest = lam_geos_difference(&w->g, above, held))) rc = LAM_EGEOM;
+        GEOSGeometry *o = rc ? NULL : keep_large(w, lam_geos_difference(&w->g, w->part[k + 1], held), 1e-6 * r * r);
+        if (!rc && !o) rc = LAM_EGEOM;
+        else if (o && GEOSisEmpty_r(w->g.h, o)) drop(w, o);
+        else w->over[k + 1] = o;
     }
     if (!rc && rest && w->cfg->gap_xy > r) {
         w->stage = "gap";
@@ -314,6 +327,7 @@ static int regions(sweep *w, lam_supports *s, lam_error *err)
         if ((rc = clear_below_part(w, k, gap))) break;
         size_t at = w->layers[k]->index;
         rc = to_layer(w, w->sup[k], w->layers[k], &s->region[at], err);
+        if (!rc) rc = to_layer(w, w->over[k], w->layers[k], &s->over[at], err);
         s->area[at] = layer_area(s->region[at]);
     }
     return rc;
@@ -328,7 +342,8 @@ static int sweep_start(sweep *w, lam_error *err)
     w->g.grid = lam_geos_grid(m);
     w->part = calloc(w->n + 1, sizeof *w->part);
     w->sup = calloc(w->n + 1, sizeof *w->sup);
-    if (!w->part || !w->sup) return lam_error_nomem(err, "making supports");
+    w->over = calloc(w->n + 1, sizeof *w->over);
+    if (!w->part || !w->sup || !w->over) return lam_error_nomem(err, "making supports");
     w->stage = "region";
     for (size_t i = 0; i < w->n; i++) {
         w->at = i;
@@ -342,9 +357,11 @@ static void sweep_finish(sweep *w)
     for (size_t i = 0; i < w->n; i++) {
         if (w->part) drop(w, w->part[i]);
         if (w->sup) drop(w, w->sup[i]);
+        if (w->over) drop(w, w->over[i]);
     }
     free(w->part);
     free(w->sup);
+    free(w->over);
     lam_geos_finish(&w->g);
 }
 

@@ -64,6 +64,11 @@ size_t lam_supports_count(const lam_supports *s);
 const lam_layer *lam_supports_region(const lam_supports *s, size_t i);
 const lam_layer *lam_supports_teeth(const lam_supports *s, size_t i);
 
+/* The overhang of the layer of run index i: its part beyond the reach of
+ * the part of the layer below (what needs support), or NULL: none (and
+ * for layers lam_supports_set made). Borrowed from s. */
+const lam_layer *lam_supports_overhang(const lam_supports *s, size_t i);
+
 /* The support's area on layer i (0 without one). */
 double lam_supports_area(const lam_supports *s, size_t i);
 

@@ -132,6 +132,15 @@ class Reader:
         return (z >> 1) ^ -(z & 1)
 
 
+class Contour(tuple):
+    """(solid, depth, points) with its region: None for the section's,
+    "support" or "overhang" for a marked region's (docs/viewer.md)"""
+    region = None
+
+
+MARKS = {1: "support", 2: "overhang"}
+
+
 def decode_block(data, n_attrs, k=0):
     """(rows, contours, vectors) of one block, coordinates in quanta:
     rows: lists of n_attrs values; contours: (solid, depth, [(U, V), ...]);
@@ -156,7 +165,7 @@ def decode_block(data, n_attrs, k=0):
             du, dv = coord(r.s(), r.s())
             cu, cv = coord(cu + du, cv + dv)
             pts.append((cu, cv))
-        contours.append((flags & 1 == 1, flags >> 1, pts))
+        contours.append(Contour((flags & 1 == 1, flags >> 1, pts)))
     vectors, order = [], 0
     for _ in range(r.u()):
         n, kind, row = r.u(), r.u(), r.u()
@@ -174,6 +183,20 @@ def decode_block(data, n_attrs, k=0):
             cu, cv = coord(u0 + du1, v0 + dv1)
             order += 1
             vectors.append((kind, row, order, (u0, v0), (cu, cv), False))
+    if r.i < len(data):   # the marked regions, with a cursor of their own
+        mu = mv = 0
+        for _ in range(r.u()):
+            region, n, flags = r.u(), r.u(), r.u()
+            if region not in MARKS:
+                raise PageError("layer %d: a mark of region %d" % (k, region))
+            pts = []
+            for _ in range(n):
+                du, dv = coord(r.s(), r.s())
+                mu, mv = coord(mu + du, mv + dv)
+                pts.append((mu, mv))
+            c = Contour((flags & 1 == 1, flags >> 1, pts))
+            c.region = MARKS[region]
+            contours.append(c)
     if r.i != len(data):
         raise PageError("layer %d: %d bytes after the last run" % (k, len(data) - r.i))
     if big[0]:
@@ -228,8 +251,11 @@ def compare(page, twin, diff):
         jc = L["contours"]
         if len(contours) != len(jc):
             diff("layer %d: %d contours in the page, %d in the JSON" % (k, len(contours), len(jc)))
-        for i, ((solid, depth, pts), c) in enumerate(zip(contours, jc), 1):
+        for i, (pc, c) in enumerate(zip(contours, jc), 1):
+            solid, depth, pts = pc
             w = "layer %d contour %d" % (k, i)
+            if pc.region != c.get("region"):
+                diff("%s: region %s in the page, %s in the JSON" % (w, pc.region, c.get("region")))
             if solid != c["solid"] or depth != c["depth"] or len(pts) != len(c["points"]):
                 diff("%s: solid %s depth %d %d points in the page, solid %s depth %d %d points in the JSON"
                      % (w, solid, depth, len(pts), c["solid"], c["depth"], len(c["points"])))
@@ -402,6 +428,7 @@ def main(argv):
         kinds = page.head["kinds"]
         for k, L in enumerate(run["layers"], 1):
             rows, contours, vectors = page.layer(k)
+            contours = [c for c in contours if c.region is None]  # the section's
             solids = sum(1 for c in contours if c[0])
             print(L["index"], "%.6g" % L["stats"]["area"], solids, len(contours) - solids, parents_ok(contours))
             deposits += sum(1 for v in vectors if v[0] is not None and kinds[v[0]] == "deposit")
