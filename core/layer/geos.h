@@ -63,9 +63,10 @@ GEOSGeometry *lam_geos_difference(lam_geos *g, const GEOSGeometry *a, const GEOS
  * booleans that follow. NULL when GEOS fails. */
 GEOSGeometry *lam_geos_offset(lam_geos *g, const GEOSGeometry *a, double d);
 
-/* Region a (valid) grown by d >= 0 with round joins (16 segments a quarter
- * circle, inside the true circle: never more than d), made valid: the
- * points within d of a. NULL when GEOS fails. */
+/* Region a (valid) grown by d with round joins (16 segments a quarter
+ * circle, inside the true circle: never more than d), made valid: for
+ * d >= 0 the points within d of a; d < 0 shrinks it. NULL when GEOS
+ * fails. */
 GEOSGeometry *lam_geos_grow(lam_geos *g, const GEOSGeometry *a, double d);
 /* a united with b by snap-rounding on g->grid (a and b valid). NULL when
  * GEOS fails. */

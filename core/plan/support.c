@@ -183,12 +183,60 @@ static GEOSGeometry *keep_large(sweep *w, GEOSGeometry *x, double tiny)
     return areal(w, x, fmax(w->cfg->min_area, tiny));
 }
 
+/* x (taken) closed by a little more than half the reach (grown, then
+ * shrunk back), less `held` again: each layer's new piece of support
+ * stands a reach from the column above it (that gap is held by the part
+ * above), so without this a sphere's support is a ring a layer, each a
+ * reach apart (hundreds of thin rings, each layer's overlays slower than
+ * the last); closed, it is one block under the overhang. Mitred offsets:
+ * round ones would put arcs at every vertex, layer after layer (a sphere's
+ * support had 20 times its section's vertices). NULL when GEOS fails. */
+static GEOSGeometry *close_gaps(sweep *w, GEOSGeometry *x, const GEOSGeometry *held, double r)
+{
+    double c = 0.55 * r;
+    GEOSGeometry *g = areal(w, lam_geos_offset(&w->g, x, c), 0);
+    drop(w, x);
+    GEOSGeometry *sh = g ? areal(w, lam_geos_offset(&w->g, g, -c), 0) : NULL;
+    drop(w, g);
+    GEOSGeometry *out = sh ? lam_geos_difference(&w->g, sh, held) : NULL;
+    drop(w, sh);
+    return out;
+}
+
+/* x (taken) less P[k] grown by support_gap_xy. NULL when GEOS fails. */
+static GEOSGeometry *clear_gap(sweep *w, GEOSGeometry *x, size_t k)
+{
+    w->stage = "gap";
+    GEOSGeometry *gap = areal(w, lam_geos_grow(&w->g, w->part[k], w->cfg->gap_xy), 0);
+    GEOSGeometry *out = gap ? lam_geos_difference(&w->g, x, gap) : NULL;
+    drop(w, gap);
+    drop(w, x);
+    return out;
+}
+
+/* Layer k+1's overhang: its part beyond `held` (the reach of P[k]); *all
+ * (when not NULL) gets a copy before the small pieces go. */
+static int note_overhang(sweep *w, size_t k, const GEOSGeometry *held, double r, GEOSGeometry **all)
+{
+    GEOSGeometry *d = lam_geos_difference(&w->g, w->part[k + 1], held);
+    if (d && all && !(*all = GEOSGeom_clone_r(w->g.h, d))) {
+        drop(w, d);
+        return LAM_EGEOM;
+    }
+    GEOSGeometry *o = keep_large(w, d, 1e-6 * r * r);
+    if (!o) return LAM_EGEOM;
+    if (GEOSisEmpty_r(w->g.h, o)) drop(w, o);
+    else w->over[k + 1] = o;
+    return LAM_OK;
+}
+
 /* S[k] from S[k+1], P[k+1] and P[k] (support.h). */
 static int sweep_layer(sweep *w, size_t k)
 {
     w->at = k;
     GEOSGeometry *above = w->part[k + 1], *u = NULL, *held = NULL, *rest = NULL;
     double r = reach_of(w, k + 1);
+    if (isinf(r)) return LAM_OK; /* nothing needs support */
     if (w->sup[k + 1] && !(above = u = areal(w, lam_geos_union(&w->g, w->part[k + 1], w->sup[k + 1]), 0)))
         return LAM_EGEOM;
     if (empty(w, above)) {
@@ -196,31 +244,22 @@ static int sweep_layer(sweep *w, size_t k)
         return LAM_OK;
     }
     w->stage = "reach";
-    int rc = LAM_OK;
-    if (!(held = isinf(r) ? NULL : areal(w, lam_geos_grow(&w->g, w->part[k], r), 0)) && !isinf(r)) rc = LAM_EGEOM;
-    if (!rc && held) {
-        w->stage = "support";
-        if (!(rest = lam_geos_difference(&w->g, above, held))) rc = LAM_EGEOM;
-        GEOSGeometry *o = rc ? NULL : keep_large(w, lam_geos_difference(&w->g, w->part[k + 1], held), 1e-6 * r * r);
-        if (!rc && !o) rc = LAM_EGEOM;
-        else if (o && GEOSisEmpty_r(w->g.h, o)) drop(w, o);
-        else w->over[k + 1] = o;
-    }
-    if (!rc && rest && w->cfg->gap_xy > r) {
-        w->stage = "gap";
-        GEOSGeometry *gap = areal(w, lam_geos_grow(&w->g, w->part[k], w->cfg->gap_xy), 0), *x = NULL;
-        if (!gap || !(x = lam_geos_difference(&w->g, rest, gap))) rc = LAM_EGEOM;
-        drop(w, gap);
-        drop(w, rest);
-        rest = x;
-    }
+    int rc = (held = areal(w, lam_geos_grow(&w->g, w->part[k], r), 0)) ? LAM_OK : LAM_EGEOM;
+    w->stage = "support";
+    /* without support above, what needs support is the overhang itself */
+    if (!rc) rc = note_overhang(w, k, held, r, w->sup[k + 1] ? NULL : &rest);
+    if (!rc && w->sup[k + 1] && !(rest = lam_geos_difference(&w->g, above, held))) rc = LAM_EGEOM;
+    if (!rc && !empty(w, rest) && !(rest = close_gaps(w, rest, held, r))) rc = LAM_EGEOM;
+    if (!rc && w->cfg->gap_xy > r && !(rest = clear_gap(w, rest, k))) rc = LAM_EGEOM;
     drop(w, u);
     drop(w, held);
     if (!rc && rest) {
         w->sup[k] = keep_large(w, rest, 1e-6 * r * r);
+        rest = NULL;
         if (!w->sup[k]) rc = LAM_EGEOM;
         else if (GEOSisEmpty_r(w->g.h, w->sup[k])) drop(w, w->sup[k]), w->sup[k] = NULL;
     }
+    drop(w, rest);
     return rc;
 }
 
@@ -279,24 +318,56 @@ static int clear_below_part(sweep *w, size_t k, size_t layers)
     return rc;
 }
 
-/* Layer i's teeth: its part over the contacts (S[j] n P[j+1]) of the
- * `layers` layers below it. */
-static int teeth_of(sweep *w, size_t i, size_t layers, GEOSGeometry **out)
+/* The contact of S[j] with the part above it, S[j] n P[j+1], into
+ * c[j] (made once: each is asked for by `layers` layers; NULL: none). */
+static int contact(sweep *w, size_t j, GEOSGeometry **c, char *made)
+{
+    if (made[j]) return LAM_OK;
+    made[j] = 1;
+    if (!w->sup[j] || j + 1 >= w->n || empty(w, w->part[j + 1])) return LAM_OK;
+    c[j] = areal(w, lam_geos_intersection(&w->g, w->sup[j], w->part[j + 1]), 0);
+    if (!c[j]) return LAM_EGEOM;
+    if (GEOSisEmpty_r(w->g.h, c[j])) drop(w, c[j]), c[j] = NULL;
+    return LAM_OK;
+}
+
+/* Layer i's teeth: its part over the contacts of the `layers` layers
+ * below it. */
+static int teeth_of(sweep *w, size_t i, size_t layers, GEOSGeometry **c, char *made, GEOSGeometry **out)
 {
     *out = NULL;
     GEOSGeometry *acc = NULL;
     int rc = LAM_OK;
     for (size_t j = i > layers ? i - layers : 0; j < i && !rc; j++) {
-        if (!w->sup[j] || empty(w, w->part[j + 1])) continue;
-        GEOSGeometry *c = areal(w, lam_geos_intersection(&w->g, w->sup[j], w->part[j + 1]), 0), *x = NULL;
-        if (!c) rc = LAM_EGEOM;
-        else if (!(x = areal(w, acc ? lam_geos_union(&w->g, acc, c) : GEOSGeom_clone_r(w->g.h, c), 0))) rc = LAM_EGEOM;
-        drop(w, c);
+        if ((rc = contact(w, j, c, made)) || !c[j]) continue;
+        GEOSGeometry *x = areal(w, acc ? lam_geos_union(&w->g, acc, c[j]) : GEOSGeom_clone_r(w->g.h, c[j]), 0);
+        if (!x) rc = LAM_EGEOM;
         drop(w, acc);
         acc = x;
     }
     if (!rc && acc && !(*out = areal(w, lam_geos_intersection(&w->g, acc, w->part[i]), 0))) rc = LAM_EGEOM;
     drop(w, acc);
+    return rc;
+}
+
+/* Every layer's teeth into s (layers: their height in layers). */
+static int all_teeth(sweep *w, lam_supports *s, size_t layers, lam_error *err)
+{
+    GEOSGeometry **c = calloc(w->n + 1, sizeof *c);
+    char *made = calloc(w->n + 1, 1);
+    int rc = c && made ? LAM_OK : lam_error_nomem(err, "making supports");
+    for (size_t i = 0; i < w->n && !rc; i++) {
+        GEOSGeometry *t = NULL;
+        w->at = i;
+        w->stage = "teeth";
+        if ((rc = teeth_of(w, i, layers, c, made, &t))) break;
+        rc = to_layer(w, t, w->layers[i], &s->teeth[w->layers[i]->index], err);
+        drop(w, t);
+        if (i >= layers) drop(w, c[i - layers]), c[i - layers] = NULL; /* no layer above asks again */
+    }
+    for (size_t j = 0; c && j < w->n; j++) drop(w, c[j]);
+    free(c);
+    free(made);
     return rc;
 }
 
@@ -313,14 +384,7 @@ static int regions(sweep *w, lam_supports *s, lam_error *err)
     int rc = LAM_OK;
     double width = w->n ? w->layers[0]->width : 0;
     size_t gap = whole_layers(w->cfg->gap_z, width), teeth = gap ? 0 : whole_layers(w->cfg->teeth_height, width);
-    for (size_t i = 0; i < w->n && !rc; i++) {
-        GEOSGeometry *t = NULL;
-        w->at = i;
-        w->stage = "teeth";
-        if (teeth && (rc = teeth_of(w, i, teeth, &t))) break;
-        rc = to_layer(w, t, w->layers[i], &s->teeth[w->layers[i]->index], err);
-        drop(w, t);
-    }
+    if (teeth) rc = all_teeth(w, s, teeth, err);
     for (size_t k = 0; k < w->n && !rc; k++) {
         w->at = k;
         w->stage = "gap below the part";

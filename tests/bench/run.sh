@@ -208,3 +208,7 @@ bash "$here/json_speed.sh" "$LAMINA"
 # The viewer's page (issue 26): its size against the binary CLI, its write
 # time, and its opening in headless Chromium: tests/bench/viewer.sh.
 bash "$here/viewer.sh" "$LAMINA"
+
+# Supports (issue 27): a supported part against the same part unsupported,
+# tests/bench/supports.sh.
+bash "$here/supports.sh" "$LAMINA"
