@@ -81,7 +81,7 @@ def check(run, zmin, zmax, width):
             bad.append("layer %d has index %d" % (i + 1, L["index"]))
         if abs(L["z"] - (zmin + (i + 0.5) * width)) > 1e-6:
             bad.append("layer %d at z %.9g" % (i + 1, L["z"]))
-        reg = Region([[p[:2] for p in c["points"]] for c in L["contours"]])
+        reg = Region([[p[:2] for p in c["points"]] for c in L["contours"] if c.get("region") is None])  # the section's
         for v in L["vectors"]:
             if v["kind"] not in HATCH:
                 continue

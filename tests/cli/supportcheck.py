@@ -122,12 +122,13 @@ class Layer:
     def __init__(self, L, h):
         self.index = L["index"]
         self.width = L["width"]
-        part, sup = [], []
-        for c in L["contours"]:
+        part, sup, over = [], [], []
+        for c in L["contours"]:  # the section's (no region), the support's, the overhang's
             ring = [(p[0], p[1]) for p in c["points"]]
-            (sup if c.get("region") == "support" else part).append(ring)
+            {None: part, "support": sup, "overhang": over}[c.get("region")].append(ring)
         self.part = Region(part, h)
         self.sup = Region(sup, h)
+        self.over = Region(over, h)
         self.vectors = [v for v in L["vectors"] if v["kind"] == "support"]
         self.nsup = len(sup)
 
@@ -291,6 +292,46 @@ def cmd_stands(a):
     return rep.done("%d layers, angle %g, tol %g" % (len(layers), a.angle, a.tol))
 
 
+def cmd_overhang(a):
+    """the overhang contours are what of each layer's part stands beyond the
+    reach of the part below (the part alone, not the support): grid points
+    of the part farther than r + tol from the part below are in the
+    overhang, those nearer than r - tol are not, and the overhang lies in
+    the part"""
+    tanv = math.tan(math.radians(a.angle)) if a.angle < 90 else INF
+    d, layers = load(a.json, a.cell)
+    rep = Report("overhang")
+    for k in range(1, len(layers)):
+        L, B = layers[k], layers[k - 1]
+        r = L.width * tanv
+        if r == INF:
+            if L.over.rings:
+                rep.fail("layer %d: an overhang where nothing needs support" % L.index)
+            continue
+        step = a.step if a.step else r / 2
+        for y, xs in grid_rows([L.part], step, a.max_points):
+            for x in xs:
+                if L.part.bdist(x, y, 2 * a.tol) <= a.tol:
+                    continue  # on the part's edge: either
+                rep.checked += 1
+                dd = B.part.dist(x, y, r + 2 * a.tol)
+                o = L.over.inside(x, y) and L.over.bdist(x, y, 2 * a.tol) > a.tol
+                edge = L.over.inside(x, y) != o
+                if dd > r + a.tol and not o and not edge:
+                    rep.fail("layer %d: (%.6f, %.6f) is %.6f from layer %d's part, not in the overhang"
+                             % (L.index, x, y, dd, B.index))
+                elif dd < r - a.tol and L.over.inside(x, y) and not edge:
+                    rep.fail("layer %d: (%.6f, %.6f) is in the overhang, %.6f from layer %d's part (reach %g)"
+                             % (L.index, x, y, dd, B.index, r))
+        for x, y in edge_points(L.over.rings, step):
+            rep.checked += 1
+            if not L.part.inside(x, y) and L.part.bdist(x, y, 2 * a.tol) > a.tol:
+                rep.fail("layer %d: the overhang's (%.6f, %.6f) is outside the part" % (L.index, x, y))
+    if layers and layers[0].over.rings:
+        rep.fail("layer 1 (on the plate) has an overhang")
+    return rep.done("%d layers, angle %g, tol %g" % (len(layers), a.angle, a.tol))
+
+
 def cmd_vectors(a):
     d, layers = load(a.json, a.cell)
     rep = Report("vectors")
@@ -428,6 +469,10 @@ def main():
     p.add_argument("--step", type=float, default=0, help="grid step (0: half the reach)")
     p.add_argument("--eps", type=float, default=1e-5, help="how far vertices are nudged inside")
     p.set_defaults(fn=cmd_stands)
+    p = sub.add_parser("overhang"); common(p)
+    p.add_argument("--angle", type=float, default=45)
+    p.add_argument("--step", type=float, default=0, help="grid step (0: half the reach)")
+    p.set_defaults(fn=cmd_overhang)
     p = sub.add_parser("vectors"); common(p)
     p.add_argument("--teeth-layers", type=int, default=0)
     p.add_argument("--gap-xy", type=float, default=None)

@@ -49,6 +49,8 @@ for m in tee arch sphere bracket float cube; do
     for ax in 0,0,1 $OBL; do
         slh $m "$TMP/$m.json" -a $ax -w 0.5 --set support_type=block
         expect pass "$m, axis $ax, block: every point stands within the reach of the layer below" stands "$TMP/$m.json"
+        expect pass "$m, axis $ax: the overhang contours are the part beyond the reach of the part below" \
+            overhang "$TMP/$m.json"
         if [ $m = cube ] && [ $ax = 0,0,1 ]; then continue; fi
         expect pass "$m, axis $ax, block: support vectors in the support region, none in the part" vectors "$TMP/$m.json"
     done
@@ -59,6 +61,8 @@ for m in tee arch sphere float bracket; do
     [ $m = bracket ] && ax=$OBL
     sl $m "$TMP/$m.json" -a $ax -w 0.5 --set support_type=none
     expect fail "$m, axis $ax, support_type=none: the overhangs do not stand" stands "$TMP/$m.json"
+    expect fail "$m, axis $ax, support_type=none: no overhang contours (the analysis comes with supports)" \
+        overhang "$TMP/$m.json"
 done
 # ... nor with one layer's support contours taken out of the JSON
 sl tee "$TMP/t.json" -w 0.5 --set support_type=block

@@ -185,7 +185,10 @@ def decode_block(data, n_attrs, k=0):
             vectors.append((kind, row, order, (u0, v0), (cu, cv), False))
     if r.i < len(data):   # the marked regions, with a cursor of their own
         mu = mv = 0
-        for _ in range(r.u()):
+        nm = r.u()
+        if nm == 0:
+            raise PageError("layer %d: a marks part with no mark (a block without marks ends at its runs)" % k)
+        for _ in range(nm):
             region, n, flags = r.u(), r.u(), r.u()
             if region not in MARKS:
                 raise PageError("layer %d: a mark of region %d" % (k, region))
