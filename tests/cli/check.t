@@ -40,4 +40,23 @@ rsvg-convert -f png -o "$TMP/plate.png" "$TMP/plate.svg"; ok $? "the sheet rende
 
 run "$LAMINA" check "$D/plate_thin.ug"
 is "$RC" 2 "no machine: usage error"
+# powder bed (issue 27): each layer's overhang that does not stand within the
+# reach (w tan 45 = 1 at -w 1) of the layer below. The tee (supportgen.py:
+# a stem 5 wide, 8 deep, 10 high under a bar 20 x 8): on layer 11, its
+# bar's first, the bar less the stem grown by the reach, (20 - 5 - 2) x 8 =
+# 104 mm², does not stand without supports; lpbf-cli's block supports hold it
+python3 "$TESTS/cli/supportgen.py" tee "$TMP/tee.stl"
+run "$LAMINA" check "$TMP/tee.stl" -m lpbf-cli -w 1 -s support_type=none
+is "$RC" 3 "powder bed, no supports: an unsupported overhang, exit 3"
+like "$OUT" '^unsupported: layer 11 \(z 10\.5\): 104 mm² of overhang beyond the reach of the layer below \(support_angle 45, supports: none\)$' \
+    "... its layer, height and area"
+like "$OUT" 'tee\.stl: unsupported overhangs on 1 layer, 104 mm² in all' "... and the summary"
+run "$LAMINA" check "$TMP/tee.stl" -m lpbf-cli -w 1
+is "$RC" 0 "lpbf-cli's own block supports: every overhang stands (exit 0)"
+like "$OUT" 'tee\.stl: every overhang stands \(support_angle 45; supports: block, on 10 layers' "... on the 10 layers under the bar"
+run "$LAMINA" check "$TMP/tee.stl" -m lpbf-cli -w 1 -s support_type=none -s support_angle=90
+is "$RC" 0 "support_angle 90: nothing needs support"
+run "$LAMINA" check "$TMP/tee.stl" -m lpbf-cli -w 1 -s support_type=none --json
+is "$(jq -c '[.overhangs.unsupported_layers, (.overhangs.layers[] | select(.unsupported > 0) | [.layer, (.unsupported | round)])]' <<<"$OUT")" \
+   '[1,[11,104]]' "--json: the overhangs member names the layer and its area"
 done_testing
