@@ -24,6 +24,7 @@ int lam_geos_load(lam_error *err);
     X(GEOSConstrainedDelaunayTriangulation_r) \
     X(GEOSContext_setErrorMessageHandler_r)   \
     X(GEOSCoordSeq_create_r)                  \
+    X(GEOSCoveredBy_r)                        \
     X(GEOSCoordSeq_getSize_r)                 \
     X(GEOSCoordSeq_getXY_r)                   \
     X(GEOSCoordSeq_setXY_r)                   \
@@ -74,6 +75,7 @@ LAM_GEOS_FUNCS(LAM_LAZYLIB_EXTERN)
 #define GEOSConstrainedDelaunayTriangulation_r lam_dl_GEOSConstrainedDelaunayTriangulation_r
 #define GEOSContext_setErrorMessageHandler_r lam_dl_GEOSContext_setErrorMessageHandler_r
 #define GEOSCoordSeq_create_r lam_dl_GEOSCoordSeq_create_r
+#define GEOSCoveredBy_r lam_dl_GEOSCoveredBy_r
 #define GEOSCoordSeq_getSize_r lam_dl_GEOSCoordSeq_getSize_r
 #define GEOSCoordSeq_getXY_r lam_dl_GEOSCoordSeq_getXY_r
 #define GEOSCoordSeq_setXY_r lam_dl_GEOSCoordSeq_setXY_r

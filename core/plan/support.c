@@ -237,6 +237,9 @@ static int sweep_layer(sweep *w, size_t k)
     GEOSGeometry *above = w->part[k + 1], *u = NULL, *held = NULL, *rest = NULL;
     double r = reach_of(w, k + 1);
     if (isinf(r)) return LAM_OK; /* nothing needs support */
+    /* a layer within the one below (a predicate, no overlay: most layers
+     * of most parts) has no overhang, and without support above none */
+    if (!w->sup[k + 1] && GEOSCoveredBy_r(w->g.h, w->part[k + 1], w->part[k]) == 1) return LAM_OK;
     if (w->sup[k + 1] && !(above = u = areal(w, lam_geos_union(&w->g, w->part[k + 1], w->sup[k + 1]), 0)))
         return LAM_EGEOM;
     if (empty(w, above)) {
@@ -486,7 +489,7 @@ static GEOSGeometry *with(sweep *w, GEOSGeometry *a, const lam_layer *R)
 static int beyond(sweep *w, const GEOSGeometry *top, const GEOSGeometry *base, double r, double *area)
 {
     *area = 0;
-    if (isinf(r) || empty(w, top)) return LAM_OK;
+    if (isinf(r) || empty(w, top) || GEOSCoveredBy_r(w->g.h, top, base) == 1) return LAM_OK;
     GEOSGeometry *held = areal(w, lam_geos_grow(&w->g, base, r), 0);
     GEOSGeometry *x = held ? lam_geos_difference(&w->g, top, held) : NULL;
     int rc = x ? LAM_OK : LAM_EGEOM;
