@@ -164,7 +164,24 @@ int lam_lua_supports_auto(lam_supports **box, const lam_layer *const *ls, size_t
     return lam_supports_make(ls, n, &p->scan.support, box, err);
 }
 
-/* model:supports{layers = , machine = [, support keys]} -> { layer, ... } */
+/* A table of one layer per layer of ls (the list at 4): what `get` gives
+ * of s for it, or an empty layer. */
+static void push_layers(lua_State *L, const lam_layer **ls, size_t n, const lam_supports *s,
+                        const lam_layer *(*get)(const lam_supports *, size_t))
+{
+    lua_createtable(L, n < 1000000 ? (int)n : 0, 0);
+    for (size_t i = 0; i < n; i++) {
+        lam_lua_layeritem(L, 4, 2, i);
+        const lam_layer *R = get(s, ls[i]->index);
+        lam_layer *own = R ? lam_layer_clone(R) : empty_like(ls[i]);
+        if (!own) luaL_error(L, "out of memory");
+        lam_lua_pushlayer(L, -1, own);
+        lua_rawseti(L, -3, (lua_Integer)i + 1);
+        lua_pop(L, 1);
+    }
+}
+
+/* model:supports{layers = , machine = [, support keys]} -> { layer, ..., overhangs = { layer, ... } } */
 int lam_lua_supports(lua_State *L)
 {
     luaL_checktype(L, 2, LUA_TTABLE);
@@ -188,15 +205,8 @@ int lam_lua_supports(lua_State *L)
     lam_error err;
     lam_error_clear(&err);
     if (lam_supports_make(ls, (size_t)n, &p.scan.support, &b->s, &err)) return lam_lua_fail(L, &err);
-    lua_createtable(L, n < 1000000 ? (int)n : 0, 0);
-    for (lua_Unsigned i = 0; i < n; i++) {
-        lam_lua_layeritem(L, 4, 2, (size_t)i);
-        const lam_layer *R = lam_supports_region(b->s, ls[i]->index);
-        lam_layer *own_R = R ? lam_layer_clone(R) : empty_like(ls[i]);
-        if (!own_R) return luaL_error(L, "out of memory");
-        lam_lua_pushlayer(L, -1, own_R);
-        lua_rawseti(L, -3, (lua_Integer)i + 1);
-        lua_pop(L, 1);
-    }
+    push_layers(L, ls, (size_t)n, b->s, lam_supports_region);
+    push_layers(L, ls, (size_t)n, b->s, lam_supports_overhang);
+    lua_setfield(L, -2, "overhangs");
     return 1;
 }
