@@ -13,6 +13,9 @@ static int periodic(hatcher *h, size_t n, double period, double width, int insid
 {
     *out = NULL;
     *nout = 0;
+    double pieces = 0; /* counted first: a period of 1e-9 must not run (nor allocate) a billion times */
+    for (size_t i = 0; i < n; i++) pieces += (h->segs[i].x1 - h->segs[i].x0) / period + 2;
+    if (!(pieces <= MAX_VECTORS)) return LAM_EUSAGE;
     size_t cap = 0;
     seg *r = NULL;
     for (size_t i = 0; i < n; i++) {
@@ -124,7 +127,8 @@ int lam_support_vectors(const lam_supports *s, size_t i, const lam_support_cfg *
     const lam_layer *L = R ? R : T;
     if (rc == LAM_ENOMEM) lam_error_nomem(err, "making support vectors");
     else if (rc == LAM_EUSAGE)
-        lam_error_set(err, rc, NULL, 0, 0, "layer %zu: support_spacing is too small for the layer (more than %.0f "
+        lam_error_set(err, rc, NULL, 0, 0, "layer %zu: support_spacing, support_teeth.spacing or "
+                                           "support_perforation.spacing is too small for the layer (more than %.0f "
                                            "vectors)", L->index + 1, MAX_VECTORS);
     else if (rc)
         lam_error_set(err, rc, NULL, 0, 0, "layer %zu: support walls: GEOS: %s", L->index + 1,

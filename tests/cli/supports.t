@@ -287,4 +287,18 @@ n=$(grep -c '^//support power 77 speed 1234//$' "$TMP/e.cli")
 ok $((n == 0)) "... and the program's support blocks carry it ($n blocks)"
 n=$(jq '[.layers[].vectors[] | select(.kind == "support")] | length' "$TMP/e.json")
 ok $((n == 0)) "... the JSON has support vectors ($n)"
+# ---- hostile values: refused quickly, nothing written ----------------------
+# windows of 5e-10 every 1e-9 along 13 mm walls: 1.3e10 pieces a wall; the
+# estimate refuses them at the default limit, and past a raised limit the
+# walls are counted before any is cut
+rm -f "$TMP/h.cli"
+run "$LAMINA" slice "$TMP/tee.stl" -m lpbf-cli -w 1 -s support_perforation.width=5e-10 -s support_perforation.spacing=1e-9 \
+    -o "$TMP/h.cli"
+like "$RC $ERR" '^1 lamina: the job would write about .*more than the limit of 4 GB' "perforation 1e-9: refused by the estimate"
+run "$LAMINA" slice "$TMP/tee.stl" -m lpbf-cli -w 1 -s support_perforation.width=5e-10 -s support_perforation.spacing=1e-9 \
+    --max-output 1000T -o "$TMP/h.cli"
+like "$RC $ERR" '^2 lamina slice: layer [0-9]+: support_spacing, support_teeth.spacing or support_perforation.spacing is too small' \
+    "... past a raised limit: the walls refused, the layer named"
+[ ! -e "$TMP/h.cli" ]
+ok $? "... and no program written"
 done_testing
