@@ -53,7 +53,8 @@ for line in open(path):
         f = line[10:].split(",")
         n = int(f[1])
         v = [tuple(float(x) for x in f[2 + 4 * i: 6 + 4 * i]) for i in range(n)]
-        layers[-1]["blocks"].append((kind, v))
+        if kind != "support":  # support walls stand outside the part: supportcheck.py's
+            layers[-1]["blocks"].append((kind, v))
         kind = "core"
 
 # ---- geometry ---------------------------------------------------------------
@@ -273,7 +274,7 @@ for li, L in enumerate(layers):
         xs = [p[0] for Lp in loops for p in Lp]
         ys = [p[1] for Lp in loops for p in Lp]
         if xs:
-            g = max(H / 2, (max(xs) - min(xs)) / 50, (max(ys) - min(ys)) / 50)
+            g = max(H / 2, (max(xs) - min(xs)) / 120, (max(ys) - min(ys)) / 120)  # /50 was 4% short on a frame
             x = min(xs) + g / 2
             while x < max(xs):
                 y = min(ys) + g / 3
