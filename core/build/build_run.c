@@ -242,16 +242,6 @@ long long lam_build_run_label(const lam_build_run *r, long long part, long long 
     return r->label_of[i];
 }
 
-/* Whether the part's plan can have vectors of region k. */
-static int region_used(const lam_run_part *p, int k)
-{
-    const lam_scan_cfg *c = &p->po.scan;
-    if (k == LAM_KIND_CONTOUR) return c->contour_count > 0;
-    if (k == LAM_KIND_SUPPORT) return c->support.type != LAM_SUPPORT_NONE;
-    if (k != LAM_KIND_CORE && c->skin_layers == 0) return 0;
-    return c->type[k].strategy != LAM_HATCH_NONE;
-}
-
 static int boxes_meet(const double a[4], const double b[4])
 {
     return a[0] <= b[2] && b[0] <= a[2] && a[1] <= b[3] && b[1] <= a[3];
@@ -277,7 +267,7 @@ static int number_labels(lam_build_run *r, lam_error *err)
     for (size_t pi = 0; pi < r->nparts; pi++) {
         const lam_run_part *p = &r->parts[pi];
         for (int k = 0; k < LAM_REGIONS; k++) {
-            if (!region_used(p, k)) continue;
+            if (!lam_scan_region_used(&p->po.scan, k)) continue;
             int s = p->style_id[k];
             for (size_t l = 0; l < r->lasers.n; l++) {
                 if (!boxes_meet(p->box, r->lasers.field[l])) continue;
@@ -401,13 +391,12 @@ static int make_exposure(lam_build_run *r, lam_error *err)
         for (int k = 0; k < LAM_REGIONS; k++)
             for (size_t i = 0; i < r->nparts; i++) {
                 const lam_run_part *p = &r->parts[i];
-                if (p->style_id[k] != (int)s || !region_used(p, k)) continue;
+                if (p->style_id[k] != (int)s || !lam_scan_region_used(&p->po.scan, k)) continue;
                 const lam_scan_cfg *c = &p->po.scan;
                 const lam_exposure *e = &c->type[k].exposure;
                 r->exposure[n++] = (lam_job_exposure){
                     .style = (long long)s, .region = k, .power = e->power, .speed = e->speed,
-                    .distance = k == LAM_KIND_CONTOUR ? p->po.bead
-                                : k == LAM_KIND_SUPPORT ? c->support.spacing : c->type[k].distance,
+                    .distance = lam_scan_region_distance(c, p->po.bead, k),
                     .point_distance = e->point_distance, .exposure_time = e->exposure_time };
                 break;
             }

@@ -6,6 +6,19 @@
 #include <stdlib.h>
 #include <string.h>
 
+int lam_scan_region_used(const lam_scan_cfg *c, int k)
+{
+    if (k == LAM_KIND_CONTOUR) return c->contour_count > 0;
+    if (k == LAM_KIND_SUPPORT) return c->support.type != LAM_SUPPORT_NONE;
+    if (k != LAM_KIND_CORE && c->skin_layers == 0) return 0;
+    return c->type[k].strategy != LAM_HATCH_NONE;
+}
+
+double lam_scan_region_distance(const lam_scan_cfg *c, double spot, int k)
+{
+    return k == LAM_KIND_CONTOUR ? spot : k == LAM_KIND_SUPPORT ? c->support.spacing : c->type[k].distance;
+}
+
 int lam_scan_hatches(const lam_scan_cfg *cfg)
 {
     for (int t = LAM_KIND_CORE; t < LAM_REGIONS; t++)

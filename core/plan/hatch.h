@@ -106,6 +106,16 @@ typedef struct lam_scan_cfg {
     lam_support_cfg support; /* type[LAM_KIND_SUPPORT] is its exposure */
 } lam_scan_cfg;
 
+/* Whether a plan of cfg can have vectors of region k (lam_vec_kind below
+ * LAM_REGIONS): the contour with passes, the core hatched, a skin with
+ * skins and its hatching, the support with a support_type. What the job's
+ * exposures list (a single part's run and each part of a build). */
+int lam_scan_region_used(const lam_scan_cfg *cfg, int k);
+
+/* The distance between region k's vectors: the spot for the contour, the
+ * wall spacing for the support, else the region's hatch distance. */
+double lam_scan_region_distance(const lam_scan_cfg *cfg, double spot, int k);
+
 /* Whether cfg hatches anything: some hatch type's strategy is not none. */
 int lam_scan_hatches(const lam_scan_cfg *cfg);
 

@@ -85,28 +85,17 @@ static void job_bbox(const lam_slicer *s, const lam_model *m, const lam_plan_opt
     bb[5] = planes[lam_slicer_count(s)];
 }
 
-/* Whether a plan of cfg can have vectors of region k (a build's labels
- * ask the same of each part: build_run.c). */
-static int region_used(const lam_scan_cfg *c, int k)
-{
-    if (k == LAM_KIND_CONTOUR) return c->contour_count > 0;
-    if (k == LAM_KIND_SUPPORT) return c->support.type != LAM_SUPPORT_NONE;
-    if (k != LAM_KIND_CORE && c->skin_layers == 0) return 0;
-    return c->type[k].strategy != LAM_HATCH_NONE;
-}
-
 /* A single part's run: each region's exposure, style 0 (the vectors'
  * style attribute at its default). */
 static void job_exposure(lam_job_info *job, const lam_plan_opts *o)
 {
     if (o->kind != LAM_PLAN_SLS) return;
     for (int k = 0; k < LAM_REGIONS; k++) {
-        if (!region_used(&o->scan, k)) continue;
+        if (!lam_scan_region_used(&o->scan, k)) continue;
         const lam_exposure *e = &o->scan.type[k].exposure;
         job->own_exposure[job->nexposure++] = (lam_job_exposure){
             .style = 0, .region = k, .power = e->power, .speed = e->speed,
-            .distance = k == LAM_KIND_CONTOUR ? o->bead : k == LAM_KIND_SUPPORT ? o->scan.support.spacing
-                                                                                : o->scan.type[k].distance,
+            .distance = lam_scan_region_distance(&o->scan, o->bead, k),
             .point_distance = e->point_distance, .exposure_time = e->exposure_time };
     }
 }
