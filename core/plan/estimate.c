@@ -109,19 +109,18 @@ static void hatch_counts(const lam_layer *L, const lam_scan *sc, double area, do
  * hatch lines are counted, one block each; a block's outline a vector an
  * edge; windows cut a wall every perf_spacing. Teeth are a few layers of
  * walls inside the part: not counted. */
-static void add_support(lam_job_estimate *e, const lam_support_cfg *c, const lam_layer *R, double wgt)
+static void add_support(lam_job_estimate *e, const lam_support_cfg *c, const lam_layer *R, double area, double wgt)
 {
-    int dirs = c->type == LAM_SUPPORT_LINES ? 1 : 2;
+    int walls = lam_support_walls(c), dirs = walls == LAM_SUPPORT_LINES ? 1 : 2;
     for (int k = 0; k < dirs; k++) {
-        double cross, along, across, area = 0;
+        double cross, along, across;
         boundary(R, 90.0 * k, &cross, &along, &across);
-        for (size_t i = 0; i < R->ncontours; i++) area += R->contours[i].area;
         double vec = cross / c->spacing / 2;
         if (c->perf_width > 0 && c->perf_spacing > c->perf_width) vec += area / c->spacing / c->perf_spacing;
         e->vectors += wgt * vec;
         e->blocks += wgt;
     }
-    if (c->type == LAM_SUPPORT_BLOCK) {
+    if (walls == LAM_SUPPORT_BLOCK) {
         e->vectors += wgt * (double)R->npoints;
         e->blocks += wgt;
     }
@@ -130,11 +129,8 @@ static void add_support(lam_job_estimate *e, const lam_support_cfg *c, const lam
 static void add_sls(lam_job_estimate *e, const lam_plan_opts *o, const lam_layer *L, size_t nlayers, double wgt)
 {
     const lam_layer *R = lam_supports_region(o->supports, L->index);
-    if (R && o->scan.support.spacing > 0) {
-        lam_support_cfg c = o->scan.support;
-        if (c.type == LAM_SUPPORT_NONE) c.type = LAM_SUPPORT_BLOCK; /* a recipe's regions (plan_sls.c) */
-        add_support(e, &c, R, wgt);
-    }
+    if (R && o->scan.support.spacing > 0)
+        add_support(e, &o->scan.support, R, lam_supports_area(o->supports, L->index), wgt);
     int passes = o->scan.contour_count > 0 ? o->scan.contour_count : 0;
     e->contours += wgt * (double)L->ncontours * passes;
     e->points += wgt * (double)L->npoints * passes;

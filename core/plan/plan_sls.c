@@ -135,12 +135,9 @@ int lam_plan_sls_layer(const lam_layer *L, const lam_layer *const *below, size_t
         h = &st->hatches;
     }
     if (!rc && o->supports) {
-        /* supports first: they stand under the part's overhangs; regions a
-         * recipe gives are planned as blocks when the machine makes none */
-        lam_support_cfg c = o->scan.support;
-        if (c.type == LAM_SUPPORT_NONE) c.type = LAM_SUPPORT_BLOCK;
+        /* supports first: they stand under the part's overhangs */
         lam_hatches_clear(&st->support);
-        rc = lam_support_vectors(o->supports, L->index, &c, &st->support, err);
+        rc = lam_support_vectors(o->supports, L->index, &o->scan.support, &st->support, err);
         if (!rc) rc = emit_hatches(L, &st->support, f, o, sink, st, err);
     }
     if (!rc && o->scan.contours_first) rc = contour_passes(L, f, o, sink, st, err);

@@ -12,10 +12,11 @@
 struct lam_supports {
     size_t n;
     lam_layer **region, **teeth, **over; /* n each, NULL: none */
-    double *area;
 };
 
-double lam_support_reach(double width, double angle)
+/* The reach of a layer of width w at angle degrees from the vertical:
+ * w * tan(angle); HUGE_VAL from 90 degrees on. */
+static double support_reach(double width, double angle)
 {
     if (angle >= 90) return HUGE_VAL;
     return width * tan(angle * (3.14159265358979323846 / 180.0));
@@ -29,8 +30,7 @@ lam_supports *lam_supports_new(size_t n)
     s->region = calloc(n + 1, sizeof *s->region);
     s->teeth = calloc(n + 1, sizeof *s->teeth);
     s->over = calloc(n + 1, sizeof *s->over);
-    s->area = calloc(n + 1, sizeof *s->area);
-    if (!s->region || !s->teeth || !s->over || !s->area) {
+    if (!s->region || !s->teeth || !s->over) {
         lam_supports_free(s);
         return NULL;
     }
@@ -48,7 +48,6 @@ void lam_supports_free(lam_supports *s)
     free(s->region);
     free(s->teeth);
     free(s->over);
-    free(s->area);
     free(s);
 }
 
@@ -67,13 +66,7 @@ int lam_supports_set(lam_supports *s, size_t i, lam_layer *R)
     }
     lam_layer_free(s->region[i]);
     s->region[i] = R && R->ncontours ? R : (lam_layer_free(R), NULL);
-    s->area[i] = layer_area(s->region[i]);
     return LAM_OK;
-}
-
-size_t lam_supports_count(const lam_supports *s)
-{
-    return s ? s->n : 0;
 }
 
 const lam_layer *lam_supports_region(const lam_supports *s, size_t i)
@@ -93,14 +86,7 @@ const lam_layer *lam_supports_overhang(const lam_supports *s, size_t i)
 
 double lam_supports_area(const lam_supports *s, size_t i)
 {
-    return s && i < s->n ? s->area[i] : 0;
-}
-
-int lam_supports_any(const lam_supports *s)
-{
-    for (size_t i = 0; s && i < s->n; i++)
-        if (s->region[i]) return 1;
-    return 0;
+    return layer_area(lam_supports_region(s, i));
 }
 
 /* ---- the sweep ------------------------------------------------------------ */
@@ -130,7 +116,7 @@ static int empty(sweep *w, const GEOSGeometry *x)
 /* The reach used: a millionth more (support.h), and a few grid cells. */
 static double reach_of(const sweep *w, size_t upper)
 {
-    double r = lam_support_reach(w->layers[upper]->width, w->cfg->angle);
+    double r = support_reach(w->layers[upper]->width, w->cfg->angle);
     return r + fmax(1e-6 * r, 64 * w->g.grid);
 }
 
@@ -395,7 +381,6 @@ static int regions(sweep *w, lam_supports *s, lam_error *err)
         size_t at = w->layers[k]->index;
         rc = to_layer(w, w->sup[k], w->layers[k], &s->region[at], err);
         if (!rc) rc = to_layer(w, w->over[k], w->layers[k], &s->over[at], err);
-        s->area[at] = layer_area(s->region[at]);
     }
     return rc;
 }

@@ -34,10 +34,6 @@
 
 typedef struct lam_supports lam_supports;
 
-/* The reach of a layer of width w at angle degrees from the vertical:
- * w * tan(angle); HUGE_VAL from 90 degrees on. */
-double lam_support_reach(double width, double angle);
-
 /* The supports of layers[0..n) of one run (bottom to top, one frame; each
  * stands on the one before it: every layer of the run, or the subset a
  * recipe plans) under cfg (cfg->type is not looked at: regions are made
@@ -56,9 +52,6 @@ lam_supports *lam_supports_new(size_t n);
  * range). */
 int lam_supports_set(lam_supports *s, size_t i, lam_layer *R);
 
-/* The run indices s covers (0 .. count-1). */
-size_t lam_supports_count(const lam_supports *s);
-
 /* The support region and the teeth of the layer of run index i (inside the part), or NULL when
  * it has none (i out of range: NULL). Borrowed from s. */
 const lam_layer *lam_supports_region(const lam_supports *s, size_t i);
@@ -69,11 +62,9 @@ const lam_layer *lam_supports_teeth(const lam_supports *s, size_t i);
  * for layers lam_supports_set made). Borrowed from s. */
 const lam_layer *lam_supports_overhang(const lam_supports *s, size_t i);
 
-/* The support's area on layer i (0 without one). */
+/* The area of the support region of the layer of run index i (0 without
+ * one). */
 double lam_supports_area(const lam_supports *s, size_t i);
-
-/* Whether any layer has a support. */
-int lam_supports_any(const lam_supports *s);
 
 void lam_supports_free(lam_supports *s);
 
@@ -85,13 +76,17 @@ void lam_supports_free(lam_supports *s);
 int lam_supports_unsupported(const lam_layer *const *layers, size_t n, const lam_supports *s, double angle,
                              double *over, double *left, lam_error *err);
 
+/* The walls a plan draws: cfg's support_type, block when it is none (the
+ * supports were given, by a recipe: planned as blocks). */
+int lam_support_walls(const lam_support_cfg *cfg);
+
 /* The support vectors of the layer of run index i under cfg into out (appended, kind
- * LAM_KIND_SUPPORT): walls support_spacing apart on the grid of the run's
+ * LAM_KIND_SUPPORT, walls as lam_support_walls says): walls support_spacing apart on the grid of the run's
  * plane (lines: along u; grid and block: along u and v; block also the
  * region's outline), with windows where support_perforation asks, and
  * the teeth: the walls through the teeth region cut into teeth of
- * support_teeth.width every support_teeth.spacing. Nothing for type none
- * or a layer without support. Errors: LAM_ENOMEM, LAM_EGEOM, LAM_EUSAGE
+ * support_teeth.width every support_teeth.spacing. Nothing for a layer
+ * without support. Errors: LAM_ENOMEM, LAM_EGEOM, LAM_EUSAGE
  * (a spacing so small the layer would get over 50 million vectors). */
 int lam_support_vectors(const lam_supports *s, size_t i, const lam_support_cfg *cfg, lam_hatches *out,
                         lam_error *err);

@@ -104,11 +104,19 @@ static int all_walls(hatcher *h, const lam_layer *R, int teeth, const lam_suppor
     return rc;
 }
 
-int lam_support_vectors(const lam_supports *s, size_t i, const lam_support_cfg *c, lam_hatches *out,
+int lam_support_walls(const lam_support_cfg *c)
+{
+    return c->type == LAM_SUPPORT_NONE ? LAM_SUPPORT_BLOCK : c->type;
+}
+
+int lam_support_vectors(const lam_supports *s, size_t i, const lam_support_cfg *cfg, lam_hatches *out,
                         lam_error *err)
 {
     const lam_layer *R = lam_supports_region(s, i), *T = lam_supports_teeth(s, i);
-    if (c->type == LAM_SUPPORT_NONE || (!R && !T)) return LAM_OK;
+    if (!R && !T) return LAM_OK;
+    lam_support_cfg wc = *cfg;
+    wc.type = lam_support_walls(cfg);
+    const lam_support_cfg *c = &wc;
     lam_geos g;
     int rc = lam_geos_init(&g, err);
     if (rc) return rc;
